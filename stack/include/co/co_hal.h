@@ -1,0 +1,40 @@
+/*
+ * The hardware abstraction: a const table of functions plus a context
+ * pointer, one per node (or per bus). SocketCAN, an MCU CAN driver and the
+ * in-memory test bus are all drivers of this interface.
+ *
+ * Threading contract
+ * ------------------
+ * The core is passive and not re-entrant per node: co_node_rx() and
+ * co_node_process() of one node must be called from one context (a main loop
+ * or one task). An MCU receive ISR does not call the core; it pushes frames
+ * into a co_rxq (co_rxq.h, single producer / single consumer, lock-free) that
+ * the main loop drains into co_node_rx(). send() is called only from that same
+ * context. Different nodes are independent and may run in different threads.
+ */
+#ifndef CO_HAL_H
+#define CO_HAL_H
+
+#include <stdint.h>
+
+#include "co/co_frame.h"
+
+typedef struct co_hal_ops {
+    /** Queue @p f for transmission. Return 0 when it was accepted, non-zero
+     *  when the TX path is full: the core keeps the frame and tries again on
+     *  the next co_node_process(). Required. */
+    int (*send)(void *ctx, const co_frame_t *f);
+    /** Read @p len bytes of non-volatile memory at @p addr. Return 0 on
+     *  success. Optional (NULL: no storage; 0x1010 answers 0x08000020). */
+    int (*nv_read)(void *ctx, uint32_t addr, uint8_t *buf, uint32_t len);
+    /** Write @p len bytes of non-volatile memory at @p addr. Return 0 on
+     *  success. Optional. */
+    int (*nv_write)(void *ctx, uint32_t addr, const uint8_t *buf, uint32_t len);
+} co_hal_ops_t;
+
+typedef struct co_hal {
+    const co_hal_ops_t *ops;
+    void *ctx;
+} co_hal_t;
+
+#endif /* CO_HAL_H */

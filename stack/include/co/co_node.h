@@ -1,0 +1,267 @@
+/*
+ * A CANopen slave node: the one instance struct a caller allocates per node.
+ *
+ * The core is passive. The port pushes every received frame with the time
+ * (co_node_rx), and calls co_node_process with the time whenever the deadline
+ * it last returned has come (or earlier: extra calls are harmless). Frames go
+ * out through the HAL. Times are microseconds of a monotonic clock; they may
+ * wrap around 2^32 (every ~71 minutes): all comparisons are wrap-safe, and no
+ * single timer is longer than 2^31 us (~35 minutes; longer life-guarding
+ * times are clamped).
+ */
+#ifndef CO_NODE_H
+#define CO_NODE_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "co/co_err.h"
+#include "co/co_frame.h"
+#include "co/co_hal.h"
+#include "co/co_od.h"
+
+#ifndef CO_TXQ_LEN
+#define CO_TXQ_LEN 4U          /**< frames held back while the HAL's TX path is full */
+#endif
+#ifndef CO_EMCY_ACTIVE_MAX
+#define CO_EMCY_ACTIVE_MAX 8U  /**< distinct error codes active at once */
+#endif
+#ifndef CO_EMCY_QUEUE_LEN
+#define CO_EMCY_QUEUE_LEN 4U   /**< EMCYs waiting for the inhibit time */
+#endif
+#ifndef CO_HB_CONSUMERS_MAX
+#define CO_HB_CONSUMERS_MAX 8U /**< heartbeat consumer entries the core tracks */
+#endif
+#ifndef CO_RX_SLOTS_MAX
+#define CO_RX_SLOTS_MAX (6U + CO_HB_CONSUMERS_MAX)
+#endif
+
+#define CO_NO_DEADLINE 0xFFFFFFFFUL /**< co_node_process: nothing is due, ever */
+
+/* ---- Device personality options (CiA deviations; all default off). ---- */
+#define CO_OPT_UNKNOWN_INDEX_NO_ACCESS 0x0001U /**< unknown index answers 0x06010000 (SSD 630) */
+#define CO_OPT_READ_ONLY_NO_ACCESS     0x0002U /**< write to ro answers 0x06010000 (SSD 630) */
+#define CO_OPT_NO_BOOTUP               0x0004U /**< no boot-up frame (pre-DS301 4.0 devices) */
+#define CO_OPT_BOOT_EMCY               0x0008U /**< EMCY 0x0000 with boot_emcy_data after init (SSD 630) */
+#define CO_OPT_EMCY_STATE_PAIR         0x0010U /**< after every error EMCY send an EMCY 0x0000 with the register (Kollmorgen) */
+#define CO_OPT_EMCY_RESET_PARTIAL      0x0020U /**< EMCY 0x0000 also when some errors remain (CiA 301 "may") */
+#define CO_OPT_SDO_EXPEDITED_ONLY      0x0040U /**< no segmented or block SDO (Kollmorgen S300/S700) */
+#define CO_OPT_SDO_NO_BLOCK            0x0080U /**< no block SDO (answers 0x05040001) */
+#define CO_OPT_GUARD_WITH_HEARTBEAT    0x0100U /**< answer guarding RTRs even while producing heartbeats */
+
+/** Error register 0x1001 bits. */
+#define CO_ERREG_GENERIC      0x01U
+#define CO_ERREG_CURRENT      0x02U
+#define CO_ERREG_VOLTAGE      0x04U
+#define CO_ERREG_TEMPERATURE  0x08U
+#define CO_ERREG_COMM         0x10U
+#define CO_ERREG_PROFILE      0x20U
+#define CO_ERREG_MANUFACTURER 0x80U
+
+/** EMCY codes the core itself raises. */
+#define CO_EMCY_NO_ERROR      0x0000U
+#define CO_EMCY_HB_GUARD      0x8130U /**< life guard or heartbeat error */
+
+/** NMT states; the values are the heartbeat / guarding state codes. */
+typedef enum co_nmt_state {
+    CO_NMT_INITIALISING = 0x00,
+    CO_NMT_STOPPED = 0x04,
+    CO_NMT_OPERATIONAL = 0x05,
+    CO_NMT_PRE_OPERATIONAL = 0x7F
+} co_nmt_state_t;
+
+typedef enum co_reset {
+    CO_RESET_COMMUNICATION = 1,
+    CO_RESET_NODE = 2
+} co_reset_t;
+
+typedef enum co_hb_event {
+    CO_HB_STARTED,   /**< first heartbeat of a monitored producer */
+    CO_HB_TIMEOUT,   /**< consumer time elapsed without a heartbeat */
+    CO_HB_RECOVERED, /**< heartbeats resumed after a timeout */
+    CO_HB_STATE,     /**< producer reported another NMT state (incl. boot-up) */
+    CO_GUARD_LOST,   /**< life guarding: no guarding request within the life time */
+    CO_GUARD_RECOVERED
+} co_hb_event_t;
+
+/**
+ * The const description of a device type, made by the generator from the
+ * device's description file. Shared by all nodes of that type.
+ */
+typedef struct co_dev {
+    const char *name;
+    const co_od_entry_t *od;
+    uint16_t od_count;
+    uint16_t ram_size;          /**< bytes of the per-node RAM image */
+    uint16_t comm_end;          /**< [0, comm_end): communication parameters */
+    uint16_t app_end;           /**< [comm_end, app_end): stored application values;
+                                     [app_end, ram_size): not stored */
+    const void *defaults;       /**< default image, ram_size bytes */
+    const uint8_t *rom;         /**< const values (CO_SUB_ROM) */
+    const co_od_limit_t *limits;
+    uint8_t n_hooks;            /**< hook slots the node's hook table must have */
+    uint32_t options;           /**< CO_OPT_* */
+    const uint8_t *boot_emcy_data; /**< 5 bytes, with CO_OPT_BOOT_EMCY */
+} co_dev_t;
+
+struct co_node;
+
+/** Application callbacks; any may be NULL. */
+typedef struct co_node_callbacks {
+    void *ctx;
+    /** The NMT state changed (after the change). */
+    void (*nmt_state)(void *ctx, struct co_node *node, co_nmt_state_t state);
+    /** An NMT reset is being executed: reset the application part. The core
+     *  has already restored what it owns (communication or all objects). */
+    void (*nmt_reset)(void *ctx, struct co_node *node, co_reset_t kind);
+    /** Heartbeat consumer or life-guarding event; @p id is the producer's node-ID
+     *  (0 for guarding), @p state its last NMT state. */
+    void (*hb_event)(void *ctx, struct co_node *node, co_hb_event_t ev, uint8_t id,
+                     co_nmt_state_t state);
+} co_node_callbacks_t;
+
+/** Everything co_node_init needs. */
+typedef struct co_node_config {
+    const co_dev_t *dev;
+    co_hal_t hal;
+    uint8_t node_id;               /**< 1..127 */
+    void *ram;                     /**< dev->ram_size bytes, suitably aligned */
+    co_od_hook_t *hooks;           /**< dev->n_hooks slots (may be all NULL) */
+    co_node_callbacks_t cb;
+    uint32_t sdo_timeout_us;       /**< 0: 1 s */
+} co_node_config_t;
+
+/* ---------------- private state (do not touch; here so callers can allocate) */
+
+typedef struct co_rx_slot {
+    uint16_t cob;
+    uint8_t kind;
+    uint8_t arg;
+} co_rx_slot_t;
+
+typedef struct co_sdo_srv {
+    const co_od_entry_t *entry;
+    const co_od_sub_t *desc;
+    uint32_t size;       /**< total size, 0 if unknown */
+    uint32_t offset;     /**< bytes done (acknowledged) */
+    uint32_t deadline;
+    uint16_t crc;
+    uint8_t state;
+    uint8_t toggle;
+    uint8_t blksize;
+    uint8_t seqno;       /**< block: last good / last sent sequence number */
+    uint8_t flags;
+    uint8_t buf_len;
+    uint8_t buf[8];      /**< fixed-size values gathered before commit; staged first chunk */
+    uint8_t held[7];     /**< block download: the last segment until its size is known */
+} co_sdo_srv_t;
+
+typedef struct co_hb_consumer {
+    uint32_t deadline;
+    uint8_t state;       /**< 0 unused, 1 waiting for first, 2 active, 3 timed out */
+    uint8_t nmt;         /**< producer's last state */
+} co_hb_consumer_t;
+
+typedef struct co_emcy_active {
+    uint16_t code;
+    uint8_t reg;
+} co_emcy_active_t;
+
+typedef struct co_emcy_pending {
+    uint8_t data[8];
+} co_emcy_pending_t;
+
+typedef struct co_node {
+    const co_dev_t *dev;
+    co_hal_t hal;
+    uint8_t *ram;
+    co_od_hook_t *hooks;
+    co_node_callbacks_t cb;
+    uint32_t sdo_timeout_us;
+    uint32_t now;
+    uint8_t node_id;
+    uint8_t nmt;             /**< co_nmt_state_t */
+    uint8_t guard_toggle;
+    uint8_t guard_state;     /**< 0 off, 1 armed (first RTR seen), 2 lost */
+    /* where the core's own objects live (NULL: the device lacks them) */
+    uint8_t *errreg;         /* 0x1001 */
+    uint8_t *hist_count;     /* 0x1003 sub0 */
+    uint32_t *hist;          /* 0x1003 sub1.. */
+    uint32_t *emcy_cob;      /* 0x1014 */
+    uint16_t *emcy_inhibit;  /* 0x1015 */
+    uint32_t *hb_cons;       /* 0x1016 sub1.. */
+    uint16_t *hb_prod;       /* 0x1017 */
+    uint16_t *guard_time;    /* 0x100C */
+    uint8_t *life_factor;    /* 0x100D */
+    uint8_t hist_depth;
+    uint8_t n_hb_cons;
+    uint8_t n_rx;
+    uint8_t txq_head;
+    uint8_t txq_len;
+    uint8_t n_active;
+    uint8_t n_emcy_q;
+    uint8_t rx_filter[16];   /**< bit per (COB-ID & 0x7F): quick reject */
+    uint32_t hb_deadline;
+    uint32_t guard_deadline;
+    uint32_t emcy_next;      /**< earliest time the next EMCY may go (inhibit) */
+    co_rx_slot_t rx[CO_RX_SLOTS_MAX];
+    co_frame_t txq[CO_TXQ_LEN];
+    co_hb_consumer_t hbc[CO_HB_CONSUMERS_MAX];
+    co_emcy_active_t active[CO_EMCY_ACTIVE_MAX];
+    co_emcy_pending_t emcy_q[CO_EMCY_QUEUE_LEN];
+    co_sdo_srv_t sdo;
+} co_node_t;
+
+/* ---------------- API ---------------- */
+
+/** Initialise @p node from @p cfg, restore all values to their defaults, send
+ *  the boot-up frame and enter Pre-operational. Returns CO_OK, or
+ *  CO_ERR_OD_MISSING / CO_ERR_VALUE for a bad configuration. */
+co_err_t co_node_init(co_node_t *node, const co_node_config_t *cfg, uint32_t now_us);
+
+/** Handle one received frame. Safe for any frame (other nodes' frames, bad
+ *  lengths, RTRs): malformed requests get the CiA-defined answer. */
+void co_node_rx(co_node_t *node, const co_frame_t *f, uint32_t now_us);
+
+/** Run timers and retry held-back frames. Returns the time (absolute, us) by
+ *  which it wants to be called again, or CO_NO_DEADLINE. */
+uint32_t co_node_process(co_node_t *node, uint32_t now_us);
+
+/** The current NMT state. */
+co_nmt_state_t co_node_nmt_state(const co_node_t *node);
+
+/** Execute an NMT command locally (as if received for this node). */
+void co_node_nmt_command(co_node_t *node, uint8_t cs, uint32_t now_us);
+
+/** Read a whole value (up to @p cap bytes) through the dictionary path,
+ *  hooks included. *len receives the length. */
+co_err_t co_od_read(co_node_t *node, uint16_t index, uint8_t sub, void *buf, uint32_t cap,
+                    uint32_t *len);
+
+/** Write a whole value through the dictionary path: access, size, limits,
+ *  hooks and the core's own checks apply, exactly as for an SDO download.
+ *  @p as_app: true skips the access check (an application may set ro values). */
+co_err_t co_od_write(co_node_t *node, uint16_t index, uint8_t sub, const void *data,
+                     uint32_t len, bool as_app);
+
+/** Pointer to the stored value of a sub-entry (NULL for hook-only/ROM/absent).
+ *  For the application's own fast access; the core never uses this behind a
+ *  hook's back. */
+void *co_od_value_ptr(co_node_t *node, uint16_t index, uint8_t sub);
+
+/** Bind hooks to the entry @p index (which must have a hook slot). */
+co_err_t co_od_bind_hook(co_node_t *node, uint16_t index, const co_od_hook_t *hook);
+
+/** Raise an error: set it active, update 0x1001 and 0x1003 and send an EMCY
+ *  with @p code, the register and @p mfr (5 bytes, NULL for zeros).
+ *  @p reg_bits are the 0x1001 bits this error sets (generic is always set).
+ *  Raising an active code again does nothing. */
+void co_emcy_raise(co_node_t *node, uint16_t code, uint8_t reg_bits, const uint8_t *mfr);
+
+/** Clear an active error; when it was the last, send EMCY 0x0000. */
+void co_emcy_clear(co_node_t *node, uint16_t code);
+
+/** True while @p code is active. */
+bool co_emcy_is_active(const co_node_t *node, uint16_t code);
+
+#endif /* CO_NODE_H */

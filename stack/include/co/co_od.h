@@ -1,0 +1,126 @@
+/*
+ * Object dictionary.
+ *
+ * A device's dictionary is a const table of entries sorted by index (flash on
+ * an MCU). Each entry lists its sub-entries sorted by sub-index. A sub-entry
+ * knows its data type, access, PDO-mappability, limits and where its value
+ * lives: at an offset into the node's RAM image (one image per node, so the
+ * same const tables serve several nodes), or at an offset into the device's
+ * const ROM image, or nowhere (the value is produced and consumed by a hook:
+ * DOMAINs and computed objects). The default of every RAM value is the same
+ * offset in the device's const default image.
+ *
+ * Every access (SDO, PDO, application) goes through co_od_read()/co_od_write()
+ * or the chunked calls below the SDO server uses; errors are co_err_t, whose
+ * values are the SDO abort codes.
+ */
+#ifndef CO_OD_H
+#define CO_OD_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "co/co_err.h"
+
+struct co_node;
+
+/** CiA 301 data types (the values are the type indices 0x0001..0x001B). */
+typedef enum co_type {
+    CO_BOOLEAN = 0x01, CO_INTEGER8 = 0x02, CO_INTEGER16 = 0x03, CO_INTEGER32 = 0x04,
+    CO_UNSIGNED8 = 0x05, CO_UNSIGNED16 = 0x06, CO_UNSIGNED32 = 0x07, CO_REAL32 = 0x08,
+    CO_VISIBLE_STRING = 0x09, CO_OCTET_STRING = 0x0A, CO_UNICODE_STRING = 0x0B,
+    CO_TIME_OF_DAY = 0x0C, CO_TIME_DIFFERENCE = 0x0D, CO_DOMAIN = 0x0F,
+    CO_INTEGER24 = 0x10, CO_REAL64 = 0x11, CO_INTEGER40 = 0x12, CO_INTEGER48 = 0x13,
+    CO_INTEGER56 = 0x14, CO_INTEGER64 = 0x15, CO_UNSIGNED24 = 0x16, CO_UNSIGNED40 = 0x18,
+    CO_UNSIGNED48 = 0x19, CO_UNSIGNED56 = 0x1A, CO_UNSIGNED64 = 0x1B
+} co_type_t;
+
+/* Sub-entry flags. Access: ro = R, wo = W, rw = R|W, const = R|CONST,
+ * rwr = R|W|MAP_T, rww = R|W|MAP_R (CiA 306 access types). */
+#define CO_SUB_R       0x0001U /**< readable over SDO */
+#define CO_SUB_W       0x0002U /**< writable over SDO */
+#define CO_SUB_CONST   0x0004U /**< constant (read-only, never changes) */
+#define CO_SUB_MAP_T   0x0008U /**< may be mapped into a TPDO */
+#define CO_SUB_MAP_R   0x0010U /**< may be mapped into an RPDO */
+#define CO_SUB_ROM     0x0020U /**< value lives in the device's const ROM image */
+#define CO_SUB_HOOKIO  0x0040U /**< no stored value: the entry's hook reads/writes it */
+#define CO_SUB_NODEID  0x0080U /**< default is relative to the node-ID ($NODEID+x) */
+#define CO_SUB_LIMIT   0x0100U /**< 'limit' indexes the device's limit table */
+#define CO_SUB_MAP     (CO_SUB_MAP_T | CO_SUB_MAP_R)
+#define CO_SUB_RO      CO_SUB_R
+#define CO_SUB_WO      CO_SUB_W
+#define CO_SUB_RW      (CO_SUB_R | CO_SUB_W)
+
+/** Object codes (CiA 306 ObjectType). */
+#define CO_OBJ_VAR     0x07U
+#define CO_OBJ_ARRAY   0x08U
+#define CO_OBJ_RECORD  0x09U
+#define CO_OBJ_DOMAIN  0x02U
+
+typedef struct co_od_sub {
+    uint8_t  sub;    /**< sub-index */
+    uint8_t  type;   /**< co_type_t */
+    uint16_t flags;  /**< CO_SUB_* */
+    uint16_t size;   /**< bytes; capacity for strings and DOMAINs */
+    uint16_t off;    /**< offset into the RAM image, or the ROM image with CO_SUB_ROM */
+    uint16_t limit;  /**< with CO_SUB_LIMIT: index into co_dev_t.limits */
+} co_od_sub_t;
+
+typedef struct co_od_entry {
+    uint16_t index;
+    uint8_t  nsubs;          /**< number of sub-entries in @ref subs */
+    uint8_t  hook;           /**< hook slot + 1, or 0 for no hook */
+    uint8_t  code;           /**< CO_OBJ_* */
+    const co_od_sub_t *subs; /**< sorted by sub-index */
+} co_od_entry_t;
+
+/** Value limits. Compared as signed or unsigned according to the type. */
+typedef struct co_od_limit {
+    int64_t min;
+    int64_t max;
+} co_od_limit_t;
+
+/** One access as a hook sees it. */
+typedef struct co_od_io {
+    struct co_node *node;
+    const co_od_entry_t *entry;
+    const co_od_sub_t *desc;
+    void *value;       /**< where the value is stored, NULL with CO_SUB_HOOKIO */
+    uint32_t offset;   /**< byte offset of this chunk in the object's value */
+    uint8_t *buf;      /**< read: fill it; write: the data of this chunk */
+    uint32_t len;      /**< read: capacity in, bytes produced out; write: bytes */
+    uint32_t total;    /**< write: announced total size (0 = unknown);
+                            read (HOOKIO): set to the total size, 0 if unknown */
+    bool last;         /**< write: last chunk; read (HOOKIO): set on the last chunk */
+} co_od_io_t;
+
+/**
+ * Hooks of one entry.
+ * read: for a stored value, called once before the value is read (it may
+ *   refresh it, or veto with an error); with CO_SUB_HOOKIO called for every
+ *   chunk to produce the data.
+ * Data in io->buf is always the wire image (little-endian); io->value points
+ * at the stored value (native integers for 16/32/64-bit types).
+ * write: for a stored value, called with the complete new value (already
+ *   checked against type, size and limits) before it is committed: any error
+ *   vetoes the write. Strings and DOMAINs written in segments are stored as
+ *   they arrive and the hook is called once with the whole value. With
+ *   CO_SUB_HOOKIO called for every chunk.
+ */
+typedef struct co_od_hook {
+    co_err_t (*read)(void *ctx, co_od_io_t *io);
+    co_err_t (*write)(void *ctx, co_od_io_t *io);
+    void *ctx;
+} co_od_hook_t;
+
+/** Find an entry by index (binary search). NULL if absent. */
+const co_od_entry_t *co_od_find(const co_od_entry_t *od, uint16_t count, uint16_t index);
+
+/** Find a sub-entry of @p e. NULL if absent. */
+const co_od_sub_t *co_od_find_sub(const co_od_entry_t *e, uint8_t sub);
+
+/** Size in bytes of a fixed-size type, 0 for strings and DOMAIN. */
+uint8_t co_type_size(uint8_t type);
+
+#endif /* CO_OD_H */

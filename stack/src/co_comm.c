@@ -1,0 +1,158 @@
+/*
+ * The communication objects the core itself owns: where they live, the
+ * CiA 301 rules for writing them, and what a write sets in motion.
+ */
+#include <string.h>
+
+#include "co/co_endian.h"
+#include "co_priv.h"
+
+static void *ram_of(co_node_t *node, uint16_t index, uint8_t sub, uint8_t type)
+{
+    const co_od_entry_t *e = co_od_find(node->dev->od, node->dev->od_count, index);
+    const co_od_sub_t *s = (e != NULL) ? co_od_find_sub(e, sub) : NULL;
+
+    if ((s == NULL) || (s->type != type) || ((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) != 0U)) {
+        return NULL;
+    }
+    return &node->ram[s->off];
+}
+
+/* Number of consecutive sub-entries 1..n of an array whose values are stored
+ * back to back, or 0 if the layout is not usable by the core. */
+static uint8_t array_len(const co_node_t *node, uint16_t index, uint8_t type, uint8_t max)
+{
+    const co_od_entry_t *e = co_od_find(node->dev->od, node->dev->od_count, index);
+    uint8_t n = 0U;
+
+    if (e == NULL) {
+        return 0U;
+    }
+    for (uint8_t k = 1U; (k < e->nsubs) && (n < max); k++) {
+        const co_od_sub_t *s = &e->subs[k];
+        if ((s->sub != k) || (s->type != type) ||
+            ((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) != 0U) ||
+            (s->off != (uint16_t)(e->subs[1].off + ((uint16_t)(k - 1U) * co_type_size(type))))) {
+            break;
+        }
+        n++;
+    }
+    return n;
+}
+
+void co_comm_bind(co_node_t *node)
+{
+    node->errreg = (uint8_t *)ram_of(node, 0x1001U, 0U, (uint8_t)CO_UNSIGNED8);
+    node->hist_count = (uint8_t *)ram_of(node, 0x1003U, 0U, (uint8_t)CO_UNSIGNED8);
+    node->hist_depth = (node->hist_count != NULL)
+                           ? array_len(node, 0x1003U, (uint8_t)CO_UNSIGNED32, 254U)
+                           : 0U;
+    node->hist = (node->hist_depth != 0U)
+                     ? (uint32_t *)ram_of(node, 0x1003U, 1U, (uint8_t)CO_UNSIGNED32)
+                     : NULL;
+    node->guard_time = (uint16_t *)ram_of(node, 0x100CU, 0U, (uint8_t)CO_UNSIGNED16);
+    node->life_factor = (uint8_t *)ram_of(node, 0x100DU, 0U, (uint8_t)CO_UNSIGNED8);
+    node->emcy_cob = (uint32_t *)ram_of(node, 0x1014U, 0U, (uint8_t)CO_UNSIGNED32);
+    node->emcy_inhibit = (uint16_t *)ram_of(node, 0x1015U, 0U, (uint8_t)CO_UNSIGNED16);
+    node->n_hb_cons = array_len(node, 0x1016U, (uint8_t)CO_UNSIGNED32,
+                                (uint8_t)CO_HB_CONSUMERS_MAX);
+    node->hb_cons = (node->n_hb_cons != 0U)
+                        ? (uint32_t *)ram_of(node, 0x1016U, 1U, (uint8_t)CO_UNSIGNED32)
+                        : NULL;
+    node->hb_prod = (uint16_t *)ram_of(node, 0x1017U, 0U, (uint8_t)CO_UNSIGNED16);
+}
+
+co_err_t co_comm_check_read(const co_node_t *node, uint16_t index, uint8_t sub)
+{
+    /* 0x1003: entries beyond the number of recorded errors hold no data. */
+    if ((index == 0x1003U) && (sub > 0U) && (node->hist_count != NULL) &&
+        (sub > *node->hist_count)) {
+        return CO_ERR_NO_DATA;
+    }
+    return CO_OK;
+}
+
+static co_err_t check_hb_consumer(const co_node_t *node, uint8_t sub, uint32_t v)
+{
+    uint8_t id = (uint8_t)((v >> 16U) & 0xFFU);
+    uint16_t t = (uint16_t)(v & 0xFFFFU);
+
+    if ((v & 0xFF000000UL) != 0U) {
+        return CO_ERR_VALUE;
+    }
+    if ((t == 0U) || (id == 0U)) {
+        return CO_OK; /* entry not used */
+    }
+    if (id > 127U) {
+        return CO_ERR_VALUE;
+    }
+    /* CiA 301: one producer may be monitored by one entry only. */
+    for (uint8_t k = 0U; k < node->n_hb_cons; k++) {
+        uint32_t o = node->hb_cons[k];
+        if (((uint8_t)(k + 1U) != sub) && (((o >> 16U) & 0xFFU) == id) && ((o & 0xFFFFU) != 0U)) {
+            return CO_ERR_PARAM_INCOMPAT;
+        }
+    }
+    return CO_OK;
+}
+
+co_err_t co_comm_check_write(const co_node_t *node, uint16_t index, uint8_t sub,
+                             const uint8_t *data, uint32_t len)
+{
+    if ((index < 0x1000U) || (index > 0x1FFFU)) {
+        return CO_OK;
+    }
+    switch (index) {
+    case 0x1003U:
+        /* only 0 may be written to sub0: it clears the history */
+        if ((sub == 0U) && (len == 1U) && (data[0] != 0U)) {
+            return CO_ERR_VALUE;
+        }
+        break;
+    case 0x1014U:
+        if ((sub == 0U) && (len == 4U) && (node->emcy_cob != NULL)) {
+            uint32_t v = co_get_u32(data);
+            uint32_t cur = *node->emcy_cob;
+            /* CiA 301: the CAN-ID may only change while the EMCY is not valid. */
+            if (((cur & 0x80000000UL) == 0U) && ((v & 0x80000000UL) == 0U) &&
+                ((v & 0x1FFFFFFFUL) != (cur & 0x1FFFFFFFUL))) {
+                return CO_ERR_VALUE;
+            }
+            if ((v & 0x20000000UL) != 0U) {
+                return CO_ERR_VALUE; /* 29-bit identifiers are not supported */
+            }
+        }
+        break;
+    case 0x1016U:
+        if ((sub > 0U) && (len == 4U) && (sub <= node->n_hb_cons)) {
+            return check_hb_consumer(node, sub, co_get_u32(data));
+        }
+        break;
+    default:
+        break;
+    }
+    return CO_OK;
+}
+
+void co_comm_written(co_node_t *node, uint16_t index, uint8_t sub)
+{
+    switch (index) {
+    case 0x1003U:
+        if (sub == 0U) {
+            co_emcy_history_clear(node);
+        }
+        break;
+    case 0x100CU:
+    case 0x100DU:
+        node->guard_state = 0U; /* re-armed by the next guarding request */
+        break;
+    case 0x1016U:
+        co_hb_consumers_changed(node);
+        break;
+    case 0x1017U:
+        co_hb_producer_changed(node);
+        break;
+    default:
+        break;
+    }
+}

@@ -1,0 +1,166 @@
+/*
+ * EMCY producer: active errors, error register 0x1001, pre-defined error
+ * field 0x1003, COB-ID 0x1014 and inhibit time 0x1015.
+ */
+#include <string.h>
+
+#include "co/co_endian.h"
+#include "co_priv.h"
+
+static uint8_t errreg_now(const co_node_t *node)
+{
+    uint8_t r = 0U;
+
+    for (uint8_t i = 0U; i < node->n_active; i++) {
+        r |= (uint8_t)(node->active[i].reg | CO_ERREG_GENERIC);
+    }
+    return r;
+}
+
+static void update_errreg(co_node_t *node)
+{
+    if (node->errreg != NULL) {
+        *node->errreg = errreg_now(node);
+    }
+}
+
+static uint32_t cob_id(const co_node_t *node)
+{
+    return (node->emcy_cob != NULL) ? *node->emcy_cob : (0x80UL + node->node_id);
+}
+
+static uint32_t inhibit_us(const co_node_t *node)
+{
+    return (node->emcy_inhibit != NULL) ? ((uint32_t)*node->emcy_inhibit * 100UL) : 0U;
+}
+
+static void send(co_node_t *node, const uint8_t *d)
+{
+    uint32_t cob = cob_id(node);
+
+    if ((node->nmt == (uint8_t)CO_NMT_STOPPED) || ((cob & 0x80000000UL) != 0U)) {
+        return; /* no EMCY in Stopped; not valid */
+    }
+    if ((node->n_emcy_q > 0U) ||
+        ((inhibit_us(node) != 0U) && !co_time_reached(node->now, node->emcy_next))) {
+        if (node->n_emcy_q < CO_EMCY_QUEUE_LEN) {
+            (void)memcpy(node->emcy_q[node->n_emcy_q].data, d, 8U);
+            node->n_emcy_q++;
+        }
+        return;
+    }
+    co_tx(node, cob & 0x7FFUL, d, 8U);
+    node->emcy_next = node->now + inhibit_us(node);
+}
+
+static void send_code(co_node_t *node, uint16_t code, const uint8_t *mfr)
+{
+    uint8_t d[8] = {0};
+
+    co_put_u16(d, code);
+    d[2] = (node->errreg != NULL) ? *node->errreg : errreg_now(node);
+    if (mfr != NULL) {
+        (void)memcpy(&d[3], mfr, 5U);
+    }
+    send(node, d);
+}
+
+static void history_push(co_node_t *node, uint16_t code, const uint8_t *mfr)
+{
+    uint8_t n;
+
+    if ((node->hist == NULL) || (node->hist_count == NULL)) {
+        return;
+    }
+    n = *node->hist_count;
+    if (n < node->hist_depth) {
+        n++;
+    }
+    for (uint8_t i = (uint8_t)(n - 1U); i > 0U; i--) {
+        node->hist[i] = node->hist[i - 1U];
+    }
+    /* bits 0..15 error code, 16..31 additional information (mfr bytes 0..1) */
+    node->hist[0] = code | ((mfr != NULL) ? ((uint32_t)co_get_u16(mfr) << 16U) : 0U);
+    *node->hist_count = n;
+}
+
+void co_emcy_raise(co_node_t *node, uint16_t code, uint8_t reg_bits, const uint8_t *mfr)
+{
+    if (co_emcy_is_active(node, code) || (code == CO_EMCY_NO_ERROR)) {
+        return;
+    }
+    if (node->n_active < CO_EMCY_ACTIVE_MAX) {
+        node->active[node->n_active].code = code;
+        node->active[node->n_active].reg = reg_bits;
+        node->n_active++;
+    }
+    update_errreg(node);
+    history_push(node, code, mfr);
+    send_code(node, code, mfr);
+    if ((node->dev->options & CO_OPT_EMCY_STATE_PAIR) != 0U) {
+        send_code(node, CO_EMCY_NO_ERROR, NULL);
+    }
+}
+
+void co_emcy_clear(co_node_t *node, uint16_t code)
+{
+    uint8_t i = 0U;
+
+    while ((i < node->n_active) && (node->active[i].code != code)) {
+        i++;
+    }
+    if (i == node->n_active) {
+        return;
+    }
+    node->n_active--;
+    node->active[i] = node->active[node->n_active];
+    update_errreg(node);
+    if ((node->n_active == 0U) || ((node->dev->options & CO_OPT_EMCY_RESET_PARTIAL) != 0U)) {
+        send_code(node, CO_EMCY_NO_ERROR, NULL);
+    }
+}
+
+bool co_emcy_is_active(const co_node_t *node, uint16_t code)
+{
+    for (uint8_t i = 0U; i < node->n_active; i++) {
+        if (node->active[i].code == code) {
+            return true;
+        }
+    }
+    return false;
+}
+
+void co_emcy_history_clear(co_node_t *node)
+{
+    if (node->hist != NULL) {
+        for (uint8_t i = 0U; i < node->hist_depth; i++) {
+            node->hist[i] = 0U;
+        }
+    }
+}
+
+void co_emcy_reset(co_node_t *node)
+{
+    node->n_emcy_q = 0U;
+    node->emcy_next = node->now;
+    update_errreg(node);
+}
+
+uint32_t co_emcy_process(co_node_t *node, uint32_t next)
+{
+    if (node->n_emcy_q == 0U) {
+        return next;
+    }
+    if (co_time_reached(node->now, node->emcy_next)) {
+        uint32_t cob = cob_id(node);
+        if ((node->nmt != (uint8_t)CO_NMT_STOPPED) && ((cob & 0x80000000UL) == 0U)) {
+            co_tx(node, cob & 0x7FFUL, node->emcy_q[0].data, 8U);
+        }
+        node->n_emcy_q--;
+        for (uint8_t i = 0U; i < node->n_emcy_q; i++) {
+            node->emcy_q[i] = node->emcy_q[i + 1U];
+        }
+        node->emcy_next = node->now + inhibit_us(node);
+    }
+    return (node->n_emcy_q > 0U) ? co_deadline_min(node->now, next, node->emcy_next) : next;
+}

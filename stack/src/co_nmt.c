@@ -1,0 +1,99 @@
+/*
+ * NMT slave: boot-up, the state machine, resets.
+ */
+#include <string.h>
+
+#include "co_priv.h"
+
+#define NMT_START      0x01U
+#define NMT_STOP       0x02U
+#define NMT_PRE_OP     0x80U
+#define NMT_RESET_NODE 0x81U
+#define NMT_RESET_COMM 0x82U
+
+static void set_state(co_node_t *node, co_nmt_state_t st)
+{
+    if (node->nmt == (uint8_t)st) {
+        return;
+    }
+    node->nmt = (uint8_t)st;
+    if (st == CO_NMT_STOPPED) {
+        co_sdo_reset(node); /* no SDO in Stopped: an open transfer ends silently */
+    }
+    if (node->cb.nmt_state != NULL) {
+        node->cb.nmt_state(node->cb.ctx, node, st);
+    }
+}
+
+/* Initialising: the communication services start from their reset values,
+ * the boot-up frame goes out, and the node enters Pre-operational. */
+void co_nmt_boot(co_node_t *node)
+{
+    node->nmt = (uint8_t)CO_NMT_INITIALISING;
+    co_rx_rebuild(node);
+    co_sdo_reset(node);
+    co_emcy_reset(node);
+    co_hb_reset(node);
+    if ((node->dev->options & CO_OPT_NO_BOOTUP) == 0U) {
+        static const uint8_t bootup = 0x00U;
+        co_tx(node, 0x700UL + node->node_id, &bootup, 1U);
+    }
+    if (((node->dev->options & CO_OPT_BOOT_EMCY) != 0U) && (node->emcy_cob != NULL) &&
+        ((*node->emcy_cob & 0x80000000UL) == 0U)) {
+        uint8_t d[8] = {0};
+        if (node->dev->boot_emcy_data != NULL) {
+            (void)memcpy(&d[3], node->dev->boot_emcy_data, 5U);
+        }
+        co_tx(node, *node->emcy_cob & 0x7FFUL, d, 8U);
+    }
+    set_state(node, CO_NMT_PRE_OPERATIONAL);
+}
+
+static void reset(co_node_t *node, co_reset_t kind)
+{
+    if (kind == CO_RESET_NODE) {
+        co_od_restore(node, node->dev->comm_end, node->dev->ram_size);
+        node->n_active = 0U;
+    }
+    co_od_restore(node, 0U, node->dev->comm_end);
+    co_comm_bind(node);
+    if (node->cb.nmt_reset != NULL) {
+        node->cb.nmt_reset(node->cb.ctx, node, kind);
+    }
+    co_nmt_boot(node);
+}
+
+void co_node_nmt_command(co_node_t *node, uint8_t cs, uint32_t now_us)
+{
+    node->now = now_us;
+    switch (cs) {
+    case NMT_START:
+        set_state(node, CO_NMT_OPERATIONAL);
+        break;
+    case NMT_STOP:
+        set_state(node, CO_NMT_STOPPED);
+        break;
+    case NMT_PRE_OP:
+        set_state(node, CO_NMT_PRE_OPERATIONAL);
+        break;
+    case NMT_RESET_NODE:
+        reset(node, CO_RESET_NODE);
+        break;
+    case NMT_RESET_COMM:
+        reset(node, CO_RESET_COMMUNICATION);
+        break;
+    default:
+        break; /* unknown command specifier: ignored (CiA 301 defines no answer) */
+    }
+}
+
+void co_nmt_rx(co_node_t *node, const co_frame_t *f)
+{
+    if (co_frame_is_rtr(f) || (f->dlc != 2U)) {
+        return;
+    }
+    if ((f->data[1] != 0U) && (f->data[1] != node->node_id)) {
+        return;
+    }
+    co_node_nmt_command(node, f->data[0], node->now);
+}

@@ -1,0 +1,190 @@
+/*
+ * The node: initialisation, receive dispatch by COB-ID, timers, TX hold-back.
+ */
+#include <string.h>
+
+#include "co_priv.h"
+
+/* ------------------------------------------------------------------ TX */
+
+static bool hal_send(co_node_t *node, const co_frame_t *f)
+{
+    return node->hal.ops->send(node->hal.ctx, f) == 0;
+}
+
+void co_tx(co_node_t *node, uint32_t id, const uint8_t *data, uint8_t len)
+{
+    co_frame_t f;
+
+    co_frame_set(&f, id, data, len);
+    if ((node->txq_len == 0U) && hal_send(node, &f)) {
+        return;
+    }
+    if (node->txq_len < CO_TXQ_LEN) {
+        uint8_t at = (uint8_t)((node->txq_head + node->txq_len) % CO_TXQ_LEN);
+        node->txq[at] = f;
+        node->txq_len++;
+    }
+    /* else: the hold-back queue is full too; the frame is lost (the port
+     * reports the overrun as EMCY 0x8110 where the hardware tells it). */
+}
+
+bool co_tx_try(co_node_t *node, uint32_t id, const uint8_t *data, uint8_t len)
+{
+    co_frame_t f;
+
+    if (node->txq_len != 0U) {
+        return false;
+    }
+    co_frame_set(&f, id, data, len);
+    return hal_send(node, &f);
+}
+
+static void tx_drain(co_node_t *node)
+{
+    while ((node->txq_len > 0U) && hal_send(node, &node->txq[node->txq_head])) {
+        node->txq_head = (uint8_t)((node->txq_head + 1U) % CO_TXQ_LEN);
+        node->txq_len--;
+    }
+}
+
+/* ------------------------------------------------------- RX dispatch */
+
+static void rx_add(co_node_t *node, uint16_t cob, uint8_t kind, uint8_t arg)
+{
+    uint8_t i = node->n_rx;
+
+    if (i >= CO_RX_SLOTS_MAX) {
+        return;
+    }
+    /* insertion keeps the table sorted by COB-ID */
+    while ((i > 0U) && (node->rx[i - 1U].cob > cob)) {
+        node->rx[i] = node->rx[i - 1U];
+        i--;
+    }
+    node->rx[i].cob = cob;
+    node->rx[i].kind = kind;
+    node->rx[i].arg = arg;
+    node->n_rx++;
+    node->rx_filter[(cob & 0x7FU) >> 3U] |= (uint8_t)(1U << (cob & 7U));
+}
+
+void co_rx_rebuild(co_node_t *node)
+{
+    node->n_rx = 0U;
+    (void)memset(node->rx_filter, 0, sizeof node->rx_filter);
+    rx_add(node, 0x000U, CO_RX_NMT, 0U);
+    rx_add(node, (uint16_t)(0x600U + node->node_id), CO_RX_SDO, 0U);
+    rx_add(node, (uint16_t)(0x700U + node->node_id), CO_RX_GUARD, 0U);
+    for (uint8_t k = 0U; k < node->n_hb_cons; k++) {
+        uint32_t v = node->hb_cons[k];
+        uint8_t id = (uint8_t)((v >> 16U) & 0x7FU);
+        if (((v & 0xFFFFU) != 0U) && (id != 0U) && (id != node->node_id)) {
+            rx_add(node, (uint16_t)(0x700U + id), CO_RX_HB, k);
+        }
+    }
+}
+
+static const co_rx_slot_t *rx_find(const co_node_t *node, uint16_t cob)
+{
+    uint8_t lo = 0U;
+    uint8_t hi = node->n_rx;
+
+    while (lo < hi) {
+        uint8_t mid = (uint8_t)((lo + hi) >> 1U);
+        uint16_t at = node->rx[mid].cob;
+        if (at == cob) {
+            return &node->rx[mid];
+        }
+        if (at < cob) {
+            lo = (uint8_t)(mid + 1U);
+        } else {
+            hi = mid;
+        }
+    }
+    return NULL;
+}
+
+void co_node_rx(co_node_t *node, const co_frame_t *f, uint32_t now_us)
+{
+    const co_rx_slot_t *slot;
+    uint16_t cob;
+
+    if ((f->id & CO_FRAME_EFF) != 0U) {
+        return; /* the predefined connection set is 11-bit only */
+    }
+    cob = (uint16_t)(f->id & 0x7FFU);
+    if ((node->rx_filter[(cob & 0x7FU) >> 3U] & (uint8_t)(1U << (cob & 7U))) == 0U) {
+        return;
+    }
+    slot = rx_find(node, cob);
+    if (slot == NULL) {
+        return;
+    }
+    node->now = now_us;
+    switch (slot->kind) {
+    case CO_RX_NMT:
+        co_nmt_rx(node, f);
+        break;
+    case CO_RX_SDO:
+        co_sdo_rx(node, f);
+        break;
+    case CO_RX_GUARD:
+        co_guard_rx(node, f);
+        break;
+    case CO_RX_HB:
+        co_hb_rx(node, slot->arg, f);
+        break;
+    default:
+        break;
+    }
+}
+
+/* ------------------------------------------------------------ timers */
+
+uint32_t co_node_process(co_node_t *node, uint32_t now_us)
+{
+    uint32_t next = CO_NO_DEADLINE;
+
+    node->now = now_us;
+    tx_drain(node);
+    next = co_sdo_process(node, next);
+    next = co_hb_process(node, next);
+    next = co_emcy_process(node, next);
+    if (node->txq_len > 0U) {
+        /* TX path still full: look again in a millisecond */
+        next = co_deadline_min(now_us, next, now_us + 1000U);
+    }
+    return next;
+}
+
+/* -------------------------------------------------------------- init */
+
+co_err_t co_node_init(co_node_t *node, const co_node_config_t *cfg, uint32_t now_us)
+{
+    if ((cfg == NULL) || (cfg->dev == NULL) || (cfg->ram == NULL) || (cfg->hal.ops == NULL) ||
+        (cfg->hal.ops->send == NULL) || (cfg->dev->od == NULL)) {
+        return CO_ERR_OD_MISSING;
+    }
+    if ((cfg->node_id < 1U) || (cfg->node_id > 127U)) {
+        return CO_ERR_VALUE;
+    }
+    (void)memset(node, 0, sizeof *node);
+    node->dev = cfg->dev;
+    node->hal = cfg->hal;
+    node->ram = (uint8_t *)cfg->ram;
+    node->hooks = cfg->hooks;
+    node->cb = cfg->cb;
+    node->node_id = cfg->node_id;
+    node->sdo_timeout_us = (cfg->sdo_timeout_us != 0U) ? cfg->sdo_timeout_us : 1000000UL;
+    node->now = now_us;
+    co_od_restore(node, 0U, node->dev->ram_size);
+    co_comm_bind(node);
+    co_nmt_boot(node);
+    return CO_OK;
+}
+
+co_nmt_state_t co_node_nmt_state(const co_node_t *node)
+{
+    return (co_nmt_state_t)node->nmt;
+}

@@ -1,0 +1,495 @@
+/*
+ * Object dictionary: lookup, the single access path, limits, defaults.
+ */
+#include <string.h>
+
+#include "co/co_endian.h"
+#include "co_priv.h"
+
+const co_od_entry_t *co_od_find(const co_od_entry_t *od, uint16_t count, uint16_t index)
+{
+    uint16_t lo = 0U;
+    uint16_t hi = count;
+
+    while (lo < hi) {
+        uint16_t mid = (uint16_t)((lo + hi) >> 1U);
+        uint16_t at = od[mid].index;
+        if (at == index) {
+            return &od[mid];
+        }
+        if (at < index) {
+            lo = (uint16_t)(mid + 1U);
+        } else {
+            hi = mid;
+        }
+    }
+    return NULL;
+}
+
+const co_od_sub_t *co_od_find_sub(const co_od_entry_t *e, uint8_t sub)
+{
+    /* Arrays and most records are dense: try the direct slot first. */
+    if ((sub < e->nsubs) && (e->subs[sub].sub == sub)) {
+        return &e->subs[sub];
+    }
+    for (uint8_t i = 0U; i < e->nsubs; i++) {
+        if (e->subs[i].sub == sub) {
+            return &e->subs[i];
+        }
+    }
+    return NULL;
+}
+
+uint8_t co_type_size(uint8_t type)
+{
+    /* Indexed by type 0x00..0x1B; 0 for variable-length types. */
+    static const uint8_t sizes[0x1CU] = {
+        0, 1, 1, 2, 4, 1, 2, 4, 4, 0, 0, 0, 6, 6, 0, 0,
+        3, 8, 5, 6, 7, 8, 3, 0, 5, 6, 7, 8
+    };
+    return (type < 0x1CU) ? sizes[type] : 0U;
+}
+
+static bool type_is_signed(uint8_t type)
+{
+    return (type == (uint8_t)CO_INTEGER8) || (type == (uint8_t)CO_INTEGER16) ||
+           (type == (uint8_t)CO_INTEGER24) || (type == (uint8_t)CO_INTEGER32) ||
+           (type == (uint8_t)CO_INTEGER40) || (type == (uint8_t)CO_INTEGER48) ||
+           (type == (uint8_t)CO_INTEGER56) || (type == (uint8_t)CO_INTEGER64);
+}
+
+bool co_od_is_streamed(const co_od_sub_t *s)
+{
+    return co_type_size(s->type) == 0U;
+}
+
+co_err_t co_od_lookup(const co_node_t *node, uint16_t index, uint8_t sub,
+                      const co_od_entry_t **e, const co_od_sub_t **s)
+{
+    *e = co_od_find(node->dev->od, node->dev->od_count, index);
+    if (*e == NULL) {
+        return ((node->dev->options & CO_OPT_UNKNOWN_INDEX_NO_ACCESS) != 0U) ? CO_ERR_NO_ACCESS
+                                                                             : CO_ERR_NO_OBJECT;
+    }
+    *s = co_od_find_sub(*e, sub);
+    return (*s == NULL) ? CO_ERR_NO_SUB : CO_OK;
+}
+
+void *co_od_loc(const co_node_t *node, const co_od_sub_t *s)
+{
+    if ((s->flags & CO_SUB_HOOKIO) != 0U) {
+        return NULL;
+    }
+    if ((s->flags & CO_SUB_ROM) != 0U) {
+        /* ROM values are only ever read through this pointer. */
+        return (void *)(uintptr_t)&node->dev->rom[s->off];
+    }
+    return &node->ram[s->off];
+}
+
+co_err_t co_od_check_access(const co_node_t *node, const co_od_sub_t *s, bool write)
+{
+    if (write) {
+        if (((s->flags & CO_SUB_W) == 0U) || ((s->flags & (CO_SUB_CONST | CO_SUB_ROM)) != 0U)) {
+            return ((node->dev->options & CO_OPT_READ_ONLY_NO_ACCESS) != 0U) ? CO_ERR_NO_ACCESS
+                                                                            : CO_ERR_READ_ONLY;
+        }
+    } else if ((s->flags & CO_SUB_R) == 0U) {
+        return CO_ERR_WRITE_ONLY;
+    } else {
+        /* readable */
+    }
+    return CO_OK;
+}
+
+uint32_t co_od_data_size(const co_node_t *node, const co_od_sub_t *s)
+{
+    const uint8_t *v = (const uint8_t *)co_od_loc(node, s);
+    uint32_t n = s->size;
+
+    if (v == NULL) {
+        return 0U;
+    }
+    if ((s->type == (uint8_t)CO_VISIBLE_STRING) || (s->type == (uint8_t)CO_UNICODE_STRING)) {
+        const void *nul = memchr(v, 0, n);
+        if (nul != NULL) {
+            n = (uint32_t)((const uint8_t *)nul - v);
+        }
+    }
+    return n;
+}
+
+/* Values of 16, 32 and 64 bits live in RAM/ROM as native integers (so the
+ * application and the core use them as plain variables); every other type is
+ * stored as its wire bytes. These two convert at the dictionary boundary, so
+ * the wire image is little-endian on any CPU. */
+static void to_wire(uint8_t *dst, const uint8_t *src, uint8_t n)
+{
+    if (n == 2U) {
+        uint16_t v;
+        (void)memcpy(&v, src, 2U);
+        co_put_u16(dst, v);
+    } else if (n == 4U) {
+        uint32_t v;
+        (void)memcpy(&v, src, 4U);
+        co_put_u32(dst, v);
+    } else if (n == 8U) {
+        uint64_t v;
+        (void)memcpy(&v, src, 8U);
+        co_put_u64(dst, v);
+    } else {
+        (void)memcpy(dst, src, n);
+    }
+}
+
+static void from_wire(uint8_t *dst, const uint8_t *src, uint8_t n)
+{
+    if (n == 2U) {
+        uint16_t v = co_get_u16(src);
+        (void)memcpy(dst, &v, 2U);
+    } else if (n == 4U) {
+        uint32_t v = co_get_u32(src);
+        (void)memcpy(dst, &v, 4U);
+    } else if (n == 8U) {
+        uint64_t v = co_get_u64(src);
+        (void)memcpy(dst, &v, 8U);
+    } else {
+        (void)memcpy(dst, src, n);
+    }
+}
+
+static co_od_hook_t *hook_of(const co_node_t *node, const co_od_entry_t *e)
+{
+    if ((e->hook == 0U) || (node->hooks == NULL) || (e->hook > node->dev->n_hooks)) {
+        return NULL;
+    }
+    return &node->hooks[e->hook - 1U];
+}
+
+static void io_init(co_od_io_t *io, co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s)
+{
+    (void)memset(io, 0, sizeof *io);
+    io->node = node;
+    io->entry = e;
+    io->desc = s;
+    io->value = co_od_loc(node, s);
+}
+
+co_err_t co_od_read_part(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
+                         uint32_t offset, uint8_t *buf, uint32_t cap, uint32_t *len,
+                         uint32_t *total, bool *last)
+{
+    co_od_hook_t *h = hook_of(node, e);
+    co_od_io_t io;
+    co_err_t err;
+
+    if ((s->flags & CO_SUB_HOOKIO) != 0U) {
+        if ((h == NULL) || (h->read == NULL)) {
+            return CO_ERR_NO_ACCESS;
+        }
+        io_init(&io, node, e, s);
+        io.offset = offset;
+        io.buf = buf;
+        io.len = cap;
+        err = h->read(h->ctx, &io);
+        if (err == CO_OK) {
+            *len = (io.len > cap) ? cap : io.len;
+            *total = io.total;
+            *last = io.last;
+        }
+        return err;
+    }
+    if (offset == 0U) {
+        err = co_comm_check_read(node, e->index, s->sub);
+        if (err != CO_OK) {
+            return err;
+        }
+        if ((h != NULL) && (h->read != NULL)) {
+            io_init(&io, node, e, s);
+            err = h->read(h->ctx, &io);
+            if (err != CO_OK) {
+                return err;
+            }
+        }
+    }
+    {
+        uint32_t size = co_od_data_size(node, s);
+        uint32_t n = (offset < size) ? (size - offset) : 0U;
+        const uint8_t *v = (const uint8_t *)co_od_loc(node, s);
+        uint8_t fixed = co_type_size(s->type);
+        if (n > cap) {
+            n = cap;
+        }
+        if (fixed != 0U) {
+            uint8_t wire[8];
+            to_wire(wire, v, fixed);
+            (void)memcpy(buf, &wire[offset], n);
+        } else if (n > 0U) {
+            (void)memcpy(buf, &v[offset], n);
+        } else {
+            /* empty */
+        }
+        *len = n;
+        *total = size;
+        *last = (offset + n) >= size;
+    }
+    return CO_OK;
+}
+
+static uint64_t load_uint(const uint8_t *p, uint8_t n)
+{
+    uint64_t v = 0U;
+    for (uint8_t i = n; i > 0U; i--) {
+        v = (v << 8U) | p[i - 1U];
+    }
+    return v;
+}
+
+static co_err_t check_limits(const co_node_t *node, const co_od_sub_t *s, const uint8_t *data,
+                             uint32_t len)
+{
+    if (s->type == (uint8_t)CO_BOOLEAN) {
+        return (data[0] > 1U) ? CO_ERR_VALUE : CO_OK;
+    }
+    if (((s->flags & CO_SUB_LIMIT) == 0U) || (node->dev->limits == NULL) || (len > 8U)) {
+        return CO_OK;
+    }
+    {
+        const co_od_limit_t *lim = &node->dev->limits[s->limit];
+        uint8_t n = (uint8_t)len;
+        uint64_t raw = load_uint(data, n);
+        if (type_is_signed(s->type)) {
+            int64_t v;
+            if ((n < 8U) && ((raw >> ((8U * n) - 1U)) != 0U)) {
+                raw |= ~((UINT64_C(1) << (8U * n)) - 1U); /* sign-extend */
+            }
+            v = (int64_t)raw;
+            if (v < lim->min) {
+                return CO_ERR_VALUE_LOW;
+            }
+            if (v > lim->max) {
+                return CO_ERR_VALUE_HIGH;
+            }
+        } else if ((s->type != (uint8_t)CO_REAL32) && (s->type != (uint8_t)CO_REAL64)) {
+            if (raw < (uint64_t)lim->min) {
+                return CO_ERR_VALUE_LOW;
+            }
+            if (raw > (uint64_t)lim->max) {
+                return CO_ERR_VALUE_HIGH;
+            }
+        } else {
+            /* REAL limits are not checked by the core (use a hook). */
+        }
+    }
+    return CO_OK;
+}
+
+co_err_t co_od_write_value(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
+                           const uint8_t *data, uint32_t len)
+{
+    co_od_hook_t *h = hook_of(node, e);
+    co_od_io_t io;
+    co_err_t err;
+    uint8_t *v = (uint8_t *)co_od_loc(node, s);
+    uint8_t fixed = co_type_size(s->type);
+
+    if (fixed != 0U) {
+        if (len != fixed) {
+            return CO_ERR_TYPE_MISMATCH;
+        }
+    } else if (len > s->size) {
+        if ((s->flags & CO_SUB_HOOKIO) == 0U) {
+            return CO_ERR_TYPE_TOO_LONG;
+        }
+    } else {
+        /* fits */
+    }
+    err = check_limits(node, s, data, len);
+    if (err == CO_OK) {
+        err = co_comm_check_write(node, e->index, s->sub, data, len);
+    }
+    if (err != CO_OK) {
+        return err;
+    }
+    if ((h != NULL) && (h->write != NULL)) {
+        io_init(&io, node, e, s);
+        io.buf = (uint8_t *)(uintptr_t)data;
+        io.len = len;
+        io.total = len;
+        io.last = true;
+        err = h->write(h->ctx, &io);
+        if (err != CO_OK) {
+            return err;
+        }
+    } else if (v == NULL) {
+        return CO_ERR_NO_ACCESS;
+    } else {
+        /* plain stored value */
+    }
+    if ((v != NULL) && ((s->flags & CO_SUB_ROM) == 0U)) {
+        if (fixed != 0U) {
+            from_wire(v, data, fixed);
+        } else {
+            (void)memcpy(v, data, len);
+            if (len < s->size) {
+                (void)memset(&v[len], 0, s->size - len);
+            }
+        }
+    }
+    co_comm_written(node, e->index, s->sub);
+    return CO_OK;
+}
+
+co_err_t co_od_write_part(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
+                          uint32_t offset, const uint8_t *data, uint32_t len, uint32_t total,
+                          bool last)
+{
+    co_od_hook_t *h = hook_of(node, e);
+    co_od_io_t io;
+    uint8_t *v = (uint8_t *)co_od_loc(node, s);
+
+    if ((s->flags & CO_SUB_HOOKIO) != 0U) {
+        if ((h == NULL) || (h->write == NULL)) {
+            return CO_ERR_NO_ACCESS;
+        }
+        io_init(&io, node, e, s);
+        io.offset = offset;
+        io.buf = (uint8_t *)(uintptr_t)data;
+        io.len = len;
+        io.total = total;
+        io.last = last;
+        return h->write(h->ctx, &io);
+    }
+    if ((v == NULL) || ((s->flags & CO_SUB_ROM) != 0U)) {
+        return CO_ERR_NO_ACCESS;
+    }
+    if ((offset > s->size) || (len > (s->size - offset))) {
+        return CO_ERR_TYPE_TOO_LONG;
+    }
+    if (len > 0U) {
+        (void)memcpy(&v[offset], data, len);
+    }
+    if (last) {
+        uint32_t end = offset + len;
+        if (end < s->size) {
+            (void)memset(&v[end], 0, s->size - end);
+        }
+        if ((h != NULL) && (h->write != NULL)) {
+            io_init(&io, node, e, s);
+            io.buf = v;
+            io.len = end;
+            io.total = end;
+            io.last = true;
+            co_err_t err = h->write(h->ctx, &io);
+            if (err != CO_OK) {
+                return err;
+            }
+        }
+        co_comm_written(node, e->index, s->sub);
+    }
+    return CO_OK;
+}
+
+void co_od_restore(co_node_t *node, uint16_t from, uint16_t to)
+{
+    const co_dev_t *dev = node->dev;
+    const uint8_t *def = (const uint8_t *)dev->defaults;
+
+    if ((to <= from) || (def == NULL)) {
+        return;
+    }
+    (void)memcpy(&node->ram[from], &def[from], (size_t)to - from);
+    /* $NODEID-relative defaults inside the restored range. */
+    for (uint16_t i = 0U; i < dev->od_count; i++) {
+        const co_od_entry_t *e = &dev->od[i];
+        for (uint8_t k = 0U; k < e->nsubs; k++) {
+            const co_od_sub_t *s = &e->subs[k];
+            if (((s->flags & (CO_SUB_NODEID | CO_SUB_ROM | CO_SUB_HOOKIO)) == CO_SUB_NODEID) &&
+                (s->off >= from) && (s->off < to)) {
+                uint8_t n = co_type_size(s->type);
+                uint8_t *p = &node->ram[s->off];
+                if (n == 1U) {
+                    p[0] = (uint8_t)(p[0] + node->node_id);
+                } else if (n == 2U) {
+                    co_put_u16(p, (uint16_t)(co_get_u16(p) + node->node_id));
+                } else if (n == 4U) {
+                    co_put_u32(p, co_get_u32(p) + node->node_id);
+                } else {
+                    /* $NODEID only makes sense on 8/16/32-bit values */
+                }
+            }
+        }
+    }
+}
+
+/* ------------------------------------------------------------ public API */
+
+co_err_t co_od_read(co_node_t *node, uint16_t index, uint8_t sub, void *buf, uint32_t cap,
+                    uint32_t *len)
+{
+    const co_od_entry_t *e;
+    const co_od_sub_t *s;
+    uint32_t total = 0U;
+    bool last = false;
+    co_err_t err = co_od_lookup(node, index, sub, &e, &s);
+
+    if (err != CO_OK) {
+        return err;
+    }
+    err = co_od_read_part(node, e, s, 0U, (uint8_t *)buf, cap, len, &total, &last);
+    if ((err == CO_OK) && !last) {
+        err = CO_ERR_TYPE_TOO_LONG; /* the caller's buffer is too small */
+    }
+    return err;
+}
+
+co_err_t co_od_write(co_node_t *node, uint16_t index, uint8_t sub, const void *data,
+                     uint32_t len, bool as_app)
+{
+    const co_od_entry_t *e;
+    const co_od_sub_t *s;
+    co_err_t err = co_od_lookup(node, index, sub, &e, &s);
+
+    if ((err == CO_OK) && !as_app) {
+        err = co_od_check_access(node, s, true);
+    }
+    if ((err == CO_OK) && as_app && ((s->flags & CO_SUB_ROM) != 0U)) {
+        err = CO_ERR_READ_ONLY;
+    }
+    if (err == CO_OK) {
+        if (co_od_is_streamed(s) && ((s->flags & CO_SUB_HOOKIO) != 0U)) {
+            err = co_od_write_part(node, e, s, 0U, (const uint8_t *)data, len, len, true);
+        } else {
+            err = co_od_write_value(node, e, s, (const uint8_t *)data, len);
+        }
+    }
+    return err;
+}
+
+void *co_od_value_ptr(co_node_t *node, uint16_t index, uint8_t sub)
+{
+    const co_od_entry_t *e;
+    const co_od_sub_t *s;
+
+    if (co_od_lookup(node, index, sub, &e, &s) != CO_OK) {
+        return NULL;
+    }
+    if ((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) != 0U) {
+        return NULL;
+    }
+    return &node->ram[s->off];
+}
+
+co_err_t co_od_bind_hook(co_node_t *node, uint16_t index, const co_od_hook_t *hook)
+{
+    const co_od_entry_t *e = co_od_find(node->dev->od, node->dev->od_count, index);
+
+    if (e == NULL) {
+        return CO_ERR_NO_OBJECT;
+    }
+    if ((e->hook == 0U) || (node->hooks == NULL) || (e->hook > node->dev->n_hooks)) {
+        return CO_ERR_NO_ACCESS;
+    }
+    node->hooks[e->hook - 1U] = *hook;
+    return CO_OK;
+}

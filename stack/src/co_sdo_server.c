@@ -1,0 +1,769 @@
+/*
+ * SDO server: expedited, segmented and block transfer (CiA 301, 7.2.4).
+ *
+ * Nothing is copied that the dictionary already holds: uploads read from the
+ * value by offset (block retransmission reads again), downloads of strings
+ * and DOMAINs are written in place as they arrive. Only values of fixed size
+ * (at most 8 bytes) are gathered first, so they are checked and committed
+ * whole.
+ */
+#include <string.h>
+
+#include "co/co_endian.h"
+#include "co_crc16.h"
+#include "co_priv.h"
+
+#define SDO_BLKSIZE 127U /* segments per block the server asks for */
+#define SEG 7U           /* data bytes per segment */
+
+enum {
+    S_IDLE = 0,
+    S_DL_SEG,     /* segmented download */
+    S_UL_SEG,     /* segmented upload */
+    S_BLK_DL,     /* block download: receiving a sub-block */
+    S_BLK_DL_END, /* block download: waiting for the end request */
+    S_BLK_UL_INI, /* block upload: waiting for the start command */
+    S_BLK_UL,     /* block upload: sending / waiting for the acknowledge */
+    S_BLK_UL_END  /* block upload: waiting for the client's end response */
+};
+
+/* flags */
+#define F_SIZE   0x01U /* size indicated */
+#define F_CRC    0x02U /* both sides use CRC (block) */
+#define F_STAGED 0x04U /* buf holds the first chunk of an upload */
+#define F_LAST   0x08U /* block upload: the last segment has been sent */
+
+static uint32_t tx_cob(const co_node_t *node)
+{
+    return 0x580UL + node->node_id;
+}
+
+static void send8(co_node_t *node, const uint8_t *d)
+{
+    co_tx(node, tx_cob(node), d, 8U);
+}
+
+static void reply(co_node_t *node, uint8_t cmd, uint16_t index, uint8_t sub, uint32_t data)
+{
+    uint8_t d[8];
+
+    d[0] = cmd;
+    co_put_u16(&d[1], index);
+    d[3] = sub;
+    co_put_u32(&d[4], data);
+    send8(node, d);
+}
+
+void co_sdo_reset(co_node_t *node)
+{
+    node->sdo.state = (uint8_t)S_IDLE;
+    node->sdo.entry = NULL;
+    node->sdo.desc = NULL;
+}
+
+static void abort_at(co_node_t *node, uint16_t index, uint8_t sub, co_err_t err)
+{
+    reply(node, 0x80U, index, sub, (uint32_t)err);
+    co_sdo_reset(node);
+}
+
+static void abort_cur(co_node_t *node, co_err_t err)
+{
+    co_sdo_srv_t *t = &node->sdo;
+    uint16_t index = (t->entry != NULL) ? t->entry->index : 0U;
+    uint8_t sub = (t->desc != NULL) ? t->desc->sub : 0U;
+
+    abort_at(node, index, sub, err);
+}
+
+static void start(co_node_t *node, uint8_t state)
+{
+    node->sdo.state = state;
+    node->sdo.deadline = node->now + node->sdo_timeout_us;
+}
+
+static bool is_fixed(const co_od_sub_t *s)
+{
+    return !co_od_is_streamed(s);
+}
+
+/* Commit a complete value gathered in t->buf (fixed size), or the final
+ * chunk of a streamed value. */
+static co_err_t finish_download(co_node_t *node, const uint8_t *data, uint32_t len)
+{
+    co_sdo_srv_t *t = &node->sdo;
+
+    if (is_fixed(t->desc)) {
+        if (((uint32_t)t->buf_len + len) > sizeof t->buf) {
+            return CO_ERR_TYPE_MISMATCH;
+        }
+        (void)memcpy(&t->buf[t->buf_len], data, len);
+        t->buf_len = (uint8_t)(t->buf_len + len);
+        return co_od_write_value(node, t->entry, t->desc, t->buf, t->buf_len);
+    }
+    return co_od_write_part(node, t->entry, t->desc, t->offset, data, len, t->size, true);
+}
+
+/* A chunk that is not the last one. */
+static co_err_t put_chunk(co_node_t *node, const uint8_t *data, uint32_t len)
+{
+    co_sdo_srv_t *t = &node->sdo;
+    co_err_t err = CO_OK;
+
+    if (is_fixed(t->desc)) {
+        if (((uint32_t)t->buf_len + len) > sizeof t->buf) {
+            return CO_ERR_TYPE_MISMATCH;
+        }
+        (void)memcpy(&t->buf[t->buf_len], data, len);
+        t->buf_len = (uint8_t)(t->buf_len + len);
+    } else {
+        err = co_od_write_part(node, t->entry, t->desc, t->offset, data, len, t->size, false);
+    }
+    if (err == CO_OK) {
+        t->offset += len;
+    }
+    return err;
+}
+
+/* Checks common to every download initiate. */
+static co_err_t open_download(co_node_t *node, uint16_t index, uint8_t sub, bool size_ind,
+                              uint32_t size)
+{
+    co_sdo_srv_t *t = &node->sdo;
+    const co_od_entry_t *e;
+    const co_od_sub_t *s;
+    co_err_t err = co_od_lookup(node, index, sub, &e, &s);
+
+    if (err == CO_OK) {
+        err = co_od_check_access(node, s, true);
+    }
+    if ((err == CO_OK) && size_ind) {
+        uint8_t fixed = co_type_size(s->type);
+        if ((fixed != 0U) && (size != fixed)) {
+            err = CO_ERR_TYPE_MISMATCH;
+        } else if ((fixed == 0U) && ((s->flags & CO_SUB_HOOKIO) == 0U) && (size > s->size)) {
+            err = CO_ERR_TYPE_TOO_LONG;
+        } else {
+            /* size fits */
+        }
+    }
+    if (err == CO_OK) {
+        t->entry = e;
+        t->desc = s;
+        t->size = size_ind ? size : 0U;
+        t->flags = size_ind ? F_SIZE : 0U;
+        t->offset = 0U;
+        t->buf_len = 0U;
+        t->toggle = 0U;
+        t->crc = 0U;
+        t->seqno = 0U;
+    }
+    return err;
+}
+
+/* Checks common to every upload initiate; stages the first chunk (which
+ * also runs the read hook once). */
+static co_err_t open_upload(co_node_t *node, uint16_t index, uint8_t sub, bool *last)
+{
+    co_sdo_srv_t *t = &node->sdo;
+    const co_od_entry_t *e;
+    const co_od_sub_t *s;
+    uint32_t got = 0U;
+    uint32_t total = 0U;
+    co_err_t err = co_od_lookup(node, index, sub, &e, &s);
+
+    if (err == CO_OK) {
+        err = co_od_check_access(node, s, false);
+    }
+    if (err == CO_OK) {
+        err = co_od_read_part(node, e, s, 0U, t->buf, SEG, &got, &total, last);
+    }
+    if (err == CO_OK) {
+        t->entry = e;
+        t->desc = s;
+        t->size = total;
+        t->flags = (uint8_t)(F_STAGED | ((total != 0U) || *last ? F_SIZE : 0U));
+        t->buf_len = (uint8_t)got;
+        t->offset = 0U;
+        t->toggle = 0U;
+        t->crc = 0U;
+        t->seqno = 0U;
+        if (*last) {
+            t->size = got;
+        }
+    }
+    return err;
+}
+
+/* Read up to SEG bytes at t->offset + pos (pos relative to the acknowledged offset). */
+static co_err_t read_seg(co_node_t *node, uint32_t at, uint8_t *buf, uint32_t *got, bool *last)
+{
+    co_sdo_srv_t *t = &node->sdo;
+    uint32_t total = 0U;
+    co_err_t err;
+
+    if ((at == 0U) && ((t->flags & F_STAGED) != 0U)) {
+        (void)memcpy(buf, t->buf, t->buf_len);
+        *got = t->buf_len;
+        *last = ((t->flags & F_SIZE) != 0U) && (t->buf_len >= t->size);
+        return CO_OK;
+    }
+    err = co_od_read_part(node, t->entry, t->desc, at, buf, SEG, got, &total, last);
+    if ((err == CO_OK) && ((t->flags & F_SIZE) != 0U)) {
+        *last = (at + *got) >= t->size;
+    }
+    return err;
+}
+
+/* ------------------------------------------------------------ initiate */
+
+static void initiate_download(co_node_t *node, const uint8_t *d, uint16_t index, uint8_t sub)
+{
+    bool expedited = (d[0] & 0x02U) != 0U;
+    bool size_ind = (d[0] & 0x01U) != 0U;
+    co_err_t err;
+
+    if (expedited) {
+        uint32_t len = size_ind ? (4U - ((uint32_t)(d[0] >> 2U) & 3U)) : 4U;
+        err = open_download(node, index, sub, size_ind, len);
+        if ((err == CO_OK) && !size_ind) {
+            uint8_t fixed = co_type_size(node->sdo.desc->type);
+            if ((fixed != 0U) && (fixed < 4U)) {
+                len = fixed; /* size not indicated: take what the object needs */
+            }
+        }
+        if (err == CO_OK) {
+            err = finish_download(node, &d[4], len);
+        }
+        if (err != CO_OK) {
+            abort_at(node, index, sub, err);
+            return;
+        }
+        co_sdo_reset(node);
+        reply(node, 0x60U, index, sub, 0U);
+        return;
+    }
+    if ((node->dev->options & CO_OPT_SDO_EXPEDITED_ONLY) != 0U) {
+        abort_at(node, index, sub, CO_ERR_CMD);
+        return;
+    }
+    err = open_download(node, index, sub, size_ind, co_get_u32(&d[4]));
+    if (err != CO_OK) {
+        abort_at(node, index, sub, err);
+        return;
+    }
+    start(node, S_DL_SEG);
+    reply(node, 0x60U, index, sub, 0U);
+}
+
+static void respond_upload(co_node_t *node, bool last)
+{
+    co_sdo_srv_t *t = &node->sdo;
+    uint16_t index = t->entry->index;
+    uint8_t sub = t->desc->sub;
+
+    if (last && (t->size <= 4U) && ((t->size > 0U) ||
+                                    ((node->dev->options & CO_OPT_SDO_EXPEDITED_ONLY) != 0U))) {
+        uint8_t d[8] = {0};
+        uint32_t n = (t->size == 0U) ? 1U : t->size;
+        d[0] = (uint8_t)(0x43U | ((4U - n) << 2U));
+        co_put_u16(&d[1], index);
+        d[3] = sub;
+        (void)memcpy(&d[4], t->buf, t->size);
+        co_sdo_reset(node);
+        send8(node, d);
+        return;
+    }
+    if ((node->dev->options & CO_OPT_SDO_EXPEDITED_ONLY) != 0U) {
+        abort_at(node, index, sub, CO_ERR_NO_ACCESS);
+        return;
+    }
+    start(node, S_UL_SEG);
+    reply(node, ((t->flags & F_SIZE) != 0U) ? 0x41U : 0x40U, index, sub, t->size);
+}
+
+static void initiate_upload(co_node_t *node, uint16_t index, uint8_t sub)
+{
+    bool last = false;
+    co_err_t err = open_upload(node, index, sub, &last);
+
+    if (err != CO_OK) {
+        abort_at(node, index, sub, err);
+        return;
+    }
+    respond_upload(node, last);
+}
+
+/* ------------------------------------------------------------ segmented */
+
+static void download_segment(co_node_t *node, const uint8_t *d)
+{
+    co_sdo_srv_t *t = &node->sdo;
+    uint8_t toggle = (uint8_t)(d[0] & 0x10U);
+    uint32_t len = SEG - (((uint32_t)d[0] >> 1U) & 7U);
+    bool last = (d[0] & 0x01U) != 0U;
+    co_err_t err = CO_OK;
+
+    if (toggle != t->toggle) {
+        abort_cur(node, CO_ERR_TOGGLE);
+        return;
+    }
+    if ((t->flags & F_SIZE) != 0U) {
+        uint32_t end = t->offset + len;
+        if (end > t->size) {
+            err = CO_ERR_TYPE_TOO_LONG;
+        } else if (last && (end < t->size)) {
+            err = CO_ERR_TYPE_TOO_SHORT;
+        } else {
+            /* on track */
+        }
+    }
+    if (err == CO_OK) {
+        err = last ? finish_download(node, &d[1], len) : put_chunk(node, &d[1], len);
+    }
+    if (err != CO_OK) {
+        abort_cur(node, err);
+        return;
+    }
+    {
+        uint8_t r[8] = {0};
+        r[0] = (uint8_t)(0x20U | toggle);
+        t->toggle ^= 0x10U;
+        if (last) {
+            co_sdo_reset(node);
+        } else {
+            start(node, S_DL_SEG);
+        }
+        send8(node, r);
+    }
+}
+
+static void upload_segment(co_node_t *node, const uint8_t *d)
+{
+    co_sdo_srv_t *t = &node->sdo;
+    uint8_t toggle = (uint8_t)(d[0] & 0x10U);
+    uint8_t r[8] = {0};
+    uint32_t got = 0U;
+    bool last = false;
+    co_err_t err;
+
+    if (toggle != t->toggle) {
+        abort_cur(node, CO_ERR_TOGGLE);
+        return;
+    }
+    err = read_seg(node, t->offset, &r[1], &got, &last);
+    if (err != CO_OK) {
+        abort_cur(node, err);
+        return;
+    }
+    t->flags &= (uint8_t)~F_STAGED;
+    t->offset += got;
+    r[0] = (uint8_t)(toggle | ((SEG - got) << 1U) | (last ? 1U : 0U));
+    t->toggle ^= 0x10U;
+    if (last) {
+        co_sdo_reset(node);
+    } else {
+        start(node, S_UL_SEG);
+    }
+    send8(node, r);
+}
+
+/* ------------------------------------------------------------ block download */
+
+static void block_download_initiate(co_node_t *node, const uint8_t *d, uint16_t index,
+                                    uint8_t sub)
+{
+    bool size_ind = (d[0] & 0x02U) != 0U;
+    co_err_t err;
+
+    if ((d[0] & 0x01U) != 0U) {
+        abort_at(node, index, sub, CO_ERR_CMD); /* end without a transfer */
+        return;
+    }
+    err = open_download(node, index, sub, size_ind, co_get_u32(&d[4]));
+    if (err != CO_OK) {
+        abort_at(node, index, sub, err);
+        return;
+    }
+    if ((d[0] & 0x04U) != 0U) {
+        node->sdo.flags |= F_CRC;
+    }
+    node->sdo.blksize = (uint8_t)SDO_BLKSIZE;
+    start(node, S_BLK_DL);
+    reply(node, 0xA4U, index, sub, SDO_BLKSIZE);
+}
+
+static void block_ack(co_node_t *node)
+{
+    uint8_t r[8] = {0};
+
+    r[0] = 0xA2U;
+    r[1] = node->sdo.seqno;
+    r[2] = node->sdo.blksize;
+    send8(node, r);
+}
+
+static void block_download_segment(co_node_t *node, const uint8_t *d)
+{
+    co_sdo_srv_t *t = &node->sdo;
+    uint8_t seq = (uint8_t)(d[0] & 0x7FU);
+    bool last = (d[0] & 0x80U) != 0U;
+    co_err_t err;
+
+    if ((seq == 0U) || (seq > t->blksize)) {
+        abort_cur(node, CO_ERR_SEQNO);
+        return;
+    }
+    start(node, S_BLK_DL);
+    if (seq != (uint8_t)(t->seqno + 1U)) {
+        /* lost or repeated segment: drop it; at the end of the sub-block
+         * acknowledge the last good one so the client repeats from there */
+        if (last || (seq == t->blksize)) {
+            block_ack(node);
+            t->seqno = 0U;
+        }
+        return;
+    }
+    t->seqno = seq;
+    if (last) {
+        (void)memcpy(t->held, &d[1], SEG);
+        block_ack(node);
+        t->seqno = 0U;
+        start(node, S_BLK_DL_END);
+        return;
+    }
+    if (((t->flags & F_SIZE) != 0U) && ((t->offset + SEG) > t->size)) {
+        abort_cur(node, CO_ERR_TYPE_TOO_LONG);
+        return;
+    }
+    if ((t->flags & F_CRC) != 0U) {
+        t->crc = co_crc16(t->crc, &d[1], SEG);
+    }
+    err = put_chunk(node, &d[1], SEG);
+    if (err != CO_OK) {
+        abort_cur(node, err);
+        return;
+    }
+    if (seq == t->blksize) {
+        block_ack(node);
+        t->seqno = 0U;
+    }
+}
+
+static void block_download_end(co_node_t *node, const uint8_t *d)
+{
+    co_sdo_srv_t *t = &node->sdo;
+    uint32_t len = SEG - (((uint32_t)d[0] >> 2U) & 7U);
+    co_err_t err = CO_OK;
+
+    if ((d[0] & 0xE3U) != 0xC1U) {
+        abort_cur(node, CO_ERR_CMD);
+        return;
+    }
+    if ((t->flags & F_SIZE) != 0U) {
+        uint32_t end = t->offset + len;
+        if (end > t->size) {
+            err = CO_ERR_TYPE_TOO_LONG;
+        } else if (end < t->size) {
+            err = CO_ERR_TYPE_TOO_SHORT;
+        } else {
+            /* exact */
+        }
+    }
+    if ((err == CO_OK) && ((t->flags & F_CRC) != 0U) &&
+        (co_crc16(t->crc, t->held, len) != co_get_u16(&d[1]))) {
+        err = CO_ERR_CRC;
+    }
+    if (err == CO_OK) {
+        err = finish_download(node, t->held, len);
+    }
+    if (err != CO_OK) {
+        abort_cur(node, err);
+        return;
+    }
+    co_sdo_reset(node);
+    {
+        uint8_t r[8] = {0};
+        r[0] = 0xA1U;
+        send8(node, r);
+    }
+}
+
+/* ------------------------------------------------------------ block upload */
+
+static void block_upload_initiate(co_node_t *node, const uint8_t *d, uint16_t index, uint8_t sub)
+{
+    co_sdo_srv_t *t = &node->sdo;
+    uint8_t blksize = d[4];
+    uint8_t pst = d[5];
+    bool last = false;
+    co_err_t err;
+
+    if ((d[0] & 0x03U) != 0U) {
+        abort_at(node, index, sub, CO_ERR_CMD);
+        return;
+    }
+    if ((blksize == 0U) || (blksize > 127U)) {
+        abort_at(node, index, sub, CO_ERR_BLKSIZE);
+        return;
+    }
+    err = open_upload(node, index, sub, &last);
+    if (err != CO_OK) {
+        abort_at(node, index, sub, err);
+        return;
+    }
+    if ((pst != 0U) && ((t->flags & F_SIZE) != 0U) && (t->size <= pst)) {
+        respond_upload(node, last); /* protocol switch to segmented/expedited */
+        return;
+    }
+    t->blksize = blksize;
+    if ((d[0] & 0x04U) != 0U) {
+        t->flags |= F_CRC;
+    }
+    start(node, S_BLK_UL_INI);
+    reply(node, (uint8_t)(0xC4U | (((t->flags & F_SIZE) != 0U) ? 0x02U : 0U)), index, sub,
+          t->size);
+}
+
+/* Send segments of the current sub-block until it is complete or the TX
+ * path is full (then co_sdo_process resumes). */
+static void block_upload_send(co_node_t *node)
+{
+    co_sdo_srv_t *t = &node->sdo;
+
+    while ((t->seqno < t->blksize) && ((t->flags & F_LAST) == 0U)) {
+        uint8_t d[8] = {0};
+        uint32_t got = 0U;
+        bool last = false;
+        uint32_t at = t->offset + ((uint32_t)t->seqno * SEG);
+        co_err_t err = read_seg(node, at, &d[1], &got, &last);
+        if (err != CO_OK) {
+            abort_cur(node, err);
+            return;
+        }
+        if (!last && (got < SEG)) {
+            abort_cur(node, CO_ERR_GENERAL); /* a hook produced a short chunk mid-stream */
+            return;
+        }
+        d[0] = (uint8_t)((uint8_t)(t->seqno + 1U) | (last ? 0x80U : 0U));
+        if (!co_tx_try(node, tx_cob(node), d, 8U)) {
+            return;
+        }
+        t->seqno++;
+        if (last) {
+            t->flags |= F_LAST;
+            t->buf_len = (uint8_t)got; /* bytes in the last segment */
+        }
+    }
+}
+
+static co_err_t crc_range(co_node_t *node, uint32_t from, uint32_t len)
+{
+    co_sdo_srv_t *t = &node->sdo;
+    uint8_t b[SEG];
+
+    while (len > 0U) {
+        uint32_t got = 0U;
+        bool last = false;
+        co_err_t err = read_seg(node, from, b, &got, &last);
+        if (err != CO_OK) {
+            return err;
+        }
+        if (got > len) {
+            got = len;
+        }
+        if (got == 0U) {
+            break;
+        }
+        t->crc = co_crc16(t->crc, b, got);
+        from += got;
+        len -= got;
+    }
+    return CO_OK;
+}
+
+static void block_upload_ack(co_node_t *node, const uint8_t *d)
+{
+    co_sdo_srv_t *t = &node->sdo;
+    uint8_t ackseq = d[1];
+    uint8_t blksize = d[2];
+    bool all = (t->flags & F_LAST) != 0U;
+    uint32_t acked;
+    co_err_t err = CO_OK;
+
+    if (ackseq > t->seqno) {
+        abort_cur(node, CO_ERR_SEQNO);
+        return;
+    }
+    if ((blksize == 0U) || (blksize > 127U)) {
+        abort_cur(node, CO_ERR_BLKSIZE);
+        return;
+    }
+    all = all && (ackseq == t->seqno);
+    acked = all ? (((uint32_t)(ackseq - 1U) * SEG) + t->buf_len) : ((uint32_t)ackseq * SEG);
+    if ((t->flags & F_CRC) != 0U) {
+        err = crc_range(node, t->offset, acked);
+    }
+    if (err != CO_OK) {
+        abort_cur(node, err);
+        return;
+    }
+    t->offset += acked;
+    if (t->offset > 0U) {
+        t->flags &= (uint8_t)~F_STAGED;
+    }
+    if (all) {
+        uint8_t r[8] = {0};
+        r[0] = (uint8_t)(0xC1U | ((SEG - t->buf_len) << 2U));
+        co_put_u16(&r[1], ((t->flags & F_CRC) != 0U) ? t->crc : 0U);
+        start(node, S_BLK_UL_END);
+        send8(node, r);
+        return;
+    }
+    t->flags &= (uint8_t)~F_LAST;
+    t->blksize = blksize;
+    t->seqno = 0U;
+    start(node, S_BLK_UL);
+    block_upload_send(node);
+}
+
+/* ------------------------------------------------------------ dispatch */
+
+static void idle_request(co_node_t *node, const uint8_t *d)
+{
+    uint16_t index = co_get_u16(&d[1]);
+    uint8_t sub = d[3];
+    uint8_t ccs = (uint8_t)(d[0] >> 5U);
+    bool blocks = (node->dev->options & (CO_OPT_SDO_NO_BLOCK | CO_OPT_SDO_EXPEDITED_ONLY)) == 0U;
+
+    switch (ccs) {
+    case 1U:
+        initiate_download(node, d, index, sub);
+        break;
+    case 2U:
+        initiate_upload(node, index, sub);
+        break;
+    case 4U:
+        break; /* abort with nothing open: nothing to do */
+    case 5U:
+        if (blocks) {
+            block_upload_initiate(node, d, index, sub);
+        } else {
+            abort_at(node, index, sub, CO_ERR_CMD);
+        }
+        break;
+    case 6U:
+        if (blocks) {
+            block_download_initiate(node, d, index, sub);
+        } else {
+            abort_at(node, index, sub, CO_ERR_CMD);
+        }
+        break;
+    default:
+        /* segment without a transfer, or ccs 7 */
+        abort_at(node, index, sub, CO_ERR_CMD);
+        break;
+    }
+}
+
+void co_sdo_rx(co_node_t *node, const co_frame_t *f)
+{
+    co_sdo_srv_t *t = &node->sdo;
+    const uint8_t *d = f->data;
+    uint8_t ccs = (uint8_t)(d[0] >> 5U);
+
+    if ((node->nmt == (uint8_t)CO_NMT_STOPPED) || co_frame_is_rtr(f)) {
+        return;
+    }
+    if (f->dlc != 8U) {
+        /* CiA 301: SDO frames are 8 bytes; anything else is not a valid request */
+        if (t->state == (uint8_t)S_IDLE) {
+            abort_at(node, (f->dlc >= 3U) ? co_get_u16(&d[1]) : 0U, (f->dlc >= 4U) ? d[3] : 0U,
+                     CO_ERR_CMD);
+        } else {
+            abort_cur(node, CO_ERR_CMD);
+        }
+        return;
+    }
+    if (t->state == (uint8_t)S_BLK_DL) {
+        if (d[0] == 0x80U) {
+            co_sdo_reset(node); /* abort from the client */
+        } else {
+            block_download_segment(node, d);
+        }
+        return;
+    }
+    if (ccs == 4U) {
+        co_sdo_reset(node); /* client abort: the transfer ends, no answer */
+        return;
+    }
+    switch (t->state) {
+    case S_IDLE:
+        idle_request(node, d);
+        break;
+    case S_DL_SEG:
+        if (ccs == 0U) {
+            download_segment(node, d);
+        } else {
+            abort_cur(node, CO_ERR_CMD);
+        }
+        break;
+    case S_UL_SEG:
+        if (ccs == 3U) {
+            upload_segment(node, d);
+        } else {
+            abort_cur(node, CO_ERR_CMD);
+        }
+        break;
+    case S_BLK_DL_END:
+        block_download_end(node, d);
+        break;
+    case S_BLK_UL_INI:
+        if (d[0] == 0xA3U) {
+            t->seqno = 0U;
+            t->flags &= (uint8_t)~F_LAST;
+            start(node, S_BLK_UL);
+            block_upload_send(node);
+        } else {
+            abort_cur(node, CO_ERR_CMD);
+        }
+        break;
+    case S_BLK_UL:
+        if ((d[0] & 0xE3U) == 0xA2U) {
+            block_upload_ack(node, d);
+        } else {
+            abort_cur(node, CO_ERR_CMD);
+        }
+        break;
+    case S_BLK_UL_END:
+        if ((d[0] & 0xE3U) == 0xA1U) {
+            co_sdo_reset(node);
+        } else {
+            abort_cur(node, CO_ERR_CMD);
+        }
+        break;
+    default:
+        co_sdo_reset(node);
+        break;
+    }
+}
+
+uint32_t co_sdo_process(co_node_t *node, uint32_t next)
+{
+    co_sdo_srv_t *t = &node->sdo;
+
+    if (t->state == (uint8_t)S_IDLE) {
+        return next;
+    }
+    if (co_time_reached(node->now, t->deadline)) {
+        abort_cur(node, CO_ERR_TIMEOUT);
+        return next;
+    }
+    if ((t->state == (uint8_t)S_BLK_UL) && (t->seqno < t->blksize) && ((t->flags & F_LAST) == 0U)) {
+        block_upload_send(node);
+        if ((t->seqno < t->blksize) && ((t->flags & F_LAST) == 0U)) {
+            next = co_deadline_min(node->now, next, node->now + 1000U);
+        }
+    }
+    return co_deadline_min(node->now, next, t->deadline);
+}

@@ -1,0 +1,158 @@
+#include "test_bus.h"
+
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "test_frames.h"
+
+static int tb_hal_send(void *ctx, const co_frame_t *f)
+{
+    tb_port_t *p = (tb_port_t *)ctx;
+    tb_bus_t *bus = p->bus;
+
+    if (bus->refuse > 0U) {
+        bus->refuse--;
+        bus->refused++;
+        return 1;
+    }
+    assert_true(bus->n_log < TB_LOG_MAX);
+    bus->log[bus->n_log] = *f;
+    bus->from[bus->n_log] = p->idx;
+    bus->n_log++;
+    return 0;
+}
+
+static int tb_nv_read(void *ctx, uint32_t addr, uint8_t *buf, uint32_t len)
+{
+    tb_bus_t *bus = ((tb_port_t *)ctx)->bus;
+    if ((addr > TB_NV_SIZE) || (len > TB_NV_SIZE - addr)) {
+        return -1;
+    }
+    memcpy(buf, &bus->nv[addr], len);
+    return 0;
+}
+
+static int tb_nv_write(void *ctx, uint32_t addr, const uint8_t *buf, uint32_t len)
+{
+    tb_bus_t *bus = ((tb_port_t *)ctx)->bus;
+    if ((addr > TB_NV_SIZE) || (len > TB_NV_SIZE - addr)) {
+        return -1;
+    }
+    memcpy(&bus->nv[addr], buf, len);
+    return 0;
+}
+
+const co_hal_ops_t tb_hal_ops = {tb_hal_send, tb_nv_read, tb_nv_write};
+
+void tb_init(tb_bus_t *bus)
+{
+    memset(bus, 0, sizeof *bus);
+    memset(bus->nv, 0xFF, sizeof bus->nv);
+    bus->now = 1000U;
+}
+
+co_hal_t tb_hal(tb_bus_t *bus, uint8_t idx)
+{
+    co_hal_t h;
+    bus->ports[idx].bus = bus;
+    bus->ports[idx].idx = idx;
+    h.ops = &tb_hal_ops;
+    h.ctx = &bus->ports[idx];
+    return h;
+}
+
+void tb_attach(tb_bus_t *bus, uint8_t idx, co_node_t *node)
+{
+    bus->nodes[idx] = node;
+    if (bus->n_nodes <= idx) {
+        bus->n_nodes = (size_t)idx + 1U;
+    }
+}
+
+void tb_send_frame(tb_bus_t *bus, const co_frame_t *f)
+{
+    for (size_t i = 0; i < bus->n_nodes; i++) {
+        if (bus->nodes[i] != NULL) {
+            co_node_rx(bus->nodes[i], f, bus->now);
+        }
+    }
+}
+
+void tb_send(tb_bus_t *bus, const char *text)
+{
+    co_frame_t f = tf_parse(text);
+    tb_send_frame(bus, &f);
+}
+
+void tb_pump(tb_bus_t *bus)
+{
+    while (bus->deliver_pos < bus->n_log) {
+        size_t i = bus->deliver_pos++;
+        for (size_t k = 0; k < bus->n_nodes; k++) {
+            if ((bus->nodes[k] != NULL) && (k != bus->from[i])) {
+                co_node_rx(bus->nodes[k], &bus->log[i], bus->now);
+            }
+        }
+    }
+}
+
+void tb_advance(tb_bus_t *bus, uint32_t us)
+{
+    uint32_t end = bus->now + us;
+
+    for (;;) {
+        uint32_t next = end;
+        for (size_t i = 0; i < bus->n_nodes; i++) {
+            if (bus->nodes[i] != NULL) {
+                uint32_t d = co_node_process(bus->nodes[i], bus->now);
+                if ((d != CO_NO_DEADLINE) && ((int32_t)(d - bus->now) > 0) &&
+                    ((int32_t)(d - next) < 0)) {
+                    next = d;
+                }
+            }
+        }
+        if (bus->now == end) {
+            break;
+        }
+        bus->now = next;
+    }
+}
+
+const co_frame_t *tb_next(tb_bus_t *bus)
+{
+    if (bus->read_pos >= bus->n_log) {
+        return NULL;
+    }
+    return &bus->log[bus->read_pos++];
+}
+
+void tb_expect_at(tb_bus_t *bus, const char *text, const char *file, int line)
+{
+    const co_frame_t *f = tb_next(bus);
+    if (f == NULL) {
+        print_error("%s:%d: expected frame %s, but nothing was sent\n", file, line, text);
+        _fail(file, line);
+        return;
+    }
+    tf_assert_frame(f, text, file, line);
+}
+
+void tb_expect_none_at(tb_bus_t *bus, const char *file, int line)
+{
+    const co_frame_t *f = tb_next(bus);
+    if (f != NULL) {
+        char txt[64];
+        tf_format(f, txt, sizeof txt);
+        print_error("%s:%d: expected no frame, got %s\n", file, line, txt);
+        _fail(file, line);
+    }
+}
+
+void tb_flush(tb_bus_t *bus)
+{
+    bus->read_pos = bus->n_log;
+}

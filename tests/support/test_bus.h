@@ -1,0 +1,76 @@
+/*
+ * In-memory CAN bus for tests: a real driver of the HAL interface.
+ * Frames sent by any node are logged in order; tests read them back with
+ * tb_expect(), and tb_pump() delivers them to the other nodes on the bus.
+ * The bus can refuse frames (TX full) and provides non-volatile memory.
+ */
+#ifndef TEST_BUS_H
+#define TEST_BUS_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "co/co_node.h"
+
+#define TB_LOG_MAX 4096U
+#define TB_NODES_MAX 4U
+#define TB_NV_SIZE 4096U
+
+typedef struct tb_bus tb_bus_t;
+
+typedef struct tb_port {
+    tb_bus_t *bus;
+    uint8_t idx;
+} tb_port_t;
+
+struct tb_bus {
+    co_frame_t log[TB_LOG_MAX];
+    uint8_t from[TB_LOG_MAX];  /**< port that sent it (0xFF: the test) */
+    size_t n_log;
+    size_t read_pos;           /**< next frame tb_expect() looks at */
+    size_t deliver_pos;        /**< next frame tb_pump() delivers */
+    co_node_t *nodes[TB_NODES_MAX];
+    tb_port_t ports[TB_NODES_MAX];
+    size_t n_nodes;
+    uint32_t now;
+    unsigned refuse;           /**< refuse this many send() calls (TX full) */
+    unsigned refused;          /**< how many were refused */
+    uint8_t nv[TB_NV_SIZE];
+};
+
+extern const co_hal_ops_t tb_hal_ops;
+
+void tb_init(tb_bus_t *bus);
+/** A HAL for node slot @p idx on @p bus (attach the node afterwards). */
+co_hal_t tb_hal(tb_bus_t *bus, uint8_t idx);
+void tb_attach(tb_bus_t *bus, uint8_t idx, co_node_t *node);
+
+/** The test sends @p text ("601 40 00 10 ...") to every node at bus->now. */
+void tb_send(tb_bus_t *bus, const char *text);
+void tb_send_frame(tb_bus_t *bus, const co_frame_t *f);
+/** Deliver frames the nodes sent to the other nodes, until quiet. */
+void tb_pump(tb_bus_t *bus);
+/** Advance time by @p us in steps no larger than @p step (0: jump at once),
+ *  calling co_node_process on every node at each step and whenever a
+ *  deadline falls inside the step. */
+void tb_advance(tb_bus_t *bus, uint32_t us);
+
+/** Next frame a node sent, NULL if none. */
+const co_frame_t *tb_next(tb_bus_t *bus);
+void tb_expect_at(tb_bus_t *bus, const char *text, const char *file, int line);
+void tb_expect_none_at(tb_bus_t *bus, const char *file, int line);
+#define tb_expect(bus, text) tb_expect_at((bus), (text), __FILE__, __LINE__)
+#define tb_expect_none(bus) tb_expect_none_at((bus), __FILE__, __LINE__)
+/** Skip everything logged so far. */
+void tb_flush(tb_bus_t *bus);
+
+/** Send @p req and expect exactly @p resp in answer (and nothing else). */
+#define tb_xfer(bus, req, resp)                                                                  \
+    do {                                                                                         \
+        tb_send((bus), (req));                                                                   \
+        tb_expect((bus), (resp));                                                                \
+        tb_expect_none(bus);                                                                     \
+    } while (0)
+
+#endif

@@ -121,6 +121,9 @@ co_err_t co_comm_check_write(const co_node_t *node, uint16_t index, uint8_t sub,
             if ((v & 0x20000000UL) != 0U) {
                 return CO_ERR_VALUE; /* 29-bit identifiers are not supported */
             }
+            if ((v & 0x1FFFF800UL) != 0U) {
+                return CO_ERR_VALUE; /* CiA 301: bits 11..28 are 0 with an 11-bit CAN-ID */
+            }
         }
         break;
     case 0x1016U:
@@ -144,10 +147,18 @@ void co_comm_written(co_node_t *node, uint16_t index, uint8_t sub)
         break;
     case 0x100CU:
     case 0x100DU:
-        node->guard_state = 0U; /* re-armed by the next guarding request */
+        /* Life guarding is re-armed with the new life time by the next
+         * guarding request. A lost state is kept: that request must still end
+         * the error (co_hb_process ends it if life guarding is now off). */
+        if (node->guard_state == 1U) { /* armed */
+            node->guard_state = 0U;
+        }
         break;
     case 0x1016U:
-        co_hb_consumers_changed(node);
+        if ((sub > 0U) && (sub <= node->n_hb_cons)) {
+            node->hbc[sub - 1U].state = 0U; /* this entry starts over (co_hb.c) */
+            co_hb_consumers_changed(node);
+        }
         break;
     case 0x1017U:
         co_hb_producer_changed(node);

@@ -34,6 +34,18 @@ static uint32_t inhibit_us(const co_node_t *node)
     return (node->emcy_inhibit != NULL) ? ((uint32_t)*node->emcy_inhibit * 100UL) : 0U;
 }
 
+/* Still within the inhibit time of the last EMCY? emcy_next is at most one
+ * inhibit time (< 6.6 s) ahead of now while it runs; any other distance is a
+ * time in the past, however long ago. (co_time_reached alone would take a
+ * last EMCY more than 2^31 us ago for one in the future and hold the next
+ * one back for up to 35 minutes.) */
+static bool inhibited(const co_node_t *node)
+{
+    uint32_t left = node->emcy_next - node->now;
+
+    return (left != 0U) && (left <= inhibit_us(node));
+}
+
 static void send(co_node_t *node, const uint8_t *d)
 {
     uint32_t cob = cob_id(node);
@@ -41,8 +53,7 @@ static void send(co_node_t *node, const uint8_t *d)
     if ((node->nmt == (uint8_t)CO_NMT_STOPPED) || ((cob & 0x80000000UL) != 0U)) {
         return; /* no EMCY in Stopped; not valid */
     }
-    if ((node->n_emcy_q > 0U) ||
-        ((inhibit_us(node) != 0U) && !co_time_reached(node->now, node->emcy_next))) {
+    if ((node->n_emcy_q > 0U) || inhibited(node)) {
         if (node->n_emcy_q < CO_EMCY_QUEUE_LEN) {
             (void)memcpy(node->emcy_q[node->n_emcy_q].data, d, 8U);
             node->n_emcy_q++;
@@ -148,10 +159,8 @@ void co_emcy_reset(co_node_t *node)
 
 uint32_t co_emcy_process(co_node_t *node, uint32_t next)
 {
-    if (node->n_emcy_q == 0U) {
-        return next;
-    }
-    if (co_time_reached(node->now, node->emcy_next)) {
+    /* more than one only when the inhibit time was lowered to 0 meanwhile */
+    while ((node->n_emcy_q > 0U) && !inhibited(node)) {
         uint32_t cob = cob_id(node);
         if ((node->nmt != (uint8_t)CO_NMT_STOPPED) && ((cob & 0x80000000UL) == 0U)) {
             co_tx(node, cob & 0x7FFUL, node->emcy_q[0].data, 8U);

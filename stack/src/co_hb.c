@@ -37,32 +37,98 @@ static void update_error(co_node_t *node)
     }
 }
 
-void co_hb_producer_changed(co_node_t *node)
+static bool heartbeat_producing(const co_node_t *node)
 {
-    if ((node->hb_prod != NULL) && (*node->hb_prod != 0U)) {
-        node->hb_deadline = node->now + ms_to_us(*node->hb_prod);
+    return (node->hb_prod != NULL) && (*node->hb_prod != 0U);
+}
+
+/* CiA 301: with a non-zero heartbeat producer time the node uses the
+ * heartbeat protocol, not node guarding (unless the device's option says it
+ * answers both). */
+static bool guarding_answered(const co_node_t *node)
+{
+    return !heartbeat_producing(node) ||
+           ((node->dev->options & CO_OPT_GUARD_WITH_HEARTBEAT) != 0U);
+}
+
+/* Life time in ms: guard time 0x100C x life time factor 0x100D (0: off). */
+static uint32_t life_ms(const co_node_t *node)
+{
+    uint32_t life = 0U;
+
+    if ((node->guard_time != NULL) && (node->life_factor != NULL)) {
+        life = (uint32_t)*node->guard_time * *node->life_factor;
+    }
+    return life;
+}
+
+/* Life guarding ends when it is switched off (life time 0) or when the node
+ * stops answering guarding requests (heartbeat producer time set). CiA 301
+ * is silent about a life-guarding error that is pending at that moment; we
+ * end it like a recovery: nobody monitors the master any more, and an error
+ * that nothing can ever clear would stay in 0x1001 for good. */
+static void guard_check(co_node_t *node)
+{
+    if ((node->guard_state != (uint8_t)GUARD_OFF) &&
+        ((life_ms(node) == 0U) || !guarding_answered(node))) {
+        bool was_lost = (node->guard_state == (uint8_t)GUARD_LOST);
+        node->guard_state = (uint8_t)GUARD_OFF;
+        if (was_lost) {
+            update_error(node);
+            event(node, CO_GUARD_RECOVERED, 0U, node->nmt);
+        }
     }
 }
 
-void co_hb_consumers_changed(co_node_t *node)
+void co_hb_producer_changed(co_node_t *node)
+{
+    if (heartbeat_producing(node)) {
+        node->hb_deadline = node->now + ms_to_us(*node->hb_prod);
+    }
+    guard_check(node);
+}
+
+/* Entries in state HBC_UNUSED are (re)configured from 0x1016: a used one
+ * waits for its producer's first heartbeat. The others keep monitoring. */
+static void consumers_restart(co_node_t *node)
 {
     for (uint8_t k = 0U; k < node->n_hb_cons; k++) {
         uint32_t v = node->hb_cons[k];
         bool used = ((v & 0xFFFFU) != 0U) && (((v >> 16U) & 0xFFU) != 0U);
-        node->hbc[k].state = used ? (uint8_t)HBC_WAITING : (uint8_t)HBC_UNUSED;
-        node->hbc[k].nmt = (uint8_t)CO_NMT_INITIALISING;
+        if (node->hbc[k].state == (uint8_t)HBC_UNUSED) {
+            node->hbc[k].state = used ? (uint8_t)HBC_WAITING : (uint8_t)HBC_UNUSED;
+            node->hbc[k].nmt = (uint8_t)CO_NMT_INITIALISING;
+        }
     }
     co_rx_rebuild(node);
+}
+
+/* After a write of 0x1016 sub k, co_comm_written has set hbc[k-1].state to
+ * HBC_UNUSED: only that entry starts over. CiA 301 does not say what a write
+ * does to the other entries; restarting them would pause their monitoring
+ * and end a pending timeout of a producer that is still silent. */
+void co_hb_consumers_changed(co_node_t *node)
+{
+    consumers_restart(node);
     update_error(node);
 }
 
+/* Reset communication: everything starts over. The EMCY 0x8130 that a lost
+ * producer or master may have left active is not touched here: this runs
+ * before the boot-up frame, which must be the first frame after the reset;
+ * co_nmt_boot ends that error once the node is in Pre-operational. */
 void co_hb_reset(co_node_t *node)
 {
     node->guard_toggle = 0U;
     node->guard_state = (uint8_t)GUARD_OFF;
     /* The boot-up frame counts as the first heartbeat. */
-    co_hb_producer_changed(node);
-    co_hb_consumers_changed(node);
+    if (heartbeat_producing(node)) {
+        node->hb_deadline = node->now + ms_to_us(*node->hb_prod);
+    }
+    for (uint8_t k = 0U; k < node->n_hb_cons; k++) {
+        node->hbc[k].state = (uint8_t)HBC_UNUSED;
+    }
+    consumers_restart(node);
 }
 
 void co_hb_rx(co_node_t *node, uint8_t slot, const co_frame_t *f)
@@ -105,18 +171,14 @@ void co_guard_rx(co_node_t *node, const co_frame_t *f)
     if (!co_frame_is_rtr(f)) {
         return; /* a data frame on our error-control COB-ID is not for us */
     }
-    if ((node->hb_prod != NULL) && (*node->hb_prod != 0U) &&
-        ((node->dev->options & CO_OPT_GUARD_WITH_HEARTBEAT) == 0U)) {
-        return; /* CiA 301: with a heartbeat producer time the node uses heartbeat */
+    if (!guarding_answered(node)) {
+        return;
     }
     reply = (uint8_t)(node->guard_toggle | node->nmt);
     node->guard_toggle ^= 0x80U;
     co_tx(node, 0x700UL + node->node_id, &reply, 1U);
 
-    life = 0U;
-    if ((node->guard_time != NULL) && (node->life_factor != NULL)) {
-        life = (uint32_t)*node->guard_time * *node->life_factor;
-    }
+    life = life_ms(node);
     if (life != 0U) {
         bool was_lost = (node->guard_state == (uint8_t)GUARD_LOST);
         node->guard_state = (uint8_t)GUARD_ARMED;
@@ -132,7 +194,7 @@ uint32_t co_hb_process(co_node_t *node, uint32_t next)
 {
     uint32_t now = node->now;
 
-    if ((node->hb_prod != NULL) && (*node->hb_prod != 0U)) {
+    if (heartbeat_producing(node)) {
         if (co_time_reached(now, node->hb_deadline)) {
             uint8_t st = node->nmt;
             uint32_t period = ms_to_us(*node->hb_prod);
@@ -156,6 +218,9 @@ uint32_t co_hb_process(co_node_t *node, uint32_t next)
             }
         }
     }
+    /* 0x100C/0x100D written since the last call (co_comm_written keeps a
+     * lost state so that the next request can end it) */
+    guard_check(node);
     if (node->guard_state == (uint8_t)GUARD_ARMED) {
         if (co_time_reached(now, node->guard_deadline)) {
             node->guard_state = (uint8_t)GUARD_LOST;

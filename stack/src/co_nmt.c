@@ -47,6 +47,12 @@ void co_nmt_boot(co_node_t *node)
         co_tx(node, *node->emcy_cob & 0x7FFUL, d, 8U);
     }
     set_state(node, CO_NMT_PRE_OPERATIONAL);
+    /* Heartbeat consumers and life guarding start over (co_hb_reset), so an
+     * EMCY 0x8130 of a producer or master lost before the reset has nothing
+     * left to clear it. CiA 301 is silent; we end it here, after the boot-up
+     * (the first frame after a reset) and in Pre-operational, where EMCY may
+     * be sent. No-op after a node reset (no active errors) and at init. */
+    co_emcy_clear(node, CO_EMCY_HB_GUARD);
 }
 
 static void reset(co_node_t *node, co_reset_t kind)

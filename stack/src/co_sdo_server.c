@@ -195,7 +195,7 @@ static co_err_t open_upload(co_node_t *node, uint16_t index, uint8_t sub, bool *
     return err;
 }
 
-/* Read up to SEG bytes at t->offset + pos (pos relative to the acknowledged offset). */
+/* Read up to SEG bytes of the value at byte @p at into @p buf (SEG bytes). */
 static co_err_t read_seg(co_node_t *node, uint32_t at, uint8_t *buf, uint32_t *got, bool *last)
 {
     co_sdo_srv_t *t = &node->sdo;
@@ -203,13 +203,21 @@ static co_err_t read_seg(co_node_t *node, uint32_t at, uint8_t *buf, uint32_t *g
     co_err_t err;
 
     if ((at == 0U) && ((t->flags & F_STAGED) != 0U)) {
-        (void)memcpy(buf, t->buf, t->buf_len);
         *got = t->buf_len;
-        *last = ((t->flags & F_SIZE) != 0U) && (t->buf_len >= t->size);
+        if (((t->flags & F_SIZE) != 0U) && (*got > t->size)) {
+            *got = t->size; /* never beyond the size announced */
+        }
+        (void)memcpy(buf, t->buf, *got);
+        *last = ((t->flags & F_SIZE) != 0U) && (*got >= t->size);
         return CO_OK;
     }
     err = co_od_read_part(node, t->entry, t->desc, at, buf, SEG, got, &total, last);
     if ((err == CO_OK) && ((t->flags & F_SIZE) != 0U)) {
+        if ((at + *got) > t->size) {
+            /* never beyond the size announced (a hook reported a smaller total) */
+            *got = (at < t->size) ? (t->size - at) : 0U;
+            (void)memset(&buf[*got], 0, SEG - *got);
+        }
         *last = (at + *got) >= t->size;
     }
     return err;
@@ -550,9 +558,14 @@ static void block_upload_send(co_node_t *node)
             return;
         }
         t->seqno++;
+        /* the client's answer is due one timeout after the last segment */
+        t->deadline = node->now + node->sdo_timeout_us;
         if (last) {
-            t->flags |= F_LAST;
-            t->buf_len = (uint8_t)got; /* bytes in the last segment */
+            /* The end is known now: keep it as the size (t->buf_len still
+             * holds the staged first chunk, which a retransmission from
+             * offset 0 needs). */
+            t->size = at + got;
+            t->flags |= (uint8_t)(F_LAST | F_SIZE);
         }
     }
 }
@@ -589,6 +602,7 @@ static void block_upload_ack(co_node_t *node, const uint8_t *d)
     uint8_t blksize = d[2];
     bool all = (t->flags & F_LAST) != 0U;
     uint32_t acked;
+    uint32_t tail = 0U; /* bytes in the last segment */
     co_err_t err = CO_OK;
 
     if (ackseq > t->seqno) {
@@ -600,7 +614,12 @@ static void block_upload_ack(co_node_t *node, const uint8_t *d)
         return;
     }
     all = all && (ackseq == t->seqno);
-    acked = all ? (((uint32_t)(ackseq - 1U) * SEG) + t->buf_len) : ((uint32_t)ackseq * SEG);
+    if (all) {
+        acked = t->size - t->offset;
+        tail = acked - ((uint32_t)(ackseq - 1U) * SEG);
+    } else {
+        acked = (uint32_t)ackseq * SEG;
+    }
     if ((t->flags & F_CRC) != 0U) {
         err = crc_range(node, t->offset, acked);
     }
@@ -614,7 +633,7 @@ static void block_upload_ack(co_node_t *node, const uint8_t *d)
     }
     if (all) {
         uint8_t r[8] = {0};
-        r[0] = (uint8_t)(0xC1U | ((SEG - t->buf_len) << 2U));
+        r[0] = (uint8_t)(0xC1U | ((SEG - tail) << 2U));
         co_put_u16(&r[1], ((t->flags & F_CRC) != 0U) ? t->crc : 0U);
         start(node, S_BLK_UL_END);
         send8(node, r);
@@ -659,8 +678,13 @@ static void idle_request(co_node_t *node, const uint8_t *d)
             abort_at(node, index, sub, CO_ERR_CMD);
         }
         break;
+    case 0U:
+    case 3U:
+        /* a segment without a transfer carries no index: answer with 0 */
+        abort_at(node, 0U, 0U, CO_ERR_CMD);
+        break;
     default:
-        /* segment without a transfer, or ccs 7 */
+        /* ccs 7 */
         abort_at(node, index, sub, CO_ERR_CMD);
         break;
     }
@@ -748,6 +772,13 @@ void co_sdo_rx(co_node_t *node, const co_frame_t *f)
     }
 }
 
+/* A block upload sub-block that the TX path has not taken completely yet. */
+static bool upload_pending(const co_sdo_srv_t *t)
+{
+    return (t->state == (uint8_t)S_BLK_UL) && (t->seqno < t->blksize) &&
+           ((t->flags & F_LAST) == 0U);
+}
+
 uint32_t co_sdo_process(co_node_t *node, uint32_t next)
 {
     co_sdo_srv_t *t = &node->sdo;
@@ -759,9 +790,10 @@ uint32_t co_sdo_process(co_node_t *node, uint32_t next)
         abort_cur(node, CO_ERR_TIMEOUT);
         return next;
     }
-    if ((t->state == (uint8_t)S_BLK_UL) && (t->seqno < t->blksize) && ((t->flags & F_LAST) == 0U)) {
+    if (upload_pending(t)) {
         block_upload_send(node);
-        if ((t->seqno < t->blksize) && ((t->flags & F_LAST) == 0U)) {
+        if (upload_pending(&node->sdo)) {
+            /* TX path still full: try again in a millisecond */
             next = co_deadline_min(node->now, next, node->now + 1000U);
         }
     }

@@ -13,6 +13,7 @@ typedef struct td_rom {
     uint32_t x2023;
     uint8_t n1016;
     uint8_t n1018;
+    uint8_t n6099;
     char x1008[7];
     char x1009[3];
     char x100A[5];
@@ -24,6 +25,7 @@ static const td_rom_t rom = {
     .x2023 = 0xCAFEF00DUL,
     .n1016 = 4U,
     .n1018 = 4U,
+    .n6099 = 2U,
     .x1008 = {'6', '3', '1', '_', '4', '0', '2'},
     .x1009 = {'1', '.', '0'},
     .x100A = {'0', '.', '1', '.', '0'},
@@ -44,6 +46,7 @@ static const td_ram_t defaults = {
 static const co_od_limit_t limits[] = {
     {10, 1000},
     {-100, 100},
+    {0, 60000},
 };
 
 #define F(field) ((uint16_t)offsetof(td_ram_t, field))
@@ -123,6 +126,14 @@ static const co_od_sub_t s2300[] = {
     RAM(1, CO_UNSIGNED16, CO_SUB_RW, rec1),
 };
 static const co_od_sub_t s6040[] = {RAM(0, CO_UNSIGNED16, RW_MAP, cw)};
+static const co_od_sub_t s6060[] = {RAM(0, CO_INTEGER8, RW_MAP, mode)};
+static const co_od_sub_t s607A[] = {RAM(0, CO_INTEGER32, RW_MAP, target_pos)};
+static const co_od_sub_t s60FF[] = {RAM(0, CO_INTEGER32, RW_MAP, target_vel)};
+static const co_od_sub_t s6099[] = {
+    ROM(0, CO_UNSIGNED8, CO_SUB_RO | CO_SUB_CONST, n6099),
+    {1, (uint8_t)CO_UNSIGNED32, CO_SUB_RW | CO_SUB_LIMIT, 4U, F(homing_speed), 2U},
+    {2, (uint8_t)CO_UNSIGNED32, CO_SUB_RW | CO_SUB_LIMIT, 4U, (uint16_t)(F(homing_speed) + 4U), 2U},
+};
 
 #define E(idx, subs, code) {(idx), (uint8_t)(sizeof(subs) / sizeof((subs)[0])), 0U, (code), (subs)}
 #define EH(idx, subs, code, slot) \
@@ -153,6 +164,8 @@ static const co_od_entry_t od[] = {
     EH(0x2200, s2200, CO_OBJ_DOMAIN, TD_HOOK_DOMAIN),
     EH(0x2201, s2201, CO_OBJ_VAR, TD_HOOK_2201),
     E(0x2300, s2300, CO_OBJ_RECORD), E(0x6040, s6040, CO_OBJ_VAR),
+    E(0x6060, s6060, CO_OBJ_VAR),    E(0x607A, s607A, CO_OBJ_VAR),
+    E(0x6099, s6099, CO_OBJ_ARRAY),  E(0x60FF, s60FF, CO_OBJ_VAR),
 };
 
 const co_dev_t td_dev = {

@@ -52,6 +52,11 @@ typedef struct td_ram {
     uint32_t hooked;       /* 0x2100 */
     uint32_t rec0;         /* 0x2300 sub0 (data in sub-index 0) */
     uint16_t rec1;         /* 0x2300 sub1 */
+    int8_t mode;           /* 0x6060 */
+    uint8_t pad2[3];
+    int32_t target_pos;    /* 0x607A */
+    int32_t target_vel;    /* 0x60FF */
+    uint32_t homing_speed[2]; /* 0x6099 sub1..2, limit 0..60000 */
     /* not stored */
     uint8_t errreg;        /* 0x1001 */
     uint8_t hist_n;        /* 0x1003 sub0 */
@@ -77,7 +82,7 @@ typedef struct td_node {
 } td_node_t;
 
 /** Initialise @p n as node @p id on @p bus (slot @p idx) with device @p dev
- *  (NULL: td_dev) and drain its boot-up frame from the log. */
+ *  (NULL: td_dev). Its boot-up frame stays in the bus log. */
 void td_start(td_node_t *n, tb_bus_t *bus, uint8_t idx, uint8_t id, const co_dev_t *dev);
 
 #endif

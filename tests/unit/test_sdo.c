@@ -92,6 +92,56 @@ static void ssd_derived_vectors(void **state)
     tb_xfer(BUS, "601 2F 03 10 00 00 00 00 00", "581 60 03 10 00 00 00 00 00");
 }
 
+/* ---------------------------------------------------------- FAULHABER */
+
+/* FAULHABER digest 7.4/7.5 host examples, frames derived for node 2; the
+ * profile's reaction is the CiA 402 issue's, the SDO layer's answer is here. */
+static void faulhaber_7_5_host_examples_node2(void **state)
+{
+    static td_node_t fh;
+    td_start(&fh, BUS, 1, 2, NULL);
+    tb_expect(BUS, "702 00");
+    tb_xfer(BUS, "602 2B 40 60 00 06 00 00 00", "582 60 40 60 00 00 00 00 00");
+    tb_xfer(BUS, "602 2F 60 60 00 03 00 00 00", "582 60 60 60 00 00 00 00 00");
+    tb_xfer(BUS, "602 23 FF 60 00 F4 01 00 00", "582 60 FF 60 00 00 00 00 00");
+    assert_int_equal(fh.ram.target_vel, 500);
+    tb_xfer(BUS, "602 2F 60 60 00 01 00 00 00", "582 60 60 60 00 00 00 00 00");
+    tb_xfer(BUS, "602 23 7A 60 00 10 27 00 00", "582 60 7A 60 00 00 00 00 00");
+    assert_int_equal(fh.ram.target_pos, 10000);
+    tb_xfer(BUS, "602 2B 40 60 00 7F 00 00 00", "582 60 40 60 00 00 00 00 00");
+    assert_int_equal(fh.ram.cw, 0x007F);
+    /* 7.9: consumer heartbeat of master 0x7F with 1500 ms */
+    tb_xfer(BUS, "602 23 16 10 01 DC 05 7F 00", "582 60 16 10 01 00 00 00 00");
+    tb_xfer(BUS, "602 40 16 10 01 00 00 00 00", "582 43 16 10 01 DC 05 7F 00");
+    /* node 1 did not answer any of it */
+    BUS->nodes[1] = NULL;
+}
+
+/* ---------------------------------------------------------- Kollmorgen */
+
+/* Kollmorgen digest 7.3/7.9 (node 3): expedited-only SDO server. */
+static void kollmorgen_7_9_expedited_only_node3(void **state)
+{
+    static td_node_t ko;
+    co_dev_t dev = td_dev;
+    dev.options = CO_OPT_SDO_EXPEDITED_ONLY;
+    td_start(&ko, BUS, 1, 3, &dev);
+    tb_expect(BUS, "703 00");
+    tb_xfer(BUS, "603 2F 60 60 00 03 00 00 00", "583 60 60 60 00 00 00 00 00");
+    tb_xfer(BUS, "603 23 FF 60 00 00 41 00 00", "583 60 FF 60 00 00 00 00 00");
+    assert_int_equal(ko.ram.target_vel, 0x4100);
+    tb_xfer(BUS, "603 2B 40 60 00 0F 01 00 00", "583 60 40 60 00 00 00 00 00");
+    /* step 23/24: 72000 exceeds the object's maximum */
+    tb_xfer(BUS, "603 23 99 60 01 40 19 01 00", "583 80 99 60 01 31 00 09 06");
+    assert_int_equal(ko.ram.homing_speed[0], 0);
+    tb_xfer(BUS, "603 23 99 60 01 A0 8C 00 00", "583 60 99 60 01 00 00 00 00");
+    /* no segmented or block transfer on this device */
+    tb_xfer(BUS, "603 21 12 20 00 0A 00 00 00", "583 80 12 20 00 01 00 04 05");
+    tb_xfer(BUS, "603 C6 12 20 00 0A 00 00 00", "583 80 12 20 00 01 00 04 05");
+    tb_xfer(BUS, "603 40 08 10 00 00 00 00 00", "583 80 08 10 00 00 00 01 06");
+    BUS->nodes[1] = NULL;
+}
+
 /* ---------------------------------------------------------- expedited */
 
 static void expedited_download_all_sizes(void **state)
@@ -183,7 +233,7 @@ static void unknown_command_specifier(void **state)
 {
     tb_xfer(BUS, "601 E0 00 10 00 00 00 00 00", "581 80 00 10 00 01 00 04 05");
     /* a download segment without an initiate */
-    tb_xfer(BUS, "601 00 00 10 00 00 00 00 00", "581 80 00 10 00 01 00 04 05");
+    tb_xfer(BUS, "601 00 43 41 4E 6F 70 65 6E", "581 80 00 00 00 01 00 04 05");
     /* upload segment request without an initiate */
     tb_xfer(BUS, "601 60 00 00 00 00 00 00 00", "581 80 00 00 00 01 00 04 05");
     /* short SDO frame */
@@ -283,6 +333,8 @@ int main(void)
         cmocka_unit_test_setup(ssd_14_7_segmented_upload_device_name, setup),
         cmocka_unit_test_setup(ssd_14_1_unknown_index_strict_and_630, setup),
         cmocka_unit_test_setup(ssd_derived_vectors, setup),
+        cmocka_unit_test_setup(faulhaber_7_5_host_examples_node2, setup),
+        cmocka_unit_test_setup(kollmorgen_7_9_expedited_only_node3, setup),
         cmocka_unit_test_setup(expedited_download_all_sizes, setup),
         cmocka_unit_test_setup(expedited_upload_all_sizes, setup),
         cmocka_unit_test_setup(boolean_accepts_only_0_and_1, setup),

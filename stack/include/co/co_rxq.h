@@ -1,0 +1,41 @@
+/*
+ * Receive queue between a CAN receive ISR (single producer) and the loop that
+ * calls co_node_rx (single consumer). Lock-free: the ISR only writes 'head',
+ * the loop only writes 'tail'; both are read and written whole (16-bit
+ * stores are atomic on every Cortex-M). On a multi-core system define
+ * CO_RXQ_BARRIER() as a full memory barrier.
+ *
+ * The caller provides the frame storage; its length must be a power of two.
+ */
+#ifndef CO_RXQ_H
+#define CO_RXQ_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "co/co_frame.h"
+
+#ifndef CO_RXQ_BARRIER
+#if defined(__GNUC__)
+#define CO_RXQ_BARRIER() __asm__ volatile("" ::: "memory")
+#else
+#define CO_RXQ_BARRIER() ((void)0)
+#endif
+#endif
+
+typedef struct co_rxq {
+    co_frame_t *buf;
+    uint16_t mask;            /**< length - 1 */
+    volatile uint16_t head;   /**< written by the producer */
+    volatile uint16_t tail;   /**< written by the consumer */
+    volatile uint16_t dropped;/**< frames lost because the queue was full */
+} co_rxq_t;
+
+/** @p len must be a power of two, 2..32768. Returns false otherwise. */
+bool co_rxq_init(co_rxq_t *q, co_frame_t *storage, uint16_t len);
+/** Producer (ISR): false (and a count in 'dropped') when the queue is full. */
+bool co_rxq_push(co_rxq_t *q, const co_frame_t *f);
+/** Consumer (main loop): false when the queue is empty. */
+bool co_rxq_pop(co_rxq_t *q, co_frame_t *f);
+
+#endif /* CO_RXQ_H */

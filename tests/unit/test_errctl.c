@@ -1,0 +1,590 @@
+/*
+ * Error control (CiA 301 7.2.8.3.2): heartbeat producer 0x1017, heartbeat
+ * consumer 0x1016, node guarding and life guarding 0x100C/0x100D, and the
+ * EMCY 0x8130 the core raises for a lost producer or guarding master.
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "test_bus.h"
+#include "test_dev.h"
+
+/* ------------------------------------------------------------ callbacks */
+
+#define REC_MAX 32
+
+typedef struct rec {
+    int n;
+    co_hb_event_t ev[REC_MAX];
+    uint8_t id[REC_MAX];
+    co_nmt_state_t st[REC_MAX];
+} rec_t;
+
+static void on_hb(void *ctx, co_node_t *node, co_hb_event_t ev, uint8_t id, co_nmt_state_t st)
+{
+    rec_t *r = (rec_t *)ctx;
+    (void)node;
+    assert_true(r->n < REC_MAX);
+    r->ev[r->n] = ev;
+    r->id[r->n] = id;
+    r->st[r->n] = st;
+    r->n++;
+}
+
+static void start_cb(td_node_t *n, rec_t *r, tb_bus_t *bus, uint8_t idx, uint8_t id,
+                     const co_dev_t *dev)
+{
+    co_node_config_t cfg;
+
+    memset(n, 0, sizeof *n);
+    memset(r, 0, sizeof *r);
+    memset(&cfg, 0, sizeof cfg);
+    cfg.dev = (dev != NULL) ? dev : &td_dev;
+    cfg.hal = tb_hal(bus, idx);
+    cfg.node_id = id;
+    cfg.ram = &n->ram;
+    cfg.hooks = n->hooks;
+    cfg.cb.ctx = r;
+    cfg.cb.hb_event = on_hb;
+    tb_attach(bus, idx, &n->node);
+    assert_int_equal(co_node_init(&n->node, &cfg, bus->now), CO_OK);
+}
+
+/* -------------------------------------------------------------- fixture */
+
+typedef struct fx {
+    tb_bus_t bus;
+    td_node_t n;
+    rec_t r;
+    co_dev_t dev;
+} fx_t;
+
+static int setup(void **state)
+{
+    static fx_t fx;
+    memset(&fx, 0, sizeof fx);
+    tb_init(&fx.bus);
+    fx.dev = td_dev;
+    start_cb(&fx.n, &fx.r, &fx.bus, 0, 1, NULL);
+    tb_flush(&fx.bus);
+    *state = &fx;
+    return 0;
+}
+
+#define FX ((fx_t *)*state)
+#define BUS (&FX->bus)
+#define NODE (&FX->n.node)
+#define RAMV (FX->n.ram)
+#define REC (FX->r)
+
+static void expect_event(const rec_t *r, int i, co_hb_event_t ev, uint8_t id, co_nmt_state_t st)
+{
+    assert_true(i < r->n);
+    assert_int_equal(r->ev[i], ev);
+    assert_int_equal(r->id[i], id);
+    assert_int_equal(r->st[i], st);
+}
+
+/* -------------------------------------------------- heartbeat producer */
+
+static void heartbeat_producer_period(void **state)
+{
+    tb_xfer(BUS, "601 2B 17 10 00 64 00 00 00", "581 60 17 10 00 00 00 00 00");
+    tb_xfer(BUS, "601 40 17 10 00 00 00 00 00", "581 4B 17 10 00 64 00 00 00");
+    /* exactly every 100000 us, counted from the write */
+    for (int i = 0; i < 10; i++) {
+        tb_advance(BUS, 99999U);
+        tb_expect_none(BUS);
+        tb_advance(BUS, 1U);
+        tb_expect(BUS, "701 7F");
+        tb_expect_none(BUS);
+    }
+    /* one long advance: still one heartbeat per period, none skipped */
+    tb_advance(BUS, 1000000U);
+    for (int i = 0; i < 10; i++) {
+        tb_expect(BUS, "701 7F");
+    }
+    tb_expect_none(BUS);
+}
+
+static void heartbeat_state_follows_nmt(void **state)
+{
+    tb_xfer(BUS, "601 2B 17 10 00 64 00 00 00", "581 60 17 10 00 00 00 00 00");
+    tb_advance(BUS, 100000U);
+    tb_expect(BUS, "701 7F");
+    tb_send(BUS, "000 01 01");
+    tb_advance(BUS, 100000U);
+    tb_expect(BUS, "701 05");
+    tb_send(BUS, "000 02 01");
+    tb_advance(BUS, 100000U);
+    tb_expect(BUS, "701 04");
+    tb_send(BUS, "000 80 01");
+    tb_advance(BUS, 100000U);
+    tb_expect(BUS, "701 7F");
+    tb_expect_none(BUS);
+}
+
+static void heartbeat_producer_zero_stops(void **state)
+{
+    tb_xfer(BUS, "601 2B 17 10 00 64 00 00 00", "581 60 17 10 00 00 00 00 00");
+    tb_advance(BUS, 250000U);
+    tb_expect(BUS, "701 7F");
+    tb_expect(BUS, "701 7F");
+    tb_expect_none(BUS);
+    tb_xfer(BUS, "601 2B 17 10 00 00 00 00 00", "581 60 17 10 00 00 00 00 00");
+    tb_advance(BUS, 5000000U);
+    tb_expect_none(BUS);
+    /* a new period starts from its write */
+    tb_xfer(BUS, "601 2B 17 10 00 C8 00 00 00", "581 60 17 10 00 00 00 00 00");
+    tb_advance(BUS, 199999U);
+    tb_expect_none(BUS);
+    tb_advance(BUS, 1U);
+    tb_expect(BUS, "701 7F");
+    tb_expect_none(BUS);
+}
+
+/* -------------------------------------------------- heartbeat consumer */
+
+static void heartbeat_consumer_timeout_and_recovery(void **state)
+{
+    /* sub1: producer 5, 200 ms */
+    tb_xfer(BUS, "601 23 16 10 01 C8 00 05 00", "581 60 16 10 01 00 00 00 00");
+    tb_xfer(BUS, "601 40 16 10 01 00 00 00 00", "581 43 16 10 01 C8 00 05 00");
+    tb_xfer(BUS, "601 40 16 10 00 00 00 00 00", "581 4F 16 10 00 04 00 00 00");
+    /* monitoring starts with the first heartbeat only */
+    tb_advance(BUS, 2000000U);
+    tb_expect_none(BUS);
+    assert_int_equal(REC.n, 0);
+
+    tb_send(BUS, "705 05");
+    assert_int_equal(REC.n, 1);
+    expect_event(&REC, 0, CO_HB_STARTED, 5, CO_NMT_OPERATIONAL);
+    /* regular heartbeats keep it alive */
+    for (int i = 0; i < 10; i++) {
+        tb_advance(BUS, 150000U);
+        tb_send(BUS, "705 05");
+    }
+    tb_expect_none(BUS);
+    assert_int_equal(REC.n, 1);
+    /* silence: timeout exactly 200 ms after the last heartbeat */
+    tb_advance(BUS, 199999U);
+    tb_expect_none(BUS);
+    tb_advance(BUS, 1U);
+    tb_expect(BUS, "081 30 81 11 00 00 00 00 00");
+    tb_expect_none(BUS);
+    assert_int_equal(REC.n, 2);
+    expect_event(&REC, 1, CO_HB_TIMEOUT, 5, CO_NMT_OPERATIONAL);
+    tb_xfer(BUS, "601 40 01 10 00 00 00 00 00", "581 4F 01 10 00 11 00 00 00");
+    tb_xfer(BUS, "601 40 03 10 01 00 00 00 00", "581 43 03 10 01 30 81 00 00");
+    /* no repetition while it stays lost */
+    tb_advance(BUS, 2000000U);
+    tb_expect_none(BUS);
+    assert_int_equal(REC.n, 2);
+
+    /* heartbeats resume */
+    tb_send(BUS, "705 05");
+    tb_expect(BUS, "081 00 00 00 00 00 00 00 00");
+    tb_expect_none(BUS);
+    assert_int_equal(REC.n, 3);
+    expect_event(&REC, 2, CO_HB_RECOVERED, 5, CO_NMT_OPERATIONAL);
+    tb_xfer(BUS, "601 40 01 10 00 00 00 00 00", "581 4F 01 10 00 00 00 00 00");
+    /* and are monitored again */
+    tb_advance(BUS, 200000U);
+    tb_expect(BUS, "081 30 81 11 00 00 00 00 00");
+    tb_expect_none(BUS);
+}
+
+static void heartbeat_consumer_state_changes(void **state)
+{
+    tb_xfer(BUS, "601 23 16 10 02 F4 01 09 00", "581 60 16 10 02 00 00 00 00");
+    tb_send(BUS, "709 00"); /* boot-up counts as the first heartbeat */
+    expect_event(&REC, 0, CO_HB_STARTED, 9, CO_NMT_INITIALISING);
+    tb_send(BUS, "709 7F");
+    expect_event(&REC, 1, CO_HB_STATE, 9, CO_NMT_PRE_OPERATIONAL);
+    tb_send(BUS, "709 7F");
+    tb_send(BUS, "709 05");
+    expect_event(&REC, 2, CO_HB_STATE, 9, CO_NMT_OPERATIONAL);
+    assert_int_equal(REC.n, 3);
+    /* remote requests, other producers and empty frames are not heartbeats */
+    tb_send(BUS, "709 R1");
+    tb_send(BUS, "709");
+    tb_send(BUS, "708 04");
+    tb_advance(BUS, 499999U);
+    tb_expect_none(BUS);
+    tb_advance(BUS, 1U);
+    tb_expect(BUS, "081 30 81 11 00 00 00 00 00");
+    expect_event(&REC, 3, CO_HB_TIMEOUT, 9, CO_NMT_OPERATIONAL);
+    tb_expect_none(BUS);
+}
+
+static void heartbeat_consumer_two_producers_one_error(void **state)
+{
+    tb_xfer(BUS, "601 23 16 10 01 64 00 05 00", "581 60 16 10 01 00 00 00 00");
+    tb_xfer(BUS, "601 23 16 10 03 C8 00 06 00", "581 60 16 10 03 00 00 00 00");
+    tb_send(BUS, "705 05");
+    tb_send(BUS, "706 05");
+    /* 5 times out first: one EMCY */
+    tb_advance(BUS, 100000U);
+    tb_expect(BUS, "081 30 81 11 00 00 00 00 00");
+    tb_expect_none(BUS);
+    /* 6 times out too: the error is already active */
+    tb_advance(BUS, 100000U);
+    tb_expect_none(BUS);
+    expect_event(&REC, 3, CO_HB_TIMEOUT, 6, CO_NMT_OPERATIONAL);
+    /* 5 comes back, 6 is still lost: no EMCY 0000 yet */
+    tb_send(BUS, "705 05");
+    tb_expect_none(BUS);
+    expect_event(&REC, 4, CO_HB_RECOVERED, 5, CO_NMT_OPERATIONAL);
+    /* 6 comes back: error gone */
+    tb_send(BUS, "706 7F");
+    tb_expect(BUS, "081 00 00 00 00 00 00 00 00");
+    tb_expect_none(BUS);
+    expect_event(&REC, 5, CO_HB_RECOVERED, 6, CO_NMT_PRE_OPERATIONAL);
+    expect_event(&REC, 6, CO_HB_STATE, 6, CO_NMT_PRE_OPERATIONAL);
+    assert_int_equal(REC.n, 7);
+}
+
+static void heartbeat_consumer_entry_checks(void **state)
+{
+    tb_xfer(BUS, "601 23 16 10 01 C8 00 05 00", "581 60 16 10 01 00 00 00 00");
+    /* CiA 301: the same producer in a second entry */
+    tb_xfer(BUS, "601 23 16 10 02 2C 01 05 00", "581 80 16 10 02 43 00 04 06");
+    tb_xfer(BUS, "601 40 16 10 02 00 00 00 00", "581 43 16 10 02 00 00 00 00");
+    /* ... is fine with time 0 (entry not used) */
+    tb_xfer(BUS, "601 23 16 10 02 00 00 05 00", "581 60 16 10 02 00 00 00 00");
+    /* rewriting the producer's own entry is fine */
+    tb_xfer(BUS, "601 23 16 10 01 2C 01 05 00", "581 60 16 10 01 00 00 00 00");
+    /* another producer is fine */
+    tb_xfer(BUS, "601 23 16 10 04 2C 01 06 00", "581 60 16 10 04 00 00 00 00");
+    /* node-ID 128 and the reserved bits 24..31 */
+    tb_xfer(BUS, "601 23 16 10 03 2C 01 80 00", "581 80 16 10 03 30 00 09 06");
+    tb_xfer(BUS, "601 23 16 10 03 2C 01 07 01", "581 80 16 10 03 30 00 09 06");
+    /* nor may entry 1 move to the producer entry 4 monitors */
+    tb_xfer(BUS, "601 23 16 10 01 2C 01 06 00", "581 80 16 10 01 43 00 04 06");
+    tb_xfer(BUS, "601 40 16 10 01 00 00 00 00", "581 43 16 10 01 2C 01 05 00");
+    /* no fifth entry */
+    tb_xfer(BUS, "601 23 16 10 05 2C 01 08 00", "581 80 16 10 05 11 00 09 06");
+    /* sub0 is const */
+    tb_xfer(BUS, "601 2F 16 10 00 01 00 00 00", "581 80 16 10 00 02 00 01 06");
+}
+
+static void heartbeat_consumer_disabled_entry_clears_error(void **state)
+{
+    tb_xfer(BUS, "601 23 16 10 01 64 00 05 00", "581 60 16 10 01 00 00 00 00");
+    tb_send(BUS, "705 05");
+    tb_advance(BUS, 100000U);
+    tb_expect(BUS, "081 30 81 11 00 00 00 00 00");
+    tb_expect_none(BUS);
+    /* the master stops monitoring 5: nothing is lost any more */
+    tb_send(BUS, "601 23 16 10 01 00 00 00 00");
+    tb_expect(BUS, "081 00 00 00 00 00 00 00 00");
+    tb_expect(BUS, "581 60 16 10 01 00 00 00 00");
+    tb_expect_none(BUS);
+    tb_send(BUS, "705 05");
+    tb_advance(BUS, 1000000U);
+    tb_expect_none(BUS);
+    assert_false(co_emcy_is_active(NODE, CO_EMCY_HB_GUARD));
+}
+
+static void heartbeat_consumer_write_restarts_that_entry_only(void **state)
+{
+    tb_xfer(BUS, "601 23 16 10 01 64 00 05 00", "581 60 16 10 01 00 00 00 00");
+    tb_xfer(BUS, "601 23 16 10 02 C8 00 06 00", "581 60 16 10 02 00 00 00 00");
+    tb_send(BUS, "705 05");
+    tb_send(BUS, "706 05");
+    tb_advance(BUS, 50000U);
+    /* the master changes entry 2: entry 1 keeps its deadline */
+    tb_xfer(BUS, "601 23 16 10 02 2C 01 06 00", "581 60 16 10 02 00 00 00 00");
+    tb_advance(BUS, 49999U);
+    tb_expect_none(BUS);
+    tb_advance(BUS, 1U);
+    tb_expect(BUS, "081 30 81 11 00 00 00 00 00");
+    tb_expect_none(BUS);
+    assert_int_equal(REC.n, 3);
+    expect_event(&REC, 2, CO_HB_TIMEOUT, 5, CO_NMT_OPERATIONAL);
+    /* a write to entry 2 while 5 is lost does not end 5's error */
+    tb_xfer(BUS, "601 23 16 10 02 90 01 06 00", "581 60 16 10 02 00 00 00 00");
+    tb_advance(BUS, 1000000U);
+    tb_expect_none(BUS);
+    assert_true(co_emcy_is_active(NODE, CO_EMCY_HB_GUARD));
+    assert_int_equal(REC.n, 3); /* entry 2 waits for 6's next heartbeat */
+    /* rewriting entry 1 itself does: 5 is no longer monitored until it speaks */
+    tb_send(BUS, "601 23 16 10 01 64 00 05 00");
+    tb_expect(BUS, "081 00 00 00 00 00 00 00 00");
+    tb_expect(BUS, "581 60 16 10 01 00 00 00 00");
+    tb_expect_none(BUS);
+    tb_advance(BUS, 1000000U);
+    tb_expect_none(BUS);
+    tb_send(BUS, "705 05");
+    expect_event(&REC, 3, CO_HB_STARTED, 5, CO_NMT_OPERATIONAL);
+}
+
+static void timers_across_the_clock_wrap(void **state)
+{
+    /* bring the clock to 150 ms before it wraps around 2^32 us */
+    tb_advance(BUS, 0x7FFFFFFFUL);
+    tb_advance(BUS, (uint32_t)(0xFFFFFFFFUL - 149999UL - BUS->now));
+    assert_int_equal(BUS->now, 0xFFFFFFFFUL - 149999UL);
+    tb_xfer(BUS, "601 2B 17 10 00 64 00 00 00", "581 60 17 10 00 00 00 00 00");
+    tb_xfer(BUS, "601 23 16 10 01 C8 00 05 00", "581 60 16 10 01 00 00 00 00");
+    tb_send(BUS, "705 05");
+    for (int i = 0; i < 4; i++) {
+        tb_advance(BUS, 99999U);
+        tb_expect_none(BUS);
+        tb_advance(BUS, 1U);
+        tb_expect(BUS, "701 7F");
+        if (i == 1) {
+            /* the consumer times out 200 ms after the heartbeat, past the wrap */
+            tb_expect(BUS, "081 30 81 11 00 00 00 00 00");
+            expect_event(&REC, 1, CO_HB_TIMEOUT, 5, CO_NMT_OPERATIONAL);
+        }
+    }
+    tb_expect_none(BUS);
+    assert_true(BUS->now < 1000000UL);
+}
+
+static void reset_communication_ends_monitoring(void **state)
+{
+    tb_xfer(BUS, "601 23 16 10 01 64 00 05 00", "581 60 16 10 01 00 00 00 00");
+    tb_send(BUS, "705 05");
+    tb_advance(BUS, 100000U);
+    tb_expect(BUS, "081 30 81 11 00 00 00 00 00");
+    tb_expect_none(BUS);
+    /* reset communication: 0x1016 back to its default (unused). The boot-up
+     * is the first frame; the error it no longer monitors is reset after it
+     * (EMCY 0000 in Pre-operational). */
+    tb_send(BUS, "000 82 01");
+    tb_expect(BUS, "701 00");
+    tb_expect(BUS, "081 00 00 00 00 00 00 00 00");
+    tb_expect_none(BUS);
+    assert_false(co_emcy_is_active(NODE, CO_EMCY_HB_GUARD));
+    tb_send(BUS, "705 05");
+    tb_advance(BUS, 1000000U);
+    tb_expect_none(BUS);
+}
+
+/* -------------------------------------------------------- node guarding */
+
+static void node_guarding_toggle(void **state)
+{
+    tb_xfer(BUS, "701 R1", "701 7F");
+    tb_xfer(BUS, "701 R1", "701 FF");
+    tb_xfer(BUS, "701 R1", "701 7F");
+    tb_send(BUS, "000 01 01");
+    tb_xfer(BUS, "701 R1", "701 85");
+    tb_xfer(BUS, "701 R1", "701 05");
+    tb_send(BUS, "000 02 01");
+    tb_xfer(BUS, "701 R1", "701 84");
+    tb_xfer(BUS, "701 R0", "701 04"); /* the RTR's DLC is not checked */
+    tb_send(BUS, "000 01 01");
+    tb_xfer(BUS, "701 R1", "701 85");
+    /* a data frame on the node's own error-control COB-ID is not a request */
+    tb_send(BUS, "701 05");
+    tb_expect_none(BUS);
+    /* another node's request */
+    tb_send(BUS, "702 R1");
+    tb_expect_none(BUS);
+    /* reset communication resets the toggle bit */
+    tb_send(BUS, "000 82 01");
+    tb_expect(BUS, "701 00");
+    tb_xfer(BUS, "701 R1", "701 7F");
+    tb_xfer(BUS, "701 R1", "701 FF");
+    /* reset node too */
+    tb_send(BUS, "000 81 01");
+    tb_expect(BUS, "701 00");
+    tb_xfer(BUS, "701 R1", "701 7F");
+}
+
+static void node_guarding_not_answered_with_heartbeat(void **state)
+{
+    tb_xfer(BUS, "601 2B 17 10 00 E8 03 00 00", "581 60 17 10 00 00 00 00 00");
+    tb_send(BUS, "701 R1");
+    tb_expect_none(BUS);
+    tb_xfer(BUS, "601 2B 17 10 00 00 00 00 00", "581 60 17 10 00 00 00 00 00");
+    tb_xfer(BUS, "701 R1", "701 7F");
+}
+
+static void node_guarding_with_heartbeat_option(void **state)
+{
+    fx_t *fx = FX;
+    fx->dev.options = CO_OPT_GUARD_WITH_HEARTBEAT;
+    start_cb(&fx->n, &fx->r, BUS, 0, 1, &fx->dev);
+    tb_expect(BUS, "701 00");
+    tb_xfer(BUS, "601 2B 17 10 00 64 00 00 00", "581 60 17 10 00 00 00 00 00");
+    tb_xfer(BUS, "701 R1", "701 7F");
+    tb_xfer(BUS, "701 R1", "701 FF");
+    /* the heartbeat itself carries no toggle bit */
+    tb_advance(BUS, 100000U);
+    tb_expect(BUS, "701 7F");
+    tb_expect_none(BUS);
+}
+
+/* -------------------------------------------------------- life guarding */
+
+static void configure_life_guarding(void **state)
+{
+    /* guard time 100 ms, life time factor 3: life time 300 ms */
+    tb_xfer(BUS, "601 2B 0C 10 00 64 00 00 00", "581 60 0C 10 00 00 00 00 00");
+    tb_xfer(BUS, "601 2F 0D 10 00 03 00 00 00", "581 60 0D 10 00 00 00 00 00");
+}
+
+static void life_guarding(void **state)
+{
+    configure_life_guarding(state);
+    /* no life guarding before the first guarding request */
+    tb_advance(BUS, 3000000U);
+    tb_expect_none(BUS);
+    tb_xfer(BUS, "701 R1", "701 7F");
+    /* requests within the life time keep it alive */
+    for (int i = 0; i < 10; i++) {
+        tb_advance(BUS, 299999U);
+        tb_xfer(BUS, "701 R1", (i % 2 == 0) ? "701 FF" : "701 7F");
+    }
+    /* the last request was answered with 7F */
+    tb_advance(BUS, 299999U);
+    tb_expect_none(BUS);
+    tb_advance(BUS, 1U);
+    tb_expect(BUS, "081 30 81 11 00 00 00 00 00");
+    tb_expect_none(BUS);
+    assert_int_equal(REC.n, 1);
+    expect_event(&REC, 0, CO_GUARD_LOST, 0, CO_NMT_PRE_OPERATIONAL);
+    tb_advance(BUS, 3000000U);
+    tb_expect_none(BUS);
+    /* the next request: answer, then the error is reset */
+    tb_send(BUS, "701 R1");
+    tb_expect(BUS, "701 FF");
+    tb_expect(BUS, "081 00 00 00 00 00 00 00 00");
+    tb_expect_none(BUS);
+    assert_int_equal(REC.n, 2);
+    expect_event(&REC, 1, CO_GUARD_RECOVERED, 0, CO_NMT_PRE_OPERATIONAL);
+    /* and it is guarded again */
+    tb_advance(BUS, 300000U);
+    tb_expect(BUS, "081 30 81 11 00 00 00 00 00");
+    tb_expect_none(BUS);
+}
+
+static void life_guarding_reconfigured_while_lost(void **state)
+{
+    configure_life_guarding(state);
+    tb_xfer(BUS, "701 R1", "701 7F");
+    tb_advance(BUS, 300000U);
+    tb_expect(BUS, "081 30 81 11 00 00 00 00 00");
+    tb_expect_none(BUS);
+    /* the master writes a new guard time and resumes guarding: the next
+     * request still ends the error */
+    tb_xfer(BUS, "601 2B 0C 10 00 32 00 00 00", "581 60 0C 10 00 00 00 00 00");
+    tb_send(BUS, "701 R1");
+    tb_expect(BUS, "701 FF");
+    tb_expect(BUS, "081 00 00 00 00 00 00 00 00");
+    tb_expect_none(BUS);
+    /* new life time: 50 ms * 3 */
+    tb_advance(BUS, 149999U);
+    tb_expect_none(BUS);
+    tb_advance(BUS, 1U);
+    tb_expect(BUS, "081 30 81 11 00 00 00 00 00");
+    tb_expect_none(BUS);
+}
+
+static void life_guarding_disabled_while_lost(void **state)
+{
+    configure_life_guarding(state);
+    tb_xfer(BUS, "701 R1", "701 7F");
+    tb_advance(BUS, 300000U);
+    tb_expect(BUS, "081 30 81 11 00 00 00 00 00");
+    tb_expect_none(BUS);
+    /* life time factor 0: life guarding is off, so nothing is lost any more */
+    tb_send(BUS, "601 2F 0D 10 00 00 00 00 00");
+    tb_expect(BUS, "581 60 0D 10 00 00 00 00 00");
+    tb_advance(BUS, 0U);
+    tb_expect(BUS, "081 00 00 00 00 00 00 00 00");
+    tb_expect_none(BUS);
+    assert_false(co_emcy_is_active(NODE, CO_EMCY_HB_GUARD));
+    expect_event(&REC, 1, CO_GUARD_RECOVERED, 0, CO_NMT_PRE_OPERATIONAL);
+    tb_xfer(BUS, "701 R1", "701 FF");
+    tb_advance(BUS, 3000000U);
+    tb_expect_none(BUS);
+}
+
+static void life_guarding_stops_when_heartbeat_starts(void **state)
+{
+    configure_life_guarding(state);
+    tb_xfer(BUS, "701 R1", "701 7F");
+    /* the master switches to heartbeat: guarding requests are no longer
+     * answered, so the node must not report their absence as an error */
+    tb_xfer(BUS, "601 2B 17 10 00 E8 03 00 00", "581 60 17 10 00 00 00 00 00");
+    tb_send(BUS, "701 R1");
+    tb_expect_none(BUS);
+    tb_advance(BUS, 900000U);
+    tb_expect_none(BUS);
+    tb_advance(BUS, 100000U);
+    tb_expect(BUS, "701 7F");
+    tb_expect_none(BUS);
+    assert_false(co_emcy_is_active(NODE, CO_EMCY_HB_GUARD));
+    assert_int_equal(REC.n, 0);
+}
+
+static void reset_communication_ends_life_guarding(void **state)
+{
+    configure_life_guarding(state);
+    tb_xfer(BUS, "701 R1", "701 7F");
+    tb_advance(BUS, 300000U);
+    tb_expect(BUS, "081 30 81 11 00 00 00 00 00");
+    tb_send(BUS, "000 82 01");
+    tb_expect(BUS, "701 00");
+    tb_expect(BUS, "081 00 00 00 00 00 00 00 00");
+    tb_expect_none(BUS);
+    /* 0x100C/0x100D back to 0: plain node guarding, no life time */
+    tb_xfer(BUS, "701 R1", "701 7F");
+    tb_advance(BUS, 3000000U);
+    tb_expect_none(BUS);
+}
+
+static void heartbeat_and_guarding_errors_share_the_code(void **state)
+{
+    configure_life_guarding(state);
+    tb_xfer(BUS, "601 23 16 10 01 F4 01 05 00", "581 60 16 10 01 00 00 00 00");
+    tb_send(BUS, "705 05");
+    tb_xfer(BUS, "701 R1", "701 7F");
+    tb_advance(BUS, 300000U);
+    tb_expect(BUS, "081 30 81 11 00 00 00 00 00");
+    tb_expect_none(BUS);
+    tb_advance(BUS, 200000U); /* heartbeat of 5 lost as well */
+    tb_expect_none(BUS);
+    /* guarding resumes: 5 is still lost */
+    tb_xfer(BUS, "701 R1", "701 FF");
+    tb_send(BUS, "705 05");
+    tb_expect(BUS, "081 00 00 00 00 00 00 00 00");
+    tb_expect_none(BUS);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test_setup(heartbeat_producer_period, setup),
+        cmocka_unit_test_setup(heartbeat_state_follows_nmt, setup),
+        cmocka_unit_test_setup(heartbeat_producer_zero_stops, setup),
+        cmocka_unit_test_setup(heartbeat_consumer_timeout_and_recovery, setup),
+        cmocka_unit_test_setup(heartbeat_consumer_state_changes, setup),
+        cmocka_unit_test_setup(heartbeat_consumer_two_producers_one_error, setup),
+        cmocka_unit_test_setup(heartbeat_consumer_entry_checks, setup),
+        cmocka_unit_test_setup(heartbeat_consumer_disabled_entry_clears_error, setup),
+        cmocka_unit_test_setup(heartbeat_consumer_write_restarts_that_entry_only, setup),
+        cmocka_unit_test_setup(timers_across_the_clock_wrap, setup),
+        cmocka_unit_test_setup(reset_communication_ends_monitoring, setup),
+        cmocka_unit_test_setup(node_guarding_toggle, setup),
+        cmocka_unit_test_setup(node_guarding_not_answered_with_heartbeat, setup),
+        cmocka_unit_test_setup(node_guarding_with_heartbeat_option, setup),
+        cmocka_unit_test_setup(life_guarding, setup),
+        cmocka_unit_test_setup(life_guarding_reconfigured_while_lost, setup),
+        cmocka_unit_test_setup(life_guarding_disabled_while_lost, setup),
+        cmocka_unit_test_setup(life_guarding_stops_when_heartbeat_starts, setup),
+        cmocka_unit_test_setup(reset_communication_ends_life_guarding, setup),
+        cmocka_unit_test_setup(heartbeat_and_guarding_errors_share_the_code, setup),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

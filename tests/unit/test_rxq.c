@@ -1,0 +1,56 @@
+/* ISR-to-loop receive queue: order, full, empty, wrap-around, bad sizes. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "co/co_rxq.h"
+#include "test_frames.h"
+
+static void fifo_order_full_and_wrap(void **state)
+{
+    co_frame_t store[4];
+    co_rxq_t q;
+    co_frame_t f;
+    (void)state;
+    assert_true(co_rxq_init(&q, store, 4));
+    assert_false(co_rxq_pop(&q, &f));
+    for (uint32_t round = 0; round < 5; round++) {
+        for (uint32_t i = 0; i < 3; i++) {
+            co_frame_set(&f, 0x100U + round * 8U + i, (const uint8_t[]){(uint8_t)i}, 1);
+            assert_true(co_rxq_push(&q, &f));
+        }
+        co_frame_set(&f, 0x7FF, NULL, 0);
+        assert_false(co_rxq_push(&q, &f)); /* one slot stays free */
+        for (uint32_t i = 0; i < 3; i++) {
+            assert_true(co_rxq_pop(&q, &f));
+            assert_int_equal(f.id, 0x100U + round * 8U + i);
+            assert_int_equal(f.data[0], i);
+        }
+        assert_false(co_rxq_pop(&q, &f));
+    }
+    assert_int_equal(q.dropped, 5);
+}
+
+static void rejects_bad_sizes(void **state)
+{
+    co_frame_t store[6];
+    co_rxq_t q;
+    (void)state;
+    assert_false(co_rxq_init(&q, store, 6));
+    assert_false(co_rxq_init(&q, store, 1));
+    assert_false(co_rxq_init(&q, NULL, 4));
+    assert_true(co_rxq_init(&q, store, 2));
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(fifo_order_full_and_wrap),
+        cmocka_unit_test(rejects_bad_sizes),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -30,10 +30,9 @@ static void set_state(co_node_t *node, co_nmt_state_t st)
 void co_nmt_boot(co_node_t *node)
 {
     node->nmt = (uint8_t)CO_NMT_INITIALISING;
-    co_rx_rebuild(node);
     co_sdo_reset(node);
     co_emcy_reset(node);
-    co_hb_reset(node);
+    co_hb_reset(node); /* also rebuilds the receive table */
     if ((node->dev->options & CO_OPT_NO_BOOTUP) == 0U) {
         static const uint8_t bootup = 0x00U;
         co_tx(node, 0x700UL + node->node_id, &bootup, 1U);

@@ -50,6 +50,11 @@ void co_comm_bind(co_node_t *node)
     node->hist = (node->hist_depth != 0U)
                      ? (uint32_t *)ram_of(node, 0x1003U, 1U, (uint8_t)CO_UNSIGNED32)
                      : NULL;
+    node->sync_cob = (uint32_t *)ram_of(node, 0x1005U, 0U, (uint8_t)CO_UNSIGNED32);
+    node->sync_period = (uint32_t *)ram_of(node, 0x1006U, 0U, (uint8_t)CO_UNSIGNED32);
+    node->sync_window = (uint32_t *)ram_of(node, 0x1007U, 0U, (uint8_t)CO_UNSIGNED32);
+    node->time_cob = (uint32_t *)ram_of(node, 0x1012U, 0U, (uint8_t)CO_UNSIGNED32);
+    node->sync_overflow = (uint8_t *)ram_of(node, 0x1019U, 0U, (uint8_t)CO_UNSIGNED8);
     node->guard_time = (uint16_t *)ram_of(node, 0x100CU, 0U, (uint8_t)CO_UNSIGNED16);
     node->life_factor = (uint8_t *)ram_of(node, 0x100DU, 0U, (uint8_t)CO_UNSIGNED8);
     node->emcy_cob = (uint32_t *)ram_of(node, 0x1014U, 0U, (uint8_t)CO_UNSIGNED32);
@@ -96,6 +101,25 @@ static co_err_t check_hb_consumer(const co_node_t *node, uint8_t sub, uint32_t v
     return CO_OK;
 }
 
+/* A COB-ID write (CiA 301 7.5.2): 29-bit identifiers are not supported,
+ * bits 11..28 are 0, @p reserved bits must be 0, and the CAN-ID may not change
+ * while the object is in use: in use is any of @p use_bits set (@p use_when_set)
+ * or all of them clear (!use_when_set, the EMCY 'valid' bit). */
+static co_err_t check_cob(uint32_t cur, uint32_t v, uint32_t use_bits, bool use_when_set,
+                          uint32_t reserved)
+{
+    bool cur_used = use_when_set ? ((cur & use_bits) != 0U) : ((cur & use_bits) == 0U);
+    bool new_used = use_when_set ? ((v & use_bits) != 0U) : ((v & use_bits) == 0U);
+
+    if (((v & 0x20000000UL) != 0U) || ((v & 0x1FFFF800UL) != 0U) || ((v & reserved) != 0U)) {
+        return CO_ERR_VALUE;
+    }
+    if (cur_used && new_used && ((v & 0x7FFUL) != (cur & 0x7FFUL))) {
+        return CO_ERR_VALUE;
+    }
+    return CO_OK;
+}
+
 co_err_t co_comm_check_write(const co_node_t *node, uint16_t index, uint8_t sub,
                              const uint8_t *data, uint32_t len)
 {
@@ -109,20 +133,33 @@ co_err_t co_comm_check_write(const co_node_t *node, uint16_t index, uint8_t sub,
             return CO_ERR_VALUE;
         }
         break;
+    case 0x1005U:
+        /* SYNC: the CAN-ID is fixed while this node produces SYNC (bit 30) */
+        if ((sub == 0U) && (len == 4U) && (node->sync_cob != NULL)) {
+            return check_cob(*node->sync_cob, co_get_u32(data), 0x40000000UL, true, 0U);
+        }
+        break;
+    case 0x1012U:
+        /* TIME: the CAN-ID is fixed while consumed or produced (bits 31, 30) */
+        if ((sub == 0U) && (len == 4U) && (node->time_cob != NULL)) {
+            return check_cob(*node->time_cob, co_get_u32(data), 0xC0000000UL, true, 0U);
+        }
+        break;
     case 0x1014U:
+        /* EMCY: the CAN-ID is fixed while the EMCY is valid (bit 31 = 0) */
         if ((sub == 0U) && (len == 4U) && (node->emcy_cob != NULL)) {
-            uint32_t v = co_get_u32(data);
-            uint32_t cur = *node->emcy_cob;
-            /* CiA 301: the CAN-ID may only change while the EMCY is not valid. */
-            if (((cur & 0x80000000UL) == 0U) && ((v & 0x80000000UL) == 0U) &&
-                ((v & 0x1FFFFFFFUL) != (cur & 0x1FFFFFFFUL))) {
+            return check_cob(*node->emcy_cob, co_get_u32(data), 0x80000000UL, false,
+                             0x40000000UL);
+        }
+        break;
+    case 0x1019U:
+        /* counter overflow: 0 or 2..240, and only while no SYNC period is set */
+        if ((sub == 0U) && (len == 1U)) {
+            if ((data[0] == 1U) || (data[0] > 240U)) {
                 return CO_ERR_VALUE;
             }
-            if ((v & 0x20000000UL) != 0U) {
-                return CO_ERR_VALUE; /* 29-bit identifiers are not supported */
-            }
-            if ((v & 0x1FFFF800UL) != 0U) {
-                return CO_ERR_VALUE; /* CiA 301: bits 11..28 are 0 with an 11-bit CAN-ID */
+            if ((node->sync_period != NULL) && (*node->sync_period != 0U)) {
+                return CO_ERR_STORE_STATE;
             }
         }
         break;
@@ -162,6 +199,13 @@ void co_comm_written(co_node_t *node, uint16_t index, uint8_t sub)
         break;
     case 0x1017U:
         co_hb_producer_changed(node);
+        break;
+    case 0x1005U:
+    case 0x1006U:
+    case 0x1012U:
+    case 0x1019U:
+        co_sync_reset(node);
+        co_rx_rebuild(node);
         break;
     default:
         break;

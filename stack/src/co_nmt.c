@@ -32,6 +32,7 @@ void co_nmt_boot(co_node_t *node)
     node->nmt = (uint8_t)CO_NMT_INITIALISING;
     co_sdo_reset(node);
     co_emcy_reset(node);
+    co_sync_reset(node);
     co_hb_reset(node); /* also rebuilds the receive table */
     if ((node->dev->options & CO_OPT_NO_BOOTUP) == 0U) {
         static const uint8_t bootup = 0x00U;

@@ -76,6 +76,12 @@ void co_rx_rebuild(co_node_t *node)
     rx_add(node, 0x000U, CO_RX_NMT, 0U);
     rx_add(node, (uint16_t)(0x600U + node->node_id), CO_RX_SDO, 0U);
     rx_add(node, (uint16_t)(0x700U + node->node_id), CO_RX_GUARD, 0U);
+    if ((node->sync_cob != NULL) && ((*node->sync_cob & 0x40000000UL) == 0U)) {
+        rx_add(node, (uint16_t)(*node->sync_cob & 0x7FFU), CO_RX_SYNC, 0U);
+    }
+    if ((node->time_cob != NULL) && ((*node->time_cob & 0x80000000UL) != 0U)) {
+        rx_add(node, (uint16_t)(*node->time_cob & 0x7FFU), CO_RX_TIME, 0U);
+    }
     for (uint8_t k = 0U; k < node->n_hb_cons; k++) {
         uint32_t v = node->hb_cons[k];
         uint8_t id = (uint8_t)((v >> 16U) & 0x7FU);
@@ -135,6 +141,12 @@ void co_node_rx(co_node_t *node, const co_frame_t *f, uint32_t now_us)
     case CO_RX_HB:
         co_hb_rx(node, slot->arg, f);
         break;
+    case CO_RX_SYNC:
+        co_sync_rx(node, f);
+        break;
+    case CO_RX_TIME:
+        co_time_rx(node, f);
+        break;
     default:
         break;
     }
@@ -151,6 +163,7 @@ uint32_t co_node_process(co_node_t *node, uint32_t now_us)
     next = co_sdo_process(node, next);
     next = co_hb_process(node, next);
     next = co_emcy_process(node, next);
+    next = co_sync_process(node, next);
     if (node->txq_len > 0U) {
         /* TX path still full: look again in a millisecond */
         next = co_deadline_min(now_us, next, now_us + 1000U);

@@ -14,7 +14,9 @@ enum {
     CO_RX_NMT = 1,
     CO_RX_SDO,
     CO_RX_GUARD,
-    CO_RX_HB
+    CO_RX_HB,
+    CO_RX_SYNC,
+    CO_RX_TIME
 };
 
 /* Wrap-safe "a is at or after b". */
@@ -81,6 +83,10 @@ void co_hb_reset(co_node_t *node);
 void co_hb_consumers_changed(co_node_t *node);
 void co_hb_producer_changed(co_node_t *node);
 uint32_t co_emcy_process(co_node_t *node, uint32_t next);
+void co_sync_rx(co_node_t *node, const co_frame_t *f);
+void co_time_rx(co_node_t *node, const co_frame_t *f);
+uint32_t co_sync_process(co_node_t *node, uint32_t next);
+void co_sync_reset(co_node_t *node);
 void co_emcy_reset(co_node_t *node);
 void co_emcy_history_clear(co_node_t *node);
 

@@ -33,6 +33,7 @@ static const td_rom_t rom = {
 
 static const td_ram_t defaults = {
     .sync_cob = 0x80UL,
+    .time_cob = 0x80000100UL,
     .node_id = 0U,
     .emcy_cob = 0x80UL,
     .u16 = 0x1234U,
@@ -68,6 +69,10 @@ static const co_od_sub_t s1003[] = {
 #undef H
 };
 static const co_od_sub_t s1005[] = {RAM(0, CO_UNSIGNED32, CO_SUB_RW, sync_cob)};
+static const co_od_sub_t s1006[] = {RAM(0, CO_UNSIGNED32, CO_SUB_RW, sync_period)};
+static const co_od_sub_t s1007[] = {RAM(0, CO_UNSIGNED32, CO_SUB_RW, sync_window)};
+static const co_od_sub_t s1012[] = {RAM(0, CO_UNSIGNED32, CO_SUB_RW, time_cob)};
+static const co_od_sub_t s1019[] = {RAM(0, CO_UNSIGNED8, CO_SUB_RW, sync_overflow)};
 static const co_od_sub_t s1008[] = {ROM(0, CO_VISIBLE_STRING, CO_SUB_RO | CO_SUB_CONST, x1008)};
 static const co_od_sub_t s1009[] = {ROM(0, CO_VISIBLE_STRING, CO_SUB_RO | CO_SUB_CONST, x1009)};
 static const co_od_sub_t s100A[] = {ROM(0, CO_VISIBLE_STRING, CO_SUB_RO | CO_SUB_CONST, x100A)};
@@ -142,12 +147,15 @@ static const co_od_sub_t s6099[] = {
 static const co_od_entry_t od[] = {
     E(0x1000, s1000, CO_OBJ_VAR),    E(0x1001, s1001, CO_OBJ_VAR),
     E(0x1002, s1002, CO_OBJ_VAR),    E(0x1003, s1003, CO_OBJ_ARRAY),
-    E(0x1005, s1005, CO_OBJ_VAR),    E(0x1008, s1008, CO_OBJ_VAR),
+    E(0x1005, s1005, CO_OBJ_VAR),    E(0x1006, s1006, CO_OBJ_VAR),
+    E(0x1007, s1007, CO_OBJ_VAR),    E(0x1008, s1008, CO_OBJ_VAR),
     E(0x1009, s1009, CO_OBJ_VAR),    E(0x100A, s100A, CO_OBJ_VAR),
     E(0x100B, s100B, CO_OBJ_VAR),    E(0x100C, s100C, CO_OBJ_VAR),
-    E(0x100D, s100D, CO_OBJ_VAR),    E(0x1014, s1014, CO_OBJ_VAR),
+    E(0x100D, s100D, CO_OBJ_VAR),    E(0x1012, s1012, CO_OBJ_VAR),
+    E(0x1014, s1014, CO_OBJ_VAR),
     E(0x1015, s1015, CO_OBJ_VAR),    E(0x1016, s1016, CO_OBJ_ARRAY),
     E(0x1017, s1017, CO_OBJ_VAR),    E(0x1018, s1018, CO_OBJ_RECORD),
+    E(0x1019, s1019, CO_OBJ_VAR),
     E(0x2000, s2000, CO_OBJ_VAR),    E(0x2001, s2001, CO_OBJ_VAR),
     E(0x2002, s2002, CO_OBJ_VAR),    E(0x2003, s2003, CO_OBJ_VAR),
     E(0x2004, s2004, CO_OBJ_VAR),    E(0x2005, s2005, CO_OBJ_VAR),

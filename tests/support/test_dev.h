@@ -15,6 +15,11 @@
 typedef struct td_ram {
     /* communication parameters (stored) */
     uint32_t sync_cob;     /* 0x1005 */
+    uint32_t sync_period;  /* 0x1006 */
+    uint32_t sync_window;  /* 0x1007 */
+    uint32_t time_cob;     /* 0x1012, default 0x80000100 (consumer) */
+    uint8_t sync_overflow; /* 0x1019 */
+    uint8_t pad3[3];
     uint32_t node_id;      /* 0x100B, $NODEID */
     uint16_t guard_time;   /* 0x100C */
     uint8_t life_factor;   /* 0x100D */

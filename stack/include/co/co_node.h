@@ -61,6 +61,7 @@
 /** EMCY codes the core itself raises. */
 #define CO_EMCY_NO_ERROR      0x0000U
 #define CO_EMCY_HB_GUARD      0x8130U /**< life guard or heartbeat error */
+#define CO_EMCY_SYNC_LENGTH   0x8240U /**< unexpected SYNC data length */
 
 /** NMT states; the values are the heartbeat / guarding state codes. */
 typedef enum co_nmt_state {
@@ -118,6 +119,12 @@ typedef struct co_node_callbacks {
      *  (0 for guarding), @p state its last NMT state. */
     void (*hb_event)(void *ctx, struct co_node *node, co_hb_event_t ev, uint8_t id,
                      co_nmt_state_t state);
+    /** A SYNC was received or produced (Pre-operational and Operational);
+     *  @p counter is its counter value, 0 without a counter. */
+    void (*sync)(void *ctx, struct co_node *node, uint8_t counter);
+    /** A TIME_OF_DAY arrived (0x1012 consumer bit set): milliseconds after
+     *  midnight and days since 1 January 1984. */
+    void (*time)(void *ctx, struct co_node *node, uint32_t ms, uint16_t days);
 } co_node_callbacks_t;
 
 /** Everything co_node_init needs. */
@@ -191,6 +198,14 @@ typedef struct co_node {
     uint16_t *emcy_inhibit;  /* 0x1015 */
     uint32_t *hb_cons;       /* 0x1016 sub1.. */
     uint16_t *hb_prod;       /* 0x1017 */
+    uint32_t *sync_cob;      /* 0x1005 */
+    uint32_t *sync_period;   /* 0x1006 */
+    uint32_t *sync_window;   /* 0x1007 */
+    uint32_t *time_cob;      /* 0x1012 */
+    uint8_t *sync_overflow;  /* 0x1019 */
+    uint8_t sync_counter;    /* counter of the SYNC produced next */
+    uint32_t sync_deadline;  /* producer: next SYNC */
+    uint32_t sync_last;      /* time of the last SYNC (window) */
     uint16_t *guard_time;    /* 0x100C */
     uint8_t *life_factor;    /* 0x100D */
     uint8_t hist_depth;
@@ -260,6 +275,14 @@ void co_emcy_raise(co_node_t *node, uint16_t code, uint8_t reg_bits, const uint8
 
 /** Clear an active error; when it was the last, send EMCY 0x0000. */
 void co_emcy_clear(co_node_t *node, uint16_t code);
+
+/** Send a TIME_OF_DAY (0x1012 producer bit set; Pre-operational or
+ *  Operational). */
+co_err_t co_time_send(co_node_t *node, uint32_t ms, uint16_t days);
+
+/** True while the synchronous window (0x1007) after the last SYNC is open
+ *  (always, when 0x1007 is 0 or absent). */
+bool co_sync_window_open(const co_node_t *node);
 
 /** True while @p code is active. */
 bool co_emcy_is_active(const co_node_t *node, uint16_t code);

@@ -191,7 +191,8 @@ const co_dev_t td_dev = {
     .boot_emcy_data = NULL,
 };
 
-void td_start(td_node_t *n, tb_bus_t *bus, uint8_t idx, uint8_t id, const co_dev_t *dev)
+void td_start_cb(td_node_t *n, tb_bus_t *bus, uint8_t idx, uint8_t id, const co_dev_t *dev,
+                 const co_node_callbacks_t *cb)
 {
     co_node_config_t cfg;
 
@@ -202,6 +203,14 @@ void td_start(td_node_t *n, tb_bus_t *bus, uint8_t idx, uint8_t id, const co_dev
     cfg.node_id = id;
     cfg.ram = &n->ram;
     cfg.hooks = n->hooks;
+    if (cb != NULL) {
+        cfg.cb = *cb;
+    }
     tb_attach(bus, idx, &n->node);
     assert_int_equal(co_node_init(&n->node, &cfg, bus->now), CO_OK);
+}
+
+void td_start(td_node_t *n, tb_bus_t *bus, uint8_t idx, uint8_t id, const co_dev_t *dev)
+{
+    td_start_cb(n, bus, idx, id, dev, NULL);
 }

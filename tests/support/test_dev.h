@@ -90,4 +90,8 @@ typedef struct td_node {
  *  (NULL: td_dev). Its boot-up frame stays in the bus log. */
 void td_start(td_node_t *n, tb_bus_t *bus, uint8_t idx, uint8_t id, const co_dev_t *dev);
 
+/** td_start with application callbacks (@p cb may be NULL). */
+void td_start_cb(td_node_t *n, tb_bus_t *bus, uint8_t idx, uint8_t id, const co_dev_t *dev,
+                 const co_node_callbacks_t *cb);
+
 #endif

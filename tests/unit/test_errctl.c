@@ -39,20 +39,13 @@ static void on_hb(void *ctx, co_node_t *node, co_hb_event_t ev, uint8_t id, co_n
 static void start_cb(td_node_t *n, rec_t *r, tb_bus_t *bus, uint8_t idx, uint8_t id,
                      const co_dev_t *dev)
 {
-    co_node_config_t cfg;
+    co_node_callbacks_t cb;
 
-    memset(n, 0, sizeof *n);
     memset(r, 0, sizeof *r);
-    memset(&cfg, 0, sizeof cfg);
-    cfg.dev = (dev != NULL) ? dev : &td_dev;
-    cfg.hal = tb_hal(bus, idx);
-    cfg.node_id = id;
-    cfg.ram = &n->ram;
-    cfg.hooks = n->hooks;
-    cfg.cb.ctx = r;
-    cfg.cb.hb_event = on_hb;
-    tb_attach(bus, idx, &n->node);
-    assert_int_equal(co_node_init(&n->node, &cfg, bus->now), CO_OK);
+    memset(&cb, 0, sizeof cb);
+    cb.ctx = r;
+    cb.hb_event = on_hb;
+    td_start_cb(n, bus, idx, id, dev, &cb);
 }
 
 /* -------------------------------------------------------------- fixture */

@@ -44,20 +44,14 @@ static void on_time(void *ctx, co_node_t *node, uint32_t ms, uint16_t days)
 
 static int setup(void **state)
 {
-    co_node_config_t cfg;
+    co_node_callbacks_t cb;
     memset(&fx, 0, sizeof fx);
     tb_init(&fx.bus);
-    memset(&cfg, 0, sizeof cfg);
-    cfg.dev = &td_dev;
-    cfg.hal = tb_hal(&fx.bus, 0);
-    cfg.node_id = 1;
-    cfg.ram = &fx.n.ram;
-    cfg.hooks = fx.n.hooks;
-    cfg.cb.ctx = &fx;
-    cfg.cb.sync = on_sync;
-    cfg.cb.time = on_time;
-    tb_attach(&fx.bus, 0, &fx.n.node);
-    assert_int_equal(co_node_init(&fx.n.node, &cfg, fx.bus.now), CO_OK);
+    memset(&cb, 0, sizeof cb);
+    cb.ctx = &fx;
+    cb.sync = on_sync;
+    cb.time = on_time;
+    td_start_cb(&fx.n, &fx.bus, 0, 1, NULL, &cb);
     tb_expect(&fx.bus, "701 00");
     *state = &fx;
     return 0;

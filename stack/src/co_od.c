@@ -110,11 +110,20 @@ uint32_t co_od_data_size(const co_node_t *node, const co_od_sub_t *s)
     if (v == NULL) {
         return 0U;
     }
-    if ((s->type == (uint8_t)CO_VISIBLE_STRING) || (s->type == (uint8_t)CO_UNICODE_STRING)) {
+    if (s->type == (uint8_t)CO_VISIBLE_STRING) {
         const void *nul = memchr(v, 0, n);
         if (nul != NULL) {
             n = (uint32_t)((const uint8_t *)nul - v);
         }
+    } else if (s->type == (uint8_t)CO_UNICODE_STRING) {
+        /* UTF-16 units: the text ends at the first zero unit */
+        uint32_t i = 0U;
+        while (((i + 1U) < n) && ((v[i] != 0U) || (v[i + 1U] != 0U))) {
+            i += 2U;
+        }
+        n = (i < n) ? i : n;
+    } else {
+        /* fixed length */
     }
     return n;
 }
@@ -408,12 +417,19 @@ void co_od_restore(co_node_t *node, uint16_t from, uint16_t to)
                 (s->off >= from) && (s->off < to)) {
                 uint8_t n = co_type_size(s->type);
                 uint8_t *p = &node->ram[s->off];
+                /* 16/32-bit values are native integers in RAM */
                 if (n == 1U) {
                     p[0] = (uint8_t)(p[0] + node->node_id);
                 } else if (n == 2U) {
-                    co_put_u16(p, (uint16_t)(co_get_u16(p) + node->node_id));
+                    uint16_t v;
+                    (void)memcpy(&v, p, 2U);
+                    v = (uint16_t)(v + node->node_id);
+                    (void)memcpy(p, &v, 2U);
                 } else if (n == 4U) {
-                    co_put_u32(p, co_get_u32(p) + node->node_id);
+                    uint32_t v;
+                    (void)memcpy(&v, p, 4U);
+                    v += node->node_id;
+                    (void)memcpy(p, &v, 4U);
                 } else {
                     /* $NODEID only makes sense on 8/16/32-bit values */
                 }

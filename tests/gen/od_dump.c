@@ -1,0 +1,133 @@
+/*
+ * od_dump: initialise one node of a generated device and print its whole
+ * dictionary as JSON, every value read through co_od_read (the path SDO and
+ * the application use). tests/gen/test_eds_matches_c.py compares this with
+ * the device's EDS.
+ *
+ * Usage: od_dump_<device> [node-id]   (default 5)
+ * Built once per device with -DCODEV_NAME=<cname>: it uses the generated
+ * header, the node bundle <cname>_node_t and <cname>_config() as an
+ * application would.
+ */
+#include <inttypes.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "co/co_node.h"
+
+#ifndef CODEV_NAME
+#error "build with -DCODEV_NAME=<cname>"
+#endif
+#define STR(x) #x
+#define XSTR(x) STR(x)
+#define CAT(a, b) a##b
+#define XCAT(a, b) CAT(a, b)
+
+#include XSTR(CODEV_NAME.h)
+
+typedef XCAT(CODEV_NAME, _node_t) dump_node_t;
+
+static unsigned frames_sent;
+static uint32_t first_id;
+
+static int count_send(void *ctx, const co_frame_t *f)
+{
+    (void)ctx;
+    if (frames_sent == 0U) {
+        first_id = f->id;
+    }
+    frames_sent++;
+    return 0;
+}
+
+static const co_hal_ops_t ops = {count_send, NULL, NULL};
+
+static void hex(const uint8_t *p, uint32_t n)
+{
+    putchar('"');
+    for (uint32_t i = 0U; i < n; i++) {
+        printf("%02x", p[i]);
+    }
+    putchar('"');
+}
+
+int main(int argc, char **argv)
+{
+    static uint8_t buf[70000];
+    static dump_node_t n;
+    const co_dev_t *dev = &XCAT(CODEV_NAME, _dev);
+    co_node_t *node = &n.node;
+    co_node_config_t cfg;
+    unsigned long id = (argc > 1) ? strtoul(argv[1], NULL, 0) : 5UL;
+    co_err_t err;
+
+    if ((id < 1UL) || (id > 127UL)) {
+        fprintf(stderr, "od_dump: bad node-id\n");
+        return 2;
+    }
+    if ((sizeof n.ram != dev->ram_size) ||
+        (sizeof n.hooks / sizeof n.hooks[0] < dev->n_hooks)) {
+        fprintf(stderr, "od_dump: node bundle does not fit the device\n");
+        return 1;
+    }
+    XCAT(CODEV_NAME, _config)(&n, &cfg);
+    if ((cfg.dev != dev) || (cfg.ram != (void *)&n.ram) || (cfg.hooks != n.hooks)) {
+        fprintf(stderr, "od_dump: config helper\n");
+        return 1;
+    }
+    cfg.hal.ops = &ops;
+    cfg.node_id = (uint8_t)id;
+    err = co_node_init(node, &cfg, 0U);
+    if (err != CO_OK) {
+        fprintf(stderr, "od_dump: co_node_init: 0x%08lx\n", (unsigned long)err);
+        return 1;
+    }
+    printf("{\"name\": \"%s\", \"node_id\": %lu, \"ram_size\": %u, \"comm_end\": %u, "
+           "\"app_end\": %u, \"n_hooks\": %u, \"options\": %lu,\n",
+           dev->name, id, (unsigned)dev->ram_size, (unsigned)dev->comm_end,
+           (unsigned)dev->app_end, (unsigned)dev->n_hooks, (unsigned long)dev->options);
+    printf(" \"core\": {\"errreg\": %d, \"hist_depth\": %u, \"n_hb_cons\": %u, "
+           "\"emcy_cob\": %d, \"hb_prod\": %d, \"guard_time\": %d, \"life_factor\": %d, "
+           "\"emcy_inhibit\": %d, \"frames\": %u, \"first_id\": %lu, \"nmt\": %u},\n",
+           node->errreg != NULL, (unsigned)node->hist_depth, (unsigned)node->n_hb_cons,
+           node->emcy_cob != NULL, node->hb_prod != NULL, node->guard_time != NULL,
+           node->life_factor != NULL, node->emcy_inhibit != NULL, frames_sent,
+           (unsigned long)first_id, (unsigned)co_node_nmt_state(node));
+    printf(" \"entries\": [\n");
+    for (uint16_t i = 0U; i < dev->od_count; i++) {
+        const co_od_entry_t *e = &dev->od[i];
+        printf("  {\"index\": %u, \"code\": %u, \"hook\": %u, \"subs\": [\n", (unsigned)e->index,
+               (unsigned)e->code, (unsigned)e->hook);
+        for (uint8_t k = 0U; k < e->nsubs; k++) {
+            const co_od_sub_t *s = &e->subs[k];
+            uint32_t len = 0U;
+            void *p = co_od_value_ptr(node, e->index, s->sub);
+            err = co_od_read(node, e->index, s->sub, buf, (uint32_t)sizeof buf, &len);
+            printf("   {\"sub\": %u, \"type\": %u, \"flags\": %u, \"size\": %u, \"abort\": %lu, "
+                   "\"value\": ",
+                   (unsigned)s->sub, (unsigned)s->type, (unsigned)s->flags, (unsigned)s->size,
+                   (unsigned long)err);
+            if (err == CO_OK) {
+                hex(buf, len);
+            } else {
+                printf("null");
+            }
+            /* the stored bytes (native order), also where a read is refused */
+            printf(", \"ram\": ");
+            if (p != NULL) {
+                hex((const uint8_t *)p, s->size);
+            } else {
+                printf("null");
+            }
+            if ((s->flags & CO_SUB_LIMIT) != 0U) {
+                printf(", \"limit\": [%" PRId64 ", %" PRId64 "]", dev->limits[s->limit].min,
+                       dev->limits[s->limit].max);
+            }
+            printf("}%s\n", (k + 1U < e->nsubs) ? "," : "");
+        }
+        printf("  ]}%s\n", (i + 1U < dev->od_count) ? "," : "");
+    }
+    printf(" ]}\n");
+    return 0;
+}

@@ -1,0 +1,164 @@
+"""Edge cases of the C back end: a device with extreme values, odd strings,
+grouped byte-array elements, gaps, options and no serial number compiles with
+the project's warnings (-Werror), links with the core and matches its EDS."""
+from __future__ import annotations
+
+import shutil
+import subprocess
+import textwrap
+
+import pytest
+
+from compare import compare, run_dump
+from conftest import ROOT, build_dir, run_odgen
+
+EDGE = r'''
+[device]
+name = "edge"
+vendor_id = 0xFFFFFFFF
+product_code = 1
+device_type = 0x000F0191
+device_name = "e"
+options = ["SDO_NO_BLOCK", "BOOT_EMCY", "EMCY_RESET_PARTIAL"]
+boot_emcy_data = [0x56, 0x31, 0x2E, 0x30, 0x00]
+
+[[object]]
+index = 0x1001
+name = "Error register"
+type = "UNSIGNED8"
+access = "ro"
+
+[[object]]
+index = 0x1016
+name = "Consumer heartbeat time"
+array = 2
+element = { name = "Consumer", type = "UNSIGNED32" }
+defaults = [0x00050064]
+
+[[object]]
+index = 0x2000
+name = "I64 extremes"
+type = "INTEGER64"
+default = -9223372036854775808
+low_limit = -9223372036854775808
+high_limit = 9223372036854775807
+
+[[object]]
+index = 0x2001
+name = "U64 extremes"
+type = "UNSIGNED64"
+default = 18446744073709551615
+low_limit = 1
+high_limit = 18446744073709551615
+
+[[object]]
+index = 0x2002
+name = "I32 min"
+type = "INTEGER32"
+default = -2147483648
+low_limit = -2147483648
+high_limit = 0
+
+[[object]]
+index = 0x2003
+name = "Negative zero"
+type = "REAL32"
+default = -0.0
+
+[[object]]
+index = 0x2004
+name = "Full string"
+type = "VISIBLE_STRING"
+default = 'a"b\c'
+
+[[object]]
+index = 0x2005
+name = "Trigraph string"
+type = "VISIBLE_STRING"
+size = 8
+default = "??=x"
+
+[[object]]
+index = 0x2006
+name = "Hook-only U32"
+type = "UNSIGNED32"
+hookio = true
+
+[[object]]
+index = 0x2007
+name = "I24 array"
+array = 3
+element = { name = "I24", type = "INTEGER24", pdo_mapping = true, low_limit = -10, high_limit = 10 }
+defaults = [-1, 0, 5]
+
+[[object]]
+index = 0x2008
+name = "Gaps"
+subs = [
+  { sub = 1, name = "first", type = "UNSIGNED16", default = "$NODEID" },
+  { sub = 3, name = "third", type = "UNSIGNED8", default = "$NODEID+0x40", storage = "comm" },
+  { sub = 7, name = "seventh", type = "UNSIGNED32", access = "wo", pdo_mapping = true },
+]
+
+[[object]]
+index = 0x2009
+name = "Stored domain"
+object = "DOMAIN"
+size = 4
+default = "01 02"
+
+[[object]]
+index = 0x200A
+name = "Octets without default"
+type = "OCTET_STRING"
+size = 3
+
+[[object]]
+index = 0x200B
+name = "Output"
+type = "UNSIGNED16"
+access = "rww"
+
+[[object]]
+index = 0x200C
+name = "Time difference"
+type = "TIME_DIFFERENCE"
+default = 0xFFFF0FFFFFFF
+
+[[object]]
+index = 0x6000
+name = "Profile value"
+type = "INTEGER8"
+access = "ro"
+default = -128
+'''
+
+WARN = ["-std=c99", "-Wall", "-Wextra", "-Wpedantic", "-Wconversion", "-Wshadow", "-Werror"]
+
+
+@pytest.mark.skipif(shutil.which("cc") is None, reason="no C compiler")
+def test_edge_device(tmp_path):
+    src = tmp_path / "edge.toml"
+    src.write_text(textwrap.dedent(EDGE))
+    r = run_odgen(src, tmp_path)
+    assert r.returncode == 0, r.stderr
+    lib = build_dir() / "stack" / "libcostack.a"
+    if not lib.exists():
+        pytest.fail(f"{lib} missing: build the tree first or set CODEV_BUILD_DIR")
+    exe = tmp_path / "od_dump_edge"
+    cc = subprocess.run(["cc", *WARN, "-DCODEV_NAME=edge", f"-I{tmp_path}",
+                         f"-I{ROOT / 'stack' / 'include'}", str(tmp_path / "edge.c"),
+                         str(ROOT / "tests" / "gen" / "od_dump.c"), str(lib), "-o", str(exe)],
+                        capture_output=True, text=True)
+    assert cc.returncode == 0, cc.stderr
+    assert cc.stderr == ""
+    dump = run_dump(exe, 127)
+    assert dump["options"] == 0x0080 | 0x0008 | 0x0020
+    assert dump["n_hooks"] == 1
+    # 0x1018 sub 4 without [device] serial: a RAM value the application fills in
+    s1018 = next(e for e in dump["entries"] if e["index"] == 0x1018)["subs"]
+    assert s1018[4]["ram"] is not None and not s1018[4]["flags"] & 0x20
+    assert compare(tmp_path / "edge.eds", dump, node_id=127) > 20
+    header = (tmp_path / "edge.h").read_text()
+    assert "uint8_t x2007_i24_array[3][3];" in header
+    assert "#define EDGE_HOOK_2006 0U" in header

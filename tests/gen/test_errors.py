@@ -1,0 +1,274 @@
+"""Mistakes in a description stop the generator (and so the build) with
+"<file>: error: object 0xIIII[ sub S]: <problem>" and exit code 1."""
+from __future__ import annotations
+
+import shutil
+import subprocess
+import sys
+import textwrap
+from pathlib import Path
+
+import pytest
+
+from conftest import ROOT, run_odgen
+
+# A small valid device; each case appends objects to it.
+BASE = """
+[device]
+name = "bad"
+vendor_id = 0x1234
+device_type = 0
+
+[[object]]
+index = 0x1001
+name = "Error register"
+type = "UNSIGNED8"
+access = "ro"
+pdo_mapping = true
+"""
+
+MAP32 = """
+[[object]]
+index = 0x2000
+name = "Value"
+type = "UNSIGNED32"
+pdo_mapping = {mappable}
+"""
+
+
+def tpdo_map(*entries: int, index: int = 0x1A00) -> str:
+    return textwrap.dedent(f"""
+        [[object]]
+        index = 0x{index:04X}
+        name = "PDO mapping parameter"
+        object = "RECORD"
+        array = 8
+        sub0 = {{ name = "Number of mapped objects", access = "rw", default = {len(entries)} }}
+        element = {{ name = "Mapped object", type = "UNSIGNED32", access = "rw" }}
+        defaults = [{", ".join(hex(e) for e in entries)}]
+        """)
+
+
+def generate(tmp_path: Path, text: str) -> tuple[Path, subprocess.CompletedProcess]:
+    src = tmp_path / "bad.toml"
+    src.write_text(BASE + textwrap.dedent(text))
+    return src, run_odgen(src, tmp_path / "out")
+
+
+def fails_with(tmp_path: Path, text: str, *needles: str) -> str:
+    src, r = generate(tmp_path, text)
+    assert r.returncode == 1, f"accepted:\n{text}"
+    msg = r.stderr.strip()
+    assert msg.startswith(f"{src}: error: "), msg
+    for n in needles:
+        assert n in msg, msg
+    assert "Traceback" not in msg
+    assert not (tmp_path / "out").exists(), "wrote products despite the error"
+    return msg
+
+
+def test_base_is_valid(tmp_path):
+    _, r = generate(tmp_path, "")
+    assert r.returncode == 0, r.stderr
+
+
+# ----------------------------------------------------------- required cases
+
+def test_duplicate_index(tmp_path):
+    fails_with(tmp_path, MAP32.format(mappable="true") + MAP32.format(mappable="false"),
+               "object 0x2000: duplicate index")
+
+
+def test_duplicate_index_with_device_table(tmp_path):
+    fails_with(tmp_path, """
+        [[object]]
+        index = 0x1018
+        name = "Identity"
+        subs = [{ sub = 1, name = "Vendor-ID", type = "UNSIGNED32", access = "ro" }]
+        """, "object 0x1018: duplicate index", "[device] vendor_id")
+
+
+def test_duplicate_sub_index(tmp_path):
+    fails_with(tmp_path, """
+        [[object]]
+        index = 0x2001
+        name = "Record"
+        subs = [
+          { sub = 1, name = "A", type = "UNSIGNED8" },
+          { sub = 2, name = "B", type = "UNSIGNED8" },
+          { sub = 1, name = "C", type = "UNSIGNED16" },
+        ]
+        """, "object 0x2001 sub 1: duplicate sub-index")
+
+
+def test_default_out_of_limits(tmp_path):
+    fails_with(tmp_path, """
+        [[object]]
+        index = 0x2002
+        name = "Limited"
+        type = "UNSIGNED16"
+        default = 5
+        low_limit = 10
+        high_limit = 100
+        """, "object 0x2002", "default 5 is out of limits [10, 100]")
+
+
+def test_default_out_of_limits_in_record(tmp_path):
+    fails_with(tmp_path, """
+        [[object]]
+        index = 0x2003
+        name = "Record"
+        subs = [{ sub = 2, name = "Speed", type = "INTEGER32", default = -200, low_limit = -100, high_limit = 100 }]
+        """, "object 0x2003 sub 2", "default -200 is out of limits [-100, 100]")
+
+
+def test_nodeid_default_out_of_limits(tmp_path):
+    # $NODEID+0x10 reaches 0x8F for node 127
+    fails_with(tmp_path, """
+        [[object]]
+        index = 0x2004
+        name = "COB-ID"
+        type = "UNSIGNED32"
+        default = "$NODEID+0x10"
+        high_limit = 0x7F
+        """, "object 0x2004", "default $NODEID+16 is out of limits [0, 127]")
+
+
+def test_default_does_not_fit_type(tmp_path):
+    fails_with(tmp_path, """
+        [[object]]
+        index = 0x2005
+        name = "Byte"
+        type = "UNSIGNED8"
+        default = 256
+        """, "object 0x2005", "default 256 does not fit UNSIGNED8 [0, 255]")
+
+
+def test_mapping_of_non_mappable_object(tmp_path):
+    fails_with(tmp_path, MAP32.format(mappable="false") + tpdo_map(0x20000020),
+               "object 0x1A00 sub 1", "maps 0x2000 sub 0", "not mappable into a TPDO")
+
+
+def test_rpdo_mapping_of_tpdo_only_object(tmp_path):
+    # 0x1001 is ro + pdo_mapping: TPDO only
+    fails_with(tmp_path, tpdo_map(0x10010008, index=0x1600),
+               "object 0x1600 sub 1", "maps 0x1001 sub 0", "not mappable into an RPDO")
+
+
+def test_unknown_data_type(tmp_path):
+    fails_with(tmp_path, """
+        [[object]]
+        index = 0x2006
+        name = "Odd"
+        type = "UNSIGNED12"
+        """, "object 0x2006", "unknown data type 'UNSIGNED12'")
+
+
+def test_unknown_data_type_in_array(tmp_path):
+    fails_with(tmp_path, """
+        [[object]]
+        index = 0x2007
+        name = "Odd array"
+        array = 2
+        element = { name = "x", type = "REAL16" }
+        """, "object 0x2007 sub 1", "unknown data type 'REAL16'")
+
+
+def test_mapping_longer_than_64_bits(tmp_path):
+    fails_with(tmp_path, MAP32.format(mappable="true") + """
+        [[object]]
+        index = 0x2001
+        name = "Value 2"
+        type = "UNSIGNED32"
+        pdo_mapping = true
+        [[object]]
+        index = 0x2002
+        name = "Value 3"
+        type = "UNSIGNED8"
+        pdo_mapping = true
+        """ + tpdo_map(0x20000020, 0x20010020, 0x20020008),
+               "object 0x1A00", "default TPDO mapping is 72 bits long, more than 64")
+
+
+# ------------------------------------------------------------ more mistakes
+
+@pytest.mark.parametrize("text, needles", [
+    (MAP32.format(mappable="true") + tpdo_map(0x20000010),
+     ["object 0x1A00 sub 1", "with 16 bits; UNSIGNED32 has 32"]),
+    (tpdo_map(0x30000008), ["object 0x1A00 sub 1", "maps 0x3000 sub 0, which does not exist"]),
+    ("""
+     [[object]]
+     index = 0x2008
+     name = "Typo"
+     type = "UNSIGNED8"
+     acess = "ro"
+     """, ["object 0x2008", "unknown key(s) acess"]),
+    ("""
+     [[object]]
+     index = 0x2009
+     name = "String"
+     type = "VISIBLE_STRING"
+     size = 4
+     default = "too long"
+     """, ["object 0x2009", "default is 8 bytes, more than size 4"]),
+    ("""
+     [[object]]
+     index = 0x200A
+     name = "Real"
+     type = "REAL32"
+     low_limit = 0
+     """, ["object 0x200A", "limits are only supported on integer types"]),
+    ("""
+     [[object]]
+     index = 0x200B
+     name = "Mapped string"
+     type = "VISIBLE_STRING"
+     size = 4
+     pdo_mapping = true
+     """, ["object 0x200B", "cannot be PDO-mapped"]),
+], ids=["map-length", "map-missing", "unknown-key", "string-too-long", "real-limits",
+        "map-string"])
+def test_other_mistakes(tmp_path, text, needles):
+    fails_with(tmp_path, text, *needles)
+
+
+def test_unknown_option(tmp_path):
+    src = tmp_path / "bad.toml"
+    src.write_text(BASE.replace('device_type = 0', 'device_type = 0\noptions = ["NO_SUCH"]'))
+    r = run_odgen(src, tmp_path / "out")
+    assert r.returncode == 1
+    assert "unknown option 'NO_SUCH'" in r.stderr and "SDO_NO_BLOCK" in r.stderr
+
+
+def test_options_come_from_the_core_header():
+    from model import core_options
+    opts = core_options()
+    assert opts["SDO_NO_BLOCK"] == 0x0080
+    assert len(opts) >= 9
+
+
+# -------------------------------------------------------- the build stops
+
+@pytest.mark.skipif(shutil.which("cmake") is None, reason="cmake missing")
+def test_build_stops_on_a_bad_description(tmp_path):
+    """co_device() runs the generator at build time: the build fails and
+    shows the message naming the file and the object."""
+    proj = tmp_path / "proj"
+    proj.mkdir()
+    (proj / "bad.toml").write_text(BASE + MAP32.format(mappable="true") * 2)
+    (proj / "CMakeLists.txt").write_text(textwrap.dedent(f"""
+        cmake_minimum_required(VERSION 3.25)
+        project(bad LANGUAGES C)
+        add_library(costack INTERFACE)
+        target_include_directories(costack INTERFACE "{ROOT}/stack/include")
+        include("{ROOT}/cmake/codev.cmake")
+        co_device(bad bad.toml)
+        """))
+    b = tmp_path / "b"
+    r = subprocess.run(["cmake", "-S", str(proj), "-B", str(b), f"-DCO_PYTHON={sys.executable}"],
+                       capture_output=True, text=True)
+    assert r.returncode == 0, r.stdout + r.stderr
+    r = subprocess.run(["cmake", "--build", str(b)], capture_output=True, text=True)
+    out = r.stdout + r.stderr
+    assert r.returncode != 0
+    assert f"{proj / 'bad.toml'}: error: object 0x2000: duplicate index" in out, out

@@ -1,0 +1,330 @@
+"""C back end: the const object dictionary of a device for the core (stack/).
+
+One .h/.c pair per device. The header has the RAM image type (communication
+values first, then stored application values, then values not stored; within
+each region sorted by alignment so there is no padding inside a region), the
+hook slot numbers, the node bundle type and the co_dev_t. The .c has the ROM
+image, the default image, the limits table and the entry/sub tables, sorted
+by index/sub-index. Offsets are left to the C compiler (offsetof).
+"""
+from __future__ import annotations
+
+import struct
+from dataclasses import dataclass, field
+
+from model import FLAG_NAMES, DescError, Device, Sub, encoded_default
+
+REGIONS = (("comm", "communication parameters (stored)"),
+           ("app", "application values (stored)"),
+           ("none", "values not stored (restored to defaults at reset)"))
+
+
+@dataclass
+class Field:
+    name: str
+    ctype: str                    # element C type
+    dims: list[int]               # array dimensions after the name
+    align: int
+    size: int
+    region: str                   # comm / app / none / rom
+    subs: list[Sub] = field(default_factory=list)
+
+    def decl(self) -> str:
+        return f"{self.ctype} {self.name}" + "".join(f"[{d}]" for d in self.dims)
+
+
+def scalar_ctype(s: Sub) -> tuple[str, list[int], int]:
+    """(C type, dims, alignment) of one value of s."""
+    k, n = s.kind, s.fixed
+    if k == "real":
+        return ("float" if n == 4 else "double"), [], n
+    if k in ("int", "uint", "bool") and n in (1, 2, 4, 8):
+        return f"{'int' if k == 'int' else 'uint'}{8 * n}_t", [], n
+    if k in ("int", "uint", "time"):
+        return "uint8_t", [n], 1
+    if k == "vstr":
+        return "char", [s.size], 1
+    return "uint8_t", [s.size], 1
+
+
+def build_fields(dev: Device) -> list[Field]:
+    fields: dict[str, Field] = {}
+    order: list[Field] = []
+    for o in dev.objects:
+        for s in o.subs:
+            if not s.field:
+                continue
+            if s.field in fields:
+                f = fields[s.field]
+                f.subs.append(s)
+                f.dims[0] += 1
+                f.size += s.size
+                continue
+            ctype, dims, align = scalar_ctype(s)
+            region = "rom" if s.rom else s.storage
+            dims = ([1] if s.elem == 0 else []) + dims
+            f = Field(name=s.field, ctype=ctype, dims=dims, align=align, size=s.size,
+                      region=region, subs=[s])
+            fields[s.field] = f
+            order.append(f)
+    return order
+
+
+def layout(fields: list[Field]) -> int:
+    """Size of a struct of these fields in this order with natural alignment."""
+    off, top = 0, 1
+    for f in fields:
+        off = (off + f.align - 1) // f.align * f.align + f.size
+        top = max(top, f.align)
+    return (off + top - 1) // top * top
+
+
+def sort_region(fields: list[Field], region: str) -> list[Field]:
+    sel = [f for f in fields if f.region == region]
+    return sorted(sel, key=lambda f: (-f.align, f.subs[0].index, f.subs[0].sub))
+
+
+# ----------------------------------------------------------- C literals
+
+def c_int(s: Sub, v: int) -> str:
+    n, k = s.fixed, s.kind
+    if k in ("uint", "bool"):
+        if n == 1:
+            return f"{v}U"
+        if n == 2:
+            return f"0x{v:04X}U"
+        if n == 4:
+            return f"0x{v:08X}UL"
+        return f"UINT64_C(0x{v:016X})"
+    if n == 8:
+        return "(-INT64_C(9223372036854775807) - 1)" if v == -(1 << 63) else f"INT64_C({v})"
+    if n == 4:
+        return "(-2147483647L - 1L)" if v == -(1 << 31) else f"{v}L"
+    return str(v)
+
+
+def c_bytes(data: bytes) -> str:
+    return "{" + ", ".join(f"0x{b:02X}U" for b in data) + "}"
+
+
+def c_string(text: str, size: int) -> str:
+    if len(text) >= size:
+        return "{" + ", ".join(repr(c) if c not in "'\\" else f"'\\{c}'" for c in text) + "}"
+    out = []
+    for c in text:
+        out.append("\\" + c if c in "\"\\" else c)
+    return '"' + "".join(out).replace("??", "?\\?") + '"'
+
+
+def wire(s: Sub, v: int) -> bytes:
+    n = s.fixed
+    return (v & ((1 << (8 * n)) - 1)).to_bytes(n, "little")
+
+
+def c_value(s: Sub) -> str | None:
+    """Initialiser of one value, None for all-zero/absent."""
+    v = s.default
+    if v is None:
+        return None
+    k = s.kind
+    if k == "real":
+        if s.fixed == 4:
+            x = struct.unpack("<f", struct.pack("<f", v))[0]
+            return None if x == 0.0 and str(x)[0] != "-" else f"{x.hex()}f /* {v!r} */"
+        return None if v == 0.0 and str(v)[0] != "-" else f"{v.hex()} /* {v!r} */"
+    if k in ("int", "uint", "bool", "time"):
+        if v == 0:
+            return None
+        if s.fixed in (1, 2, 4, 8) and k != "time":
+            return c_int(s, v)
+        return c_bytes(wire(s, v))
+    if k == "vstr":
+        return c_string(v, s.size) if v else None
+    data = encoded_default(s)
+    return c_bytes(data) if data else None
+
+
+def field_init(f: Field) -> str | None:
+    if f.dims and f.subs[0].elem == 0:
+        vals = [c_value(s) for s in f.subs]
+        if all(v is None for v in vals):
+            return None
+        zero = "{0}" if scalar_ctype(f.subs[0])[1] else "0"
+        return "{" + ", ".join(v if v is not None else zero for v in vals) + "}"
+    return c_value(f.subs[0])
+
+
+def flags_expr(flags: int) -> str:
+    names = [n for bit, n in FLAG_NAMES if flags & bit]
+    return "(uint16_t)(" + " | ".join(names) + ")" if names else "0U"
+
+
+def limit_lit(v: int) -> str:
+    if v > (1 << 63) - 1:
+        v -= 1 << 64      # UNSIGNED64 above INT64_MAX: the core compares as uint64_t
+    if v == -(1 << 63):
+        return "(-INT64_C(9223372036854775807) - 1)"
+    return f"INT64_C({v})"
+
+
+def comment(text: str) -> str:
+    return text.replace("*/", "* /")
+
+
+# ------------------------------------------------------------ emitters
+
+def generate(dev: Device, toml_name: str) -> tuple[str, str]:
+    cn = dev.cname
+    up = cn.upper()
+    fields = build_fields(dev)
+    ram = [f for r, _ in REGIONS for f in sort_region(fields, r)]
+    rom = sort_region(fields, "rom")
+    if not ram:
+        ram = [Field(name="unused", ctype="uint8_t", dims=[], align=1, size=1, region="none")]
+    ram_size = layout(ram)
+    if ram_size > 0xFFFF:
+        raise DescError(f"RAM image is {ram_size} bytes; the core addresses at most 65535 "
+                        "(use hookio for large values)")
+    if layout(rom) > 0xFFFF:
+        raise DescError(f"ROM image is {layout(rom)} bytes; at most 65535")
+    hooked = [o for o in dev.objects if o.hook]
+    n_hooks = len(hooked)
+    banner = (f"/* Generated by tools/odgen from {toml_name} ({dev.name}). Do not edit:\n"
+              f" * change the description and rebuild. */\n")
+
+    # ---------------- header
+    h = [banner, f"#ifndef CODEV_{up}_H", f"#define CODEV_{up}_H", "",
+         "#include <stdint.h>", "", '#include "co/co_node.h"', "",
+         f"/** RAM image of one {dev.name} node ({ram_size} bytes on a host with natural",
+         " *  alignment): 16/32/64-bit values are native integers, other types wire bytes. */",
+         f"typedef struct {cn}_ram {{"]
+    for region, title in REGIONS:
+        sel = [f for f in ram if f.region == region]
+        if not sel:
+            continue
+        h.append(f"    /* {title} */")
+        for f in sel:
+            s0 = f.subs[0]
+            if f.subs[0].elem == 0:
+                where = f"0x{s0.index:04X}:{s0.sub:02X}..{f.subs[-1].sub:02X}"
+                what = dev_obj_name(dev, s0.index)
+            elif f.subs:
+                where = f"0x{s0.index:04X}:{s0.sub:02X}"
+                what = s0.name
+            h.append(f"    {f.decl()}; /* {where} {comment(what)} */" if f.subs else
+                     f"    {f.decl()};")
+    h += [f"}} {cn}_ram_t;", "",
+          f"/** The const description of the {dev.name} device type. */",
+          f"extern const co_dev_t {cn}_dev;", "",
+          f"/* Hook slots (co_od_bind_hook binds by index; these are the slot numbers). */"]
+    for o in hooked:
+        h.append(f"#define {up}_HOOK_{o.index:04X} {o.hook_slot}U /* {comment(o.name)} */")
+    h += [f"#define {up}_N_HOOKS {n_hooks}U", "",
+          f"/** A {dev.name} node with its storage: RAM image and hook table. */",
+          f"typedef struct {cn}_node {{",
+          "    co_node_t node;",
+          f"    {cn}_ram_t ram;",
+          f"    co_od_hook_t hooks[{max(n_hooks, 1)}U];",
+          f"}} {cn}_node_t;", "",
+          "/** Zero @p cfg and point it at the device, the RAM image and the hook table",
+          " *  of @p n; the caller sets hal, node_id and callbacks, then co_node_init(). */",
+          f"void {cn}_config({cn}_node_t *n, co_node_config_t *cfg);", "",
+          f"#endif /* CODEV_{up}_H */", ""]
+
+    # ---------------- source
+    c = [banner, f'#include "{cn}.h"', "", "#include <stddef.h>", "#include <string.h>", "",
+         "/* The RAM image offsets fit the core's 16-bit offsets. */",
+         f"typedef char {cn}_ram_fits[(sizeof({cn}_ram_t) <= 0xFFFFU) ? 1 : -1];"]
+    if any(s.kind == "real" for o in dev.objects for s in o.subs):
+        c += ["/* REAL32/REAL64 values are IEEE 754 float/double. */",
+              f"typedef char {cn}_real_sizes[((sizeof(float) == 4U) && (sizeof(double) == 8U)) ? 1 : -1];"]
+    c.append("")
+    if rom:
+        c += ["/* Const values (CO_SUB_ROM). */", f"typedef struct {cn}_rom {{"]
+        for f in rom:
+            s0 = f.subs[0]
+            c.append(f"    {f.decl()}; /* 0x{s0.index:04X}:{s0.sub:02X} {comment(s0.name)} */")
+        c += [f"}} {cn}_rom_t;", "", f"static const {cn}_rom_t rom = {{"]
+        for f in rom:
+            v = field_init(f)
+            c.append(f"    .{f.name} = {v if v is not None else ('{0}' if f.dims else '0U')},")
+        c += ["};", ""]
+    c += ["/* Defaults of the RAM image ($NODEID defaults hold the offset; the core adds",
+          " * the node-ID when it restores them). */",
+          f"static const {cn}_ram_t defaults = {{"]
+    inits = [(f, field_init(f)) for f in ram if f.subs]
+    inits = [(f, v) for f, v in inits if v is not None]
+    for f, v in inits:
+        c.append(f"    .{f.name} = {v},")
+    if not inits:
+        c.append("    0")
+    c += ["};", ""]
+    if dev.limits:
+        c.append("static const co_od_limit_t limits[] = {")
+        for lo, hi in dev.limits:
+            c.append(f"    {{{limit_lit(lo)}, {limit_lit(hi)}}},")
+        c += ["};", ""]
+    if dev.boot_emcy_data is not None:
+        c += [f"static const uint8_t boot_emcy[5] = {c_bytes(bytes(dev.boot_emcy_data))};", ""]
+    c += [f"#define F(field) ((uint16_t)offsetof({cn}_ram_t, field))"]
+    if rom:
+        c.append(f"#define R(field) ((uint16_t)offsetof({cn}_rom_t, field))")
+    c.append("")
+    for o in dev.objects:
+        c.append(f"/* 0x{o.index:04X} {comment(o.name)} ({o.code}) */")
+        c.append(f"static const co_od_sub_t s{o.index:04X}[] = {{")
+        for s in o.subs:
+            if s.hookio:
+                off = "0U"
+            else:
+                m = "R" if s.rom else "F"
+                off = f"{m}({s.field})" if s.elem <= 0 else \
+                    f"(uint16_t)({m}({s.field}) + {s.elem * s.size}U)"
+            lim = f"{s.limit_slot}U" if s.limit_slot >= 0 else "0U"
+            c.append(f"    {{0x{s.sub:02X}U, (uint8_t)CO_{s.type}, {flags_expr(s.flags)}, "
+                     f"{s.size}U, {off}, {lim}}}, /* {comment(s.name)} */")
+        c.append("};")
+    c += ["", "static const co_od_entry_t od[] = {"]
+    for o in dev.objects:
+        hook = f"{o.hook_slot + 1}U" if o.hook else "0U"
+        c.append(f"    {{0x{o.index:04X}U, {len(o.subs)}U, {hook}, (uint8_t)CO_OBJ_{o.code}, "
+                 f"s{o.index:04X}}},")
+    c += ["};", ""]
+
+    def first(region_names):
+        for r in region_names:
+            sel = [f for f in ram if f.region == r and f.subs]
+            if sel:
+                return f"F({sel[0].name})"
+        return f"(uint16_t)sizeof({cn}_ram_t)"
+
+    opts = " | ".join(f"CO_OPT_{o}" for o in dev.options)
+    c += [f"const co_dev_t {cn}_dev = {{",
+          f'    .name = "{dev.name}",',
+          "    .od = od,",
+          "    .od_count = (uint16_t)(sizeof od / sizeof od[0]),",
+          f"    .ram_size = (uint16_t)sizeof({cn}_ram_t),",
+          f"    .comm_end = {first(('app', 'none'))},",
+          f"    .app_end = {first(('none',))},",
+          "    .defaults = &defaults,",
+          f"    .rom = {'(const uint8_t *)&rom' if rom else 'NULL'},",
+          f"    .limits = {'limits' if dev.limits else 'NULL'},",
+          f"    .n_hooks = {up}_N_HOOKS,",
+          f"    .options = {('(uint32_t)(' + opts + ')') if opts else '0U'},",
+          f"    .boot_emcy_data = {'boot_emcy' if dev.boot_emcy_data is not None else 'NULL'},",
+          "};", "",
+          f"void {cn}_config({cn}_node_t *n, co_node_config_t *cfg)",
+          "{",
+          "    (void)memset(cfg, 0, sizeof *cfg);",
+          f"    cfg->dev = &{cn}_dev;",
+          "    cfg->ram = &n->ram;",
+          "    cfg->hooks = n->hooks;",
+          "}", ""]
+    return "\n".join(h), "\n".join(c)
+
+
+def dev_obj_name(dev: Device, index: int) -> str:
+    for o in dev.objects:
+        if o.index == index:
+            return o.name
+    return ""

@@ -57,12 +57,13 @@ void co_nmt_boot(co_node_t *node)
 
 static void reset(co_node_t *node, co_reset_t kind)
 {
+    /* Reset communication restores the communication area, reset node all
+     * of the image. Where the core's objects live does not change, so the
+     * pointers co_comm_bind found at init stay valid. */
+    co_od_restore(node, 0U, (kind == CO_RESET_NODE) ? node->dev->ram_size : node->dev->comm_end);
     if (kind == CO_RESET_NODE) {
-        co_od_restore(node, node->dev->comm_end, node->dev->ram_size);
         node->n_active = 0U;
     }
-    co_od_restore(node, 0U, node->dev->comm_end);
-    co_comm_bind(node);
     if (node->cb.nmt_reset != NULL) {
         node->cb.nmt_reset(node->cb.ctx, node, kind);
     }

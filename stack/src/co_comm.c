@@ -126,6 +126,9 @@ co_err_t co_comm_check_write(const co_node_t *node, uint16_t index, uint8_t sub,
     if ((index < 0x1000U) || (index > 0x1FFFU)) {
         return CO_OK;
     }
+    if (index >= 0x1400U) {
+        return co_pdo_check_write(node, index, sub, data, len);
+    }
     switch (index) {
     case 0x1003U:
         /* only 0 may be written to sub0: it clears the history */
@@ -208,6 +211,7 @@ void co_comm_written(co_node_t *node, uint16_t index, uint8_t sub)
         co_rx_rebuild(node);
         break;
     default:
+        co_pdo_written(node, index, sub);
         break;
     }
 }

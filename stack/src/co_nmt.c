@@ -20,6 +20,7 @@ static void set_state(co_node_t *node, co_nmt_state_t st)
     if (st == CO_NMT_STOPPED) {
         co_sdo_reset(node); /* no SDO in Stopped: an open transfer ends silently */
     }
+    co_pdo_nmt(node, st);
     if (node->cb.nmt_state != NULL) {
         node->cb.nmt_state(node->cb.ctx, node, st);
     }
@@ -33,6 +34,7 @@ void co_nmt_boot(co_node_t *node)
     co_sdo_reset(node);
     co_emcy_reset(node);
     co_sync_reset(node);
+    co_pdo_reset(node);
     co_hb_reset(node); /* also rebuilds the receive table */
     if ((node->dev->options & CO_OPT_NO_BOOTUP) == 0U) {
         static const uint8_t bootup = 0x00U;
@@ -53,6 +55,10 @@ void co_nmt_boot(co_node_t *node)
      * (the first frame after a reset) and in Pre-operational, where EMCY may
      * be sent. No-op after a node reset (no active errors) and at init. */
     co_emcy_clear(node, CO_EMCY_HB_GUARD);
+    /* the same for the RPDO errors: monitoring starts over */
+    co_emcy_clear(node, CO_EMCY_PDO_SHORT);
+    co_emcy_clear(node, CO_EMCY_PDO_LONG);
+    co_emcy_clear(node, CO_EMCY_RPDO_TIMEOUT);
 }
 
 static void reset(co_node_t *node, co_reset_t kind)

@@ -89,6 +89,7 @@ void co_rx_rebuild(co_node_t *node)
             rx_add(node, (uint16_t)(0x700U + id), CO_RX_HB, k);
         }
     }
+    co_pdo_rx_rebuild(node);
 }
 
 static const co_rx_slot_t *rx_find(const co_node_t *node, uint16_t cob)
@@ -125,6 +126,17 @@ void co_node_rx(co_node_t *node, const co_frame_t *f, uint32_t now_us)
     }
     slot = rx_find(node, cob);
     if (slot == NULL) {
+        const co_pdo_slot_t *ps = co_pdo_rx_find(node, cob);
+        if (ps != NULL) {
+            node->now = now_us;
+            if (ps->pdo < node->dev->n_rpdo) {
+                co_rpdo_rx(node, ps->pdo, f);
+            } else if (co_frame_is_rtr(f)) {
+                co_tpdo_rtr(node, ps->pdo);
+            } else {
+                /* another node's data frame on this TPDO's identifier */
+            }
+        }
         return;
     }
     node->now = now_us;
@@ -164,6 +176,8 @@ uint32_t co_node_process(co_node_t *node, uint32_t now_us)
     next = co_hb_process(node, next);
     next = co_emcy_process(node, next);
     next = co_sync_process(node, next);
+    next = co_rpdo_process(node, next);
+    next = co_tpdo_process(node, next);
     if (node->txq_len > 0U) {
         /* TX path still full: look again in a millisecond */
         next = co_deadline_min(now_us, next, now_us + 1000U);
@@ -179,6 +193,10 @@ co_err_t co_node_init(co_node_t *node, const co_node_config_t *cfg, uint32_t now
         (cfg->hal.ops->send == NULL) || (cfg->dev->od == NULL)) {
         return CO_ERR_OD_MISSING;
     }
+    if (((cfg->dev->n_rpdo + cfg->dev->n_tpdo) != 0U) &&
+        ((cfg->dev->pdo == NULL) || (cfg->pdo == NULL) || (cfg->pdo_rx == NULL))) {
+        return CO_ERR_OD_MISSING;
+    }
     if ((cfg->node_id < 1U) || (cfg->node_id > 127U)) {
         return CO_ERR_VALUE;
     }
@@ -190,6 +208,8 @@ co_err_t co_node_init(co_node_t *node, const co_node_config_t *cfg, uint32_t now
     node->cb = cfg->cb;
     node->node_id = cfg->node_id;
     node->sdo_timeout_us = (cfg->sdo_timeout_us != 0U) ? cfg->sdo_timeout_us : 1000000UL;
+    node->pdo = cfg->pdo;
+    node->pdo_rx = cfg->pdo_rx;
     node->now = now_us;
     co_od_restore(node, 0U, node->dev->ram_size);
     co_comm_bind(node);

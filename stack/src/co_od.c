@@ -50,7 +50,7 @@ uint8_t co_type_size(uint8_t type)
     return (type < 0x1CU) ? sizes[type] : 0U;
 }
 
-static bool type_is_signed(uint8_t type)
+bool co_type_is_signed(uint8_t type)
 {
     return (type == (uint8_t)CO_INTEGER8) || (type == (uint8_t)CO_INTEGER16) ||
            (type == (uint8_t)CO_INTEGER24) || (type == (uint8_t)CO_INTEGER32) ||
@@ -267,7 +267,7 @@ static co_err_t check_limits(const co_node_t *node, const co_od_sub_t *s, const 
         const co_od_limit_t *lim = &node->dev->limits[s->limit];
         uint8_t n = (uint8_t)len;
         uint64_t raw = load_uint(data, n);
-        if (type_is_signed(s->type)) {
+        if (co_type_is_signed(s->type)) {
             int64_t v;
             if ((n < 8U) && ((raw >> ((8U * n) - 1U)) != 0U)) {
                 raw |= ~((UINT64_C(1) << (8U * n)) - 1U); /* sign-extend */

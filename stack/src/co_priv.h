@@ -6,6 +6,7 @@
 
 #include <stdbool.h>
 #include <stdint.h>
+#include <string.h>
 
 #include "co/co_node.h"
 
@@ -34,6 +35,26 @@ static inline uint32_t co_deadline_min(uint32_t now, uint32_t cur, uint32_t cand
     return ((int32_t)(cand - now) < (int32_t)(cur - now)) ? cand : cur;
 }
 
+/* Native values in the RAM image, by offset (any alignment). */
+static inline uint32_t co_ram_u32(const co_node_t *node, uint16_t off)
+{
+    uint32_t v;
+    (void)memcpy(&v, &node->ram[off], sizeof v);
+    return v;
+}
+
+static inline uint16_t co_ram_u16(const co_node_t *node, uint16_t off)
+{
+    uint16_t v;
+    (void)memcpy(&v, &node->ram[off], sizeof v);
+    return v;
+}
+
+static inline uint8_t co_ram_u8(const co_node_t *node, uint16_t off)
+{
+    return node->ram[off];
+}
+
 /* ---- transmit (co_node.c) */
 void co_tx(co_node_t *node, uint32_t id, const uint8_t *data, uint8_t len);
 /* Send now or not at all (nothing held back): for streams that resume later. */
@@ -48,6 +69,7 @@ co_err_t co_od_check_access(const co_node_t *node, const co_od_sub_t *s, bool wr
 /* Current size of the value (strings: up to the first NUL); 0 for HOOKIO. */
 uint32_t co_od_data_size(const co_node_t *node, const co_od_sub_t *s);
 bool co_od_is_streamed(const co_od_sub_t *s);
+bool co_type_is_signed(uint8_t type);
 /* Read a chunk; at offset 0 the read hook runs first. *total gets the total
  * size (0 if a hook does not know it); *last is set on the final chunk. */
 co_err_t co_od_read_part(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
@@ -89,5 +111,59 @@ uint32_t co_sync_process(co_node_t *node, uint32_t next);
 void co_sync_reset(co_node_t *node);
 void co_emcy_reset(co_node_t *node);
 void co_emcy_history_clear(co_node_t *node);
+
+/* ---- PDO (co_pdo_config.c, co_rpdo.c, co_tpdo.c) */
+#define CO_PDO_F_MAP_OK    0x0001U /* mapping enabled and valid; len is set */
+#define CO_PDO_F_EVENT     0x0002U /* TPDO: transmission requested / due */
+#define CO_PDO_F_SENT      0x0004U /* TPDO: data[] holds what was sent last */
+#define CO_PDO_F_TIMER     0x0008U /* timer armed (TPDO event timer, RPDO deadline) */
+#define CO_PDO_F_INHIBIT   0x0010U /* TPDO: inhibit time running until 'inhibit' */
+#define CO_PDO_F_RXBUF     0x0020U /* RPDO: data[] waits for the next SYNC */
+#define CO_PDO_F_TIMEOUT   0x0040U /* RPDO: deadline missed (EMCY 0x8250 raised) */
+#define CO_PDO_F_SHORT     0x0080U /* RPDO: last frame too short (EMCY 0x8210) */
+#define CO_PDO_F_LONG      0x0100U /* RPDO: last frame too long (EMCY 0x8220) */
+#define CO_PDO_F_SYNC_PEND 0x0200U /* TPDO: synchronous data[] waits for the TX path */
+#define CO_PDO_F_STARTED   0x0400U /* TPDO: SYNC start value reached */
+#define CO_PDO_F_SAMPLED   0x0800U /* TPDO 252: data[] sampled at the last SYNC */
+#define CO_PDO_F_RTR       0x1000U /* TPDO: a remote request waits for an answer */
+
+#define CO_PDO_COB_INVALID 0x80000000UL
+#define CO_PDO_COB_NO_RTR  0x40000000UL
+
+static inline uint32_t co_pdo_cob(const co_node_t *node, uint16_t i)
+{
+    return co_ram_u32(node, node->dev->pdo[i].cob);
+}
+
+static inline uint8_t co_pdo_type(const co_node_t *node, uint16_t i)
+{
+    return co_ram_u8(node, node->dev->pdo[i].type);
+}
+
+/* Valid COB-ID and an enabled, valid mapping. */
+static inline bool co_pdo_usable(const co_node_t *node, uint16_t i)
+{
+    return ((co_pdo_cob(node, i) & CO_PDO_COB_INVALID) == 0U) &&
+           ((node->pdo[i].flags & CO_PDO_F_MAP_OK) != 0U);
+}
+
+/* Event timer of PDO i in us (0: off). */
+uint32_t co_pdo_event_us(const co_node_t *node, uint16_t i);
+co_err_t co_pdo_check_write(const co_node_t *node, uint16_t index, uint8_t sub,
+                            const uint8_t *data, uint32_t len);
+void co_pdo_written(co_node_t *node, uint16_t index, uint8_t sub);
+void co_pdo_reset(co_node_t *node);
+void co_pdo_rx_rebuild(co_node_t *node);
+const co_pdo_slot_t *co_pdo_rx_find(const co_node_t *node, uint16_t cob);
+void co_pdo_nmt(co_node_t *node, co_nmt_state_t st);
+/* Bit copies between little-endian bit strings. */
+void co_bits_put(uint8_t *dst, uint16_t dpos, const uint8_t *src, uint8_t n);
+void co_bits_get(uint8_t *dst, const uint8_t *src, uint16_t spos, uint8_t n);
+void co_rpdo_rx(co_node_t *node, uint16_t i, const co_frame_t *f);
+void co_rpdo_sync(co_node_t *node);
+uint32_t co_rpdo_process(co_node_t *node, uint32_t next);
+void co_tpdo_rtr(co_node_t *node, uint16_t i);
+void co_tpdo_sync(co_node_t *node, uint8_t counter);
+uint32_t co_tpdo_process(co_node_t *node, uint32_t next);
 
 #endif /* CO_PRIV_H */

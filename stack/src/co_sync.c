@@ -30,9 +30,13 @@ static bool producing(const co_node_t *node)
 static void on_sync(co_node_t *node, uint8_t counter)
 {
     node->sync_last = node->now;
+    /* CiA 301: synchronous RPDOs received before this SYNC take effect, the
+     * application runs its cycle, then synchronous TPDOs are sampled. */
+    co_rpdo_sync(node);
     if (node->cb.sync != NULL) {
         node->cb.sync(node->cb.ctx, node, counter);
     }
+    co_tpdo_sync(node, counter);
 }
 
 void co_sync_reset(co_node_t *node)

@@ -19,6 +19,7 @@
 #include "co/co_frame.h"
 #include "co/co_hal.h"
 #include "co/co_od.h"
+#include "co/co_pdo.h"
 
 #ifndef CO_TXQ_LEN
 #define CO_TXQ_LEN 4U          /**< frames held back while the HAL's TX path is full */
@@ -48,6 +49,11 @@
 #define CO_OPT_SDO_EXPEDITED_ONLY      0x0040U /**< no segmented or block SDO (Kollmorgen S300/S700) */
 #define CO_OPT_SDO_NO_BLOCK            0x0080U /**< no block SDO (answers 0x05040001) */
 #define CO_OPT_GUARD_WITH_HEARTBEAT    0x0100U /**< answer guarding RTRs even while producing heartbeats */
+#define CO_OPT_PDO_MAP_WHILE_VALID     0x0200U /**< PDO mapping writable while the PDO is valid,
+                                                    outside Operational (SSD 630, Kollmorgen) */
+#define CO_OPT_RPDO_SHORT_OK           0x0400U /**< an RPDO shorter than its mapping writes the
+                                                    entries it covers, no EMCY (AnaGate) */
+#define CO_OPT_EVENT_TIMER_100US       0x0800U /**< PDO event timer in 100 us, not ms (Kollmorgen) */
 
 /** Error register 0x1001 bits. */
 #define CO_ERREG_GENERIC      0x01U
@@ -62,6 +68,9 @@
 #define CO_EMCY_NO_ERROR      0x0000U
 #define CO_EMCY_HB_GUARD      0x8130U /**< life guard or heartbeat error */
 #define CO_EMCY_SYNC_LENGTH   0x8240U /**< unexpected SYNC data length */
+#define CO_EMCY_PDO_SHORT     0x8210U /**< PDO not processed due to length error */
+#define CO_EMCY_PDO_LONG      0x8220U /**< PDO length exceeded */
+#define CO_EMCY_RPDO_TIMEOUT  0x8250U /**< RPDO timeout */
 
 /** NMT states; the values are the heartbeat / guarding state codes. */
 typedef enum co_nmt_state {
@@ -103,6 +112,9 @@ typedef struct co_dev {
     uint8_t n_hooks;            /**< hook slots the node's hook table must have */
     uint32_t options;           /**< CO_OPT_* */
     const uint8_t *boot_emcy_data; /**< 5 bytes, with CO_OPT_BOOT_EMCY */
+    const co_pdo_desc_t *pdo;   /**< n_rpdo RPDOs, then n_tpdo TPDOs */
+    uint16_t n_rpdo;
+    uint16_t n_tpdo;
 } co_dev_t;
 
 struct co_node;
@@ -136,6 +148,8 @@ typedef struct co_node_config {
     co_od_hook_t *hooks;           /**< dev->n_hooks slots (may be all NULL) */
     co_node_callbacks_t cb;
     uint32_t sdo_timeout_us;       /**< 0: 1 s */
+    co_pdo_t *pdo;                 /**< dev->n_rpdo + dev->n_tpdo elements */
+    co_pdo_slot_t *pdo_rx;         /**< dev->n_rpdo + dev->n_tpdo elements */
 } co_node_config_t;
 
 /* ---------------- private state (do not touch; here so callers can allocate) */
@@ -225,6 +239,9 @@ typedef struct co_node {
     co_emcy_active_t active[CO_EMCY_ACTIVE_MAX];
     co_emcy_pending_t emcy_q[CO_EMCY_QUEUE_LEN];
     co_sdo_srv_t sdo;
+    co_pdo_t *pdo;
+    co_pdo_slot_t *pdo_rx;   /**< PDO COB-IDs, sorted */
+    uint16_t n_pdo_rx;
 } co_node_t;
 
 /* ---------------- API ---------------- */
@@ -283,6 +300,12 @@ co_err_t co_time_send(co_node_t *node, uint32_t ms, uint16_t days);
 /** True while the synchronous window (0x1007) after the last SYNC is open
  *  (always, when 0x1007 is 0 or absent). */
 bool co_sync_window_open(const co_node_t *node);
+
+/** Ask for a transmission of TPDO @p n (0-based) with transmission type 0
+ *  (at the next SYNC) or 254/255 (as soon as the inhibit time allows).
+ *  Changes of mapped data are also found without this call: event-driven
+ *  TPDOs compare their data at every co_node_process. */
+co_err_t co_tpdo_request(co_node_t *node, uint16_t n);
 
 /** True while @p code is active. */
 bool co_emcy_is_active(const co_node_t *node, uint16_t code);

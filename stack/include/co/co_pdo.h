@@ -1,0 +1,45 @@
+/*
+ * PDO types. A device's PDOs are described by a const table the generator
+ * makes (where each PDO's parameters live in the node's RAM image); the
+ * runtime state is two caller-allocated arrays of n_rpdo + n_tpdo elements
+ * (the generated <device>_node_t holds them). Included by co_node.h.
+ */
+#ifndef CO_PDO_H
+#define CO_PDO_H
+
+#include <stdint.h>
+
+#define CO_PDO_NONE 0xFFFFU /**< co_pdo_desc_t: this sub-entry does not exist */
+
+/** Where the parameters of one PDO live: offsets into the RAM image of the
+ *  native values of the communication record (0x1400+n / 0x1800+n) and the
+ *  mapping record (0x1600+n / 0x1A00+n). RPDOs first, then TPDOs. */
+typedef struct co_pdo_desc {
+    uint16_t cob;     /**< sub1 COB-ID, UNSIGNED32 */
+    uint16_t type;    /**< sub2 transmission type, UNSIGNED8 */
+    uint16_t inhibit; /**< sub3 inhibit time, UNSIGNED16 (CO_PDO_NONE: absent) */
+    uint16_t event;   /**< sub5 event timer, UNSIGNED16 (CO_PDO_NONE: absent) */
+    uint16_t start;   /**< sub6 SYNC start value, UNSIGNED8 (CO_PDO_NONE: absent) */
+    uint16_t count;   /**< mapping sub0, UNSIGNED8 */
+    uint16_t map;     /**< mapping sub1; sub2.. follow as consecutive UNSIGNED32 */
+    uint8_t map_max;  /**< mapping entries the record has (1..8) */
+} co_pdo_desc_t;
+
+/** Runtime state of one PDO (private to the core). */
+typedef struct co_pdo {
+    uint32_t timer;   /**< TPDO event timer / RPDO deadline (absolute us) */
+    uint32_t inhibit; /**< TPDO: earliest next event-driven transmission */
+    uint16_t flags;
+    uint8_t count;    /**< TPDO: SYNCs counted */
+    uint8_t len;      /**< bytes the mapping covers */
+    uint8_t dlc;      /**< RPDO: length of the buffered frame */
+    uint8_t data[8];  /**< TPDO: last sent / sampled; RPDO: buffered until SYNC */
+} co_pdo_t;
+
+/** Receive-table entry of a PDO COB-ID (private to the core). */
+typedef struct co_pdo_slot {
+    uint16_t cob;
+    uint16_t pdo;     /**< index into the PDO arrays */
+} co_pdo_slot_t;
+
+#endif /* CO_PDO_H */

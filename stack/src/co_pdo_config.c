@@ -1,0 +1,377 @@
+/*
+ * PDO configuration: the CiA 301 rules for writing the communication
+ * (0x1400+/0x1800+) and mapping (0x1600+/0x1A00+) parameters, mapping
+ * validation, the PDO receive table, and what NMT and resets do to PDOs.
+ */
+#include "co/co_endian.h"
+#include "co_priv.h"
+
+#define IDX_RPDO_COMM 0x1400U
+#define IDX_RPDO_MAP  0x1600U
+#define IDX_TPDO_COMM 0x1800U
+#define IDX_TPDO_MAP  0x1A00U
+#define PDO_RANGE     0x0200U /* up to 512 PDOs of each kind */
+
+/* Which PDO an index of the PDO parameter area belongs to. Returns false if
+ * the index is not a PDO parameter of this device. */
+static bool pdo_of(const co_node_t *node, uint16_t index, uint16_t *i, bool *is_map)
+{
+    const co_dev_t *dev = node->dev;
+    uint16_t base;
+    uint16_t n;
+    uint16_t first;
+
+    if ((index >= IDX_RPDO_COMM) && (index < (IDX_RPDO_MAP + PDO_RANGE))) {
+        base = (index >= IDX_RPDO_MAP) ? IDX_RPDO_MAP : IDX_RPDO_COMM;
+        n = dev->n_rpdo;
+        first = 0U;
+    } else if ((index >= IDX_TPDO_COMM) && (index < (IDX_TPDO_MAP + PDO_RANGE))) {
+        base = (index >= IDX_TPDO_MAP) ? IDX_TPDO_MAP : IDX_TPDO_COMM;
+        n = dev->n_tpdo;
+        first = dev->n_rpdo;
+    } else {
+        return false;
+    }
+    if ((dev->pdo == NULL) || ((uint16_t)(index - base) >= n)) {
+        return false;
+    }
+    *i = (uint16_t)(first + (index - base));
+    *is_map = (base == IDX_RPDO_MAP) || (base == IDX_TPDO_MAP);
+    return true;
+}
+
+static bool is_tpdo(const co_node_t *node, uint16_t i)
+{
+    return i >= node->dev->n_rpdo;
+}
+
+uint32_t co_pdo_event_us(const co_node_t *node, uint16_t i)
+{
+    uint16_t off = node->dev->pdo[i].event;
+    uint32_t unit = ((node->dev->options & CO_OPT_EVENT_TIMER_100US) != 0U) ? 100UL : 1000UL;
+
+    return (off == CO_PDO_NONE) ? 0U : ((uint32_t)co_ram_u16(node, off) * unit);
+}
+
+/* CiA 301 7.3.5: identifiers no PDO may use. */
+static bool restricted_cob(uint32_t id)
+{
+    return (id <= 0x07FU) || ((id >= 0x101U) && (id <= 0x180U)) ||
+           ((id >= 0x581U) && (id <= 0x5FFU)) || ((id >= 0x601U) && (id <= 0x67FU)) ||
+           ((id >= 0x6E0U) && (id <= 0x6FFU)) || (id >= 0x701U);
+}
+
+/* One mapping entry (index:16 sub:8 bits:8). *bits gets its length. */
+static co_err_t check_entry(const co_node_t *node, bool tx, uint32_t v, uint8_t *bits)
+{
+    uint16_t index = (uint16_t)(v >> 16U);
+    uint8_t sub = (uint8_t)((v >> 8U) & 0xFFU);
+    const co_od_entry_t *e;
+    const co_od_sub_t *s;
+    uint8_t size;
+
+    *bits = (uint8_t)(v & 0xFFU);
+    if ((index >= 0x0001U) && (index <= 0x0007U) && (sub == 0U)) {
+        /* dummy entry: a gap in an RPDO (types BOOLEAN .. UNSIGNED32) */
+        if (tx) {
+            return CO_ERR_NO_MAP;
+        }
+        size = co_type_size((uint8_t)index);
+    } else {
+        co_err_t err = co_od_lookup(node, index, sub, &e, &s);
+        if (err == CO_ERR_NO_SUB) {
+            return CO_ERR_NO_MAP;
+        }
+        if (err != CO_OK) {
+            return CO_ERR_NO_OBJECT;
+        }
+        size = co_type_size(s->type);
+        if ((size == 0U) || ((s->flags & (tx ? CO_SUB_MAP_T : CO_SUB_MAP_R)) == 0U)) {
+            return CO_ERR_NO_MAP;
+        }
+    }
+    /* bit granularity: any length up to the object's size (the low bits) */
+    if ((*bits == 0U) || (*bits > (uint8_t)(size * 8U))) {
+        return CO_ERR_PARAM_INCOMPAT;
+    }
+    return CO_OK;
+}
+
+/* Validate the first @p count entries of PDO i's mapping; *len gets bytes. */
+static co_err_t check_mapping(const co_node_t *node, uint16_t i, uint8_t count, uint8_t *len)
+{
+    const co_pdo_desc_t *d = &node->dev->pdo[i];
+    uint16_t total = 0U;
+
+    if (count > d->map_max) {
+        return CO_ERR_MAP_LEN;
+    }
+    for (uint8_t k = 0U; k < count; k++) {
+        uint8_t bits;
+        co_err_t err = check_entry(node, is_tpdo(node, i),
+                                   co_ram_u32(node, (uint16_t)(d->map + (4U * k))), &bits);
+        if (err != CO_OK) {
+            return err;
+        }
+        total = (uint16_t)(total + bits);
+    }
+    if (total > 64U) {
+        return CO_ERR_MAP_LEN;
+    }
+    *len = (uint8_t)((total + 7U) / 8U);
+    return CO_OK;
+}
+
+/* Mapping writes: CiA 301 wants the PDO invalid first; some devices only
+ * want the node out of Operational (CO_OPT_PDO_MAP_WHILE_VALID). */
+static bool mapping_locked(const co_node_t *node, uint16_t i)
+{
+    if ((co_pdo_cob(node, i) & CO_PDO_COB_INVALID) != 0U) {
+        return false;
+    }
+    return ((node->dev->options & CO_OPT_PDO_MAP_WHILE_VALID) == 0U) ||
+           (node->nmt == (uint8_t)CO_NMT_OPERATIONAL);
+}
+
+static co_err_t check_map_write(const co_node_t *node, uint16_t i, uint8_t sub,
+                                const uint8_t *data)
+{
+    const co_pdo_desc_t *d = &node->dev->pdo[i];
+    uint8_t len;
+
+    if (mapping_locked(node, i)) {
+        return CO_ERR_STORE_STATE;
+    }
+    if (sub == 0U) {
+        /* A new count is checked against the entries as they stand; the
+         * check reads them from the image, so count them up to data[0]. */
+        if (data[0] == 0U) {
+            return CO_OK;
+        }
+        return check_mapping(node, i, data[0], &len);
+    }
+    if (co_ram_u8(node, d->count) != 0U) {
+        return CO_ERR_NO_ACCESS; /* entries are fixed while the mapping is enabled */
+    }
+    {
+        uint32_t v = co_get_u32(data);
+        uint8_t bits;
+        return (v == 0U) ? CO_OK : check_entry(node, is_tpdo(node, i), v, &bits);
+    }
+}
+
+static co_err_t check_comm_write(const co_node_t *node, uint16_t i, uint8_t sub,
+                                 const uint8_t *data, uint32_t len)
+{
+    const co_pdo_desc_t *d = &node->dev->pdo[i];
+    uint32_t cur = co_pdo_cob(node, i);
+    bool valid = (cur & CO_PDO_COB_INVALID) == 0U;
+    bool tx = is_tpdo(node, i);
+
+    if ((sub == 1U) && (len == 4U)) {
+        uint32_t v = co_get_u32(data);
+        bool new_valid = (v & CO_PDO_COB_INVALID) == 0U;
+        if ((v & 0x3FFFF800UL) != 0U) {
+            return CO_ERR_VALUE; /* 29-bit identifiers are not supported */
+        }
+        if (valid && new_valid && ((v & 0x7FFUL) != (cur & 0x7FFUL))) {
+            return CO_ERR_VALUE; /* the CAN-ID changes only while invalid */
+        }
+        if (new_valid && restricted_cob(v & 0x7FFUL)) {
+            return CO_ERR_VALUE;
+        }
+    } else if ((sub == 2U) && (len == 1U)) {
+        uint8_t t = data[0];
+        if ((t > 240U) && (t < (tx ? 252U : 254U))) {
+            return CO_ERR_VALUE;
+        }
+    } else if (tx && (sub == 3U) && valid && (d->inhibit != CO_PDO_NONE) && (len == 2U)) {
+        if (co_get_u16(data) != co_ram_u16(node, d->inhibit)) {
+            return CO_ERR_VALUE; /* inhibit time changes only while invalid */
+        }
+    } else if (tx && (sub == 6U) && (len == 1U)) {
+        if ((data[0] > 240U) ||
+            (valid && (d->start != CO_PDO_NONE) && (data[0] != co_ram_u8(node, d->start)))) {
+            return CO_ERR_VALUE;
+        }
+    } else {
+        /* event timer, reserved entries: any value */
+    }
+    return CO_OK;
+}
+
+co_err_t co_pdo_check_write(const co_node_t *node, uint16_t index, uint8_t sub,
+                            const uint8_t *data, uint32_t len)
+{
+    uint16_t i;
+    bool is_map;
+
+    if (!pdo_of(node, index, &i, &is_map)) {
+        return CO_OK;
+    }
+    if (is_map) {
+        if (((sub == 0U) && (len != 1U)) || ((sub != 0U) && (len != 4U))) {
+            return CO_OK; /* the size check of the dictionary answers */
+        }
+        return check_map_write(node, i, sub, data);
+    }
+    return check_comm_write(node, i, sub, data, len);
+}
+
+/* Recompute whether PDO i's mapping is usable and how long it is. */
+static void compile_mapping(co_node_t *node, uint16_t i)
+{
+    co_pdo_t *p = &node->pdo[i];
+    uint8_t count = co_ram_u8(node, node->dev->pdo[i].count);
+    uint8_t len = 0U;
+
+    p->flags &= (uint16_t)~CO_PDO_F_MAP_OK;
+    p->len = 0U;
+    if ((count != 0U) && (check_mapping(node, i, count, &len) == CO_OK)) {
+        p->flags |= CO_PDO_F_MAP_OK;
+        p->len = len;
+    }
+}
+
+/* Forget what a PDO was doing (errors stay until correct PDOs resume). */
+static void restart(co_node_t *node, uint16_t i)
+{
+    co_pdo_t *p = &node->pdo[i];
+
+    p->flags &= (uint16_t)(CO_PDO_F_MAP_OK | CO_PDO_F_TIMEOUT | CO_PDO_F_SHORT | CO_PDO_F_LONG);
+    p->count = 0U;
+    p->dlc = 0U;
+}
+
+void co_pdo_written(co_node_t *node, uint16_t index, uint8_t sub)
+{
+    uint16_t i;
+    bool is_map;
+
+    if (!pdo_of(node, index, &i, &is_map)) {
+        return;
+    }
+    if (is_map) {
+        if (sub == 0U) {
+            compile_mapping(node, i);
+            restart(node, i);
+        }
+        return;
+    }
+    if (sub == 1U) {
+        co_rx_rebuild(node);
+    }
+    if ((sub == 1U) || (sub == 2U) || (sub == 5U)) {
+        restart(node, i);
+    }
+}
+
+void co_pdo_reset(co_node_t *node)
+{
+    uint16_t n = (uint16_t)(node->dev->n_rpdo + node->dev->n_tpdo);
+
+    for (uint16_t i = 0U; i < n; i++) {
+        (void)memset(&node->pdo[i], 0, sizeof node->pdo[i]);
+        compile_mapping(node, i);
+    }
+}
+
+void co_pdo_nmt(co_node_t *node, co_nmt_state_t st)
+{
+    uint16_t n = (uint16_t)(node->dev->n_rpdo + node->dev->n_tpdo);
+
+    /* Entering or leaving Operational, every PDO starts over: buffered
+     * synchronous data and pending transmissions are dropped, event-driven
+     * TPDOs send their current data once on entering Operational. */
+    for (uint16_t i = 0U; i < n; i++) {
+        restart(node, i);
+    }
+    if (st == CO_NMT_OPERATIONAL) {
+        (void)co_tpdo_process(node, CO_NO_DEADLINE);
+    }
+}
+
+void co_pdo_rx_rebuild(co_node_t *node)
+{
+    uint16_t n = (uint16_t)(node->dev->n_rpdo + node->dev->n_tpdo);
+    uint16_t used = 0U;
+
+    if (node->pdo_rx == NULL) {
+        return;
+    }
+    for (uint16_t i = 0U; i < n; i++) {
+        uint32_t cob = co_pdo_cob(node, i);
+        uint16_t id = (uint16_t)(cob & 0x7FFU);
+        uint16_t at = used;
+        if (((cob & CO_PDO_COB_INVALID) != 0U) ||
+            (is_tpdo(node, i) && ((cob & CO_PDO_COB_NO_RTR) != 0U))) {
+            continue; /* not received: invalid, or a TPDO that answers no RTR */
+        }
+        while ((at > 0U) && (node->pdo_rx[at - 1U].cob > id)) {
+            node->pdo_rx[at] = node->pdo_rx[at - 1U];
+            at--;
+        }
+        node->pdo_rx[at].cob = id;
+        node->pdo_rx[at].pdo = i;
+        used++;
+        node->rx_filter[(id & 0x7FU) >> 3U] |= (uint8_t)(1U << (id & 7U));
+    }
+    node->n_pdo_rx = used;
+}
+
+const co_pdo_slot_t *co_pdo_rx_find(const co_node_t *node, uint16_t cob)
+{
+    uint16_t lo = 0U;
+    uint16_t hi = node->n_pdo_rx;
+
+    while (lo < hi) {
+        uint16_t mid = (uint16_t)((lo + hi) >> 1U);
+        uint16_t at = node->pdo_rx[mid].cob;
+        if (at == cob) {
+            return &node->pdo_rx[mid];
+        }
+        if (at < cob) {
+            lo = (uint16_t)(mid + 1U);
+        } else {
+            hi = mid;
+        }
+    }
+    return NULL;
+}
+
+void co_bits_put(uint8_t *dst, uint16_t dpos, const uint8_t *src, uint8_t n)
+{
+    for (uint8_t b = 0U; b < n; b++) {
+        uint16_t at = (uint16_t)(dpos + b);
+        uint8_t mask = (uint8_t)(1U << (at & 7U));
+        if ((src[b >> 3U] & (1U << (b & 7U))) != 0U) {
+            dst[at >> 3U] |= mask;
+        } else {
+            dst[at >> 3U] &= (uint8_t)~mask;
+        }
+    }
+}
+
+void co_bits_get(uint8_t *dst, const uint8_t *src, uint16_t spos, uint8_t n)
+{
+    for (uint8_t b = 0U; b < n; b++) {
+        uint16_t at = (uint16_t)(spos + b);
+        if ((src[at >> 3U] & (1U << (at & 7U))) != 0U) {
+            dst[b >> 3U] |= (uint8_t)(1U << (b & 7U));
+        }
+    }
+}
+
+co_err_t co_tpdo_request(co_node_t *node, uint16_t n)
+{
+    uint16_t i = (uint16_t)(node->dev->n_rpdo + n);
+
+    if ((node->dev->pdo == NULL) || (n >= node->dev->n_tpdo)) {
+        return CO_ERR_NO_OBJECT;
+    }
+    if (!co_pdo_usable(node, i)) {
+        return CO_ERR_STORE_STATE;
+    }
+    node->pdo[i].flags |= CO_PDO_F_EVENT;
+    return CO_OK;
+}

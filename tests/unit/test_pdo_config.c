@@ -1,0 +1,188 @@
+/*
+ * PDO configuration over SDO: the CiA 301 mapping procedure and each of its
+ * aborts, COB-ID, transmission type, inhibit time and start value rules, the
+ * option for devices that remap valid PDOs (SSD 630, Kollmorgen), and the
+ * seed manuals' mapping telegrams (SSD 630 14.12/14.13, Kollmorgen 5.3/6.3.5).
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "pdo_fx.h"
+
+static pfx_t fx;
+#define BUS (&fx.bus)
+
+static void mapping_needs_invalid_pdo(void **state)
+{
+    (void)state;
+    pfx_start(&fx, 1, 0U);
+    /* TPDO1 is valid: its mapping is locked (0x08000022) */
+    tb_xfer(BUS, "601 2F 00 1A 00 00 00 00 00", "581 80 00 1A 00 22 00 00 08");
+    tb_xfer(BUS, "601 23 00 1A 01 10 00 41 60", "581 80 00 1A 01 22 00 00 08");
+    /* invalidate TPDO1 (bit 31) */
+    tb_xfer(BUS, "601 23 00 18 01 81 01 00 80", "581 60 00 18 01 00 00 00 00");
+    /* entries are fixed while sub0 != 0 (0x06010000) */
+    tb_xfer(BUS, "601 23 00 1A 01 10 00 41 60", "581 80 00 1A 01 00 00 01 06");
+    tb_xfer(BUS, "601 2F 00 1A 00 00 00 00 00", "581 60 00 1A 00 00 00 00 00");
+    tb_xfer(BUS, "601 23 00 1A 01 20 00 13 20", "581 80 00 1A 01 41 00 04 06"); /* not mappable */
+    tb_xfer(BUS, "601 23 00 1A 01 10 00 99 99", "581 80 00 1A 01 00 00 02 06"); /* no object */
+    tb_xfer(BUS, "601 23 00 1A 01 10 01 41 60", "581 80 00 1A 01 41 00 04 06"); /* no sub 1 */
+    tb_xfer(BUS, "601 23 00 1A 01 40 00 14 20", "581 80 00 1A 01 41 00 04 06"); /* a string */
+    tb_xfer(BUS, "601 23 00 1A 01 10 00 40 60", "581 80 00 1A 01 41 00 04 06"); /* RPDO-only */
+    tb_xfer(BUS, "601 23 00 1A 01 08 00 05 00", "581 80 00 1A 01 41 00 04 06"); /* dummy in TPDO */
+    tb_xfer(BUS, "601 23 00 1A 01 20 00 41 60", "581 80 00 1A 01 43 00 04 06"); /* 32 > 16 bits */
+    tb_xfer(BUS, "601 23 00 1A 01 00 00 41 60", "581 80 00 1A 01 43 00 04 06"); /* 0 bits */
+    /* 64 + 8 bits: each entry is fine, the sum is not (0x06040042) */
+    tb_xfer(BUS, "601 23 00 1A 01 40 00 05 20", "581 60 00 1A 01 00 00 00 00");
+    tb_xfer(BUS, "601 23 00 1A 02 08 00 07 20", "581 60 00 1A 02 00 00 00 00");
+    tb_xfer(BUS, "601 2F 00 1A 00 02 00 00 00", "581 80 00 1A 00 42 00 04 06");
+    tb_xfer(BUS, "601 2F 00 1A 00 09 00 00 00", "581 80 00 1A 00 42 00 04 06"); /* > 8 entries */
+    tb_xfer(BUS, "601 40 00 1A 00 00 00 00 00", "581 4F 00 1A 00 00 00 00 00");
+    /* one entry fits; the PDO becomes valid again */
+    tb_xfer(BUS, "601 2F 00 1A 00 01 00 00 00", "581 60 00 1A 00 00 00 00 00");
+    tb_xfer(BUS, "601 23 00 18 01 81 01 00 00", "581 60 00 18 01 00 00 00 00");
+    tb_xfer(BUS, "601 40 00 1A 00 00 00 00 00", "581 4F 00 1A 00 01 00 00 00");
+    tb_xfer(BUS, "601 40 00 1A 01 00 00 00 00", "581 43 00 1A 01 40 00 05 20");
+}
+
+static void rpdo_mapping_rules(void **state)
+{
+    (void)state;
+    pfx_start(&fx, 1, 0U);
+    tb_xfer(BUS, "601 23 00 14 01 01 02 00 80", "581 60 00 14 01 00 00 00 00");
+    tb_xfer(BUS, "601 2F 00 16 00 00 00 00 00", "581 60 00 16 00 00 00 00 00");
+    tb_xfer(BUS, "601 23 00 16 01 10 00 41 60", "581 80 00 16 01 41 00 04 06"); /* TPDO-only */
+    tb_xfer(BUS, "601 23 00 16 01 10 00 11 20", "581 80 00 16 01 41 00 04 06"); /* rwr */
+    tb_xfer(BUS, "601 23 00 16 01 10 00 12 20", "581 60 00 16 01 00 00 00 00"); /* rww */
+    tb_xfer(BUS, "601 23 00 16 02 08 00 05 00", "581 60 00 16 02 00 00 00 00"); /* dummy U8 */
+    tb_xfer(BUS, "601 23 00 16 03 10 00 05 00", "581 80 00 16 03 43 00 04 06"); /* dummy too long */
+    tb_xfer(BUS, "601 23 00 16 03 01 00 01 00", "581 60 00 16 03 00 00 00 00"); /* dummy bit */
+    tb_xfer(BUS, "601 2F 00 16 00 03 00 00 00", "581 60 00 16 00 00 00 00 00");
+    tb_xfer(BUS, "601 23 00 14 01 01 02 00 00", "581 60 00 14 01 00 00 00 00");
+}
+
+static void cob_id_rules(void **state)
+{
+    (void)state;
+    pfx_start(&fx, 1, 0U);
+    /* the same CAN-ID while valid is fine (SSD 630 14.11 step 1) */
+    tb_xfer(BUS, "601 23 00 14 01 01 02 00 00", "581 60 00 14 01 00 00 00 00");
+    tb_xfer(BUS, "601 23 00 18 01 81 01 00 00", "581 60 00 18 01 00 00 00 00");
+    /* another CAN-ID only while invalid */
+    tb_xfer(BUS, "601 23 00 18 01 82 01 00 00", "581 80 00 18 01 30 00 09 06");
+    /* 29-bit frames (bit 29) and bits 11..28 are refused */
+    tb_xfer(BUS, "601 23 00 18 01 81 01 00 20", "581 80 00 18 01 30 00 09 06");
+    tb_xfer(BUS, "601 23 00 18 01 01 18 00 00", "581 80 00 18 01 30 00 09 06"); /* SSD 1.12 as printed */
+    tb_xfer(BUS, "601 23 00 18 01 81 01 00 80", "581 60 00 18 01 00 00 00 00");
+    /* restricted identifiers cannot be made valid (CiA 301 7.3.5) */
+    tb_xfer(BUS, "601 23 00 18 01 01 06 00 00", "581 80 00 18 01 30 00 09 06"); /* 601 */
+    tb_xfer(BUS, "601 23 00 18 01 01 07 00 00", "581 80 00 18 01 30 00 09 06"); /* 701 */
+    tb_xfer(BUS, "601 23 00 18 01 00 00 00 00", "581 80 00 18 01 30 00 09 06"); /* 000 */
+    tb_xfer(BUS, "601 23 00 18 01 F0 06 00 00", "581 80 00 18 01 30 00 09 06"); /* 6F0 */
+    /* but an invalid PDO may hold any identifier, and a free one is taken */
+    tb_xfer(BUS, "601 23 00 18 01 01 06 00 80", "581 60 00 18 01 00 00 00 00");
+    tb_xfer(BUS, "601 23 00 18 01 A1 01 00 40", "581 60 00 18 01 00 00 00 00");
+    tb_xfer(BUS, "601 40 00 18 01 00 00 00 00", "581 43 00 18 01 A1 01 00 40");
+}
+
+static void comm_parameter_rules(void **state)
+{
+    (void)state;
+    pfx_start(&fx, 1, 0U);
+    /* transmission types: TPDO 241..251 reserved; RPDO also 252/253 */
+    tb_xfer(BUS, "601 2F 00 18 02 F1 00 00 00", "581 80 00 18 02 30 00 09 06");
+    tb_xfer(BUS, "601 2F 00 18 02 FB 00 00 00", "581 80 00 18 02 30 00 09 06");
+    tb_xfer(BUS, "601 2F 00 18 02 FC 00 00 00", "581 60 00 18 02 00 00 00 00");
+    tb_xfer(BUS, "601 2F 00 18 02 FD 00 00 00", "581 60 00 18 02 00 00 00 00");
+    tb_xfer(BUS, "601 2F 00 18 02 00 00 00 00", "581 60 00 18 02 00 00 00 00");
+    tb_xfer(BUS, "601 2F 00 14 02 FC 00 00 00", "581 80 00 14 02 30 00 09 06");
+    tb_xfer(BUS, "601 2F 00 14 02 FD 00 00 00", "581 80 00 14 02 30 00 09 06");
+    tb_xfer(BUS, "601 2F 00 14 02 F0 00 00 00", "581 60 00 14 02 00 00 00 00");
+    tb_xfer(BUS, "601 2F 00 14 02 FE 00 00 00", "581 60 00 14 02 00 00 00 00");
+    /* inhibit time and start value only while the TPDO is invalid */
+    tb_xfer(BUS, "601 2B 00 18 03 0A 00 00 00", "581 80 00 18 03 30 00 09 06");
+    tb_xfer(BUS, "601 2F 00 18 06 03 00 00 00", "581 80 00 18 06 30 00 09 06");
+    tb_xfer(BUS, "601 2B 00 18 03 00 00 00 00", "581 60 00 18 03 00 00 00 00"); /* unchanged */
+    tb_xfer(BUS, "601 23 00 18 01 81 01 00 80", "581 60 00 18 01 00 00 00 00");
+    tb_xfer(BUS, "601 2B 00 18 03 0A 00 00 00", "581 60 00 18 03 00 00 00 00");
+    tb_xfer(BUS, "601 2F 00 18 06 03 00 00 00", "581 60 00 18 06 00 00 00 00");
+    tb_xfer(BUS, "601 2F 00 18 06 F1 00 00 00", "581 80 00 18 06 30 00 09 06");
+    /* the event timer may change at any time */
+    tb_xfer(BUS, "601 23 00 18 01 81 01 00 00", "581 60 00 18 01 00 00 00 00");
+    tb_xfer(BUS, "601 2B 00 18 05 64 00 00 00", "581 60 00 18 05 00 00 00 00");
+}
+
+static void mapping_locked_in_operational(void **state)
+{
+    (void)state;
+    /* even with the SSD/Kollmorgen option: no remapping of a valid PDO in
+     * Operational */
+    pfx_start(&fx, 1, CO_OPT_PDO_MAP_WHILE_VALID);
+    tb_send(BUS, "000 01 01");
+    tb_flush(BUS);
+    tb_xfer(BUS, "601 2F 00 16 00 00 00 00 00", "581 80 00 16 00 22 00 00 08");
+    /* an invalid one may be remapped in Operational (CiA 301) */
+    tb_xfer(BUS, "601 23 00 14 01 01 02 00 80", "581 60 00 14 01 00 00 00 00");
+    tb_xfer(BUS, "601 2F 00 16 00 00 00 00 00", "581 60 00 16 00 00 00 00 00");
+}
+
+/* SSD 630 14.12/14.13 (corrected frames, digest 7.12): remapping valid PDOs in
+ * Pre-operational, the device's documented deviation. */
+static void ssd_630_sync_pdo_setup(void **state)
+{
+    (void)state;
+    pfx_start(&fx, 1, CO_OPT_PDO_MAP_WHILE_VALID);
+    tb_xfer(BUS, "601 2F 00 16 00 00 00 00 00", "581 60 00 16 00 00 00 00 00"); /* 1.1 */
+    tb_xfer(BUS, "601 23 00 16 01 10 00 40 60", "581 60 00 16 01 00 00 00 00"); /* 1.2 */
+    tb_xfer(BUS, "601 23 00 16 02 20 01 C1 60", "581 60 00 16 02 00 00 00 00"); /* 1.3 */
+    tb_xfer(BUS, "601 2F 00 16 00 02 00 00 00", "581 60 00 16 00 00 00 00 00"); /* 1.4 */
+    tb_xfer(BUS, "601 2F 00 14 02 01 00 00 00", "581 60 00 14 02 00 00 00 00"); /* 1.5 */
+    tb_xfer(BUS, "601 23 00 14 01 01 02 00 00", "581 60 00 14 01 00 00 00 00"); /* 1.6 */
+    tb_xfer(BUS, "601 2F 00 1A 00 00 00 00 00", "581 60 00 1A 00 00 00 00 00"); /* 1.7 */
+    tb_xfer(BUS, "601 23 00 1A 01 10 00 41 60", "581 60 00 1A 01 00 00 00 00"); /* 1.8 */
+    tb_xfer(BUS, "601 23 00 1A 02 20 00 63 60", "581 60 00 1A 02 00 00 00 00"); /* 1.9 */
+    tb_xfer(BUS, "601 2F 00 1A 00 02 00 00 00", "581 60 00 1A 00 00 00 00 00"); /* 1.10 */
+    tb_xfer(BUS, "601 2F 00 18 02 01 00 00 00", "581 60 00 18 02 00 00 00 00"); /* 1.11 */
+    tb_xfer(BUS, "601 23 00 18 01 01 18 00 00", "581 80 00 18 01 30 00 09 06"); /* 1.12 printed */
+    tb_xfer(BUS, "601 23 00 18 01 81 01 00 00", "581 60 00 18 01 00 00 00 00"); /* 1.12 meant */
+    tb_xfer(BUS, "601 23 06 10 00 88 13 00 00", "581 60 06 10 00 00 00 00 00"); /* 2.1 */
+    /* the same first step on a strict device is refused */
+    pfx_start(&fx, 1, 0U);
+    tb_xfer(BUS, "601 2F 00 16 00 00 00 00 00", "581 80 00 16 00 22 00 00 08");
+}
+
+/* Kollmorgen 5.3 (digest 7.1): free mapping of TPDO1, node 1, without
+ * invalidating the PDO first (the device's documented deviation). */
+static void kollmorgen_free_mapping(void **state)
+{
+    (void)state;
+    pfx_start(&fx, 1, CO_OPT_PDO_MAP_WHILE_VALID);
+    tb_xfer(BUS, "601 2F 00 1A 00 00 00 00 00", "581 60 00 1A 00 00 00 00 00");
+    tb_xfer(BUS, "601 23 00 1A 01 10 00 41 60", "581 60 00 1A 01 00 00 00 00");
+    tb_xfer(BUS, "601 23 00 1A 02 20 00 02 10", "581 60 00 1A 02 00 00 00 00");
+    tb_xfer(BUS, "601 2F 00 1A 00 02 00 00 00", "581 60 00 1A 00 00 00 00 00");
+    /* and the mapping is in effect: statusword + 0x1002 when Operational */
+    pfx_set(&fx, 0x6041, 0, 0x0240, 2);
+    pfx_set(&fx, 0x1002, 0, 0x12345678UL, 4);
+    tb_send(BUS, "000 01 01");
+    tb_expect(BUS, "181 40 02 78 56 34 12");
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(mapping_needs_invalid_pdo),
+        cmocka_unit_test(rpdo_mapping_rules),
+        cmocka_unit_test(cob_id_rules),
+        cmocka_unit_test(comm_parameter_rules),
+        cmocka_unit_test(mapping_locked_in_operational),
+        cmocka_unit_test(ssd_630_sync_pdo_setup),
+        cmocka_unit_test(kollmorgen_free_mapping),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -34,6 +34,19 @@ static void rpdo_error(co_node_t *node, uint16_t i, uint16_t flag, uint16_t code
     }
 }
 
+/* Part of an object, or not byte-aligned: the low @p bits of a value of
+ * @p size bytes, extended by the sign for signed types. */
+static void unpack(uint8_t *out, const uint8_t *data, uint16_t pos, uint8_t bits, bool sign,
+                   uint8_t size)
+{
+    co_bits_get(out, data, pos, bits);
+    if (sign && ((out[(bits - 1U) >> 3U] & (1U << ((bits - 1U) & 7U))) != 0U)) {
+        for (uint8_t b = bits; b < (uint8_t)(size * 8U); b++) {
+            out[b >> 3U] |= (uint8_t)(1U << (b & 7U));
+        }
+    }
+}
+
 /* Write the mapped objects from @p data (@p dlc bytes): entries the frame
  * does not cover completely are skipped (only with CO_OPT_RPDO_SHORT_OK can
  * that happen). A value an object refuses (limits, a hook's veto) is
@@ -58,22 +71,13 @@ static void apply(co_node_t *node, uint16_t i, const uint8_t *data, uint8_t dlc)
         if ((index > 0x0007U) &&
             (co_od_lookup(node, index, (uint8_t)((v >> 8U) & 0xFFU), &e, &s) == CO_OK)) {
             uint8_t size = co_type_size(s->type);
-            uint8_t tmp[8] = {0};
-            const uint8_t *src = tmp;
             if (((pos & 7U) == 0U) && (bits == (uint8_t)(size * 8U))) {
-                src = &data[pos >> 3U];
+                (void)co_od_write_value(node, e, s, &data[pos >> 3U], size);
             } else {
-                /* part of an object, or not byte-aligned: the low bits,
-                 * extended by the sign for signed types */
-                co_bits_get(tmp, data, pos, bits);
-                if (co_type_is_signed(s->type) && ((tmp[(bits - 1U) >> 3U] &
-                                                    (1U << ((bits - 1U) & 7U))) != 0U)) {
-                    for (uint8_t b = bits; b < (uint8_t)(size * 8U); b++) {
-                        tmp[b >> 3U] |= (uint8_t)(1U << (b & 7U));
-                    }
-                }
+                uint8_t tmp[8] = {0};
+                unpack(tmp, data, pos, bits, co_type_is_signed(s->type), size);
+                (void)co_od_write_value(node, e, s, tmp, size);
             }
-            (void)co_od_write_value(node, e, s, src, size);
         }
         pos = (uint16_t)(pos + bits);
     }

@@ -272,3 +272,34 @@ def test_build_stops_on_a_bad_description(tmp_path):
     out = r.stdout + r.stderr
     assert r.returncode != 0
     assert f"{proj / 'bad.toml'}: error: object 0x2000: duplicate index" in out, out
+
+
+def tpdo_comm(index: int = 0x1800, cob_type: str = "UNSIGNED32", cob: int = 0x80000180) -> str:
+    return textwrap.dedent(f"""
+        [[object]]
+        index = 0x{index:04X}
+        name = "PDO communication parameter"
+        subs = [
+          {{ sub = 1, name = "COB-ID", type = "{cob_type}", default = {cob:#x} }},
+          {{ sub = 2, name = "Transmission type", type = "UNSIGNED8", default = 255 }},
+        ]
+        """)
+
+
+@pytest.mark.parametrize("text, needles", [
+    (tpdo_map(0x10010008), ["0x1A00", "needs both", "0x1800"]),
+    (tpdo_comm(), ["0x1800", "needs both", "0x1A00"]),
+    (tpdo_comm(0x1801) + tpdo_map(0x10010008, index=0x1A01),
+     ["0x1801", "without gaps", "0x1800 is missing"]),
+    (tpdo_comm(cob_type="UNSIGNED16", cob=0x180) + tpdo_map(0x10010008), ["0x1800 sub 1", "UNSIGNED32"]),
+])
+def test_pdo_parameter_mistakes(tmp_path, text, needles):
+    fails_with(tmp_path, text, *needles)
+
+
+def test_pdo_table_is_generated(tmp_path):
+    src, r = generate(tmp_path, tpdo_comm() + tpdo_map(0x10010008))
+    assert r.returncode == 0, r.stderr
+    c = (tmp_path / "out" / "bad.c").read_text()
+    assert "static const co_pdo_desc_t pdo[]" in c
+    assert ".n_rpdo = 0U," in c and ".n_tpdo = 1U," in c

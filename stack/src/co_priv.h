@@ -90,4 +90,14 @@ void co_sync_reset(co_node_t *node);
 void co_emcy_reset(co_node_t *node);
 void co_emcy_history_clear(co_node_t *node);
 
+/* ---- parameter storage, 0x1010 / 0x1011 (co_store.c) */
+/* Restore the area a reset covers (node: the image, communication: [0, comm_end))
+ * to defaults, load the stored values of that area if a valid set exists, and
+ * set what 0x1010 / 0x1011 read. */
+void co_store_reset(co_node_t *node, co_reset_t kind);
+/* True for a sub-entry of 0x1010 / 0x1011 the core acts on (sub >= 1, UNSIGNED32 in RAM). */
+bool co_store_is_command(const co_od_entry_t *e, const co_od_sub_t *s);
+/* A checked write to such a sub-entry: save or restore; the value is never stored. */
+co_err_t co_store_command(co_node_t *node, uint16_t index, uint8_t sub, const uint8_t *data);
+
 #endif /* CO_PRIV_H */

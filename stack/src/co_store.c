@@ -119,14 +119,20 @@ static bool stream(const co_node_t *node, uint32_t from, uint32_t to, uint8_t gr
     return true;
 }
 
-static bool bank_valid(const co_node_t *node, uint8_t idx, uint16_t sig, store_bank_t *b)
+/* True when bank @p idx holds a valid set (then *b describes it); *io_err is
+ * set when the NV could not be read. */
+static bool bank_valid(const co_node_t *node, uint8_t idx, uint16_t sig, store_bank_t *b,
+                       bool *io_err)
 {
     uint8_t h[STORE_HDR];
     uint32_t base = idx * bank_size(node->dev);
     uint16_t crc;
 
-    if ((node->hal.ops->nv_read(node->hal.ctx, base, h, STORE_HDR) != 0) ||
-        (co_get_u32(&h[0]) != STORE_MAGIC) || (co_get_u16(&h[8]) != sig) ||
+    if (node->hal.ops->nv_read(node->hal.ctx, base, h, STORE_HDR) != 0) {
+        *io_err = true;
+        return false;
+    }
+    if ((co_get_u32(&h[0]) != STORE_MAGIC) || (co_get_u16(&h[8]) != sig) ||
         (co_get_u16(&h[10]) != node->dev->app_end) || ((h[12] & ~GRP_ALL) != 0U) ||
         (h[13] != STORE_FORMAT)) {
         return false;
@@ -134,6 +140,7 @@ static bool bank_valid(const co_node_t *node, uint8_t idx, uint16_t sig, store_b
     crc = co_crc16(0xFFFFU, h, 14U);
     for (uint8_t grp = GRP_COMM; grp <= GRP_APP; grp = (uint8_t)(grp << 1U)) {
         if (((h[12] & grp) != 0U) && !stream(node, base, UINT32_MAX, grp, &crc)) {
+            *io_err = true;
             return false;
         }
     }
@@ -147,13 +154,13 @@ static bool bank_valid(const co_node_t *node, uint8_t idx, uint16_t sig, store_b
 }
 
 /* The bank holding the newest valid set (idx NO_BANK, groups 0: none). */
-static store_bank_t newest(const co_node_t *node, uint16_t sig)
+static store_bank_t newest(const co_node_t *node, uint16_t sig, bool *io_err)
 {
     store_bank_t best = {0U, 0U, NO_BANK};
     store_bank_t b;
 
     for (uint8_t i = 0U; i < 2U; i++) {
-        if (bank_valid(node, i, sig, &b) &&
+        if (bank_valid(node, i, sig, &b, io_err) &&
             ((best.idx == NO_BANK) || ((int32_t)(b.seq - best.seq) > 0))) {
             best = b;
         }
@@ -167,12 +174,16 @@ static co_err_t commit(co_node_t *node, uint8_t from_ram, uint8_t drop)
 {
     const co_dev_t *dev = node->dev;
     uint16_t sig = layout_sig(dev);
-    store_bank_t old = newest(node, sig);
+    bool io_err = false;
+    store_bank_t old = newest(node, sig, &io_err);
     uint8_t keep = (uint8_t)(old.groups & (uint8_t)~(from_ram | drop));
     uint32_t base = (old.idx == 0U) ? bank_size(dev) : 0U;
     uint8_t h[STORE_HDR];
     uint16_t crc;
 
+    if (io_err) {
+        return CO_ERR_HW; /* the previous set (and which bank is free) is unknown */
+    }
     if ((from_ram == 0U) && ((old.groups & drop) == 0U)) {
         return CO_OK; /* restore: nothing of these groups is stored */
     }
@@ -231,7 +242,8 @@ void co_store_reset(co_node_t *node, co_reset_t kind)
 
     co_od_restore(node, 0U, (kind == CO_RESET_NODE) ? dev->ram_size : dev->comm_end);
     if (cap != 0U) {
-        store_bank_t b = newest(node, layout_sig(dev));
+        bool io_err = false; /* an unreadable bank counts as invalid */
+        store_bank_t b = newest(node, layout_sig(dev), &io_err);
         for (uint8_t grp = GRP_COMM; grp <= GRP_APP; grp = (uint8_t)(grp << 1U)) {
             uint16_t lo;
             uint16_t hi;

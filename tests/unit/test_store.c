@@ -617,8 +617,9 @@ static void power_cut_at_every_byte(void **state)
                 is_old = memcmp(&fx.n.ram, &img_old, sizeof img_old) == 0;
                 is_new = memcmp(&fx.n.ram, &img_new, sizeof img_new) == 0;
                 if (!is_old && !is_new) {
-                    print_error("%s: cut after %u of %u bytes (%s): neither the old nor the new set\n", sc->name,
-                                (unsigned)cut, (unsigned)total, tear ? "torn" : "lost");
+                    print_error("%s: cut after %u of %u bytes (%s): neither old nor new\n",
+                                sc->name, (unsigned)cut, (unsigned)total,
+                                tear ? "torn" : "lost");
                     fail();
                 }
                 if (cut == 0U) {
@@ -631,7 +632,8 @@ static void power_cut_at_every_byte(void **state)
                 n_new += is_new ? 1U : 0U;
             }
         }
-        print_message("%s: %u bytes, %u old, %u new\n", sc->name, (unsigned)total, (unsigned)n_old, (unsigned)n_new);
+        print_message("%s: %u bytes; cut at 0..%u (lost, torn): %u old, %u new\n", sc->name,
+                      (unsigned)total, (unsigned)total, (unsigned)n_old, (unsigned)n_new);
         /* the header goes last: only a complete save (or one whose missing
          * bytes happen to be there already) yields the new set */
         assert_int_equal(n_old + n_new, 2U * (total + 1U));
@@ -647,7 +649,8 @@ static void interrupted_save_then_complete_save(void **state)
     tb_xfer(BUS, SAVE_ALL, SAVED_ALL);
     write_set(BUS, &SET_B);
     tb_nv_cut(BUS, 40U, false);
-    tb_xfer(BUS, SAVE_ALL, "581 80 10 10 01 00 00 06 06"); /* what a device would not live to send */
+    /* (a device would not live to send this answer) */
+    tb_xfer(BUS, SAVE_ALL, "581 80 10 10 01 00 00 06 06");
     tb_nv_power_on(BUS);
     power_cycle();
     expect_comm(BUS, &SET_A);

@@ -68,17 +68,20 @@ static void group_span(const co_dev_t *dev, uint8_t grp, uint16_t *lo, uint16_t 
     *hi = (grp == GRP_COMM) ? dev->comm_end : dev->app_end;
 }
 
-/* Identifies the RAM layout: sizes and, for every stored value, where it is
- * and what it is. A set written by another layout is not loaded. */
+/* Identifies the RAM layout: sizes, the CPU's byte order (the image holds
+ * native integers) and, for every stored value, where it is and what it is.
+ * A set written with another layout is not loaded. */
 static uint16_t layout_sig(const co_dev_t *dev)
 {
+    static const uint16_t order = 0x0102U;
     uint8_t b[8];
     uint16_t crc;
 
     co_put_u16(&b[0], dev->ram_size);
     co_put_u16(&b[2], dev->comm_end);
     co_put_u16(&b[4], dev->app_end);
-    crc = co_crc16(0xFFFFU, b, 6U);
+    (void)memcpy(&b[6], &order, 2U);
+    crc = co_crc16(0xFFFFU, b, 8U);
     for (uint16_t i = 0U; i < dev->od_count; i++) {
         const co_od_entry_t *e = &dev->od[i];
         for (uint8_t k = 0U; k < e->nsubs; k++) {

@@ -40,6 +40,8 @@
 #define GRP_APP        0x02U
 #define GRP_ALL        (GRP_COMM | GRP_APP)
 #define NO_BANK        2U
+#define AT_RAM         0xFFFFFFFFUL /* stream(): the RAM image instead of a bank */
+#define AT_NONE        0xFFFFFFFEUL /* stream(): nowhere (CRC only) */
 
 typedef struct store_bank {
     uint32_t seq;
@@ -62,12 +64,6 @@ uint32_t co_store_nv_size(const co_dev_t *dev)
     return 2U * bank_size(dev);
 }
 
-static void group_span(const co_dev_t *dev, uint8_t grp, uint16_t *lo, uint16_t *hi)
-{
-    *lo = (grp == GRP_COMM) ? 0U : dev->comm_end;
-    *hi = (grp == GRP_COMM) ? dev->comm_end : dev->app_end;
-}
-
 /* Identifies the RAM layout: sizes, the CPU's byte order (the image holds
  * native integers) and, for every stored value, where it is and what it is.
  * A set written with another layout is not loaded. */
@@ -80,7 +76,7 @@ static uint16_t layout_sig(const co_dev_t *dev)
     co_put_u16(&b[0], dev->ram_size);
     co_put_u16(&b[2], dev->comm_end);
     co_put_u16(&b[4], dev->app_end);
-    (void)memcpy(&b[6], &order, 2U);
+    (void)memcpy(&b[6], (const uint8_t *)&order, 2U);
     crc = co_crc16(0xFFFFU, b, 8U);
     for (uint16_t i = 0U; i < dev->od_count; i++) {
         const co_od_entry_t *e = &dev->od[i];
@@ -99,87 +95,73 @@ static uint16_t layout_sig(const co_dev_t *dev)
     return crc;
 }
 
-/* Stream the data of @p grp in the bank at @p from through the CRC, and copy
- * it to the bank at @p to unless @p to is UINT32_MAX. False on an NV error. */
-static bool stream(const co_node_t *node, uint32_t from, uint32_t to, uint8_t grp, uint16_t *crc)
+/* Move the bytes of @p grp (groups are contiguous: comm, then app) from
+ * @p src to @p dst (bank base addresses, AT_RAM, or AT_NONE for @p dst) and
+ * run them through *crc. False on an NV error. */
+static bool stream(co_node_t *node, uint32_t src, uint32_t dst, uint8_t grp, uint16_t *crc)
 {
+    const co_hal_ops_t *ops = node->hal.ops;
+    uint32_t a = ((grp & GRP_COMM) != 0U) ? 0U : node->dev->comm_end;
+    uint32_t hi = ((grp & GRP_APP) != 0U) ? node->dev->app_end : node->dev->comm_end;
     uint8_t buf[STORE_CHUNK];
-    uint16_t lo;
-    uint16_t hi;
 
-    group_span(node->dev, grp, &lo, &hi);
-    for (uint32_t a = lo; a < hi; a += STORE_CHUNK) {
-        uint32_t n = ((hi - a) < STORE_CHUNK) ? (hi - a) : STORE_CHUNK;
-        if (node->hal.ops->nv_read(node->hal.ctx, from + STORE_HDR + a, buf, n) != 0) {
+    (void)memset(buf, 0, sizeof buf); /* (nv_read fills it before use) */
+    for (; a < hi; a += STORE_CHUNK) {
+        uint32_t n = (((hi - a) < STORE_CHUNK) ? (hi - a) : STORE_CHUNK);
+        uint8_t *p = ((src == AT_RAM) || (dst == AT_RAM)) ? &node->ram[a] : buf;
+        bool ok = true;
+        if (src != AT_RAM) {
+            ok = (ops->nv_read(node->hal.ctx, src + STORE_HDR + a, p, n) == 0);
+        }
+        if (ok && (dst != AT_RAM) && (dst != AT_NONE)) {
+            ok = (ops->nv_write(node->hal.ctx, dst + STORE_HDR + a, p, n) == 0);
+        }
+        if (!ok) {
             return false;
         }
-        *crc = co_crc16(*crc, buf, n);
-        if ((to != UINT32_MAX) &&
-            (node->hal.ops->nv_write(node->hal.ctx, to + STORE_HDR + a, buf, n) != 0)) {
-            return false;
-        }
+        *crc = co_crc16(*crc, p, n);
     }
     return true;
 }
 
-/* True when bank @p idx holds a valid set (then *b describes it); *io_err is
- * set when the NV could not be read. */
-static bool bank_valid(const co_node_t *node, uint8_t idx, uint16_t sig, store_bank_t *b,
-                       bool *io_err)
-{
-    uint8_t h[STORE_HDR];
-    uint32_t base = idx * bank_size(node->dev);
-    uint16_t crc;
-
-    if (node->hal.ops->nv_read(node->hal.ctx, base, h, STORE_HDR) != 0) {
-        *io_err = true;
-        return false;
-    }
-    if ((co_get_u32(&h[0]) != STORE_MAGIC) || (co_get_u16(&h[8]) != sig) ||
-        (co_get_u16(&h[10]) != node->dev->app_end) || ((h[12] & ~GRP_ALL) != 0U) ||
-        (h[13] != STORE_FORMAT)) {
-        return false;
-    }
-    crc = co_crc16(0xFFFFU, h, 14U);
-    for (uint8_t grp = GRP_COMM; grp <= GRP_APP; grp = (uint8_t)(grp << 1U)) {
-        if (((h[12] & grp) != 0U) && !stream(node, base, UINT32_MAX, grp, &crc)) {
-            *io_err = true;
-            return false;
-        }
-    }
-    if (crc != co_get_u16(&h[14])) {
-        return false;
-    }
-    b->seq = co_get_u32(&h[4]);
-    b->groups = h[12];
-    b->idx = idx;
-    return true;
-}
-
-/* The bank holding the newest valid set (idx NO_BANK, groups 0: none). */
-static store_bank_t newest(const co_node_t *node, uint16_t sig, bool *io_err)
+/* The bank holding the newest valid set (idx NO_BANK, groups 0: none); a
+ * bank is valid when magic, format, layout and CRC match. *io_err is set
+ * when the NV could not be read. */
+static store_bank_t newest(co_node_t *node, uint16_t sig, bool *io_err)
 {
     store_bank_t best = {0U, 0U, NO_BANK};
-    store_bank_t b;
 
     for (uint8_t i = 0U; i < 2U; i++) {
-        if (bank_valid(node, i, sig, &b, io_err) &&
-            ((best.idx == NO_BANK) || ((int32_t)(b.seq - best.seq) > 0))) {
-            best = b;
+        uint32_t base = i * bank_size(node->dev);
+        uint8_t h[STORE_HDR];
+        bool ok = (node->hal.ops->nv_read(node->hal.ctx, base, h, STORE_HDR) == 0);
+        if (ok && (co_get_u32(&h[0]) == STORE_MAGIC) && (co_get_u16(&h[8]) == sig) &&
+            (h[12] <= GRP_ALL) && (h[13] == STORE_FORMAT)) {
+            uint16_t crc = co_crc16(0xFFFFU, h, 14U);
+            ok = stream(node, base, AT_NONE, h[12], &crc);
+            if (ok && (crc == co_get_u16(&h[14])) &&
+                ((best.idx == NO_BANK) || ((int32_t)(co_get_u32(&h[4]) - best.seq) > 0))) {
+                best.seq = co_get_u32(&h[4]);
+                best.groups = h[12];
+                best.idx = i;
+            }
         }
+        *io_err = *io_err || !ok;
     }
     return best;
 }
 
 /* Write a new set into the other bank: the groups @p from_ram from the RAM
- * image, the groups the newest set holds (less @p drop) copied from it. */
+ * image, the groups the newest set holds (less @p drop) copied from it;
+ * data in address order, the header last. */
 static co_err_t commit(co_node_t *node, uint8_t from_ram, uint8_t drop)
 {
     const co_dev_t *dev = node->dev;
     uint16_t sig = layout_sig(dev);
     bool io_err = false;
     store_bank_t old = newest(node, sig, &io_err);
-    uint8_t keep = (uint8_t)(old.groups & (uint8_t)~(from_ram | drop));
+    uint8_t used = (uint8_t)(from_ram | drop);
+    uint8_t keep = (uint8_t)(old.groups & (uint8_t)~used);
     uint32_t base = (old.idx == 0U) ? bank_size(dev) : 0U;
     uint8_t h[STORE_HDR];
     uint16_t crc;
@@ -198,20 +180,9 @@ static co_err_t commit(co_node_t *node, uint8_t from_ram, uint8_t drop)
     h[13] = STORE_FORMAT;
     crc = co_crc16(0xFFFFU, h, 14U);
     for (uint8_t grp = GRP_COMM; grp <= GRP_APP; grp = (uint8_t)(grp << 1U)) {
-        uint16_t lo;
-        uint16_t hi;
-        group_span(dev, grp, &lo, &hi);
-        if ((from_ram & grp) != 0U) {
-            if ((hi > lo) && (node->hal.ops->nv_write(node->hal.ctx, base + STORE_HDR + lo,
-                                                      &node->ram[lo], (uint32_t)hi - lo) != 0)) {
-                return CO_ERR_HW;
-            }
-            crc = co_crc16(crc, &node->ram[lo], (uint32_t)hi - lo);
-        } else if (((keep & grp) != 0U) &&
-                   !stream(node, (uint32_t)old.idx * bank_size(dev), base, grp, &crc)) {
+        uint32_t src = ((from_ram & grp) != 0U) ? AT_RAM : ((uint32_t)old.idx * bank_size(dev));
+        if (((h[12] & grp) != 0U) && !stream(node, src, base, grp, &crc)) {
             return CO_ERR_HW;
-        } else {
-            /* group not in the new set */
         }
     }
     co_put_u16(&h[14], crc);
@@ -227,8 +198,9 @@ bool co_store_is_command(const co_od_entry_t *e, const co_od_sub_t *s)
 
 co_err_t co_store_command(co_node_t *node, uint16_t index, uint8_t sub, const uint8_t *data)
 {
+    static const uint8_t groups_of_sub[4] = {0U, GRP_ALL, GRP_COMM, GRP_APP};
     bool save = (index == 0x1010U);
-    uint8_t grp = (sub == 1U) ? GRP_ALL : ((sub == 2U) ? GRP_COMM : ((sub == 3U) ? GRP_APP : 0U));
+    uint8_t grp = (sub < 4U) ? groups_of_sub[sub] : 0U;
 
     if ((grp == 0U) || !has_nv(node) ||
         (co_get_u32(data) != (save ? STORE_SIG_SAVE : STORE_SIG_LOAD))) {
@@ -240,23 +212,18 @@ co_err_t co_store_command(co_node_t *node, uint16_t index, uint8_t sub, const ui
 void co_store_reset(co_node_t *node, co_reset_t kind)
 {
     const co_dev_t *dev = node->dev;
-    uint8_t area = (kind == CO_RESET_NODE) ? GRP_ALL : GRP_COMM;
+    bool all = (kind == CO_RESET_NODE);
+    uint16_t end = all ? dev->ram_size : dev->comm_end;
     uint32_t cap = has_nv(node) ? 1U : 0U; /* bit 0: on command */
 
-    co_od_restore(node, 0U, (kind == CO_RESET_NODE) ? dev->ram_size : dev->comm_end);
+    co_od_restore(node, 0U, end);
     if (cap != 0U) {
         bool io_err = false; /* an unreadable bank counts as invalid */
         store_bank_t b = newest(node, layout_sig(dev), &io_err);
-        for (uint8_t grp = GRP_COMM; grp <= GRP_APP; grp = (uint8_t)(grp << 1U)) {
-            uint16_t lo;
-            uint16_t hi;
-            group_span(dev, grp, &lo, &hi);
-            if (((area & b.groups & grp) != 0U) && (hi > lo) &&
-                (node->hal.ops->nv_read(node->hal.ctx,
-                                        ((uint32_t)b.idx * bank_size(dev)) + STORE_HDR + lo,
-                                        &node->ram[lo], (uint32_t)hi - lo) != 0)) {
-                co_od_restore(node, lo, hi);
-            }
+        uint8_t grp = (uint8_t)(b.groups & (all ? GRP_ALL : GRP_COMM));
+        uint16_t crc = 0U;
+        if ((grp != 0U) && !stream(node, (uint32_t)b.idx * bank_size(dev), AT_RAM, grp, &crc)) {
+            co_od_restore(node, 0U, end);
         }
     }
     /* What 0x1010 / 0x1011 read: the capability, whatever was written. */
@@ -265,7 +232,7 @@ void co_store_reset(co_node_t *node, co_reset_t kind)
         for (uint8_t k = 0U; (e != NULL) && (k < e->nsubs); k++) {
             if (co_store_is_command(e, &e->subs[k])) {
                 uint32_t v = (e->subs[k].sub <= 3U) ? cap : 0U;
-                (void)memcpy(&node->ram[e->subs[k].off], &v, 4U);
+                (void)memcpy(&node->ram[e->subs[k].off], (const uint8_t *)&v, 4U);
             }
         }
     }

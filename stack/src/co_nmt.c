@@ -64,9 +64,10 @@ void co_nmt_boot(co_node_t *node)
 static void reset(co_node_t *node, co_reset_t kind)
 {
     /* Reset communication restores the communication area, reset node all
-     * of the image. Where the core's objects live does not change, so the
-     * pointers co_comm_bind found at init stay valid. */
-    co_od_restore(node, 0U, (kind == CO_RESET_NODE) ? node->dev->ram_size : node->dev->comm_end);
+     * of the image, each to defaults and then to the stored set (0x1010).
+     * Where the core's objects live does not change, so the pointers
+     * co_comm_bind found at init stay valid. */
+    co_store_reset(node, kind);
     if (kind == CO_RESET_NODE) {
         node->n_active = 0U;
     }

@@ -211,7 +211,7 @@ co_err_t co_node_init(co_node_t *node, const co_node_config_t *cfg, uint32_t now
     node->pdo = cfg->pdo;
     node->pdo_rx = cfg->pdo_rx;
     node->now = now_us;
-    co_od_restore(node, 0U, node->dev->ram_size);
+    co_store_reset(node, CO_RESET_NODE); /* defaults, then the stored set */
     co_comm_bind(node);
     co_nmt_boot(node);
     return CO_OK;

@@ -335,6 +335,9 @@ co_err_t co_od_write_value(co_node_t *node, const co_od_entry_t *e, const co_od_
     } else {
         /* plain stored value */
     }
+    if (co_store_is_command(e, s)) {
+        return co_store_command(node, e->index, s->sub, data); /* acted on, never stored */
+    }
     if ((v != NULL) && ((s->flags & CO_SUB_ROM) == 0U)) {
         if (fixed != 0U) {
             from_wire(v, data, fixed);

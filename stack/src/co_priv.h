@@ -166,4 +166,14 @@ void co_tpdo_rtr(co_node_t *node, uint16_t i);
 void co_tpdo_sync(co_node_t *node, uint8_t counter);
 uint32_t co_tpdo_process(co_node_t *node, uint32_t next);
 
+/* ---- parameter storage, 0x1010 / 0x1011 (co_store.c) */
+/* Restore the area a reset covers (node: the image, communication: [0, comm_end))
+ * to defaults, load the stored values of that area if a valid set exists, and
+ * set what 0x1010 / 0x1011 read. */
+void co_store_reset(co_node_t *node, co_reset_t kind);
+/* True for a sub-entry of 0x1010 / 0x1011 the core acts on (sub >= 1, UNSIGNED32 in RAM). */
+bool co_store_is_command(const co_od_entry_t *e, const co_od_sub_t *s);
+/* A checked write to such a sub-entry: save or restore; the value is never stored. */
+co_err_t co_store_command(co_node_t *node, uint16_t index, uint8_t sub, const uint8_t *data);
+
 #endif /* CO_PRIV_H */

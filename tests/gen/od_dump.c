@@ -41,7 +41,31 @@ static int count_send(void *ctx, const co_frame_t *f)
     return 0;
 }
 
-static const co_hal_ops_t ops = {count_send, NULL, NULL};
+/* Erased NV memory, so 0x1010/0x1011 read what a device with storage reads
+ * (the EDS describes that device) and nothing stored changes a default. */
+static uint8_t nv[8192];
+
+static int nv_read(void *ctx, uint32_t addr, uint8_t *buf, uint32_t len)
+{
+    (void)ctx;
+    if ((addr > sizeof nv) || (len > sizeof nv - addr)) {
+        return -1;
+    }
+    memcpy(buf, &nv[addr], len);
+    return 0;
+}
+
+static int nv_write(void *ctx, uint32_t addr, const uint8_t *buf, uint32_t len)
+{
+    (void)ctx;
+    if ((addr > sizeof nv) || (len > sizeof nv - addr)) {
+        return -1;
+    }
+    memcpy(&nv[addr], buf, len);
+    return 0;
+}
+
+static const co_hal_ops_t ops = {count_send, nv_read, nv_write};
 
 static void hex(const uint8_t *p, uint32_t n)
 {
@@ -71,6 +95,11 @@ int main(int argc, char **argv)
         fprintf(stderr, "od_dump: node bundle does not fit the device\n");
         return 1;
     }
+    if (co_store_nv_size(dev) > sizeof nv) {
+        fprintf(stderr, "od_dump: NV too small\n");
+        return 1;
+    }
+    memset(nv, 0xFF, sizeof nv);
     XCAT(CODEV_NAME, _config)(&n, &cfg);
     if ((cfg.dev != dev) || (cfg.ram != (void *)&n.ram) || (cfg.hooks != n.hooks)) {
         fprintf(stderr, "od_dump: config helper\n");

@@ -29,7 +29,7 @@ static int tb_hal_send(void *ctx, const co_frame_t *f)
 static int tb_nv_read(void *ctx, uint32_t addr, uint8_t *buf, uint32_t len)
 {
     tb_bus_t *bus = ((tb_port_t *)ctx)->bus;
-    if ((addr > TB_NV_SIZE) || (len > TB_NV_SIZE - addr)) {
+    if ((addr > TB_NV_SIZE) || (len > TB_NV_SIZE - addr) || bus->nv_fail_read) {
         return -1;
     }
     memcpy(buf, &bus->nv[addr], len);
@@ -39,14 +39,46 @@ static int tb_nv_read(void *ctx, uint32_t addr, uint8_t *buf, uint32_t len)
 static int tb_nv_write(void *ctx, uint32_t addr, const uint8_t *buf, uint32_t len)
 {
     tb_bus_t *bus = ((tb_port_t *)ctx)->bus;
-    if ((addr > TB_NV_SIZE) || (len > TB_NV_SIZE - addr)) {
+    if ((addr > TB_NV_SIZE) || (len > TB_NV_SIZE - addr) || bus->nv_fail_write) {
         return -1;
     }
-    memcpy(&bus->nv[addr], buf, len);
+    /* byte by byte, in address order, so a power cut can fall between any two */
+    for (uint32_t i = 0U; i < len; i++) {
+        if (bus->nv_cut) {
+            return -1;
+        }
+        if (bus->nv_cut_armed && (bus->nv_budget == 0U)) {
+            bus->nv_cut = true;
+            if (bus->nv_tear) {
+                bus->nv[addr + i] = (uint8_t)((buf[i] & 0xF0U) | (bus->nv[addr + i] & 0x0FU));
+            }
+            return -1;
+        }
+        if (bus->nv_cut_armed) {
+            bus->nv_budget--;
+        }
+        bus->nv[addr + i] = buf[i];
+        bus->nv_written++;
+    }
     return 0;
 }
 
 const co_hal_ops_t tb_hal_ops = {tb_hal_send, tb_nv_read, tb_nv_write};
+const co_hal_ops_t tb_hal_ops_no_nv = {tb_hal_send, NULL, NULL};
+
+void tb_nv_cut(tb_bus_t *bus, uint32_t n, bool tear)
+{
+    bus->nv_budget = n;
+    bus->nv_cut_armed = true;
+    bus->nv_cut = false;
+    bus->nv_tear = tear;
+}
+
+void tb_nv_power_on(tb_bus_t *bus)
+{
+    bus->nv_cut_armed = false;
+    bus->nv_cut = false;
+}
 
 void tb_init(tb_bus_t *bus)
 {

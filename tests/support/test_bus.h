@@ -37,14 +37,31 @@ struct tb_bus {
     unsigned refuse;           /**< refuse this many send() calls (TX full) */
     unsigned refused;          /**< how many were refused */
     uint8_t nv[TB_NV_SIZE];
+    /* NV fault injection (see tb_nv_cut) */
+    uint32_t nv_written;       /**< bytes written to NV so far (all writes) */
+    uint32_t nv_budget;        /**< bytes still written before the power cut */
+    bool nv_cut_armed;         /**< a power cut is armed */
+    bool nv_cut;               /**< the power cut has happened: NV is frozen */
+    bool nv_tear;              /**< the byte at the cut is torn, not lost */
+    bool nv_fail_write;        /**< nv_write fails (nothing written) */
+    bool nv_fail_read;         /**< nv_read fails */
 };
 
 extern const co_hal_ops_t tb_hal_ops;
+/** The same bus without non-volatile memory (nv_read/nv_write NULL). */
+extern const co_hal_ops_t tb_hal_ops_no_nv;
 
 void tb_init(tb_bus_t *bus);
 /** A HAL for node slot @p idx on @p bus (attach the node afterwards). */
 co_hal_t tb_hal(tb_bus_t *bus, uint8_t idx);
 void tb_attach(tb_bus_t *bus, uint8_t idx, co_node_t *node);
+
+/** Arm a power cut: the next @p n bytes written to NV arrive, everything
+ *  after is lost (writes fail) until tb_nv_power_on(). With @p tear the byte
+ *  after the @p n is torn: its high nibble new, its low nibble old. */
+void tb_nv_cut(tb_bus_t *bus, uint32_t n, bool tear);
+/** Power is back: NV accepts writes again (its content stays as the cut left it). */
+void tb_nv_power_on(tb_bus_t *bus);
 
 /** The test sends @p text ("601 40 00 10 ...") to every node at bus->now. */
 void tb_send(tb_bus_t *bus, const char *text);

@@ -14,6 +14,7 @@ typedef struct td_rom {
     uint8_t n1016;
     uint8_t n1018;
     uint8_t n6099;
+    uint8_t n1010;
     char x1008[7];
     char x1009[3];
     char x100A[5];
@@ -26,6 +27,7 @@ static const td_rom_t rom = {
     .n1016 = 4U,
     .n1018 = 4U,
     .n6099 = 2U,
+    .n1010 = 3U,
     .x1008 = {'6', '3', '1', '_', '4', '0', '2'},
     .x1009 = {'1', '.', '0'},
     .x100A = {'0', '.', '1', '.', '0'},
@@ -79,6 +81,18 @@ static const co_od_sub_t s100A[] = {ROM(0, CO_VISIBLE_STRING, CO_SUB_RO | CO_SUB
 static const co_od_sub_t s100B[] = {RAM(0, CO_UNSIGNED32, CO_SUB_RO | CO_SUB_NODEID, node_id)};
 static const co_od_sub_t s100C[] = {RAM(0, CO_UNSIGNED16, CO_SUB_RW, guard_time)};
 static const co_od_sub_t s100D[] = {RAM(0, CO_UNSIGNED8, CO_SUB_RW, life_factor)};
+static const co_od_sub_t s1010[] = {
+    ROM(0, CO_UNSIGNED8, CO_SUB_RO | CO_SUB_CONST, n1010),
+    {1, (uint8_t)CO_UNSIGNED32, CO_SUB_RW, 4U, F(store), 0U},
+    {2, (uint8_t)CO_UNSIGNED32, CO_SUB_RW, 4U, (uint16_t)(F(store) + 4U), 0U},
+    {3, (uint8_t)CO_UNSIGNED32, CO_SUB_RW, 4U, (uint16_t)(F(store) + 8U), 0U},
+};
+static const co_od_sub_t s1011[] = {
+    ROM(0, CO_UNSIGNED8, CO_SUB_RO | CO_SUB_CONST, n1010),
+    {1, (uint8_t)CO_UNSIGNED32, CO_SUB_RW, 4U, F(restore), 0U},
+    {2, (uint8_t)CO_UNSIGNED32, CO_SUB_RW, 4U, (uint16_t)(F(restore) + 4U), 0U},
+    {3, (uint8_t)CO_UNSIGNED32, CO_SUB_RW, 4U, (uint16_t)(F(restore) + 8U), 0U},
+};
 static const co_od_sub_t s1014[] = {RAM(0, CO_UNSIGNED32, CO_SUB_RW | CO_SUB_NODEID, emcy_cob)};
 static const co_od_sub_t s1015[] = {RAM(0, CO_UNSIGNED16, CO_SUB_RW, emcy_inhibit)};
 static const co_od_sub_t s1016[] = {
@@ -151,7 +165,8 @@ static const co_od_entry_t od[] = {
     E(0x1007, s1007, CO_OBJ_VAR),    E(0x1008, s1008, CO_OBJ_VAR),
     E(0x1009, s1009, CO_OBJ_VAR),    E(0x100A, s100A, CO_OBJ_VAR),
     E(0x100B, s100B, CO_OBJ_VAR),    E(0x100C, s100C, CO_OBJ_VAR),
-    E(0x100D, s100D, CO_OBJ_VAR),    E(0x1012, s1012, CO_OBJ_VAR),
+    E(0x100D, s100D, CO_OBJ_VAR),    E(0x1010, s1010, CO_OBJ_ARRAY),
+    E(0x1011, s1011, CO_OBJ_ARRAY),  E(0x1012, s1012, CO_OBJ_VAR),
     E(0x1014, s1014, CO_OBJ_VAR),
     E(0x1015, s1015, CO_OBJ_VAR),    E(0x1016, s1016, CO_OBJ_ARRAY),
     E(0x1017, s1017, CO_OBJ_VAR),    E(0x1018, s1018, CO_OBJ_RECORD),

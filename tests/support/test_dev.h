@@ -68,6 +68,8 @@ typedef struct td_ram {
     uint16_t pad1;
     uint32_t mfr_status;   /* 0x1002 */
     uint32_t hist[8];      /* 0x1003 sub1..8 */
+    uint32_t store[3];     /* 0x1010 sub1..3 (core: capability) */
+    uint32_t restore[3];   /* 0x1011 sub1..3 (core: capability) */
 } td_ram_t;
 
 extern const co_dev_t td_dev;

@@ -218,7 +218,9 @@ VAR_KEYS = SUB_KEYS - {"sub", "name"}
 
 
 def default_storage(index: int) -> str:
-    if index in (0x1001, 0x1003):
+    # error register and history are run-time state; 0x1010/0x1011 read the
+    # core's storage capability (never stored)
+    if index in (0x1001, 0x1003, 0x1010, 0x1011):
         return "none"
     if 0x1000 <= index <= 0x1FFF:
         return "comm"

@@ -25,10 +25,15 @@ typedef struct co_hal_ops {
      *  the next co_node_process(). Required. */
     int (*send)(void *ctx, const co_frame_t *f);
     /** Read @p len bytes of non-volatile memory at @p addr. Return 0 on
-     *  success. Optional (NULL: no storage; 0x1010 answers 0x08000020). */
+     *  success. Optional (NULL, or nv_write NULL: no storage; 0x1010/0x1011
+     *  read 0 and answer 0x08000020). Addresses are 0 ..
+     *  co_store_nv_size(dev) - 1; a HAL shared by several nodes maps each
+     *  node's range through its ctx. */
     int (*nv_read)(void *ctx, uint32_t addr, uint8_t *buf, uint32_t len);
-    /** Write @p len bytes of non-volatile memory at @p addr. Return 0 on
-     *  success. Optional. */
+    /** Write @p len bytes of non-volatile memory at @p addr (byte-granular
+     *  overwrite, like EEPROM/FRAM or a flash emulation). Return 0 on success,
+     *  non-zero on a failure (the save answers 0x06060000). The two halves
+     *  of the range must not share an erase unit. Optional. */
     int (*nv_write)(void *ctx, uint32_t addr, const uint8_t *buf, uint32_t len);
 } co_hal_ops_t;
 

@@ -246,10 +246,16 @@ typedef struct co_node {
 
 /* ---------------- API ---------------- */
 
-/** Initialise @p node from @p cfg, restore all values to their defaults, send
+/** Initialise @p node from @p cfg, restore all values to their defaults and
+ *  then to the stored set (0x1010) if the HAL's NV holds a valid one, send
  *  the boot-up frame and enter Pre-operational. Returns CO_OK, or
  *  CO_ERR_OD_MISSING / CO_ERR_VALUE for a bad configuration. */
 co_err_t co_node_init(co_node_t *node, const co_node_config_t *cfg, uint32_t now_us);
+
+/** Bytes of non-volatile memory parameter storage (0x1010/0x1011) uses for a
+ *  node of @p dev: the HAL's nv_read/nv_write see addresses 0 .. this - 1
+ *  (two banks; the second starts at half of it). */
+uint32_t co_store_nv_size(const co_dev_t *dev);
 
 /** Handle one received frame. Safe for any frame (other nodes' frames, bad
  *  lengths, RTRs): malformed requests get the CiA-defined answer. */

@@ -1,0 +1,239 @@
+/*
+ * Parameter storage: 0x1010 store parameters, 0x1011 restore default
+ * parameters (CiA 301 7.5.2.13 / 7.5.2.14), on the HAL's non-volatile memory.
+ *
+ * Groups: sub1 all, sub2 communication (RAM image [0, comm_end)), sub3
+ * application ([comm_end, app_end)). [app_end, ram_size) is never stored.
+ *
+ * NV layout: two banks of co_store_nv_size(dev) / 2 bytes, bank 0 at NV
+ * address 0. A bank is a 16-byte header followed by a copy of the RAM image
+ * [0, app_end) (native byte order, as the image holds it):
+ *
+ *   0  magic "coNV" (u32)      4  sequence number (u32)
+ *   8  layout signature (u16) 10  app_end (u16)
+ *  12  groups held (bit 0 communication, bit 1 application)
+ *  13  format (1)             14  CRC-16 over bytes 0..13 and the data of
+ *                                 the groups held (in address order)
+ *
+ * A bank is valid when magic, format, layout and CRC match; the valid bank
+ * with the higher sequence number (wrap-safe) holds the stored set. Every
+ * save or restore writes a complete new set into the other bank, data first
+ * (ascending), header last, so until the header is complete the previous set
+ * stays the newest valid one: a power cut at any byte leaves the old or the
+ * new set, never a mix. Groups not saved are copied from the previous set; a
+ * restore writes a set without the restored groups (persistent, effective at
+ * the next reset that covers them).
+ */
+#include <string.h>
+
+#include "co/co_endian.h"
+#include "co_crc16.h"
+#include "co_priv.h"
+
+#define STORE_SIG_SAVE 0x65766173UL /* "save" */
+#define STORE_SIG_LOAD 0x64616F6CUL /* "load" */
+#define STORE_MAGIC    0x564E6F63UL /* "coNV" */
+#define STORE_FORMAT   1U
+#define STORE_HDR      16U
+#define STORE_CHUNK    32U
+#define GRP_COMM       0x01U
+#define GRP_APP        0x02U
+#define GRP_ALL        (GRP_COMM | GRP_APP)
+#define NO_BANK        2U
+#define AT_RAM         0xFFFFFFFFUL /* stream(): the RAM image instead of a bank */
+#define AT_NONE        0xFFFFFFFEUL /* stream(): nowhere (CRC only) */
+
+typedef struct store_bank {
+    uint32_t seq;
+    uint8_t groups; /* groups the set holds (0 without a valid set) */
+    uint8_t idx;    /* 0, 1 or NO_BANK */
+} store_bank_t;
+
+static bool has_nv(const co_node_t *node)
+{
+    return (node->hal.ops->nv_read != NULL) && (node->hal.ops->nv_write != NULL);
+}
+
+static uint32_t bank_size(const co_dev_t *dev)
+{
+    return ((uint32_t)STORE_HDR + dev->app_end + 3U) & ~(uint32_t)3U;
+}
+
+uint32_t co_store_nv_size(const co_dev_t *dev)
+{
+    return 2U * bank_size(dev);
+}
+
+/* Identifies the RAM layout: sizes, the CPU's byte order (the image holds
+ * native integers) and, for every stored value, where it is and what it is.
+ * A set written with another layout is not loaded. */
+static uint16_t layout_sig(const co_dev_t *dev)
+{
+    static const uint16_t order = 0x0102U;
+    uint8_t b[8];
+    uint16_t crc;
+
+    co_put_u16(&b[0], dev->ram_size);
+    co_put_u16(&b[2], dev->comm_end);
+    co_put_u16(&b[4], dev->app_end);
+    (void)memcpy(&b[6], (const uint8_t *)&order, 2U);
+    crc = co_crc16(0xFFFFU, b, 8U);
+    for (uint16_t i = 0U; i < dev->od_count; i++) {
+        const co_od_entry_t *e = &dev->od[i];
+        for (uint8_t k = 0U; k < e->nsubs; k++) {
+            const co_od_sub_t *s = &e->subs[k];
+            if (((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) == 0U) && (s->off < dev->app_end)) {
+                co_put_u16(&b[0], e->index);
+                b[2] = s->sub;
+                b[3] = s->type;
+                co_put_u16(&b[4], s->off);
+                co_put_u16(&b[6], s->size);
+                crc = co_crc16(crc, b, 8U);
+            }
+        }
+    }
+    return crc;
+}
+
+/* Move the bytes of @p grp (groups are contiguous: comm, then app) from
+ * @p src to @p dst (bank base addresses, AT_RAM, or AT_NONE for @p dst) and
+ * run them through *crc. False on an NV error. */
+static bool stream(co_node_t *node, uint32_t src, uint32_t dst, uint8_t grp, uint16_t *crc)
+{
+    const co_hal_ops_t *ops = node->hal.ops;
+    uint32_t a = ((grp & GRP_COMM) != 0U) ? 0U : node->dev->comm_end;
+    uint32_t hi = ((grp & GRP_APP) != 0U) ? node->dev->app_end : node->dev->comm_end;
+    uint8_t buf[STORE_CHUNK];
+
+    (void)memset(buf, 0, sizeof buf); /* (nv_read fills it before use) */
+    for (; a < hi; a += STORE_CHUNK) {
+        uint32_t n = (((hi - a) < STORE_CHUNK) ? (hi - a) : STORE_CHUNK);
+        uint8_t *p = ((src == AT_RAM) || (dst == AT_RAM)) ? &node->ram[a] : buf;
+        bool ok = true;
+        if (src != AT_RAM) {
+            ok = (ops->nv_read(node->hal.ctx, src + STORE_HDR + a, p, n) == 0);
+        }
+        if (ok && (dst != AT_RAM) && (dst != AT_NONE)) {
+            ok = (ops->nv_write(node->hal.ctx, dst + STORE_HDR + a, p, n) == 0);
+        }
+        if (!ok) {
+            return false;
+        }
+        *crc = co_crc16(*crc, p, n);
+    }
+    return true;
+}
+
+/* The bank holding the newest valid set (idx NO_BANK, groups 0: none); a
+ * bank is valid when magic, format, layout and CRC match. *io_err is set
+ * when the NV could not be read. */
+static store_bank_t newest(co_node_t *node, uint16_t sig, bool *io_err)
+{
+    store_bank_t best = {0U, 0U, NO_BANK};
+
+    for (uint8_t i = 0U; i < 2U; i++) {
+        uint32_t base = i * bank_size(node->dev);
+        uint8_t h[STORE_HDR];
+        bool ok = (node->hal.ops->nv_read(node->hal.ctx, base, h, STORE_HDR) == 0);
+        if (ok && (co_get_u32(&h[0]) == STORE_MAGIC) && (co_get_u16(&h[8]) == sig) &&
+            (h[12] <= GRP_ALL) && (h[13] == STORE_FORMAT)) {
+            uint16_t crc = co_crc16(0xFFFFU, h, 14U);
+            ok = stream(node, base, AT_NONE, h[12], &crc);
+            if (ok && (crc == co_get_u16(&h[14])) &&
+                ((best.idx == NO_BANK) || ((int32_t)(co_get_u32(&h[4]) - best.seq) > 0))) {
+                best.seq = co_get_u32(&h[4]);
+                best.groups = h[12];
+                best.idx = i;
+            }
+        }
+        *io_err = *io_err || !ok;
+    }
+    return best;
+}
+
+/* Write a new set into the other bank: the groups @p from_ram from the RAM
+ * image, the groups the newest set holds (less @p drop) copied from it;
+ * data in address order, the header last. */
+static co_err_t commit(co_node_t *node, uint8_t from_ram, uint8_t drop)
+{
+    const co_dev_t *dev = node->dev;
+    uint16_t sig = layout_sig(dev);
+    bool io_err = false;
+    store_bank_t old = newest(node, sig, &io_err);
+    uint8_t used = (uint8_t)(from_ram | drop);
+    uint8_t keep = (uint8_t)(old.groups & (uint8_t)~used);
+    uint32_t base = (old.idx == 0U) ? bank_size(dev) : 0U;
+    uint8_t h[STORE_HDR];
+    uint16_t crc;
+
+    if (io_err) {
+        return CO_ERR_HW; /* the previous set (and which bank is free) is unknown */
+    }
+    if ((from_ram == 0U) && ((old.groups & drop) == 0U)) {
+        return CO_OK; /* restore: nothing of these groups is stored */
+    }
+    co_put_u32(&h[0], STORE_MAGIC);
+    co_put_u32(&h[4], old.seq + 1U);
+    co_put_u16(&h[8], sig);
+    co_put_u16(&h[10], dev->app_end);
+    h[12] = (uint8_t)(from_ram | keep);
+    h[13] = STORE_FORMAT;
+    crc = co_crc16(0xFFFFU, h, 14U);
+    for (uint8_t grp = GRP_COMM; grp <= GRP_APP; grp = (uint8_t)(grp << 1U)) {
+        uint32_t src = ((from_ram & grp) != 0U) ? AT_RAM : ((uint32_t)old.idx * bank_size(dev));
+        if (((h[12] & grp) != 0U) && !stream(node, src, base, grp, &crc)) {
+            return CO_ERR_HW;
+        }
+    }
+    co_put_u16(&h[14], crc);
+    return (node->hal.ops->nv_write(node->hal.ctx, base, h, STORE_HDR) != 0) ? CO_ERR_HW : CO_OK;
+}
+
+bool co_store_is_command(const co_od_entry_t *e, const co_od_sub_t *s)
+{
+    return ((e->index == 0x1010U) || (e->index == 0x1011U)) && (s->sub != 0U) &&
+           (s->type == (uint8_t)CO_UNSIGNED32) &&
+           ((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) == 0U);
+}
+
+co_err_t co_store_command(co_node_t *node, uint16_t index, uint8_t sub, const uint8_t *data)
+{
+    static const uint8_t groups_of_sub[4] = {0U, GRP_ALL, GRP_COMM, GRP_APP};
+    bool save = (index == 0x1010U);
+    uint8_t grp = (sub < 4U) ? groups_of_sub[sub] : 0U;
+
+    if ((grp == 0U) || !has_nv(node) ||
+        (co_get_u32(data) != (save ? STORE_SIG_SAVE : STORE_SIG_LOAD))) {
+        return CO_ERR_STORE;
+    }
+    return save ? commit(node, grp, 0U) : commit(node, 0U, grp);
+}
+
+void co_store_reset(co_node_t *node, co_reset_t kind)
+{
+    const co_dev_t *dev = node->dev;
+    bool all = (kind == CO_RESET_NODE);
+    uint16_t end = all ? dev->ram_size : dev->comm_end;
+    uint32_t cap = has_nv(node) ? 1U : 0U; /* bit 0: on command */
+
+    co_od_restore(node, 0U, end);
+    if (cap != 0U) {
+        bool io_err = false; /* an unreadable bank counts as invalid */
+        store_bank_t b = newest(node, layout_sig(dev), &io_err);
+        uint8_t grp = (uint8_t)(b.groups & (all ? GRP_ALL : GRP_COMM));
+        uint16_t crc = 0U;
+        if ((grp != 0U) && !stream(node, (uint32_t)b.idx * bank_size(dev), AT_RAM, grp, &crc)) {
+            co_od_restore(node, 0U, end);
+        }
+    }
+    /* What 0x1010 / 0x1011 read: the capability, whatever was written. */
+    for (uint16_t index = 0x1010U; index <= 0x1011U; index++) {
+        const co_od_entry_t *e = co_od_find(dev->od, dev->od_count, index);
+        for (uint8_t k = 0U; (e != NULL) && (k < e->nsubs); k++) {
+            if (co_store_is_command(e, &e->subs[k])) {
+                uint32_t v = (e->subs[k].sub <= 3U) ? cap : 0U;
+                (void)memcpy(&node->ram[e->subs[k].off], (const uint8_t *)&v, 4U);
+            }
+        }
+    }
+}

@@ -173,6 +173,20 @@ static void kollmorgen_free_mapping(void **state)
     tb_expect(BUS, "181 40 02 78 56 34 12");
 }
 
+/* SSD 630 14.15 (digest 7.13): profile velocity by SDO, corrected frames;
+ * the printed step 2.2 addresses 0x6006, which the SSD answers 0x06010000. */
+static void ssd_630_profile_velocity(void **state)
+{
+    (void)state;
+    pfx_start(&fx, 1, CO_OPT_UNKNOWN_INDEX_NO_ACCESS | CO_OPT_PDO_MAP_WHILE_VALID);
+    tb_xfer(BUS, "601 23 FF 60 00 00 00 00 00", "581 60 FF 60 00 00 00 00 00");
+    tb_xfer(BUS, "601 2F 06 60 00 03 00 00 00", "581 80 06 60 00 00 00 01 06");
+    tb_xfer(BUS, "601 2F 60 60 00 03 00 00 00", "581 60 60 60 00 00 00 00 00");
+    tb_xfer(BUS, "601 23 FF 60 00 E8 03 00 00", "581 60 FF 60 00 00 00 00 00");
+    assert_int_equal(pfx_get(&fx, 0x60FF, 0), 1000);
+    assert_int_equal(pfx_get(&fx, 0x6060, 0), 3);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -183,6 +197,7 @@ int main(void)
         cmocka_unit_test(mapping_locked_in_operational),
         cmocka_unit_test(ssd_630_sync_pdo_setup),
         cmocka_unit_test(kollmorgen_free_mapping),
+        cmocka_unit_test(ssd_630_profile_velocity),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -727,6 +727,27 @@ static void generic_301_stores_and_restores(void **state)
     tb_xfer(BUS, "605 40 0C 20 00 00 00 00 00", "585 43 0C 20 00 32 32 32 D0");
 }
 
+/* A PDO set up over SDO and stored is in effect after power on. */
+static void stored_pdo_mapping_after_power_on(void **state)
+{
+    (void)state;
+    start_generic();
+    tb_xfer(BUS, "605 23 00 18 01 85 01 00 80", "585 60 00 18 01 00 00 00 00");
+    tb_xfer(BUS, "605 2F 00 1A 00 00 00 00 00", "585 60 00 1A 00 00 00 00 00");
+    tb_xfer(BUS, "605 23 00 1A 01 10 00 01 21", "585 60 00 1A 01 00 00 00 00");
+    tb_xfer(BUS, "605 2F 00 1A 00 01 00 00 00", "585 60 00 1A 00 00 00 00 00");
+    tb_xfer(BUS, "605 2F 00 18 02 01 00 00 00", "585 60 00 18 02 00 00 00 00");
+    tb_xfer(BUS, "605 23 00 18 01 85 01 00 00", "585 60 00 18 01 00 00 00 00");
+    tb_xfer(BUS, "605 23 10 10 02 73 61 76 65", "585 60 10 10 02 00 00 00 00");
+    start_generic();
+    tb_xfer(BUS, "605 2B 01 21 00 34 12 00 00", "585 60 01 21 00 00 00 00 00");
+    tb_send(BUS, "000 01 05");
+    tb_expect(BUS, "285 00 00 00 00 00 00 00 00"); /* TPDO2, event-driven */
+    tb_expect_none(BUS); /* TPDO1 is synchronous now: nothing at start */
+    tb_send(BUS, "080");
+    tb_expect(BUS, "185 34 12");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -747,6 +768,7 @@ int main(void)
         cmocka_unit_test_setup(power_cut_at_every_byte, setup),
         cmocka_unit_test_setup(interrupted_save_then_complete_save, setup),
         cmocka_unit_test_setup(generic_301_stores_and_restores, setup),
+        cmocka_unit_test_setup(stored_pdo_mapping_after_power_on, setup),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -349,6 +349,12 @@ EDS_STANDARD_KEYS = {"parametername", "objecttype", "datatype", "accesstype", "d
                      "denotation", "subnumber", "compactsubobj"}
 
 
+# keys odgen writes into an ARRAY/RECORD section (and, with CompactSubObj, the element keys)
+OBJ_SECTION_STANDARD = {"parametername", "objecttype", "subnumber", "compactsubobj", "objflags"}
+ELEMENT_STANDARD = {"datatype", "accesstype", "defaultvalue", "pdomapping", "lowlimit",
+                    "highlimit", "parametervalue", "denotation"}
+
+
 def _obj_flags(raw, what: str) -> int | None:
     if raw is None:
         return None
@@ -572,6 +578,8 @@ def _make_object(tbl: dict, what: str) -> Obj:
             e["sub"] = k
             if names is not None:
                 e["name"] = names[k - 1]
+            elif compact:   # CiA 306: CompactSubObj names the elements <name><k>
+                e["name"] = f"{name}{k}"
             else:
                 e["name"] = f"{elem.get('name', '')} {k}".strip()
             if defaults is not None and k <= len(defaults):
@@ -622,7 +630,8 @@ def _make_object(tbl: dict, what: str) -> Obj:
     obj.subs = subs
     obj.hook = obj.hook or any(s.hookio for s in subs)
     obj.obj_flags = _obj_flags(tbl.get("obj_flags"), what)
-    obj.eds_keys = eds_keys(tbl.get("eds_keys", {}), what)
+    obj.eds_keys = eds_keys(tbl.get("eds_keys", {}), what,
+                            OBJ_SECTION_STANDARD | (ELEMENT_STANDARD if compact else set()))
     if compact:
         _check_compact(obj)
     obj.compact = compact

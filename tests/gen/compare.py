@@ -176,7 +176,7 @@ def compare(eds_path, dump, node_id: int = NODE_ID, eds_only=()) -> int:
             if s["type"] == 0x0B:
                 # UNICODE_STRING: compare the stored UTF-16 text (co_od_read is
                 # checked by test_unicode_string_reads_whole_text below)
-                data = bytes.fromhex(s["ram"])
+                data = bytes.fromhex(s["ram"] if s["ram"] is not None else s["value"])  # RAM/ROM
                 ends = [k for k in range(0, len(data), 2) if data[k:k + 2] == b"\0\0"]
                 data = data[:ends[0]] if ends else data
             elif s["abort"] == NO_DATA:

@@ -32,6 +32,8 @@ that node.
 from __future__ import annotations
 
 import argparse
+import copy
+import dataclasses
 import re
 import sys
 from pathlib import Path
@@ -135,10 +137,36 @@ def _encoded_len(v, kind: str) -> int:
     return len(v.encode("utf-8"))
 
 
+def configured_sub(s: EdsSub, node_id: int | None) -> EdsSub:
+    """--use-values: the ParameterValue becomes the DefaultValue; a $NODEID
+    default stays when the value is that default for the DCF's node-ID."""
+    if s.param_value is None:
+        return s
+    keep = False
+    try:
+        d, v = value(s.default, s.data_type), value(s.param_value, s.data_type)
+        keep = v == d or (isinstance(d, NodeRel) and node_id is not None
+                          and v == d.offset + node_id)
+    except (ValueError, KeyError):
+        pass
+    return dataclasses.replace(s, default=s.default if keep else s.param_value,
+                               param_value=None)
+
+
+def configured(eds: Eds, node_id: int | None) -> Eds:
+    """The EDS as --use-values describes it: values as defaults, no DeviceComissioning."""
+    e = copy.deepcopy(eds)
+    for o in e.objects.values():
+        o.subs = {k: configured_sub(s, node_id) for k, s in o.subs.items()}
+    e.commissioning = None
+    e.extra_keys.pop("DeviceComissioning", None)
+    return e
+
+
 def convert_sub(s: EdsSub, index: int, notes: list[str], use_values: bool,
-                node_id: int | None) -> dict:
+                node_id: int | None, var: bool = False) -> dict:
     where = f"sub {s.sub}" if s.section != "" or s.sub else ""
-    if s.object_type != 0x7:
+    if s.object_type != 0x7 and not var:
         raise Unsupported(f"{where} ObjectType 0x{s.object_type:X} in a sub-entry (odgen "
                           "writes sub-entries as VAR)".strip())
     dt = s.data_type
@@ -160,14 +188,10 @@ def convert_sub(s: EdsSub, index: int, notes: list[str], use_values: bool,
         t["pdo_mapping"] = True
     elif pdo == 0 and access in ("rwr", "rww"):
         t["pdo_mapping"] = False     # the model refuses it: the object becomes eds_only
+    if use_values:
+        s = configured_sub(s, node_id)
     dflt = _value(s.default, dt, "DefaultValue")
     pv = _value(s.param_value, dt, "ParameterValue")
-    if use_values and pv is not None:
-        keep = (isinstance(dflt, str) and dflt.startswith("$NODEID") and node_id is not None
-                and value(s.param_value, dt) == value(s.default, dt).offset + node_id)
-        if not keep:
-            dflt = pv
-        pv = None
     if kind in ("vstr", "ustr") and dflt == "":
         dflt = None
     if dflt is not None:
@@ -217,7 +241,7 @@ def convert_object(o: EdsObject, use_values: bool, node_id: int | None) -> tuple
         raise Unsupported(f"ObjectType 0x{o.object_type:X} ({code or 'unknown'})")
     t: dict = {"index": Hex(o.index), "name": o.name}
     if code in ("VAR", "DOMAIN"):
-        var = convert_sub(o.subs[0], o.index, notes, use_values, node_id)
+        var = convert_sub(o.subs[0], o.index, notes, use_values, node_id, var=True)
         del var["name"]
         is_domain_type = var["type"] == "DOMAIN"
         if code == "VAR" and is_domain_type:
@@ -241,6 +265,13 @@ def convert_object(o: EdsObject, use_values: bool, node_id: int | None) -> tuple
         n = o.compact
         t["compact"] = True
         elems = [subs[k] for k in range(1, n + 1)]
+        shared = [{k: v for k, v in e.items() if k not in ("name", "parameter_value",
+                                                              "denotation")} for e in elems]
+        if any(x != shared[0] for x in shared):   # --use-values gave elements own defaults
+            notes.append(f"CompactSubObj={n} written out: the elements' defaults differ now")
+            del t["compact"]
+            t["subs"] = [{"sub": k, **v} for k, v in subs.items()]
+            return t, notes
         per_element = any("parameter_value" in e or "denotation" in e for e in elems)
         if not per_element:
             element = {k: v for k, v in elems[0].items() if k != "name"}
@@ -540,7 +571,7 @@ def import_eds(path: str | Path, base: str | None = None, use_values: bool = Fal
             raise DescError(f"the imported description does not load: {msg}") from None
         # the self-check: odgen's EDS must state what the source states
         out = read_eds(f"{base}.eds", gen_eds.generate(dev, f"{base}.toml", f"{base}.eds"))
-        diffs = differences(eds, out)
+        diffs = differences(configured(eds, imp.node_id) if use_values else eds, out)
         by_obj: dict[int, str] = {}
         other = []
         for d in diffs:

@@ -165,33 +165,33 @@ def configured(eds: Eds, node_id: int | None) -> Eds:
 
 def convert_sub(s: EdsSub, index: int, notes: list[str], use_values: bool,
                 node_id: int | None, var: bool = False) -> dict:
-    where = f"sub {s.sub}" if s.section != "" or s.sub else ""
+    where = f"sub {s.sub}: "
     if s.object_type != 0x7 and not var:
-        raise Unsupported(f"{where} ObjectType 0x{s.object_type:X} in a sub-entry (odgen "
-                          "writes sub-entries as VAR)".strip())
+        raise Unsupported(f"{where}ObjectType 0x{s.object_type:X} in a sub-entry (odgen "
+                          "writes sub-entries as VAR)")
     dt = s.data_type
     if dt is None:
-        raise Unsupported(f"{where} no DataType".strip())
+        raise Unsupported(f"{where}no DataType")
     if dt not in DATA_TYPES:
-        raise Unsupported(f"{where} data type 0x{dt:04X} is not a CiA 301 basic type".strip())
+        raise Unsupported(f"{where}data type 0x{dt:04X} is not a CiA 301 basic type")
     tname, fixed, kind = DATA_TYPES[dt]
     if s.access is None:
-        raise Unsupported(f"{where} no AccessType".strip())
+        raise Unsupported(f"{where}no AccessType")
     access = s.access.lower()
     if access not in ACCESS:
-        raise Unsupported(f"{where} AccessType {s.access!r} is not one of CiA 306's".strip())
+        raise Unsupported(f"{where}AccessType {s.access!r} is not one of CiA 306's")
     t: dict = {"name": s.name, "type": tname}
     if access != "rw":
         t["access"] = access
-    pdo = _int(s.pdo, "PDOMapping", 0, 1)
+    pdo = _int(s.pdo, f"{where}PDOMapping", 0, 1)
     if pdo:
         t["pdo_mapping"] = True
     elif pdo == 0 and access in ("rwr", "rww"):
         t["pdo_mapping"] = False     # the model refuses it: the object becomes eds_only
     if use_values:
         s = configured_sub(s, node_id)
-    dflt = _value(s.default, dt, "DefaultValue")
-    pv = _value(s.param_value, dt, "ParameterValue")
+    dflt = _value(s.default, dt, f"{where}DefaultValue")
+    pv = _value(s.param_value, dt, f"{where}ParameterValue")
     if kind in ("vstr", "ustr") and dflt == "":
         dflt = None
     if dflt is not None:
@@ -199,10 +199,10 @@ def convert_sub(s: EdsSub, index: int, notes: list[str], use_values: bool,
     for k, text in (("low_limit", s.low), ("high_limit", s.high)):
         if text is None:
             continue
-        v = _value(text, dt, "LowLimit" if k == "low_limit" else "HighLimit")
+        v = _value(text, dt, f"{where}{'LowLimit' if k == 'low_limit' else 'HighLimit'}")
         if v is not None:
             t[k] = v
-    flags = _int(s.obj_flags, "ObjFlags")
+    flags = _int(s.obj_flags, f"{where}ObjFlags")
     if flags is not None:
         t["obj_flags"] = Hex(flags)
     if pv is not None and not (kind in ("vstr", "ustr") and pv == ""):
@@ -217,16 +217,16 @@ def convert_sub(s: EdsSub, index: int, notes: list[str], use_values: bool,
         writable = access in ("rw", "wo", "rwr", "rww")
         if kind == "domain" and dflt is None:
             t["hookio"] = True
-            notes.append(f"{where or 'the value'}: DOMAIN without a default: hook I/O "
+            notes.append(f"{where}DOMAIN without a default: hook I/O "
                          "(the application's hook provides the data)")
         elif kind in ("vstr", "ustr") and (writable or n == 0):
             size = max(n, STRING_CAPACITY)
             t["size"] = size
-            notes.append(f"{where or 'the value'}: {tname} capacity {size} bytes "
+            notes.append(f"{where}{tname} capacity {size} bytes "
                          "(importer's choice; the EDS does not say)")
         elif kind in ("ostr", "domain") and n == 0:
             t["size"] = STRING_CAPACITY
-            notes.append(f"{where or 'the value'}: {tname} capacity {STRING_CAPACITY} bytes "
+            notes.append(f"{where}{tname} capacity {STRING_CAPACITY} bytes "
                          "(importer's choice; the EDS does not say)")
     return t
 

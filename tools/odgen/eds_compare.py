@@ -187,7 +187,9 @@ def differences(src: Eds, out: Eds) -> list[str]:
         diffs.append(f"[Comments]: {src.comments!r} -> {out.comments!r}")
     sa, sb = _sections(src), _sections(out)
     for name, keys in sa.items():
-        if name not in sb:
+        if name not in sb and name in out.sections:   # interpreted, without extra keys
+            diffs += _dict_diffs(f"[{name}]", keys, {}, losses_only=True)
+        elif name not in sb:
             diffs.append(f"[{name}]: section lost")
         else:
             diffs += _dict_diffs(f"[{name}]", keys, sb[name], losses_only=True)

@@ -502,7 +502,9 @@ class Importer:
         for n in self.head_notes:
             out.append(f"# {n}")
         for w in e.warnings:
-            out.append(f"# source: {w.split(': ', 1)[1] if ': ' in w else w}")
+            m = re.match(r".*?:(\d+): (.*)", w)
+            out.append(f"# source line {m.group(1)}: {m.group(2)}" if m else
+                       f"# source: {w.split(': ', 1)[-1]}")
         if self.eds_only:
             out.append(f"# {len(self.eds_only)} object(s) are eds_only: in the EDS, not in the "
                        "C dictionary (reasons at the objects).")

@@ -459,11 +459,12 @@ def write_features(tmp_path, text: str = FEATURES, name: str = "features.dcf", c
     return src
 
 
-@pytest.fixture
-def features(tmp_path):
-    src = write_features(tmp_path)
-    r, out, dev = round_trip(src, tmp_path, "feature_dcf")
-    return src, r, out, dev, (tmp_path / "feature_dcf.toml").read_text()
+@pytest.fixture(scope="module")
+def features(tmp_path_factory):
+    work = tmp_path_factory.mktemp("features")
+    src = write_features(work)
+    r, out, dev = round_trip(src, work, "feature_dcf")
+    return src, r, out, dev, (work / "feature_dcf.toml").read_text()
 
 
 def test_reader_sees_every_feature(tmp_path):

@@ -25,11 +25,11 @@ FOREIGN = {
 }
 
 
-@pytest.fixture(params=sorted(FOREIGN), ids=[n[:-4] for n in sorted(FOREIGN)])
-def imported(request, tmp_path):
+@pytest.fixture(scope="module", params=sorted(FOREIGN), ids=[n[:-4] for n in sorted(FOREIGN)])
+def imported(request, tmp_path_factory):
     name = request.param
     src = foreign(name)
-    r, out, dev = round_trip(src, tmp_path, name[:-4])
+    r, out, dev = round_trip(src, tmp_path_factory.mktemp(name[:-4]), name[:-4])
     return name, src, r, out, dev
 
 
@@ -71,7 +71,7 @@ def test_eds_only_objects_are_reported(imported):
 
 
 @pytest.mark.skipif(shutil.which("cc") is None, reason="no C compiler")
-def test_imported_description_compiles_and_equals_its_eds(imported, tmp_path):
+def test_imported_description_compiles_and_equals_its_eds(imported):
     name, src, r, out, dev = imported
     exe = compile_dump(out.parent, dev.cname)
     n_values = compare(out, run_dump(exe), eds_only={o.index for o in dev.eds_only})

@@ -10,7 +10,7 @@ Denotation and [xxxxObjectLinks]; then further keys and sections verbatim
 """
 from __future__ import annotations
 
-from model import COMPACT_SUB0, DCF_KEYS, EDS_DEVICE_INFO, Device, Obj, RawObj, Sub
+from model import DCF_KEYS, EDS_DEVICE_INFO, Device, Obj, RawObj, Sub
 
 OBJTYPE = {"VAR": 0x7, "ARRAY": 0x8, "RECORD": 0x9, "DOMAIN": 0x2}
 STANDARD_SECTIONS = ("FileInfo", "DeviceInfo", "DeviceComissioning", "DummyUsage", "Comments")

@@ -223,6 +223,24 @@ def test_missing_file(tmp_path):
     assert r.stderr.strip() == f"error: {src}: cannot read: No such file or directory"
 
 
+def test_oddities_are_kept(tmp_path):
+    """Empty FileName/EDSVersion, keys with blanks, a comment line starting with
+    ';', an unknown section: imported and written back unchanged."""
+    from roundtrip import semantic_differences
+    text = (GOOD.replace("FileName=bad.eds", "FileName=").replace("EDSVersion=4.0", "EDSVersion=")
+            .replace("VendorNumber=1", "VendorNumber=1\nBaud Rate (kbit/s)=125")
+            + "\n[Comments]\nLines=1\nLine1=;not a comment\n\n[Vendor Tool 2.0]\nx y=1\n"
+            + "\n[ManufacturerObjects]\nSupportedObjects=1\n1=0x2000\n"
+            + "\n[2000]\nParameterName=Odd key\nDataType=0x0005\nAccessType=rw\n"
+            + "Max. value (V)=5\n")
+    src, toml, r = imports(tmp_path, text)
+    assert r.returncode == 0, r.stderr
+    assert r.stderr == ""
+    g = run_odgen(toml, tmp_path / "out")
+    assert g.returncode == 0, g.stderr
+    assert semantic_differences(src, tmp_path / "out" / "bad.eds") == []
+
+
 # ------------------------------------------- objects odgen keeps verbatim
 
 @pytest.mark.parametrize("section, reason", [

@@ -388,7 +388,10 @@ class Importer:
                 t[k] = bool(v) if flag else v
         # FileInfo
         if "FileName" in fi and fi["FileName"] != f"{self.base}.eds":
-            t["file_name"] = fi["FileName"]
+            if fi["FileName"]:
+                t["file_name"] = fi["FileName"]
+            else:
+                self.raw("FileInfo", "FileName", "")
         for k, ek in (("file_version", "FileVersion"), ("file_revision", "FileRevision")):
             if ek in fi:
                 try:
@@ -399,7 +402,10 @@ class Importer:
                 except ValueError:
                     self.raw("FileInfo", ek, fi[ek])
         if fi.get("EDSVersion", "4.0") != "4.0":
-            t["eds_version"] = fi["EDSVersion"]
+            if fi["EDSVersion"]:
+                t["eds_version"] = fi["EDSVersion"]
+            else:
+                self.raw("FileInfo", "EDSVersion", "")
         if "Description" in fi:
             t["description"] = fi["Description"]
         for k, ek, conv in (("date", "CreationDate", _date), ("time", "CreationTime", _time),

@@ -228,9 +228,8 @@ def _text(value, what: str, key: str, allow_empty: bool = False) -> str:
         raise DescError(f"{what}: {key} is empty")
     if not value.isprintable():
         raise DescError(f"{what}: {key} {value!r} must be printable text on one line")
-    if ";" in value and (value.startswith(";") or re.search(r"\s;", value)):
-        raise DescError(f"{what}: {key} {value!r}: ';' at the start or after a blank "
-                        "starts an EDS comment")
+    if re.search(r"\s;", value):
+        raise DescError(f"{what}: {key} {value!r}: ';' after a blank starts an EDS comment")
     if value != value.strip():
         raise DescError(f"{what}: {key} {value!r} has leading/trailing blanks (EDS drops them)")
     return value
@@ -364,13 +363,19 @@ def _obj_flags(raw, what: str) -> int | None:
     return raw
 
 
+def is_ini_name(name: str) -> bool:
+    """A section or key name an EDS can hold."""
+    return (bool(name) and name.isprintable() and name == name.strip()
+            and not name.startswith((";", "#", "[")) and "]" not in name)
+
+
 def eds_keys(raw, what: str, standard: set[str] = EDS_STANDARD_KEYS,
              table: str = "eds_keys") -> dict[str, str]:
     """Extra EDS keys, written verbatim: { Key = "text" }."""
     if not isinstance(raw, dict):
         raise DescError(f"{what}: {table} must be a table of Key = \"text\"")
     for k, v in raw.items():
-        if not re.fullmatch(r"[A-Za-z0-9_$.\-]+", k):
+        if not is_ini_name(k) or "=" in k:
             raise DescError(f"{what}: {table} key {k!r} is not an EDS key name")
         if k.lower() in standard:
             raise DescError(f"{what}: {table} key {k} is a CiA 306 key the description "
@@ -866,7 +871,7 @@ def _eds_table(eds: dict, info: dict, name: str) -> dict:
     if not isinstance(secs, dict):
         raise DescError("[eds] sections must be tables: [eds.sections.Name]")
     for sname, keys in secs.items():
-        if not re.fullmatch(r"[A-Za-z0-9_$.\-]+", sname) or re.match(r"[0-9A-Fa-f]{4}", sname) \
+        if not is_ini_name(sname) or re.match(r"[0-9A-Fa-f]{4}", sname) \
                 or sname.lower() in DERIVED_SECTIONS:
             raise DescError(f"[eds.sections] {sname!r}: not a section the description may "
                             "add (object sections belong to [[object]], object lists are "

@@ -3,6 +3,7 @@ compiled C tables (used by test_eds_matches_c.py and test_c_edge.py)."""
 from __future__ import annotations
 
 import configparser
+import copy
 import json
 import struct
 import subprocess
@@ -71,24 +72,68 @@ def eds_vars(od):
     return out
 
 
+def expand_compact(evars: dict, raw: configparser.RawConfigParser) -> None:
+    """python-canopen reads a CompactSubObj=N object without [xxxxName] as
+    sub-indices 0 and 1 only, and gives sub-index 0 neither the access (ro)
+    nor the value (N) CiA 306 implies: complete it (elements 2..N are
+    sub-index 1 again)."""
+    for sec in raw.sections():
+        if len(sec) != 4 or "CompactSubObj" not in raw[sec]:
+            continue
+        index, n = int(sec, 16), int(raw[sec]["CompactSubObj"], 0)
+        if (index, 1) not in evars:
+            continue
+        s0 = copy.copy(evars[(index, 0)])
+        s0.access_type, s0.default = "ro", n
+        evars[(index, 0)] = s0
+        for k in range(2, n + 1):
+            evars.setdefault((index, k), evars[(index, 1)])
+
+
 def run_dump(exe, node_id: int = NODE_ID) -> dict:
     return json.loads(subprocess.run([str(exe), str(node_id)], check=True, capture_output=True,
                                      text=True).stdout)
 
 
-def compare(eds_path, dump, node_id: int = NODE_ID) -> int:
+def type_range(dtype: int) -> tuple[int, int]:
+    if dtype in SIGNED:
+        n = 8 * SIGNED[dtype]
+        return -(1 << (n - 1)), (1 << (n - 1)) - 1
+    return 0, (1 << (8 * UNSIGNED[dtype])) - 1
+
+
+def eds_limit(text: str | None, dtype: int, low: bool) -> int:
+    """An EDS limit as the C dictionary checks it: absent = the type's bound,
+    "$NODEID+n" = the range over all node-IDs (n+1 .. n+127), hex two's
+    complement for signed types."""
+    if text is None:
+        return type_range(dtype)[0 if low else 1]
+    if "$NODEID" in text:
+        off = int(text.replace(" ", "").replace("$NODEID", "").strip("+"), 0)
+        return off + (1 if low else 127)
+    v = int(text, 0)
+    if dtype in SIGNED and v > type_range(dtype)[1]:
+        v -= 1 << (8 * SIGNED[dtype])
+    return v
+
+
+def compare(eds_path, dump, node_id: int = NODE_ID, eds_only=()) -> int:
     """Assert that the EDS at eds_path describes the dumped dictionary; returns
-    the number of values compared."""
+    the number of values compared. eds_only: indices only the EDS has (objects
+    an import kept verbatim; not in the C dictionary)."""
     od = canopen.import_od(str(eds_path), node_id=node_id)
     raw = configparser.RawConfigParser(inline_comment_prefixes=(";",))
     raw.optionxform = str
-    raw.read(eds_path, encoding="ascii")
-    evars = eds_vars(od)
+    raw.read(eds_path, encoding="utf-8")   # ASCII, but an imported UNICODE_STRING default
+    evars = {k: v for k, v in eds_vars(od).items() if k[0] >= 0x1000 and k[0] not in eds_only}
+    expand_compact(evars, raw)
 
-    # same objects, sorted, same object types
+    # same objects, sorted, same object types (python-canopen lists the
+    # DummyUsage entries as objects 0x0001..0x0007)
     c_indices = [e["index"] for e in dump["entries"]]
     assert c_indices == sorted(c_indices), "entries not sorted by index"
-    assert c_indices == sorted(od.keys())
+    assert not set(c_indices) & set(eds_only)
+    assert c_indices == sorted(i for i in od.keys() if i >= 0x1000 and i not in eds_only)
     for e in dump["entries"]:
         assert int(raw[f"{e['index']:04X}"]["ObjectType"], 0) == e["code"], hex(e["index"])
         subs = [s["sub"] for s in e["subs"]]
@@ -108,13 +153,19 @@ def compare(eds_path, dump, node_id: int = NODE_ID) -> int:
             assert var.pdo_mappable == bool(flags & (MAP_T | MAP_R)), where
             assert var.relative == bool(flags & NODEID), where
             # limits (raw EDS text: python-canopen cannot parse 24/40/48/56-bit signed ones)
-            sec = raw[f"{key[0]:04X}" if isinstance(od[key[0]], canopen.objectdictionary.ODVariable)
-                      else f"{key[0]:04X}sub{key[1]:X}"]
+            name = (f"{key[0]:04X}" if isinstance(od[key[0]], canopen.objectdictionary.ODVariable)
+                    else f"{key[0]:04X}sub{key[1]:X}")
+            if raw.has_section(name):
+                sec = raw[name]
+            else:   # CompactSubObj: the elements' keys are on the object, sub 0 has none
+                sec = raw[f"{key[0]:04X}"] if key[1] else {}
             if flags & LIMIT:
                 lo, hi = s["limit"]
                 if s["type"] in UNSIGNED:
                     lo, hi = lo & (2**64 - 1), hi & (2**64 - 1)
-                assert (int(sec["LowLimit"], 0), int(sec["HighLimit"], 0)) == (lo, hi), where
+                assert "LowLimit" in sec or "HighLimit" in sec, where
+                assert (eds_limit(sec.get("LowLimit"), s["type"], True),
+                        eds_limit(sec.get("HighLimit"), s["type"], False)) == (lo, hi), where
             else:
                 assert "LowLimit" not in sec and "HighLimit" not in sec, where
             # value
@@ -125,7 +176,7 @@ def compare(eds_path, dump, node_id: int = NODE_ID) -> int:
             if s["type"] == 0x0B:
                 # UNICODE_STRING: compare the stored UTF-16 text (co_od_read is
                 # checked by test_unicode_string_reads_whole_text below)
-                data = bytes.fromhex(s["ram"])
+                data = bytes.fromhex(s["ram"] if s["ram"] is not None else s["value"])  # RAM/ROM
                 ends = [k for k in range(0, len(data), 2) if data[k:k + 2] == b"\0\0"]
                 data = data[:ends[0]] if ends else data
             elif s["abort"] == NO_DATA:

@@ -4,13 +4,12 @@ the project's warnings (-Werror), links with the core and matches its EDS."""
 from __future__ import annotations
 
 import shutil
-import subprocess
 import textwrap
 
 import pytest
 
 from compare import compare, run_dump
-from conftest import ROOT, build_dir, run_odgen
+from conftest import compile_dump, run_odgen
 
 EDGE = r'''
 [device]
@@ -133,25 +132,13 @@ access = "ro"
 default = -128
 '''
 
-WARN = ["-std=c99", "-Wall", "-Wextra", "-Wpedantic", "-Wconversion", "-Wshadow", "-Werror"]
-
-
 @pytest.mark.skipif(shutil.which("cc") is None, reason="no C compiler")
 def test_edge_device(tmp_path):
     src = tmp_path / "edge.toml"
     src.write_text(textwrap.dedent(EDGE))
     r = run_odgen(src, tmp_path)
     assert r.returncode == 0, r.stderr
-    lib = build_dir() / "stack" / "libcostack.a"
-    if not lib.exists():
-        pytest.fail(f"{lib} missing: build the tree first or set CODEV_BUILD_DIR")
-    exe = tmp_path / "od_dump_edge"
-    cc = subprocess.run(["cc", *WARN, "-DCODEV_NAME=edge", f"-I{tmp_path}",
-                         f"-I{ROOT / 'stack' / 'include'}", str(tmp_path / "edge.c"),
-                         str(ROOT / "tests" / "gen" / "od_dump.c"), str(lib), "-o", str(exe)],
-                        capture_output=True, text=True)
-    assert cc.returncode == 0, cc.stderr
-    assert cc.stderr == ""
+    exe = compile_dump(tmp_path, "edge")
     dump = run_dump(exe, 127)
     assert dump["options"] == 0x0080 | 0x0008 | 0x0020
     assert dump["n_hooks"] == 1

@@ -1,8 +1,8 @@
 """Markdown back end: the object table of a device, for documentation and review."""
 from __future__ import annotations
 
-from gen_eds import eds_default
-from model import Device, Sub
+from gen_eds import eds_default, eds_limit
+from model import Device, RawObj, Sub
 
 
 def cell(text: str) -> str:
@@ -29,7 +29,8 @@ def generate(dev: Device, toml_name: str) -> str:
             f"revision 0x{info['revision']:08X} |",
             f"| options | {', '.join('`CO_OPT_' + o + '`' for o in dev.options) or 'none'} |",
             f"| objects | {len(dev.objects)} entries, "
-            f"{sum(len(o.subs) for o in dev.objects)} sub-entries, {dev.n_hooks} hook slots |",
+            f"{sum(len(o.subs) for o in dev.objects)} sub-entries, {dev.n_hooks} hook slots"
+            + (f"; {len(dev.eds_only)} more only in the EDS" if dev.eds_only else "") + " |",
             "",
             "Storage: `comm` and `app` values are stored (communication / application "
             "area), `not stored` values return to their default at reset, `ROM` values "
@@ -37,7 +38,12 @@ def generate(dev: Device, toml_name: str) -> str:
             "",
             "| index | sub | name | object | type | access | PDO | default | limits | unit | storage |",
             "|---|---|---|---|---|---|---|---|---|---|---|"]
-    for o in dev.objects:
+    rows_by_index = sorted([*dev.objects, *dev.eds_only], key=lambda o: o.index)
+    for o in rows_by_index:
+        if isinstance(o, RawObj):
+            out.append(f"| 0x{o.index:04X} | | **{cell(o.name)}** | EDS only | | | | | | "
+                       f"| {cell(o.reason)} |")
+            continue
         hook = " (hook)" if o.hook else ""
         if o.code in ("VAR", "DOMAIN"):
             rows = [("", o.subs[0])]
@@ -53,7 +59,11 @@ def generate(dev: Device, toml_name: str) -> str:
             d = eds_default(s)
             if d is not None and s.kind in ("vstr", "ustr"):
                 d = f'"{d}"'
-            lim = f"{s.low} .. {s.high}" if s.low is not None else ""
+            lim = ""
+            if s.low is not None:
+                lo = eds_limit(s, s.eds_low, True) if s.low_nodeid else s.low
+                hi = eds_limit(s, s.eds_high, True) if s.high_nodeid else s.high
+                lim = f"{lo} .. {hi}"
             size = f" [{s.size}]" if not s.fixed and s.size else ""
             out.append(f"| {idx} | {s.sub} | {name} | {o.code if parent == '' else ''} "
                        f"| {s.type}{size} | {s.access} | {'yes' if s.pdo else ''} "

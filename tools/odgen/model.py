@@ -95,6 +95,15 @@ class Sub:
     hookio: bool = False          # no stored value: the entry's hook does the I/O
     size: int = 0                 # bytes: type size, or capacity for strings/DOMAIN
     description: str = ""
+    parameter_value: object = None  # DCF ParameterValue (same kinds as default); EDS only
+    pv_nodeid: bool = False       # parameter_value is $NODEID + parameter_value
+    denotation: str = ""          # DCF Denotation; EDS only
+    obj_flags: int | None = None  # CiA 306 ObjFlags of this section
+    eds_keys: dict = field(default_factory=dict)   # further EDS keys, written verbatim
+    eds_low: int | None = None    # the limits as the EDS states them (None: not given)
+    eds_high: int | None = None
+    low_nodeid: bool = False      # eds_low is $NODEID + eds_low
+    high_nodeid: bool = False
     field: str = ""               # C field name in the RAM/ROM struct
     elem: int = -1                # element number within an array field, -1: scalar field
     limit_slot: int = -1          # index into the limits table, -1: none
@@ -153,6 +162,20 @@ class Obj:
     prefix: str = ""              # C name prefix
     origin: str = ""              # where it came from ([device] key or [[object]])
     hook_slot: int = -1
+    compact: bool = False         # EDS: CompactSubObj form
+    links: list[int] | None = None  # EDS: [xxxxObjectLinks]
+    obj_flags: int | None = None  # EDS: ObjFlags of the ARRAY/RECORD section
+    eds_keys: dict = field(default_factory=dict)   # further keys of that section
+
+
+@dataclass
+class RawObj:
+    """An object only the EDS has: its sections verbatim (imported objects the
+    C dictionary cannot hold; eds_only says why)."""
+    index: int
+    name: str
+    reason: str
+    sections: list[tuple[str, dict[str, str]]]
 
 
 @dataclass
@@ -169,6 +192,8 @@ class Device:
     boot_emcy_data: list[int] | None
     limits: list[tuple[int, int]]
     n_hooks: int
+    eds_only: list[RawObj] = field(default_factory=list)
+    dcf: dict | None = None       # [DeviceComissioning] of a DCF
 
     def find(self, index: int, sub: int) -> Sub | None:
         for o in self.objects:
@@ -201,19 +226,24 @@ def _text(value, what: str, key: str, allow_empty: bool = False) -> str:
         raise DescError(f"{what}: {key} must be a string")
     if not allow_empty and not value:
         raise DescError(f"{what}: {key} is empty")
-    if any(ord(c) < 0x20 or ord(c) > 0x7E for c in value):
-        raise DescError(f"{what}: {key} {value!r} must be printable ASCII (EDS files are ASCII)")
-    if ";" in value:
-        raise DescError(f"{what}: {key} {value!r} must not contain ';' (EDS comment character)")
+    if not value.isprintable():
+        raise DescError(f"{what}: {key} {value!r} must be printable text on one line")
+    if re.search(r"\s;", value):
+        raise DescError(f"{what}: {key} {value!r}: ';' after a blank starts an EDS comment")
     if value != value.strip():
         raise DescError(f"{what}: {key} {value!r} has leading/trailing blanks (EDS drops them)")
     return value
 
 
 SUB_KEYS = {"sub", "name", "type", "access", "pdo_mapping", "default", "low_limit",
-            "high_limit", "unit", "storage", "hookio", "rom", "size", "description"}
+            "high_limit", "unit", "storage", "hookio", "rom", "size", "description",
+            "parameter_value", "denotation", "obj_flags", "eds_keys"}
 OBJ_KEYS = {"index", "name", "object", "hook", "cname", "description", "storage",
-            "subs", "array", "element", "sub0", "names", "defaults"}
+            "subs", "array", "element", "sub0", "names", "defaults", "compact", "links",
+            "obj_flags", "eds_keys"}
+# keys of an ARRAY/RECORD that describe the object section itself
+OBJ_SECTION_KEYS = {"storage", "description", "obj_flags", "eds_keys"}
+RAW_KEYS = {"index", "eds_only", "sections"}
 VAR_KEYS = SUB_KEYS - {"sub", "name"}
 
 
@@ -227,62 +257,135 @@ def default_storage(index: int) -> str:
     return "app"
 
 
-def _parse_default(s: Sub, raw, what: str) -> None:
-    """Normalise raw (from TOML) into s.default / s.nodeid."""
+NODEID_RE = re.compile(r"\s*(?:\$NODEID\s*(?:\+\s*(0[xX][0-9A-Fa-f]+|[0-9]+))?|"
+                       r"(0[xX][0-9A-Fa-f]+|[0-9]+)\s*\+\s*\$NODEID)\s*")
+
+
+def _parse_value(s: Sub, raw, what: str, key: str = "default") -> tuple[object, bool]:
+    """A value (default or parameter_value) of s from TOML: (value, relative to
+    the node-ID)."""
     kind = s.kind
     if raw is None:
-        s.default = None
-        return
+        return None, False
+    nodeid = False
     if kind in ("int", "uint", "bool"):
         if isinstance(raw, bool):
             raw = int(raw)
         if isinstance(raw, str):
-            m = re.fullmatch(r"\s*\$NODEID\s*(?:\+\s*(0[xX][0-9A-Fa-f]+|[0-9]+))?\s*", raw)
+            m = NODEID_RE.fullmatch(raw)
             if not m:
-                raise DescError(f"{what}: default {raw!r} is not a number or \"$NODEID+n\"")
+                raise DescError(f"{what}: {key} {raw!r} is not a number or \"$NODEID+n\"")
             if s.fixed not in (1, 2, 4):
-                raise DescError(f"{what}: $NODEID defaults need an 8/16/32-bit type, not {s.type}")
-            s.nodeid = True
-            raw = int(m.group(1), 0) if m.group(1) else 0
+                raise DescError(f"{what}: $NODEID {key}s need an 8/16/32-bit type, not {s.type}")
+            nodeid = True
+            off = m.group(1) or m.group(2)
+            raw = int(off, 0) if off else 0
         if not isinstance(raw, int):
-            raise DescError(f"{what}: default {raw!r} is not an integer ({s.type})")
+            raise DescError(f"{what}: {key} {raw!r} is not an integer ({s.type})")
         lo, hi = _int_range(s)
-        top = raw + (127 if s.nodeid else 0)
+        top = raw + (127 if nodeid else 0)
         if raw < lo or top > hi:
-            raise DescError(f"{what}: default {raw} does not fit {s.type} [{lo}, {hi}]")
-        s.default = raw
-    elif kind == "real":
+            raise DescError(f"{what}: {key} {raw} does not fit {s.type} [{lo}, {hi}]")
+        return raw, nodeid
+    if kind == "real":
         if isinstance(raw, bool) or not isinstance(raw, (int, float)):
-            raise DescError(f"{what}: default {raw!r} is not a number ({s.type})")
+            raise DescError(f"{what}: {key} {raw!r} is not a number ({s.type})")
         if raw != raw or raw in (float("inf"), float("-inf")):
-            raise DescError(f"{what}: default must be finite")
-        s.default = float(raw)
-    elif kind == "time":
+            raise DescError(f"{what}: {key} must be finite")
+        return float(raw), False
+    if kind == "time":
         if isinstance(raw, dict):
-            _check_keys(raw, {"ms", "days"}, what + " default")
+            _check_keys(raw, {"ms", "days"}, f"{what} {key}")
             ms, days = raw.get("ms", 0), raw.get("days", 0)
             if not (0 <= ms < (1 << 28)) or not (0 <= days < (1 << 16)):
-                raise DescError(f"{what}: default ms must be 0..2^28-1 and days 0..65535")
+                raise DescError(f"{what}: {key} ms must be 0..2^28-1 and days 0..65535")
             raw = ms | (days << 32)
         if isinstance(raw, bool) or not isinstance(raw, int) or not (0 <= raw < (1 << 48)):
-            raise DescError(f"{what}: default {raw!r} is not a 48-bit value or {{ms, days}}")
-        s.default = raw
-    elif kind == "vstr":
-        s.default = _text(raw, what, "default", allow_empty=True)
-    elif kind == "ustr":
-        s.default = _text(raw, what, "default", allow_empty=True)
-    elif kind in ("ostr", "domain"):
-        if isinstance(raw, list):
-            if not all(isinstance(b, int) and not isinstance(b, bool) and 0 <= b <= 255 for b in raw):
-                raise DescError(f"{what}: default bytes must be 0..255")
-            s.default = bytes(raw)
-        elif isinstance(raw, str):
-            try:
-                s.default = bytes.fromhex(raw)
-            except ValueError:
-                raise DescError(f"{what}: default {raw!r} is not hex bytes (\"01 02 AB\")") from None
-        else:
-            raise DescError(f"{what}: default must be hex bytes or a list of bytes")
+            raise DescError(f"{what}: {key} {raw!r} is not a 48-bit value or {{ms, days}}")
+        return raw, False
+    if kind == "vstr":
+        text = _text(raw, what, key, allow_empty=True)
+        if not text.isascii():
+            raise DescError(f"{what}: {key} {text!r}: a VISIBLE_STRING is ASCII "
+                            "(use UNICODE_STRING)")
+        return text, False
+    if kind == "ustr":
+        return _text(raw, what, key, allow_empty=True), False
+    # OCTET_STRING, DOMAIN
+    if isinstance(raw, list):
+        if not all(isinstance(b, int) and not isinstance(b, bool) and 0 <= b <= 255 for b in raw):
+            raise DescError(f"{what}: {key} bytes must be 0..255")
+        return bytes(raw), False
+    if isinstance(raw, str):
+        try:
+            return bytes.fromhex(raw), False
+        except ValueError:
+            raise DescError(f"{what}: {key} {raw!r} is not hex bytes (\"01 02 AB\")") from None
+    raise DescError(f"{what}: {key} must be hex bytes or a list of bytes")
+
+
+def _parse_default(s: Sub, raw, what: str) -> None:
+    """Normalise raw (from TOML) into s.default / s.nodeid."""
+    s.default, s.nodeid = _parse_value(s, raw, what)
+
+
+def _parse_limit(s: Sub, raw, what: str, key: str) -> tuple[int | None, bool]:
+    """A limit: an integer or "$NODEID+n" (offset, relative)."""
+    if raw is None:
+        return None, False
+    if isinstance(raw, str):
+        m = NODEID_RE.fullmatch(raw)
+        if not m:
+            raise DescError(f"{what}: {key} {raw!r} is not an integer or \"$NODEID+n\"")
+        off = m.group(1) or m.group(2)
+        return (int(off, 0) if off else 0), True
+    if isinstance(raw, bool) or not isinstance(raw, int):
+        raise DescError(f"{what}: limit {raw!r} is not an integer")
+    return raw, False
+
+
+# EDS keys a description states with its own keys (eds_keys may not repeat them)
+EDS_STANDARD_KEYS = {"parametername", "objecttype", "datatype", "accesstype", "defaultvalue",
+                     "pdomapping", "lowlimit", "highlimit", "objflags", "parametervalue",
+                     "denotation", "subnumber", "compactsubobj"}
+
+
+# keys odgen writes into an ARRAY/RECORD section (and, with CompactSubObj, the element keys)
+OBJ_SECTION_STANDARD = {"parametername", "objecttype", "subnumber", "compactsubobj", "objflags"}
+ELEMENT_STANDARD = {"datatype", "accesstype", "defaultvalue", "pdomapping", "lowlimit",
+                    "highlimit", "parametervalue", "denotation"}
+
+
+def _obj_flags(raw, what: str) -> int | None:
+    if raw is None:
+        return None
+    if isinstance(raw, bool) or not isinstance(raw, int) or not 0 <= raw <= 0xFFFFFFFF:
+        raise DescError(f"{what}: obj_flags must be an UNSIGNED32 (bit 0: refuse write on "
+                        "download, bit 1: refuse read on scan)")
+    return raw
+
+
+def is_ini_name(name: str) -> bool:
+    """A section or key name an EDS can hold."""
+    return (bool(name) and name.isprintable() and name == name.strip()
+            and not name.startswith((";", "#", "[")) and "]" not in name)
+
+
+def eds_keys(raw, what: str, standard: set[str] = EDS_STANDARD_KEYS,
+             table: str = "eds_keys") -> dict[str, str]:
+    """Extra EDS keys, written verbatim: { Key = "text" }."""
+    if not isinstance(raw, dict):
+        raise DescError(f"{what}: {table} must be a table of Key = \"text\"")
+    for k, v in raw.items():
+        if not is_ini_name(k) or "=" in k:
+            raise DescError(f"{what}: {table} key {k!r} is not an EDS key name")
+        if k.lower() in standard:
+            raise DescError(f"{what}: {table} key {k} is a CiA 306 key the description "
+                            "states itself")
+        if not isinstance(v, str):
+            raise DescError(f"{what}: {table} {k} must be text")
+        _text(v, what, f"{table} {k}", allow_empty=True)
+    return dict(raw)
 
 
 def encoded_default(s: Sub) -> bytes:
@@ -345,6 +448,11 @@ def make_sub(index: int, tbl: dict, obj_storage: str | None, what: str,
     if pdo and s.fixed == 0:
         raise DescError(f"{what}: {tname} cannot be PDO-mapped (only fixed-size types)")
     _parse_default(s, tbl.get("default"), what)
+    s.parameter_value, s.pv_nodeid = _parse_value(s, tbl.get("parameter_value"), what,
+                                                  "parameter_value")
+    s.denotation = _text(tbl.get("denotation", ""), what, "denotation", allow_empty=True)
+    s.obj_flags = _obj_flags(tbl.get("obj_flags"), what)
+    s.eds_keys = eds_keys(tbl.get("eds_keys", {}), what)
     if s.nodeid and (rom or hookio):
         raise DescError(f"{what}: a $NODEID default needs a RAM value (not ROM/hook I/O)")
     if hookio and s.default is not None:
@@ -368,28 +476,43 @@ def make_sub(index: int, tbl: dict, obj_storage: str | None, what: str,
         if s.kind == "ustr" and size % 2:
             raise DescError(f"{what}: UNICODE_STRING size must be even (UTF-16)")
         s.size = size
-    # limits
-    lo, hi = tbl.get("low_limit"), tbl.get("high_limit")
+    # limits (integers, or "$NODEID+n": the C dictionary checks the range over
+    # all node-IDs 1..127, the EDS states them as written)
+    lo, lo_rel = _parse_limit(s, tbl.get("low_limit"), what, "low_limit")
+    hi, hi_rel = _parse_limit(s, tbl.get("high_limit"), what, "high_limit")
     if lo is not None or hi is not None:
         if s.kind not in ("int", "uint"):
             raise DescError(f"{what}: limits are only supported on integer types, not {tname}"
                             + (" (the core does not check REAL limits; use a hook)"
                                if s.kind == "real" else ""))
         tlo, thi = _int_range(s)
-        lo = tlo if lo is None else lo
-        hi = thi if hi is None else hi
-        for v in (lo, hi):
-            if isinstance(v, bool) or not isinstance(v, int) or not tlo <= v <= thi:
-                raise DescError(f"{what}: limit {v!r} does not fit {tname} [{tlo}, {thi}]")
-        if lo > hi:
-            raise DescError(f"{what}: low_limit {lo} is above high_limit {hi}")
-        s.low, s.high = lo, hi
+        for v, rel in ((lo, lo_rel), (hi, hi_rel)):
+            if v is not None and not (tlo <= v and v + (127 if rel else 0) <= thi):
+                shown = f"$NODEID+{v}" if rel else str(v)
+                raise DescError(f"{what}: limit {shown} does not fit {tname} [{tlo}, {thi}]")
+        if (lo_rel or hi_rel) and s.fixed not in (1, 2, 4):
+            raise DescError(f"{what}: $NODEID limits need an 8/16/32-bit type, not {tname}")
+        s.eds_low, s.low_nodeid, s.eds_high, s.high_nodeid = lo, lo_rel, hi, hi_rel
+
+        def at(v, rel, n, dflt):
+            return dflt if v is None else v + (n if rel else 0)
+
+        def shown(v, rel, dflt):
+            return str(dflt) if v is None else (f"$NODEID+{v}" if rel else str(v))
+
+        lo_s, hi_s = shown(lo, lo_rel, tlo), shown(hi, hi_rel, thi)
+        for n in (1, 127):   # everything is linear in the node-ID
+            if at(lo, lo_rel, n, tlo) > at(hi, hi_rel, n, thi):
+                raise DescError(f"{what}: low_limit {lo_s} is above high_limit {hi_s}"
+                                + (f" for node-ID {n}" if lo_rel or hi_rel else ""))
+        s.low = tlo if lo is None else lo + (1 if lo_rel else 0)
+        s.high = thi if hi is None else hi + (127 if hi_rel else 0)
         if s.default is not None:
-            first = s.default + (1 if s.nodeid else 0)
-            last = s.default + (127 if s.nodeid else 0)
-            if first < lo or last > hi:
-                shown = f"$NODEID+{s.default}" if s.nodeid else str(s.default)
-                raise DescError(f"{what}: default {shown} is out of limits [{lo}, {hi}]")
+            for n in (1, 127):
+                d = s.default + (n if s.nodeid else 0)
+                if not at(lo, lo_rel, n, tlo) <= d <= at(hi, hi_rel, n, thi):
+                    d_s = f"$NODEID+{s.default}" if s.nodeid else str(s.default)
+                    raise DescError(f"{what}: default {d_s} is out of limits [{lo_s}, {hi_s}]")
     return s
 
 
@@ -414,10 +537,21 @@ def _make_object(tbl: dict, what: str) -> Obj:
     obj = Obj(index=index, name=name, code=code, hook=hook, prefix=prefix,
               description=_text(tbl.get("description", ""), what, "description", allow_empty=True),
               origin="[[object]]")
+    links = tbl.get("links")
+    if links is not None:
+        if not isinstance(links, list) or not all(
+                isinstance(x, int) and not isinstance(x, bool) and 0 <= x <= 0xFFFF for x in links):
+            raise DescError(f"{what}: links must be a list of indices (ObjectLinks)")
+        obj.links = list(links)
+    compact = tbl.get("compact", False)
+    if not isinstance(compact, bool):
+        raise DescError(f"{what}: compact must be true or false")
     storage = tbl.get("storage")
     if code in ("VAR", "DOMAIN"):
         if has_subs:
             raise DescError(f"{what}: a {code} has no subs/array (use ARRAY or RECORD)")
+        if compact:
+            raise DescError(f"{what}: compact (CompactSubObj) is for an ARRAY or RECORD")
         var = {k: v for k, v in tbl.items() if k in VAR_KEYS}
         var["name"] = name
         if code == "DOMAIN":
@@ -427,7 +561,7 @@ def _make_object(tbl: dict, what: str) -> Obj:
         obj.subs.append(make_sub(index, var, storage, what))
         obj.hook = obj.hook or obj.subs[0].hookio
         return obj
-    stray = sorted(set(tbl) & (VAR_KEYS - {"storage", "description"}))
+    stray = sorted(set(tbl) & (VAR_KEYS - OBJ_SECTION_KEYS))
     if stray:
         raise DescError(f"{what}: {', '.join(stray)} belong(s) to a sub-entry of a {code}")
     subs: list[Sub] = []
@@ -451,6 +585,8 @@ def _make_object(tbl: dict, what: str) -> Obj:
             e["sub"] = k
             if names is not None:
                 e["name"] = names[k - 1]
+            elif compact:   # CiA 306: CompactSubObj names the elements <name><k>
+                e["name"] = f"{name}{k}"
             else:
                 e["name"] = f"{elem.get('name', '')} {k}".strip()
             if defaults is not None and k <= len(defaults):
@@ -480,6 +616,9 @@ def _make_object(tbl: dict, what: str) -> Obj:
         highest = max(s.sub for s in subs)
         s0 = {"name": "Number of entries" if code == "ARRAY" else "Highest sub-index supported",
               "type": "UNSIGNED8", "access": "const", "default": highest}
+        if compact:   # CiA 306: the sub-index 0 CompactSubObj implies
+            s0 = {"name": COMPACT_SUB0, "type": "UNSIGNED8", "access": "ro", "default": highest,
+                  "rom": True}
         if sub0 is not None:
             if not isinstance(sub0, dict):
                 raise DescError(f"{where(index, 0)}: sub0 must be a table")
@@ -497,7 +636,43 @@ def _make_object(tbl: dict, what: str) -> Obj:
                             f"(found {', '.join(sorted(types))})")
     obj.subs = subs
     obj.hook = obj.hook or any(s.hookio for s in subs)
+    obj.obj_flags = _obj_flags(tbl.get("obj_flags"), what)
+    obj.eds_keys = eds_keys(tbl.get("eds_keys", {}), what,
+                            OBJ_SECTION_STANDARD | (ELEMENT_STANDARD if compact else set()))
+    if compact:
+        _check_compact(obj)
+    obj.compact = compact
     return obj
+
+
+COMPACT_SUB0 = "NrOfObjects"
+
+
+def _check_compact(obj: Obj) -> None:
+    """CompactSubObj=N can state an ARRAY/RECORD whose sub-index 0 is the
+    implied one and whose elements 1..N share everything but name,
+    parameter_value and denotation."""
+    what = f"{where(obj.index)}: compact = true"
+    s0, elems = obj.subs[0], obj.subs[1:]
+    if [s.sub for s in elems] != list(range(1, len(elems) + 1)) or not elems:
+        raise DescError(f"{what} needs the sub-indices 1..N without gaps")
+    if (s0.name, s0.type, s0.access, s0.default, s0.pdo, s0.eds_low, s0.eds_high, s0.obj_flags,
+            s0.eds_keys, s0.parameter_value, s0.denotation) != \
+            (COMPACT_SUB0, "UNSIGNED8", "ro", len(elems), False, None, None, None, {}, None, ""):
+        raise DescError(f"{what}: sub-index 0 must be the implied one ({COMPACT_SUB0}, "
+                        f"UNSIGNED8, ro, default {len(elems)}, not mappable, nothing else)")
+
+    def shared(s: Sub):
+        return (s.type, s.access, s.pdo, s.default, s.nodeid, s.eds_low, s.low_nodeid,
+                s.eds_high, s.high_nodeid)
+    for s in elems:
+        if shared(s) != shared(elems[0]):
+            raise DescError(f"{where(obj.index, s.sub)}: compact = true, but this element's "
+                            "type, access, PDO mapping, default or limits differ from "
+                            "sub-index 1's")
+        if s.obj_flags is not None or s.eds_keys:
+            raise DescError(f"{where(obj.index, s.sub)}: compact = true: obj_flags and "
+                            "eds_keys go on the object, not on an element")
 
 
 def _device_objects(dev: dict, what: str) -> list[Obj]:
@@ -546,8 +721,13 @@ def _device_objects(dev: dict, what: str) -> list[Obj]:
 
 DEVICE_KEYS = {"name", "vendor_name", "product_name", "order_code", "vendor_id", "product_code",
                "revision", "serial", "device_type", "device_name", "hw_version", "sw_version",
-               "options", "boot_emcy_data", "baudrates", "description", "lss"}
-EDS_KEYS = {"file_version", "file_revision", "date", "time", "author", "description"}
+               "options", "boot_emcy_data", "baudrates", "description", "lss",
+               "vendor_number", "product_number", "revision_number", "mandatory_objects"}
+EDS_KEYS = {"file_version", "file_revision", "date", "time", "author", "description",
+            "file_name", "eds_version", "modified_date", "modified_time", "modified_by",
+            "comments", "dummy_usage", "sections", "simple_boot_up_master",
+            "simple_boot_up_slave", "granularity", "dynamic_channels_supported", "compact_pdo",
+            "group_messaging", "nr_of_rxpdo", "nr_of_txpdo"}
 BAUDRATES = (10, 20, 50, 125, 250, 500, 800, 1000)
 
 
@@ -591,12 +771,144 @@ def _assign_fields(obj: Obj) -> None:
 def load(path: str | Path, base: str | None = None) -> Device:
     path = Path(path)
     try:
-        data = tomllib.loads(path.read_text(encoding="utf-8"))
-    except tomllib.TOMLDecodeError as e:
-        raise DescError(f"TOML syntax: {e}") from None
+        text = path.read_text(encoding="utf-8")
     except OSError as e:
         raise DescError(f"cannot read: {e.strerror}") from None
-    _check_keys(data, {"device", "eds", "object"}, "top level")
+    return loads(text, path, base)
+
+
+def _uint(v, what: str, top: int = 0xFFFFFFFF) -> int:
+    if isinstance(v, bool) or not isinstance(v, int) or not 0 <= v <= top:
+        raise DescError(f"{what} must be an integer 0..{top}")
+    return v
+
+
+def _flag(v, what: str) -> bool:
+    if not isinstance(v, bool):
+        raise DescError(f"{what} must be true or false")
+    return v
+
+
+def _raw_object(tbl: dict, what: str) -> RawObj:
+    index = tbl.get("index")
+    if isinstance(index, bool) or not isinstance(index, int) or not 0 <= index <= 0xFFFF:
+        raise DescError(f"{what}: index {index!r} must be 0x0000..0xFFFF")
+    what = where(index)
+    _check_keys(tbl, RAW_KEYS, what + " (eds_only)")
+    reason = _text(tbl.get("eds_only"), what, "eds_only")
+    secs = tbl.get("sections")
+    head = f"{index:04X}"
+    if not isinstance(secs, dict) or not secs or next(iter(secs)).upper() != head:
+        raise DescError(f"{what}: eds_only needs sections, the first one \"{head}\"")
+    out = []
+    for name, keys in secs.items():
+        if not re.fullmatch(head + r"(sub[0-9A-Fa-f]{1,2}|Name|Value|Denotation|ObjectLinks)?",
+                            name, re.IGNORECASE):
+            raise DescError(f"{what}: section {name!r} does not belong to object {head}")
+        out.append((name, eds_keys(keys, f"{what} [{name}]", set(), "section")))
+    pname = {k.lower(): v for k, v in out[0][1].items()}.get("parametername")
+    if not pname:
+        raise DescError(f"{what}: section {head} without ParameterName")
+    return RawObj(index=index, name=pname, reason=reason, sections=out)
+
+
+DCF_KEYS = {"node_id": "NodeID", "node_name": "NodeName", "baudrate": "Baudrate",
+            "net_number": "NetNumber", "network_name": "NetworkName",
+            "canopen_manager": "CANopenManager", "lss_serial_number": "LSS_SerialNumber"}
+EDS_DEVICE_INFO = {   # [eds] key -> DeviceInfo key; None: the generator works it out
+    "simple_boot_up_master": "SimpleBootUpMaster", "simple_boot_up_slave": "SimpleBootUpSlave",
+    "granularity": "Granularity", "dynamic_channels_supported": "DynamicChannelsSupported",
+    "compact_pdo": "CompactPDO", "group_messaging": "GroupMessaging",
+    "nr_of_rxpdo": "NrOfRXPDO", "nr_of_txpdo": "NrOfTXPDO"}
+DERIVED_SECTIONS = ("mandatoryobjects", "optionalobjects", "manufacturerobjects")
+
+
+def _eds_table(eds: dict, info: dict, name: str) -> dict:
+    _check_keys(eds, EDS_KEYS, "[eds]")
+    date = eds.get("date", "2025-01-01")
+    if not isinstance(date, str) or not re.fullmatch(r"\d{4}-\d{2}-\d{2}", date):
+        raise DescError("[eds] date must be \"YYYY-MM-DD\"")
+    time = eds.get("time", "12:00")
+    if not isinstance(time, str) or not re.fullmatch(r"\d{2}:\d{2}", time):
+        raise DescError("[eds] time must be \"hh:mm\" (24 h)")
+    mdate = eds.get("modified_date", date)
+    if not isinstance(mdate, str) or not re.fullmatch(r"\d{4}-\d{2}-\d{2}", mdate):
+        raise DescError("[eds] modified_date must be \"YYYY-MM-DD\"")
+    mtime = eds.get("modified_time", time)
+    if not isinstance(mtime, str) or not re.fullmatch(r"\d{2}:\d{2}", mtime):
+        raise DescError("[eds] modified_time must be \"hh:mm\" (24 h)")
+    author = _text(eds.get("author", "tools/odgen"), "[eds]", "author", True)
+    out = {
+        "file_name": None if "file_name" not in eds else
+        _text(eds["file_name"], "[eds]", "file_name"),
+        "file_version": _uint(eds.get("file_version", 1), "[eds] file_version", 255),
+        "file_revision": _uint(eds.get("file_revision", 0), "[eds] file_revision", 255),
+        "eds_version": _text(eds.get("eds_version", "4.0"), "[eds]", "eds_version"),
+        "date": date, "time": time, "author": author,
+        "modified_date": mdate, "modified_time": mtime,
+        "modified_by": _text(eds.get("modified_by", author), "[eds]", "modified_by", True),
+        "description": _text(eds.get("description", info["description"] or name), "[eds]",
+                             "description", True),
+        "comments": None,
+        "dummy_usage": [],
+        "sections": {},
+    }
+    if "comments" in eds:
+        c = eds["comments"]
+        if not isinstance(c, list):
+            raise DescError("[eds] comments must be a list of lines")
+        out["comments"] = [_text(x, "[eds]", "comments line", True) for x in c]
+    d = eds.get("dummy_usage", [])
+    if not isinstance(d, list) or any(isinstance(x, bool) or x not in range(1, 8) for x in d):
+        raise DescError("[eds] dummy_usage must list data type indices 1..7 "
+                        "(the dummy objects PDO mappings may use)")
+    out["dummy_usage"] = sorted(set(d))
+    for k in EDS_DEVICE_INFO:
+        v = eds.get(k)
+        if k.startswith("nr_of") or k == "granularity":
+            out[k] = None if v is None else _uint(v, f"[eds] {k}", 0xFFFF)
+        else:
+            out[k] = None if v is None else _flag(v, f"[eds] {k}")
+    secs = eds.get("sections", {})
+    if not isinstance(secs, dict):
+        raise DescError("[eds] sections must be tables: [eds.sections.Name]")
+    for sname, keys in secs.items():
+        if not is_ini_name(sname) or re.match(r"[0-9A-Fa-f]{4}", sname) \
+                or sname.lower() in DERIVED_SECTIONS:
+            raise DescError(f"[eds.sections] {sname!r}: not a section the description may "
+                            "add (object sections belong to [[object]], object lists are "
+                            "generated)")
+        out["sections"][sname] = eds_keys(keys, f"[eds.sections.{sname}]", set(), "section")
+    return out
+
+
+def _dcf_table(dcf) -> dict | None:
+    if dcf is None:
+        return None
+    if not isinstance(dcf, dict):
+        raise DescError("[dcf] must be a table")
+    _check_keys(dcf, set(DCF_KEYS), "[dcf]")
+    out = {}
+    for k, v in dcf.items():
+        if k in ("node_name", "network_name"):
+            out[k] = _text(v, "[dcf]", k, True)
+        elif k == "canopen_manager":
+            out[k] = _flag(v, "[dcf] canopen_manager")
+        elif k == "node_id":
+            out[k] = _uint(v, "[dcf] node_id", 127)
+        else:
+            out[k] = _uint(v, f"[dcf] {k}")
+    return out
+
+
+def loads(text: str, path: str | Path = "<description>", base: str | None = None) -> Device:
+    """Load a description from its text (path: for messages and the default base)."""
+    path = Path(path)
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as e:
+        raise DescError(f"TOML syntax: {e}") from None
+    _check_keys(data, {"device", "eds", "dcf", "object"}, "top level")
     dev = data.get("device")
     if not isinstance(dev, dict):
         raise DescError("[device] table missing")
@@ -631,58 +943,53 @@ def load(path: str | Path, base: str | None = None) -> Device:
         raise DescError(f"[device] baudrates must list kbit/s out of {BAUDRATES}")
     info = {
         "name": name,
-        "vendor_name": _text(dev.get("vendor_name", "unknown"), "[device]", "vendor_name"),
-        "product_name": _text(dev.get("product_name", name), "[device]", "product_name"),
+        "vendor_name": _text(dev.get("vendor_name", "unknown"), "[device]", "vendor_name", True),
+        "product_name": _text(dev.get("product_name", name), "[device]", "product_name", True),
         "order_code": _text(dev.get("order_code", ""), "[device]", "order_code", True),
         "description": _text(dev.get("description", ""), "[device]", "description", True),
         "baudrates": rates,
-        "lss": bool(dev.get("lss", False)),
+        "lss": _flag(dev.get("lss", False), "[device] lss"),
     }
     for k in ("vendor_id", "product_code", "revision"):
-        v = dev.get(k, 0)
-        if isinstance(v, bool) or not isinstance(v, int) or not 0 <= v <= 0xFFFFFFFF:
-            raise DescError(f"[device] {k} must be an UNSIGNED32")
-        info[k] = v
+        info[k] = _uint(dev.get(k, 0), f"[device] {k}")
+    # DeviceInfo numbers: the identity unless the EDS states other ones
+    for k, ident in (("vendor_number", "vendor_id"), ("product_number", "product_code"),
+                     ("revision_number", "revision")):
+        info[k] = _uint(dev.get(k, info[ident]), f"[device] {k}")
+    mandatory = _flag(dev.get("mandatory_objects", True), "[device] mandatory_objects")
     eds = data.get("eds", {})
     if not isinstance(eds, dict):
         raise DescError("[eds] must be a table")
-    _check_keys(eds, EDS_KEYS, "[eds]")
-    date = eds.get("date", "2025-01-01")
-    if not isinstance(date, str) or not re.fullmatch(r"\d{4}-\d{2}-\d{2}", date):
-        raise DescError("[eds] date must be \"YYYY-MM-DD\"")
-    time = eds.get("time", "12:00")
-    if not isinstance(time, str) or not re.fullmatch(r"\d{2}:\d{2}", time):
-        raise DescError("[eds] time must be \"hh:mm\" (24 h)")
-    eds_info = {
-        "file_version": eds.get("file_version", 1),
-        "file_revision": eds.get("file_revision", 0),
-        "date": date, "time": time,
-        "author": _text(eds.get("author", "tools/odgen"), "[eds]", "author"),
-        "description": _text(eds.get("description", info["description"] or name), "[eds]",
-                             "description"),
-    }
-    for k in ("file_version", "file_revision"):
-        v = eds_info[k]
-        if isinstance(v, bool) or not isinstance(v, int) or not 0 <= v <= 255:
-            raise DescError(f"[eds] {k} must be 0..255")
+    eds_info = _eds_table(eds, info, name)
+    dcf = _dcf_table(data.get("dcf"))
 
     objects = _device_objects(dev, "[device]")
     origins = {o.index: o.origin for o in objects}
     raw_objs = data.get("object", [])
     if not isinstance(raw_objs, list):
         raise DescError("object must be an array of tables ([[object]])")
+    eds_only: list[RawObj] = []
     for k, tbl in enumerate(raw_objs):
-        o = _make_object(tbl, f"[[object]] #{k + 1}")
+        if not isinstance(tbl, dict):
+            raise DescError(f"[[object]] #{k + 1} must be a table")
+        if "eds_only" in tbl:
+            o = _raw_object(tbl, f"[[object]] #{k + 1}")
+            eds_only.append(o)
+        else:
+            o = _make_object(tbl, f"[[object]] #{k + 1}")
+            objects.append(o)
         if o.index in origins:
             raise DescError(f"{where(o.index)}: duplicate index (already given by {origins[o.index]})")
         origins[o.index] = f"[[object]] #{k + 1}"
-        objects.append(o)
     objects.sort(key=lambda o: o.index)
+    eds_only.sort(key=lambda o: o.index)
     if not objects:
         raise DescError("no objects")
-    for mandatory in (0x1000, 0x1001, 0x1018):
-        if mandatory not in origins:
-            raise DescError(f"{where(mandatory)}: mandatory object missing (CiA 301)")
+    present = {o.index for o in objects}
+    for m in (0x1000, 0x1001, 0x1018):
+        if mandatory and m not in present:
+            raise DescError(f"{where(m)}: mandatory object missing (CiA 301)"
+                            + (" (it is eds_only)" if m in origins else ""))
 
     # hooks, fields, limits
     slot = 0
@@ -710,7 +1017,8 @@ def load(path: str | Path, base: str | None = None) -> Device:
 
     device = Device(name=name, base=base, cname=cname, source=str(path), objects=objects,
                     info=info, eds=eds_info, options=list(opts), option_bits=bits,
-                    boot_emcy_data=bed, limits=limits, n_hooks=slot)
+                    boot_emcy_data=bed, limits=limits, n_hooks=slot, eds_only=eds_only,
+                    dcf=dcf)
     _check_pdo_mappings(device)
     return device
 
@@ -742,6 +1050,17 @@ def _check_pdo_mappings(dev: Device) -> None:
             idx, sub, bits = v >> 16, (v >> 8) & 0xFF, v & 0xFF
             target = dev.find(idx, sub)
             what = f"{where(o.index, s.sub)}: default mapping 0x{v:08X} maps 0x{idx:04X} sub {sub}"
+            if 1 <= idx <= 7 and sub == 0:   # a dummy entry: a gap of that data type
+                if idx not in dev.eds["dummy_usage"]:
+                    raise DescError(f"{what}, a dummy entry [eds] dummy_usage does not allow")
+                dsize = {1: (1, 8), 2: (8,), 3: (16,), 4: (32,), 5: (8,), 6: (16,), 7: (32,)}[idx]
+                if bits not in dsize:
+                    raise DescError(f"{what} with {bits} bits; the dummy has {dsize[-1]}")
+                if s.sub <= count:
+                    total += bits
+                continue
+            if target is None and any(r.index == idx for r in dev.eds_only):
+                raise DescError(f"{what}, which is eds_only (not in the C dictionary)")
             if target is None:
                 raise DescError(f"{what}, which does not exist")
             if not target.flags & need:

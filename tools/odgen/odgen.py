@@ -2,6 +2,8 @@
 """Object-dictionary generator: one description file per device, three products.
 
     odgen.py [--base NAME] [--out DIR] [--c] [--eds] [--md] DEVICE.toml
+    odgen.py import VENDOR.eds [-o DEVICE.toml] [--use-values]   (eds_import.py)
+    odgen.py compare SOURCE.eds OTHER.eds                          (eds_compare.py)
 
 From devices/NAME.toml it writes into DIR (default: current directory)
   NAME_C.h / NAME_C.c   the const object dictionary for the core (NAME_C is
@@ -27,6 +29,13 @@ from model import DescError, load  # noqa: E402
 
 
 def main(argv: list[str] | None = None) -> int:
+    argv = sys.argv[1:] if argv is None else argv
+    if argv and argv[0] == "import":
+        import eds_import
+        return eds_import.main(argv[1:])
+    if argv and argv[0] == "compare":
+        import eds_compare
+        return eds_compare.main(argv[1:])
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("toml", help="device description (.toml)")
     ap.add_argument("--base", help="output base name (default: the file's stem)")

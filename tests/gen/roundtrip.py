@@ -86,7 +86,9 @@ def round_trip(src: Path, work: Path, base: str, *import_args: str):
     assert r.returncode == 0, r.stderr
     g = run_odgen(toml, work / "out")
     assert g.returncode == 0, g.stderr
-    assert g.stderr == ""
+    # only notes about PDO-range objects the core does not run as PDOs
+    assert all(": warning: " in line and "PDO" in line
+               for line in g.stderr.splitlines()), g.stderr
     return r, work / "out" / f"{base}.eds", load(toml)
 
 

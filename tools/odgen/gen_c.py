@@ -173,7 +173,7 @@ def comment(text: str) -> str:
 
 # ------------------------------------------------------------ emitters
 
-def generate(dev: Device, toml_name: str) -> tuple[str, str]:
+def generate(dev: Device, toml_name: str, warn=None) -> tuple[str, str]:
     cn = dev.cname
     up = cn.upper()
     fields = build_fields(dev)
@@ -187,7 +187,7 @@ def generate(dev: Device, toml_name: str) -> tuple[str, str]:
                         "(use hookio for large values)")
     if layout(rom) > 0xFFFF:
         raise DescError(f"ROM image is {layout(rom)} bytes; at most 65535")
-    pdos_h = pdo_table(dev)
+    pdos_h = pdo_table(dev, warn)
     n_pdo_h = len(pdos_h[0]) + len(pdos_h[1])
     hooked = [o for o in dev.objects if o.hook]
     n_hooks = len(hooked)
@@ -295,7 +295,7 @@ def generate(dev: Device, toml_name: str) -> tuple[str, str]:
                  f"s{o.index:04X}}},")
     c += ["};", ""]
 
-    pdos = pdo_table(dev)
+    pdos = pdos_h
     n_pdo = len(pdos[0]) + len(pdos[1])
     if n_pdo:
         c += ["/* Where each PDO's parameters live (RPDOs, then TPDOs). */",
@@ -356,46 +356,59 @@ PDO_COMM_TYPES = {1: "UNSIGNED32", 2: "UNSIGNED8", 3: "UNSIGNED16", 5: "UNSIGNED
                   6: "UNSIGNED8"}
 
 
-def pdo_table(dev: Device):
+def pdo_table(dev: Device, warn=None):
     """([(comm, mapping)] of RPDOs, same of TPDOs): PDO n is 0x1400+n/0x1600+n
-    (0x1800+n/0x1A00+n), numbered without gaps from 0."""
+    (0x1800+n/0x1A00+n), numbered without gaps from 0. Objects in the PDO
+    ranges that do not make such a PDO stay plain dictionary objects the core
+    does not run; each reason goes to @p warn (a foreign EDS may have them)."""
     objs = {o.index: o for o in dev.objects}
     out = ([], [])
+    note = warn if warn is not None else (lambda msg: None)
     for kind, (comm_base, map_base) in enumerate(((0x1400, 0x1600), (0x1800, 0x1A00))):
         for index in range(comm_base, comm_base + 0x200):
             comm, mapping = objs.get(index), objs.get(index - comm_base + map_base)
             if comm is None and mapping is None:
-                continue
-            what = f"object 0x{index:04X}"
-            if comm is None or mapping is None:
-                raise DescError(f"{what}: a PDO needs both its communication (0x{index:04X}) and "
-                                f"mapping (0x{index - comm_base + map_base:04X}) objects")
-            if index - comm_base != len(out[kind]):
-                raise DescError(f"{what}: PDOs must be numbered without gaps "
-                                f"(0x{comm_base + len(out[kind]):04X} is missing)")
-            cs = {x.sub: x for x in comm.subs}
-            for sub, tname in PDO_COMM_TYPES.items():
-                if sub in cs and cs[sub].type != tname:
-                    raise DescError(f"{what} sub {sub}: must be {tname}")
-            if 1 not in cs or 2 not in cs:
-                raise DescError(f"{what}: sub 1 (COB-ID) and sub 2 (transmission type) are required")
-            ms = mapping.subs
-            if (ms[0].sub != 0 or ms[0].type != "UNSIGNED8" or len(ms) < 2 or len(ms) > 9 or
-                    any(x.sub != k + 1 or x.type != "UNSIGNED32" for k, x in enumerate(ms[1:]))):
-                raise DescError(f"object 0x{mapping.index:04X}: a PDO mapping is sub 0 UNSIGNED8 "
-                                "and 1..8 consecutive UNSIGNED32 entries")
-            for x in [cs[k] for k in PDO_COMM_TYPES if k in cs] + ms:
-                if x.rom or x.hookio:
-                    raise DescError(f"object 0x{x.index:04X} sub {x.sub}: PDO parameters must be "
-                                    "RAM values (not const, not hookio)")
-            prev = None
-            for x in ms[1:]:
-                if prev is not None and not (x.field == prev.field and x.elem == prev.elem + 1):
-                    raise DescError(f"object 0x{mapping.index:04X}: mapping entries must be "
-                                    "stored back to back")
-                prev = x
+                rest = [i for i in objs if index < i < comm_base + 0x200 or
+                        index - comm_base + map_base < i < map_base + 0x200]
+                if rest:
+                    note(f"object 0x{min(rest):04X}: not run as a PDO: PDOs must be numbered "
+                         f"without gaps (0x{index:04X} is missing)")
+                break
+            problem = pdo_problem(comm, mapping, index, comm_base, map_base)
+            if problem:
+                note(f"{problem}; the core does not run this PDO or any after it")
+                break
             out[kind].append((comm, mapping))
     return out
+
+
+def pdo_problem(comm, mapping, index: int, comm_base: int, map_base: int) -> str | None:
+    """Why a communication/mapping pair is not a PDO the core can run, or None."""
+    what = f"object 0x{index:04X}"
+    if comm is None or mapping is None:
+        return (f"{what}: a PDO needs both its communication (0x{index:04X}) and "
+                f"mapping (0x{index - comm_base + map_base:04X}) objects")
+    cs = {x.sub: x for x in comm.subs}
+    for sub, tname in PDO_COMM_TYPES.items():
+        if sub in cs and cs[sub].type != tname:
+            return f"{what} sub {sub}: must be {tname}"
+    if 1 not in cs or 2 not in cs:
+        return f"{what}: sub 1 (COB-ID) and sub 2 (transmission type) are required"
+    ms = mapping.subs
+    if (ms[0].sub != 0 or ms[0].type != "UNSIGNED8" or len(ms) < 2 or len(ms) > 9 or
+            any(x.sub != k + 1 or x.type != "UNSIGNED32" for k, x in enumerate(ms[1:]))):
+        return (f"object 0x{mapping.index:04X}: a PDO mapping is sub 0 UNSIGNED8 "
+                "and 1..8 consecutive UNSIGNED32 entries")
+    for x in [cs[k] for k in PDO_COMM_TYPES if k in cs] + ms:
+        if x.rom or x.hookio:
+            return (f"object 0x{x.index:04X} sub {x.sub}: PDO parameters must be "
+                    "RAM values (not const, not hookio)")
+    prev = None
+    for x in ms[1:]:
+        if prev is not None and not (x.field == prev.field and x.elem == prev.elem + 1):
+            return f"object 0x{mapping.index:04X}: mapping entries must be stored back to back"
+        prev = x
+    return None
 
 
 def dev_obj_name(dev: Device, index: int) -> str:

@@ -52,7 +52,8 @@ def main(argv: list[str] | None = None) -> int:
         out = Path(args.out)
         products = {}
         if every or args.c:
-            h, c = gen_c.generate(dev, name)
+            h, c = gen_c.generate(
+                dev, name, lambda msg: print(f"{src}: warning: {msg}", file=sys.stderr))
             products[f"{dev.cname}.h"] = h
             products[f"{dev.cname}.c"] = c
         if every or args.eds:

@@ -355,6 +355,9 @@ void co402_traj_get(const co402_axis_t *ax, co402_traj_t *t)
 
 void co402_traj_put(co402_axis_t *ax, const co402_traj_t *t)
 {
+    /* the step just made runs from (dm_p, dm_v) with t->a during the tick */
+    ax->dm_p = ax->tr_p;
+    ax->dm_v = ax->tr_v;
     ax->tr_p = t->p;
     ax->tr_v = t->v;
     ax->tr_a = t->a;
@@ -365,14 +368,30 @@ void co402_sync_traj(co402_axis_t *ax)
     ax->tr_p = ax->pos;
     ax->tr_v = ax->vel;
     ax->tr_a = 0;
+    ax->dm_p = ax->pos;
+    ax->dm_v = ax->vel;
 }
 
 void co402_demand_pos(const co402_axis_t *ax, co402_demand_t *d, const co402_traj_t *t)
 {
+    /* the plant follows the generator's step from its start */
     d->kind = (uint8_t)CO402_DEMAND_POSITION;
-    d->pos = t->p - ax->shift;
-    d->vel = t->v;
+    d->pos = ax->dm_p - ax->shift;
+    d->vel = ax->dm_v;
     d->acc = t->a;
+}
+
+void co402_demand_at(co402_axis_t *ax, co402_demand_t *d, int64_t p, int64_t v)
+{
+    ax->tr_p = p;
+    ax->tr_v = v;
+    ax->tr_a = 0;
+    ax->dm_p = p;
+    ax->dm_v = v;
+    d->kind = (uint8_t)CO402_DEMAND_POSITION;
+    d->pos = p - ax->shift;
+    d->vel = v;
+    d->acc = 0;
 }
 
 bool co402_stop_step(co402_axis_t *ax, uint8_t kind, co402_demand_t *d)
@@ -381,9 +400,9 @@ bool co402_stop_step(co402_axis_t *ax, uint8_t kind, co402_demand_t *d)
     int64_t v = (ax->vel < 0) ? -ax->vel : ax->vel;
 
     if (kind == (uint8_t)STOP_LIMIT) {
-        /* stop on the torque limit: the velocity loop does it */
+        /* stop on the torque (current) limit: the plant brakes */
         co402_sync_traj(ax);
-        d->kind = (uint8_t)CO402_DEMAND_VELOCITY;
+        d->kind = (uint8_t)CO402_DEMAND_BRAKE;
         d->vel = 0;
         d->acc = 0;
         return v <= still;
@@ -671,11 +690,13 @@ static bool faults_pending(const co402_axis_t *ax)
     return ax->fb.fault != 0U;
 }
 
+/* Transition 15. The errors end (EMCY 0x0000) at the next tick, so that the
+ * answer to the controlword write that reset them goes out first. */
 static void fault_reset(co402_axis_t *ax)
 {
     for (uint8_t i = 0U; i < CO402_FAULTS_MAX; i++) {
         if (ax->raised[i] != 0U) {
-            co_emcy_clear(ax->node, ax->raised[i]);
+            ax->to_clear[i] = ax->raised[i];
             ax->raised[i] = 0U;
         }
     }
@@ -957,6 +978,12 @@ static void run_tick(co402_axis_t *ax, uint32_t now)
     co402_demand_t d;
 
     ax->now = now;
+    for (uint8_t i = 0U; i < CO402_FAULTS_MAX; i++) {
+        if (ax->to_clear[i] != 0U) {
+            co_emcy_clear(ax->node, ax->to_clear[i]);
+            ax->to_clear[i] = 0U;
+        }
+    }
     read_plant(ax, now);
     check_plant(ax);
     (void)memset(&d, 0, sizeof d);
@@ -1015,6 +1042,7 @@ static void start_axis(co402_axis_t *ax, uint32_t now)
     ax->cw = (uint16_t)co402_get(ax, O_CW, 0);
     (void)memset(ax->faults, 0, sizeof ax->faults);
     (void)memset(ax->raised, 0, sizeof ax->raised);
+    (void)memset(ax->to_clear, 0, sizeof ax->to_clear);
     ax->plant_fault = 0U;
     ax->msw = 0U;
     ax->pp_flags = 0U;
@@ -1140,12 +1168,8 @@ static void op_reset(void *inst, co_reset_t kind, uint32_t now_us)
     co402_axis_t *ax = (co402_axis_t *)inst;
 
     if (ax->attached && (kind == CO_RESET_NODE)) {
-        /* the application objects are back at their defaults: start over */
-        for (uint8_t i = 0U; i < CO402_FAULTS_MAX; i++) {
-            if (ax->raised[i] != 0U) {
-                ax->raised[i] = 0U; /* the core has dropped its active errors */
-            }
-        }
+        /* the application objects are back at their defaults and the core
+         * has dropped its active errors: start over */
         start_axis(ax, now_us);
     }
 }

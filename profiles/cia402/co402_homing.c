@@ -129,6 +129,7 @@ static void finish(co402_axis_t *ax)
     ax->shift = shift;
     ax->pos += delta;
     ax->tr_p += delta;
+    ax->dm_p += delta;
     ax->target += delta;
     ax->ip_from += delta;
     ax->ip_to += delta;

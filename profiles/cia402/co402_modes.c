@@ -313,7 +313,7 @@ static void pv_run(co402_axis_t *ax, co402_demand_t *d)
     t.p = ax->pos;
     co402_traj_put(ax, &t);
     d->kind = (uint8_t)CO402_DEMAND_VELOCITY;
-    d->vel = t.v;
+    d->vel = ax->dm_v; /* from the start of the step */
     d->acc = t.a;
     velocity_status(ax, co402_vel_out(ax, vt));
 }
@@ -349,7 +349,7 @@ static void vl_run(co402_axis_t *ax, co402_demand_t *d)
     t.p = ax->pos;
     co402_traj_put(ax, &t);
     d->kind = (uint8_t)CO402_DEMAND_VELOCITY;
-    d->vel = t.v;
+    d->vel = ax->dm_v; /* from the start of the step */
     d->acc = t.a;
     if (t.v == vt) {
         ax->msw |= CO402_SW_TARGET;
@@ -426,15 +426,17 @@ static void ip_run(co402_axis_t *ax, co402_demand_t *d)
     if ((ax->mode == CO402_MODE_IP) && ((ax->ip_flags & IP_ACTIVE) == 0U)) {
         co402_traj_get(ax, &t);
         (void)co402_traj_vel(&t, 0, co402_slow_dec(ax), co402_slow_dec(ax), co402_tick(ax));
+        co402_traj_put(ax, &t);
+        co402_demand_pos(ax, d, &t);
     } else {
-        interpolate(ax, ax->now, &t.p, &t.v);
-        t.a = 0;
+        int64_t p;
+        int64_t v;
+        interpolate(ax, ax->now, &p, &v);
+        co402_demand_at(ax, d, p, v);
         if (ax->mode == CO402_MODE_CSP) {
             ax->msw |= CO402_SW_OMS1; /* target position followed */
         }
     }
-    co402_traj_put(ax, &t);
-    co402_demand_pos(ax, d, &t);
 }
 
 /* The interpolation period: 0x60C2 (units * 10^index s), else the measured

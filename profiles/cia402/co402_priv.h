@@ -66,6 +66,8 @@ void co402_traj_get(const co402_axis_t *ax, co402_traj_t *t);
 void co402_traj_put(co402_axis_t *ax, const co402_traj_t *t);
 void co402_sync_traj(co402_axis_t *ax);                          /* demand := actual */
 void co402_demand_pos(const co402_axis_t *ax, co402_demand_t *d, const co402_traj_t *t);
+/* A demand at @p p moving with @p v now (the generator follows it). */
+void co402_demand_at(co402_axis_t *ax, co402_demand_t *d, int64_t p, int64_t v);
 /* One step of a stop with @p kind; true once at rest. */
 bool co402_stop_step(co402_axis_t *ax, uint8_t kind, co402_demand_t *d);
 

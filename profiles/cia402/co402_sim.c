@@ -39,10 +39,11 @@ void co402_sim_defaults(co402_sim_config_t *cfg)
     cfg->step_us = 250U;
     cfg->counts_per_rev = 4096U;
     cfg->speed_max = 409600U;      /* 100 rev/s */
-    cfg->accel_rated = 204800000U; /* 409600 inc/s reached in 2 ms at rated torque */
+    cfg->accel_rated = 2048000U;   /* 409600 inc/s reached in 0.2 s at rated torque */
     cfg->torque_max = 3000U;
-    cfg->kp = 60U;
+    cfg->kp = 100U;
     cfg->kv = 600U;
+    cfg->ki = 20000U;
     cfg->friction = 1U;
     cfg->neg_limit = INT32_MIN;
     cfg->pos_limit = INT32_MAX;
@@ -124,6 +125,7 @@ static void latch(co402_sim_t *s, int64_t p0, int64_t p1)
 
 static void step(co402_sim_t *s, uint32_t dt)
 {
+    uint32_t since = (s->t + dt) - s->t_cmd;
     const co402_sim_config_t *c = &s->cfg;
     int64_t a_lim;
     int64_t acc = 0;
@@ -136,18 +138,47 @@ static void step(co402_sim_t *s, uint32_t dt)
     }
     a_lim = ((int64_t)c->accel_rated * lim) / 1000;
     switch (s->d.kind) {
-    case CO402_DEMAND_POSITION: {
-        int64_t vcmd = s->d.vel + ((int64_t)c->kp * (s->d.pos - s->p));
-        acc = (int64_t)s->d.acc + (((int64_t)c->kv * (vcmd - s->v)) / CO402_Q16);
+    case CO402_DEMAND_POSITION:
+    case CO402_DEMAND_VELOCITY: {
+        /* cascade: P position loop, PI velocity loop, with feed-forward */
+        /* the demand moves on with its velocity and acceleration between
+         * two commands */
+        int64_t tau = (since > 10000U) ? 10000 : (int64_t)since;
+        int64_t dv = ((int64_t)s->d.acc * CO402_Q16 * tau) / US_PER_S;
+        int64_t vcmd = s->d.vel + dv;
+        int64_t e;
+        if (s->d.kind == (uint8_t)CO402_DEMAND_POSITION) {
+            int64_t pd = s->d.pos + (((s->d.vel + (dv / 2)) * tau) / US_PER_S);
+            vcmd += (int64_t)c->kp * (pd - s->p);
+        }
+        e = vcmd - s->v;
+        acc = (int64_t)s->d.acc + (((int64_t)c->kv * e) / CO402_Q16) + s->vi;
+        if (((acc < a_lim) || (e < 0)) && ((acc > -a_lim) || (e > 0))) {
+            /* integrate only while the torque is not at its limit (no wind-up) */
+            s->vi += ((((int64_t)c->ki * e) / CO402_Q16) * (int64_t)dt) / US_PER_S;
+            s->vi = clamp64(s->vi, a_lim);
+        }
         break;
     }
-    case CO402_DEMAND_VELOCITY:
-        acc = (int64_t)s->d.acc + (((int64_t)c->kv * (s->d.vel - s->v)) / CO402_Q16);
-        break;
     case CO402_DEMAND_TORQUE:
+        s->vi = 0;
         acc = ((int64_t)c->accel_rated * s->d.torque) / 1000;
         break;
+    case CO402_DEMAND_BRAKE: {
+        /* full torque against the motion, never through zero */
+        int64_t dv = ((a_lim * CO402_Q16) * (int64_t)dt) / US_PER_S;
+        s->vi = 0;
+        if (s->v > 0) {
+            acc = (s->v > dv) ? -a_lim : -((s->v * US_PER_S) / ((int64_t)dt * CO402_Q16));
+        } else if (s->v < 0) {
+            acc = (-s->v > dv) ? a_lim : ((-s->v * US_PER_S) / ((int64_t)dt * CO402_Q16));
+        } else {
+            acc = 0;
+        }
+        break;
+    }
     default:
+        s->vi = 0;
         break; /* off: no torque */
     }
     if (s->fault != 0U) {
@@ -191,6 +222,7 @@ static void sim_command(void *ctx, const co402_demand_t *d)
 {
     co402_sim_t *s = (co402_sim_t *)ctx;
     s->d = *d;
+    s->t_cmd = s->t;
 }
 
 static const co402_plant_ops_t sim_ops = {sim_update, sim_command};

@@ -141,6 +141,8 @@ typedef struct co402_axis {
     co402_feedback_t fb;             /* plant feedback of the last tick */
     int64_t tr_p;                    /* profile generator: demand position (Q16) */
     int64_t tr_v;                    /* ... demand velocity (Q16/s) */
+    int64_t dm_p;                    /* demand at the start of the present tick (Q16) */
+    int64_t dm_v;
     int64_t shift;                   /* internal position = raw + shift (Q16; homing) */
     int64_t pos;                     /* actual position, internal, Q16 */
     int64_t vel;                     /* actual velocity, Q16 */
@@ -167,6 +169,7 @@ typedef struct co402_axis {
     int32_t tr_a;                    /* profile generator: acceleration */
     uint16_t faults[CO402_FAULTS_MAX]; /* fault conditions present */
     uint16_t raised[CO402_FAULTS_MAX]; /* EMCY codes raised since the last fault reset */
+    uint16_t to_clear[CO402_FAULTS_MAX]; /* EMCY codes a fault reset ends at the next tick */
     uint16_t plant_fault;            /* fault the plant reports */
     uint16_t cw;                     /* last controlword */
     uint16_t msw;                    /* mode-dependent statusword bits (10..13) */

@@ -24,7 +24,9 @@ typedef enum co402_demand_kind {
     CO402_DEMAND_OFF = 0,    /**< power stage off: no torque, the motor coasts */
     CO402_DEMAND_POSITION,   /**< follow pos (with vel / acc feed-forward) */
     CO402_DEMAND_VELOCITY,   /**< follow vel (with acc feed-forward) */
-    CO402_DEMAND_TORQUE      /**< produce torque */
+    CO402_DEMAND_TORQUE,     /**< produce torque */
+    CO402_DEMAND_BRAKE       /**< brake at the torque limit to standstill, then hold
+                                  velocity 0 ("slow down on current limit") */
 } co402_demand_kind_t;
 
 typedef struct co402_demand {

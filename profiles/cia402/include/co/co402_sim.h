@@ -23,6 +23,7 @@ typedef struct co402_sim_config {
     uint32_t speed_max;      /**< increments/s */
     uint16_t kp;             /**< position loop gain, 1/s */
     uint16_t kv;             /**< velocity loop gain, 1/s */
+    uint32_t ki;             /**< velocity loop integral gain, 1/s^2 */
     uint16_t friction;       /**< viscous friction, 1/s (deceleration = friction * v) */
     uint32_t counts_per_rev; /**< an index pulse every counts_per_rev increments (0: none) */
     int32_t index_offset;    /**< position of one index pulse */
@@ -39,20 +40,22 @@ typedef struct co402_sim {
     co402_demand_t d;
     int64_t p;               /* Q16 increments */
     int64_t v;               /* Q16 increments/s */
+    int64_t vi;              /* velocity loop integral, increments/s^2 */
     int64_t index_k;         /* index interval the position is in */
     int64_t edge_pos[CO402_IN_EDGES];
     int64_t index_pos;
     uint32_t edge_count[CO402_IN_EDGES];
     uint32_t index_count;
     uint32_t t;              /* simulated up to this time */
+    uint32_t t_cmd;          /* time of the last command */
     uint32_t levels;         /* CO402_IN_ENABLE / _VOLTAGE as set */
     uint32_t inputs;         /* current inputs */
     int16_t torque;
     uint16_t fault;
 } co402_sim_t;
 
-/** Defaults: 4096 increments/rev, 100 rev/s top speed, 2 ms mechanical
- *  time constant at rated torque, torque limit 300 %, kp 60/s, kv 600/s,
+/** Defaults: 4096 increments/rev, 100 rev/s top speed, 0.2 s from rest to
+ *  top speed at rated torque, torque limit 300 %, kp 100/s, kv 600/s, ki 20000/s^2,
  *  no switches, enable and DC-link voltage present. */
 void co402_sim_defaults(co402_sim_config_t *cfg);
 

@@ -167,12 +167,13 @@ static int64_t scale_in(int64_t user, uint32_t num, uint32_t den)
     return (q * CO402_Q16) + ((r * CO402_Q16) / (int64_t)den);
 }
 
+/* Q16 -> user units, rounded to the nearest */
 static int64_t scale_out(int64_t q16, uint32_t num, uint32_t den)
 {
     if (num == den) {
-        return floor_div(q16, CO402_Q16);
+        return floor_div(q16 + (CO402_Q16 / 2), CO402_Q16);
     }
-    return floor_div(floor_div(q16, CO402_Q16) * (int64_t)den, (int64_t)num);
+    return floor_div((floor_div(q16, 256) * (int64_t)den) + ((int64_t)num * 128), (int64_t)num * 256);
 }
 
 static void factor(const co402_axis_t *ax, uint8_t num_id, uint8_t den_id, uint32_t *num,
@@ -826,7 +827,7 @@ co402_state_t co402_state(const co402_axis_t *ax)
 
 int32_t co402_position(const co402_axis_t *ax)
 {
-    return (int32_t)floor_div(ax->pos, CO402_Q16);
+    return (int32_t)floor_div(ax->pos + (CO402_Q16 / 2), CO402_Q16);
 }
 
 /* ------------------------------------------------------------- hooks */
@@ -892,7 +893,7 @@ static void publish_actuals(co402_axis_t *ax, const co402_demand_t *d)
 {
     int64_t demand = (d->kind == (uint8_t)CO402_DEMAND_POSITION) ? (d->pos + ax->shift) : ax->pos;
 
-    co402_put(ax, O_POS_INTERNAL, floor_div(ax->pos, CO402_Q16));
+    co402_put(ax, O_POS_INTERNAL, floor_div(ax->pos + (CO402_Q16 / 2), CO402_Q16));
     co402_put(ax, O_POS_ACTUAL, co402_pos_out(ax, ax->pos));
     co402_put(ax, O_POS_DEMAND, co402_pos_out(ax, demand));
     co402_put(ax, O_FE_ACTUAL, co402_pos_out(ax, demand) - co402_pos_out(ax, ax->pos));
@@ -902,9 +903,11 @@ static void publish_actuals(co402_axis_t *ax, const co402_demand_t *d)
     co402_put(ax, O_TORQUE_DEMAND, (d->kind == (uint8_t)CO402_DEMAND_TORQUE) ? d->torque : ax->fb.torque);
     co402_put(ax, O_DIG_IN, ax->fb.inputs & (CO402_IN_NEG_LIMIT | CO402_IN_POS_LIMIT | CO402_IN_HOME));
     if (co402_has(ax, O_VL_ACTUAL) || co402_has(ax, O_VL_DEMAND)) {
-        int64_t cpr = (int64_t)co402_counts_per_rev(ax);
-        co402_put(ax, O_VL_ACTUAL, ((ax->vel / CO402_Q16) * 60) / cpr);
-        co402_put(ax, O_VL_DEMAND, ((((d->kind == (uint8_t)CO402_DEMAND_OFF) ? 0 : d->vel) / CO402_Q16) * 60) / cpr);
+        /* rpm, rounded: v * 60 / (increments per revolution) */
+        int64_t per = (int64_t)co402_counts_per_rev(ax) * CO402_Q16;
+        int64_t dv = (d->kind == (uint8_t)CO402_DEMAND_OFF) ? 0 : ax->tr_v;
+        co402_put(ax, O_VL_ACTUAL, floor_div((ax->vel * 60) + (per / 2), per));
+        co402_put(ax, O_VL_DEMAND, floor_div((dv * 60) + (per / 2), per));
     }
 }
 

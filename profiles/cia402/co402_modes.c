@@ -123,7 +123,7 @@ void co402_mode_enter(co402_axis_t *ax)
     ax->cur_vel = pp_speed(ax);
     ax->cur_acc = co402_acc_in(ax, (uint32_t)co402_get(ax, O_PROFILE_ACC, 0));
     ax->cur_dec = co402_acc_in(ax, (uint32_t)co402_get(ax, O_PROFILE_DEC, 0));
-    ax->target = co402_traj_stop_point(&t, co402_quick_dec(ax));
+    ax->target = co402_traj_stop_point(&t, ax->cur_dec);
     ax->ip_from = ax->pos;
     ax->ip_to = ax->pos;
     ax->ip_period = 0U;
@@ -133,6 +133,10 @@ void co402_mode_enter(co402_axis_t *ax)
     ax->tq_demand = ax->fb.torque;
     if (ax->mode == CO402_MODE_HM) {
         co402_hm_enter(ax);
+    }
+    if ((ax->mode == CO402_MODE_CSP) || (ax->mode == CO402_MODE_CSV) ||
+        (ax->mode == CO402_MODE_CST)) {
+        ax->msw |= CO402_SW_OMS1; /* the set-points are followed */
     }
 }
 
@@ -263,6 +267,19 @@ static void pp_run(co402_axis_t *ax, co402_demand_t *d)
     }
 }
 
+/* pv statusword bit 12: the speed has been below 0x606F for 0x6070 ms. */
+static void speed_zero(co402_axis_t *ax)
+{
+    int64_t actual = co402_vel_out(ax, ax->vel);
+
+    if (held_for(ax, abs64(actual) <= co402_get(ax, O_VEL_THRESHOLD, 0),
+                 (uint32_t)co402_get(ax, O_VEL_THRESHOLD_TIME, 0), &ax->vtimer, &ax->vtimer_on)) {
+        ax->msw |= CO402_SW_OMS1;
+    } else {
+        ax->msw &= (uint16_t)~CO402_SW_OMS1;
+    }
+}
+
 static void velocity_status(co402_axis_t *ax, int64_t target_user)
 {
     int64_t actual = co402_vel_out(ax, ax->vel);
@@ -280,12 +297,7 @@ static void velocity_status(co402_axis_t *ax, int64_t target_user)
     } else {
         ax->msw &= (uint16_t)~CO402_SW_TARGET;
     }
-    if (held_for(ax, abs64(actual) <= co402_get(ax, O_VEL_THRESHOLD, 0),
-                 (uint32_t)co402_get(ax, O_VEL_THRESHOLD_TIME, 0), &ax->vtimer, &ax->vtimer_on)) {
-        ax->msw |= CO402_SW_OMS1; /* speed = 0 */
-    } else {
-        ax->msw &= (uint16_t)~CO402_SW_OMS1;
-    }
+    speed_zero(ax);
 }
 
 static void pv_run(co402_axis_t *ax, co402_demand_t *d)
@@ -406,7 +418,7 @@ static void interpolate(const co402_axis_t *ax, uint32_t when, int64_t *p, int64
     int64_t delta = ax->ip_to - ax->ip_from;
     int32_t el = (int32_t)(when - ax->ip_t0);
 
-    if ((ax->ip_period == 0U) || (el >= (int32_t)ax->ip_period)) {
+    if ((ax->ip_period == 0U) || (el > (int32_t)ax->ip_period)) {
         *p = ax->ip_to;
         *v = 0;
     } else if (el <= 0) {
@@ -532,6 +544,9 @@ void co402_mode_run(co402_axis_t *ax, co402_demand_t *d)
         ax->timer_on = false;
         if (ax->mode == CO402_MODE_TQ) {
             ax->tq_demand = ax->fb.torque;
+        }
+        if (ax->mode == CO402_MODE_PV) {
+            speed_zero(ax);
         }
         return;
     }

@@ -259,7 +259,7 @@ void co402_sim_set_fault(co402_sim_t *s, uint16_t code)
 
 int32_t co402_sim_position(const co402_sim_t *s)
 {
-    return (int32_t)floor_div(s->p, CO402_Q16);
+    return (int32_t)floor_div(s->p + (CO402_Q16 / 2), CO402_Q16);
 }
 
 int32_t co402_sim_velocity(const co402_sim_t *s)

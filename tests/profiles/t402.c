@@ -10,6 +10,15 @@
 
 #include "co/co_endian.h"
 
+void t402_assert_range_at(int64_t v, int64_t lo, int64_t hi, const char *file, int line)
+{
+    if ((v < lo) || (v > hi)) {
+        print_error("%s:%d: %lld is not within %lld..%lld\n", file, line, (long long)v,
+                    (long long)lo, (long long)hi);
+        _fail(file, line);
+    }
+}
+
 void t402_sim_defaults(co402_sim_config_t *c)
 {
     co402_sim_defaults(c);

@@ -25,6 +25,10 @@ typedef struct t402 {
     unsigned syncs;
 } t402_t;
 
+/** Signed range check (cmocka's assert_in_range is unsigned). */
+void t402_assert_range_at(int64_t v, int64_t lo, int64_t hi, const char *file, int line);
+#define assert_between(v, lo, hi) t402_assert_range_at((int64_t)(v), (lo), (hi), __FILE__, __LINE__)
+
 /** Simulation parameters the tests start from (co402_sim_defaults). */
 void t402_sim_defaults(co402_sim_config_t *c);
 

@@ -335,7 +335,7 @@ static void stop_from_speed(uint16_t obj, int16_t code, uint16_t cw, uint32_t *m
     t402_cw(&fx, 0x000F);
     t402_set(&fx, 0x60FF, 0, 40000, 4);
     t402_run(&fx, 300000);
-    assert_in_range(co402_sim_velocity(&fx.sim), 39900, 40100);
+    assert_between(co402_sim_velocity(&fx.sim), 39900, 40100);
     p0 = co402_sim_position(&fx.sim);
     if (cw != 0xFFFFU) {
         t402_cw(&fx, cw);
@@ -369,7 +369,7 @@ static void coast(uint16_t obj, uint16_t cw)
         co402_fault_event(AX, 0x2310);
     }
     t402_run(&fx, 200000);
-    assert_in_range(co402_sim_velocity(&fx.sim), 32500, 33000);
+    assert_between(co402_sim_velocity(&fx.sim), 32500, 33000);
 }
 
 static void quick_stop_option_codes(void **state)
@@ -378,12 +378,12 @@ static void quick_stop_option_codes(void **state)
     int32_t d1, d2, d3;
     (void)state;
     stop_from_speed(0x605A, 1, 0x000B, &t1, &d1); /* slow down ramp 100000: 400 ms */
-    assert_in_range(t1, 395, 420);
-    assert_in_range(d1, 7800, 8200); /* v^2 / 2a = 8000 */
+    assert_between(t1, 395, 420);
+    assert_between(d1, 7800, 8200); /* v^2 / 2a = 8000 */
     t402_run_until(&fx, 0xFFFF, 0x0250, 20000);
     stop_from_speed(0x605A, 2, 0x000B, &t2, &d2); /* quick stop ramp 1000000: 40 ms */
-    assert_in_range(t2, 38, 50);
-    assert_in_range(d2, 750, 900);
+    assert_between(t2, 38, 50);
+    assert_between(d2, 750, 900);
     t402_run_until(&fx, 0xFFFF, 0x0250, 20000);
     stop_from_speed(0x605A, 3, 0x000B, &t3, &d3); /* current limit: faster still */
     assert_true(t3 < t2);
@@ -393,11 +393,11 @@ static void quick_stop_option_codes(void **state)
     assert_int_equal(t402_sw(&fx), 0x0250);
     /* 5..8 stop the same way and stay in Quick stop active */
     stop_from_speed(0x605A, 6, 0x000B, &t2, &d2);
-    assert_in_range(t2, 38, 50);
+    assert_between(t2, 38, 50);
     t402_run(&fx, 20000);
     assert_int_equal(t402_sw(&fx), 0x0617);
     stop_from_speed(0x605A, 5, 0x000B, &t1, &d1);
-    assert_in_range(t1, 395, 420);
+    assert_between(t1, 395, 420);
     t402_run(&fx, 20000);
     assert_int_equal(t402_sw(&fx), 0x0617);
 }
@@ -408,11 +408,11 @@ static void fault_reaction_option_codes(void **state)
     int32_t d1, d2;
     (void)state;
     stop_from_speed(0x605E, 1, 0xFFFF, &t1, &d1);
-    assert_in_range(t1, 395, 420);
+    assert_between(t1, 395, 420);
     t402_run(&fx, 2000);
     assert_int_equal(t402_sw(&fx), 0x0218);
     stop_from_speed(0x605E, 2, 0xFFFF, &t2, &d2);
-    assert_in_range(t2, 38, 50);
+    assert_between(t2, 38, 50);
     coast(0x605E, 0xFFFF);
     assert_int_equal(t402_sw(&fx), 0x0218); /* in Fault at once */
     (void)d1;
@@ -434,7 +434,7 @@ static void fault_reaction_active_while_braking(void **state)
     t402_run(&fx, 100000);
     assert_int_equal(t402_sw(&fx), 0x021F); /* still braking: 200 ms */
     t = t402_run_until(&fx, 0xFFFF, 0x0218, 200000);
-    assert_in_range(t, 90000, 120000);
+    assert_between(t, 90000, 120000);
 }
 
 static void disable_operation_ramps_down_first(void **state)
@@ -451,7 +451,7 @@ static void disable_operation_ramps_down_first(void **state)
     t402_run(&fx, 100000);
     assert_int_equal(co402_state(AX), CO402_OPERATION_ENABLED);
     t = t402_run_until(&fx, 0x006F, 0x0023, 300000);
-    assert_in_range(t, 90000, 120000);
+    assert_between(t, 90000, 120000);
     /* enable operation again during the ramp calls 5 off */
     t402_cw(&fx, 0x000F);
     t402_set(&fx, 0x60FF, 0, 20000, 4);
@@ -461,7 +461,7 @@ static void disable_operation_ramps_down_first(void **state)
     t402_cw(&fx, 0x000F);
     t402_run(&fx, 500000);
     assert_int_equal(co402_state(AX), CO402_OPERATION_ENABLED);
-    assert_in_range(co402_sim_velocity(&fx.sim), 19900, 20100);
+    assert_between(co402_sim_velocity(&fx.sim), 19900, 20100);
 }
 
 /* ------------------------------------------------------ hardware inputs */

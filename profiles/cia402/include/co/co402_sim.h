@@ -70,7 +70,7 @@ void co402_sim_set_level(co402_sim_t *s, uint32_t mask, bool on);
 /** Report a plant fault (an error code such as 0x2310 over-current), 0 clears it. */
 void co402_sim_set_fault(co402_sim_t *s, uint16_t code);
 
-/** Actual position in whole increments (raw plant coordinates). */
+/** Actual position in whole increments, rounded (raw plant coordinates). */
 int32_t co402_sim_position(const co402_sim_t *s);
 
 /** Actual velocity in whole increments/s. */

@@ -914,21 +914,23 @@ static void publish_actuals(co402_axis_t *ax, const co402_demand_t *d)
 static void check_following(co402_axis_t *ax, const co402_demand_t *d)
 {
     uint32_t window = (uint32_t)co402_get(ax, O_FE_WINDOW, 0xFFFFFFFF);
+    /* statusword bit 13 is "following error" in pp, ip and csp only */
+    bool bit13 = (ax->mode == CO402_MODE_PP) || (ax->mode == CO402_MODE_IP) ||
+                 (ax->mode == CO402_MODE_CSP);
     int64_t err;
 
     if ((d->kind != (uint8_t)CO402_DEMAND_POSITION) || (window == 0xFFFFFFFFU) ||
         !co402_has(ax, O_FE_WINDOW) || (ax->state != (uint8_t)CO402_OPERATION_ENABLED)) {
-        ax->fe_on = false;
-        ax->msw &= (uint16_t)~CO402_SW_OMS2;
-        return;
-    }
-    err = co402_pos_out(ax, d->pos + ax->shift) - co402_pos_out(ax, ax->pos);
-    if (err < 0) {
-        err = -err;
+        err = 0;
+    } else {
+        err = co402_pos_out(ax, d->pos + ax->shift) - co402_pos_out(ax, ax->pos);
+        if (err < 0) {
+            err = -err;
+        }
     }
     if (err <= (int64_t)window) {
         ax->fe_on = false;
-        if (co402_position_mode(ax)) {
+        if (bit13) {
             ax->msw &= (uint16_t)~CO402_SW_OMS2;
         }
         return;
@@ -938,7 +940,7 @@ static void check_following(co402_axis_t *ax, const co402_demand_t *d)
         ax->fe_timer = ax->now;
     }
     if ((ax->now - ax->fe_timer) >= ((uint32_t)co402_get(ax, O_FE_TIMEOUT, 0) * 1000U)) {
-        if (co402_position_mode(ax)) {
+        if (bit13) {
             ax->msw |= CO402_SW_OMS2;
         }
         if ((ax->cfg.options & CO402_OPT_FE_WARN_ONLY) == 0U) {

@@ -150,8 +150,8 @@ static void start(co402_axis_t *ax)
     if (!find_spec(method, &s)) {
         ax->hm_phase = (uint8_t)HM_ERROR;
     } else if (s.sw == SW_HERE) {
-        ax->hm_home = ax->fb.pos;
-        finish(ax);
+        ax->hm_home = ax->fb.pos; /* at rest: done at the next tick */
+        ax->hm_phase = (uint8_t)HM_STOPPING;
     } else if (s.sw == SW_NONE) {
         ax->hm_edge = ax->fb.pos;
         ax->hm_dir = s.dir;

@@ -6,17 +6,19 @@
 #include <cmocka.h>
 #include "t402.h"
 static void explore(void **s) {
-    (void)s; static t402_t f; co402_sim_config_t sc;
-    t402_sim_defaults(&sc); sc.torque_max = 30;
-    t402_start(&f, 1, CO402_OPT_FE_WARN_ONLY, &sc);
-    t402_set(&f, 0x6065, 0, 200, 4);
+    (void)s; static t402_t f; co402_sim_config_t c;
+    t402_sim_defaults(&c);
+    c.index_offset = 100; c.switches = CO402_IN_NEG_LIMIT | CO402_IN_POS_LIMIT; c.neg_limit=-50000; c.pos_limit=50000;
+    t402_start(&f, 1, 0, &c);
+    t402_set(&f, 0x6060, 0, 6, 1);
+    t402_set(&f, 0x6098, 0, 4, 1);
     t402_enable(&f);
-    t402_set(&f, 0x607A, 0, 50000, 4);
-    t402_cw(&f, 0x001F); t402_cw(&f, 0x000F);
-    for (int i = 0; i < 8000; i++) {
+    t402_cw(&f, 0x001F);
+    for (int i = 0; i < 4000; i++) {
         t402_run(&f, 1000);
-        if (i % 250 == 0)
-            printf("%d simv %d pos %d dem %d fe %d trq %d sw %04X\n", i, co402_sim_velocity(&f.sim), (int)t402_get(&f,0x6064,0), (int)t402_get(&f,0x6062,0), (int)t402_get(&f,0x60F4,0), (int)t402_get(&f,0x6077,0), t402_sw(&f));
+        if (i % 200 == 0 || f.ax.hm_phase != 1)
+            printf("%d simv %d pos %d ph %d dir %d in %x sw %04X st %d\n", i, co402_sim_velocity(&f.sim), co402_sim_position(&f.sim), f.ax.hm_phase, f.ax.hm_dir, f.ax.fb.inputs, t402_sw(&f), f.ax.state);
+        if ((t402_sw(&f) & 0x400) && i > 10) break;
     }
 }
 int main(void) { const struct CMUnitTest t[] = { cmocka_unit_test(explore) }; return cmocka_run_group_tests(t, NULL, NULL); }

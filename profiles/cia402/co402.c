@@ -245,10 +245,7 @@ int64_t co402_vel_out(const co402_axis_t *ax, int64_t q16)
     uint32_t num;
     uint32_t den;
     vel_factor(ax, &num, &den);
-    if (num == den) {
-        return (q16 / CO402_Q16) * vel_sign(ax); /* towards zero: no -1 at rest */
-    }
-    return ((q16 / CO402_Q16) * (int64_t)den / (int64_t)num) * vel_sign(ax);
+    return scale_out(q16, num, den) * vel_sign(ax);
 }
 
 static uint32_t sat32(int64_t v)

@@ -10,7 +10,6 @@
 
 typedef char co402_obj_count_matches[(O_COUNT == CO402_OBJ_COUNT) ? 1 : -1];
 
-#define US_PER_S 1000000LL
 #define MIN_STANDSTILL (4LL * CO402_Q16) /* 4 increments/s */
 
 /* ------------------------------------------------------------ objects */
@@ -35,6 +34,8 @@ static const obj_ref_t obj_refs[O_COUNT] = {
     {0x6502U, 0U}, {0x6042U, 0U}, {0x6043U, 0U}, {0x6044U, 0U}, {0x6046U, 1U}, {0x6046U, 2U},
     {0x6048U, 1U}, {0x6048U, 2U}, {0x6049U, 1U}, {0x6049U, 2U}, {0x604AU, 1U}, {0x604AU, 2U},
 };
+
+#define OBJ_CONST 0x80U /* obj_type: the value is in the device's ROM image */
 
 static uint16_t axis_index(const co402_axis_t *ax, uint16_t index)
 {
@@ -70,7 +71,7 @@ int64_t co402_get(const co402_axis_t *ax, uint8_t id, int64_t dflt)
     if (p == NULL) {
         return dflt;
     }
-    switch (ax->obj_type[id]) {
+    switch (ax->obj_type[id] & (uint8_t)~OBJ_CONST) {
     case (uint8_t)CO_INTEGER8: {
         int8_t v;
         (void)memcpy(&v, p, 1U);
@@ -108,7 +109,7 @@ void co402_put(co402_axis_t *ax, uint8_t id, int64_t v)
 {
     void *p = ax->obj[id];
 
-    if (p == NULL) {
+    if ((p == NULL) || ((ax->obj_type[id] & OBJ_CONST) != 0U)) {
         return;
     }
     switch (int_size(ax->obj_type[id])) {
@@ -140,7 +141,13 @@ static void bind_objects(co402_axis_t *ax)
         const co_od_sub_t *s = (e != NULL) ? co_od_find_sub(e, obj_refs[i].sub) : NULL;
         ax->obj[i] = NULL;
         ax->obj_type[i] = 0U;
-        if ((s != NULL) && (int_size(s->type) != 0U) && ((s->flags & CO_SUB_ROM) == 0U)) {
+        if ((s == NULL) || (int_size(s->type) == 0U) || ((s->flags & CO_SUB_HOOKIO) != 0U)) {
+            /* absent, or not an integer the axis can keep */
+        } else if ((s->flags & CO_SUB_ROM) != 0U) {
+            /* a constant (0x6502 ...): read it where the device keeps it, never write */
+            ax->obj[i] = (void *)(uintptr_t)&dev->rom[s->off];
+            ax->obj_type[i] = (uint8_t)(s->type | OBJ_CONST);
+        } else {
             ax->obj[i] = co_od_value_ptr(ax->node, index, obj_refs[i].sub);
             ax->obj_type[i] = s->type;
         }
@@ -149,7 +156,7 @@ static void bind_objects(co402_axis_t *ax)
 
 /* -------------------------------------------------------------- units */
 
-static int64_t floor_div(int64_t a, int64_t b)
+static int64_t div_floor(int64_t a, int64_t b)
 {
     int64_t q = a / b;
     if (((a % b) != 0) && ((a < 0) != (b < 0))) {
@@ -171,9 +178,9 @@ static int64_t scale_in(int64_t user, uint32_t num, uint32_t den)
 static int64_t scale_out(int64_t q16, uint32_t num, uint32_t den)
 {
     if (num == den) {
-        return floor_div(q16 + (CO402_Q16 / 2), CO402_Q16);
+        return div_floor(q16 + (CO402_Q16 / 2), CO402_Q16);
     }
-    return floor_div((floor_div(q16, 256) * (int64_t)den) + ((int64_t)num * 128), (int64_t)num * 256);
+    return div_floor((div_floor(q16, 256) * (int64_t)den) + ((int64_t)num * 128), (int64_t)num * 256);
 }
 
 static void factor(const co402_axis_t *ax, uint8_t num_id, uint8_t den_id, uint32_t *num,
@@ -426,8 +433,8 @@ uint16_t co402_statusword(const co402_axis_t *ax)
     bool on = (ax->state >= (uint8_t)CO402_SWITCHED_ON) && (ax->state <= (uint8_t)CO402_FAULT_REACTION);
 
     if ((o & CO402_OPT_NO_VOLTAGE_BIT) == 0U) {
-        bool volt = ((o & CO402_OPT_VOLTAGE_WHEN_ON) != 0U) ? on
-                                                           : ((ax->fb.inputs & CO402_IN_VOLTAGE) != 0U);
+        bool present = (ax->fb.inputs & CO402_IN_VOLTAGE) != 0U;
+        bool volt = ((o & CO402_OPT_VOLTAGE_WHEN_ON) != 0U) ? on : present;
         if (volt) {
             sw |= CO402_SW_VOLTAGE;
         }
@@ -577,7 +584,7 @@ enum { CMD_NONE = 0, CMD_SHUTDOWN, CMD_SWITCH_ON, CMD_ENABLE, CMD_DISABLE_VOLTAG
 
 static uint8_t decode(const co402_axis_t *ax, uint16_t cw)
 {
-    uint16_t b7 = ((ax->cfg.options & CO402_OPT_BIT7_DONT_CARE) != 0U) ? 0U : CO402_CW_FAULT_RESET;
+    uint16_t b7 = (uint16_t)(((ax->cfg.options & CO402_OPT_BIT7_DONT_CARE) != 0U) ? 0U : CO402_CW_FAULT_RESET);
 
     if ((cw & (b7 | 0x02U)) == 0x00U) {
         return CMD_DISABLE_VOLTAGE;
@@ -824,7 +831,7 @@ co402_state_t co402_state(const co402_axis_t *ax)
 
 int32_t co402_position(const co402_axis_t *ax)
 {
-    return (int32_t)floor_div(ax->pos + (CO402_Q16 / 2), CO402_Q16);
+    return (int32_t)div_floor(ax->pos + (CO402_Q16 / 2), CO402_Q16);
 }
 
 /* ------------------------------------------------------------- hooks */
@@ -890,7 +897,7 @@ static void publish_actuals(co402_axis_t *ax, const co402_demand_t *d)
 {
     int64_t demand = (d->kind == (uint8_t)CO402_DEMAND_POSITION) ? (d->pos + ax->shift) : ax->pos;
 
-    co402_put(ax, O_POS_INTERNAL, floor_div(ax->pos + (CO402_Q16 / 2), CO402_Q16));
+    co402_put(ax, O_POS_INTERNAL, div_floor(ax->pos + (CO402_Q16 / 2), CO402_Q16));
     co402_put(ax, O_POS_ACTUAL, co402_pos_out(ax, ax->pos));
     co402_put(ax, O_POS_DEMAND, co402_pos_out(ax, demand));
     co402_put(ax, O_FE_ACTUAL, co402_pos_out(ax, demand) - co402_pos_out(ax, ax->pos));
@@ -903,14 +910,14 @@ static void publish_actuals(co402_axis_t *ax, const co402_demand_t *d)
         /* rpm, rounded: v * 60 / (increments per revolution) */
         int64_t per = (int64_t)co402_counts_per_rev(ax) * CO402_Q16;
         int64_t dv = (d->kind == (uint8_t)CO402_DEMAND_OFF) ? 0 : ax->tr_v;
-        co402_put(ax, O_VL_ACTUAL, floor_div((ax->vel * 60) + (per / 2), per));
-        co402_put(ax, O_VL_DEMAND, floor_div((dv * 60) + (per / 2), per));
+        co402_put(ax, O_VL_ACTUAL, div_floor((ax->vel * 60) + (per / 2), per));
+        co402_put(ax, O_VL_DEMAND, div_floor((dv * 60) + (per / 2), per));
     }
 }
 
 static void check_following(co402_axis_t *ax, const co402_demand_t *d)
 {
-    uint32_t window = (uint32_t)co402_get(ax, O_FE_WINDOW, 0xFFFFFFFF);
+    uint32_t window = (uint32_t)co402_get(ax, O_FE_WINDOW, 0xFFFFFFFFLL);
     /* statusword bit 13 is "following error" in pp, ip and csp only */
     bool bit13 = (ax->mode == CO402_MODE_PP) || (ax->mode == CO402_MODE_IP) ||
                  (ax->mode == CO402_MODE_CSP);
@@ -1136,7 +1143,7 @@ static void abort_connection(co402_axis_t *ax, uint16_t code)
         co402_fault_event(ax, code);
         break;
     case 2:
-        if (ax->state != (uint8_t)CO402_FAULT_REACTION && ax->state != (uint8_t)CO402_FAULT) {
+        if ((ax->state != (uint8_t)CO402_FAULT_REACTION) && (ax->state != (uint8_t)CO402_FAULT)) {
             (void)transition(ax, CMD_DISABLE_VOLTAGE);
         }
         break;

@@ -73,7 +73,7 @@ static bool find_spec(int8_t method, hm_spec_t *out)
         m = (int8_t)(method - 16); /* as 1..14, without the index pulse */
         plain = true;
     }
-    for (size_t i = 0U; i < (sizeof specs / sizeof specs[0]); i++) {
+    for (size_t i = 0U; i < (sizeof(specs) / sizeof(specs[0])); i++) {
         if (specs[i].method == m) {
             *out = specs[i];
             if (plain) {
@@ -136,7 +136,7 @@ static void finish(co402_axis_t *ax)
     ax->hm_phase = (uint8_t)HM_DONE;
 }
 
-static void start(co402_axis_t *ax)
+static void hm_start(co402_axis_t *ax)
 {
     hm_spec_t s;
     int8_t method = (int8_t)co402_get(ax, O_HM_METHOD, 0);
@@ -171,7 +171,7 @@ void co402_hm_cw(co402_axis_t *ax, uint16_t old, uint16_t cw)
     bool was_set = (old & CO402_CW_NEW_SETPOINT) != 0U;
 
     if (now_set && !was_set) {
-        start(ax);
+        hm_start(ax);
     } else if (!now_set && was_set) {
         if ((ax->hm_phase == (uint8_t)HM_SEARCH) || (ax->hm_phase == (uint8_t)HM_INDEX)) {
             ax->hm_phase = (uint8_t)HM_ABORTING; /* interrupted */

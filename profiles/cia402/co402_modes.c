@@ -7,9 +7,9 @@
 
 #include "co402_priv.h"
 
-#define US_PER_S 1000000LL
+#define MODES_US_PER_S 1000000LL
 
-static int64_t abs64(int64_t v)
+static int64_t mag(int64_t v)
 {
     return (v < 0) ? -v : v;
 }
@@ -31,7 +31,7 @@ bool co402_mode_supported(const co402_axis_t *ax, int8_t mode)
     case CO402_MODE_CSP:
     case CO402_MODE_CSV:
     case CO402_MODE_CST:
-        return (mask & (1UL << (uint8_t)(mode - 1))) != 0U;
+        return (mask & (1UL << (uint32_t)((int32_t)mode - 1))) != 0U;
     default:
         return false;
     }
@@ -222,7 +222,7 @@ void co402_mode_cw(co402_axis_t *ax, uint16_t old, uint16_t cw)
 static void pp_run(co402_axis_t *ax, co402_demand_t *d)
 {
     co402_traj_t t;
-    uint32_t window = (uint32_t)co402_get(ax, O_POS_WINDOW, 0xFFFFFFFF);
+    uint32_t window = (uint32_t)co402_get(ax, O_POS_WINDOW, 0xFFFFFFFFLL);
     bool idle;
     bool in;
 
@@ -246,7 +246,7 @@ static void pp_run(co402_axis_t *ax, co402_demand_t *d)
     co402_demand_pos(ax, d, &t);
     idle = (ax->pp_flags & (PP_MOVING | PP_NEXT)) == 0U;
     in = (window == 0xFFFFFFFFU) ||
-         (abs64(co402_pos_out(ax, ax->target) - co402_pos_out(ax, ax->pos)) <= (int64_t)window);
+         (mag(co402_pos_out(ax, ax->target) - co402_pos_out(ax, ax->pos)) <= (int64_t)window);
     if ((ax->cfg.options & CO402_OPT_PP_TR_AFTER_MOVE) != 0U) {
         /* set once a set-point has been reached, kept until the next one */
         if (idle && ((ax->pp_flags & PP_MOVED) != 0U) &&
@@ -272,7 +272,7 @@ static void speed_zero(co402_axis_t *ax)
 {
     int64_t actual = co402_vel_out(ax, ax->vel);
 
-    if (held_for(ax, abs64(actual) <= co402_get(ax, O_VEL_THRESHOLD, 0),
+    if (held_for(ax, mag(actual) <= co402_get(ax, O_VEL_THRESHOLD, 0),
                  (uint32_t)co402_get(ax, O_VEL_THRESHOLD_TIME, 0), &ax->vtimer, &ax->vtimer_on)) {
         ax->msw |= CO402_SW_OMS1;
     } else {
@@ -286,7 +286,7 @@ static void velocity_status(co402_axis_t *ax, int64_t target_user)
     bool reached;
 
     if (co402_has(ax, O_VEL_WINDOW)) {
-        reached = held_for(ax, abs64(actual - target_user) <= co402_get(ax, O_VEL_WINDOW, 0),
+        reached = held_for(ax, mag(actual - target_user) <= co402_get(ax, O_VEL_WINDOW, 0),
                            (uint32_t)co402_get(ax, O_VEL_WINDOW_TIME, 0), &ax->timer,
                            &ax->timer_on);
     } else {
@@ -334,7 +334,7 @@ static void vl_run(co402_axis_t *ax, co402_demand_t *d)
 {
     co402_traj_t t;
     int64_t rpm = co402_get(ax, O_VL_TARGET, 0);
-    int64_t a = abs64(rpm);
+    int64_t a = mag(rpm);
     int64_t vmin = co402_get(ax, O_VL_MIN, 0);
     int64_t vmax = co402_get(ax, O_VL_MAX, 0);
     int64_t vt;
@@ -373,27 +373,28 @@ static void vl_run(co402_axis_t *ax, co402_demand_t *d)
 static int16_t clamp_torque(const co402_axis_t *ax, int64_t tq)
 {
     int64_t m = co402_get(ax, O_MAX_TORQUE, 0x7FFF);
+    int64_t v = tq;
 
     if (m <= 0) {
         m = 0x7FFF;
     }
-    if (tq > m) {
-        tq = m;
+    if (v > m) {
+        v = m;
     }
-    if (tq < -m) {
-        tq = -m;
+    if (v < -m) {
+        v = -m;
     }
-    return (int16_t)tq;
+    return (int16_t)v;
 }
 
 static void tq_run(co402_axis_t *ax, co402_demand_t *d)
 {
     int16_t target = clamp_torque(ax, co402_get(ax, O_TARGET_TORQUE, 0));
     int64_t slope = co402_get(ax, O_TORQUE_SLOPE, 0);
-    int64_t step = (slope * (int64_t)co402_tick(ax)) / US_PER_S;
+    int64_t step = (slope * (int64_t)co402_tick(ax)) / MODES_US_PER_S;
     int64_t diff = (int64_t)target - ax->tq_demand;
 
-    if ((slope <= 0) || (abs64(diff) <= step)) {
+    if ((slope <= 0) || (mag(diff) <= step)) {
         ax->tq_demand = target;
     } else {
         if (step < 1) {
@@ -427,7 +428,7 @@ static void interpolate(const co402_axis_t *ax, uint32_t when, int64_t *p, int64
     } else {
         int64_t per = (int64_t)ax->ip_period;
         *p = ax->ip_from + ((delta / per) * el) + (((delta % per) * el) / per);
-        *v = ((delta / per) * US_PER_S) + (((delta % per) * US_PER_S) / per);
+        *v = ((delta / per) * MODES_US_PER_S) + (((delta % per) * MODES_US_PER_S) / per);
     }
 }
 

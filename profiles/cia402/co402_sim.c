@@ -6,9 +6,9 @@
 #include <stddef.h>
 #include <string.h>
 
-#define US_PER_S 1000000LL
+#define SIM_US_PER_S 1000000LL
 
-static int64_t floor_div(int64_t a, int64_t b)
+static int64_t sim_floor_div(int64_t a, int64_t b)
 {
     int64_t q = a / b;
     if (((a % b) != 0) && ((a < 0) != (b < 0))) {
@@ -81,7 +81,7 @@ static int64_t index_interval(const co402_sim_t *s, int64_t p)
     if (s->cfg.counts_per_rev == 0U) {
         return 0;
     }
-    return floor_div(p - q16(s->cfg.index_offset), (int64_t)s->cfg.counts_per_rev * CO402_Q16);
+    return sim_floor_div(p - q16(s->cfg.index_offset), (int64_t)s->cfg.counts_per_rev * CO402_Q16);
 }
 
 /* Latches for a move from p0 to p1 within one step. */
@@ -136,7 +136,7 @@ static void step(co402_sim_t *s, uint32_t dt)
     if ((s->d.torque_limit != 0U) && (s->d.torque_limit < lim)) {
         lim = s->d.torque_limit;
     }
-    a_lim = ((int64_t)c->accel_rated * lim) / 1000;
+    a_lim = ((int64_t)c->accel_rated * (int64_t)lim) / 1000;
     switch (s->d.kind) {
     case CO402_DEMAND_POSITION:
     case CO402_DEMAND_VELOCITY: {
@@ -144,18 +144,18 @@ static void step(co402_sim_t *s, uint32_t dt)
         /* the demand moves on with its velocity and acceleration between
          * two commands */
         int64_t tau = (since > 10000U) ? 10000 : (int64_t)since;
-        int64_t dv = ((int64_t)s->d.acc * CO402_Q16 * tau) / US_PER_S;
+        int64_t dv = ((int64_t)s->d.acc * CO402_Q16 * tau) / SIM_US_PER_S;
         int64_t vcmd = s->d.vel + dv;
         int64_t e;
         if (s->d.kind == (uint8_t)CO402_DEMAND_POSITION) {
-            int64_t pd = s->d.pos + (((s->d.vel + (dv / 2)) * tau) / US_PER_S);
+            int64_t pd = s->d.pos + (((s->d.vel + (dv / 2)) * tau) / SIM_US_PER_S);
             vcmd += (int64_t)c->kp * (pd - s->p);
         }
         e = vcmd - s->v;
         acc = (int64_t)s->d.acc + (((int64_t)c->kv * e) / CO402_Q16) + s->vi;
         if (((acc < a_lim) || (e < 0)) && ((acc > -a_lim) || (e > 0))) {
             /* integrate only while the torque is not at its limit (no wind-up) */
-            s->vi += ((((int64_t)c->ki * e) / CO402_Q16) * (int64_t)dt) / US_PER_S;
+            s->vi += ((((int64_t)c->ki * e) / CO402_Q16) * (int64_t)dt) / SIM_US_PER_S;
             s->vi = clamp64(s->vi, a_lim);
         }
         break;
@@ -166,12 +166,12 @@ static void step(co402_sim_t *s, uint32_t dt)
         break;
     case CO402_DEMAND_BRAKE: {
         /* full torque against the motion, never through zero */
-        int64_t dv = ((a_lim * CO402_Q16) * (int64_t)dt) / US_PER_S;
+        int64_t dv = ((a_lim * CO402_Q16) * (int64_t)dt) / SIM_US_PER_S;
         s->vi = 0;
         if (s->v > 0) {
-            acc = (s->v > dv) ? -a_lim : -((s->v * US_PER_S) / ((int64_t)dt * CO402_Q16));
+            acc = (s->v > dv) ? -a_lim : -((s->v * SIM_US_PER_S) / ((int64_t)dt * CO402_Q16));
         } else if (s->v < 0) {
-            acc = (-s->v > dv) ? a_lim : ((-s->v * US_PER_S) / ((int64_t)dt * CO402_Q16));
+            acc = (-s->v > dv) ? a_lim : ((-s->v * SIM_US_PER_S) / ((int64_t)dt * CO402_Q16));
         } else {
             acc = 0;
         }
@@ -185,11 +185,11 @@ static void step(co402_sim_t *s, uint32_t dt)
         acc = 0; /* a faulty power stage produces no torque */
     }
     acc = clamp64(acc, a_lim);
-    s->torque = (c->accel_rated != 0U) ? (int16_t)((acc * 1000) / (int64_t)c->accel_rated) : 0;
+    s->torque = (int16_t)((c->accel_rated != 0U) ? ((acc * 1000) / (int64_t)c->accel_rated) : 0);
     acc -= ((int64_t)c->friction * s->v) / CO402_Q16;
-    v1 = s->v + ((acc * CO402_Q16 * (int64_t)dt) / US_PER_S);
+    v1 = s->v + ((acc * CO402_Q16 * (int64_t)dt) / SIM_US_PER_S);
     v1 = clamp64(v1, (int64_t)c->speed_max * CO402_Q16);
-    p1 = s->p + (((s->v + v1) / 2) * (int64_t)dt) / US_PER_S;
+    p1 = s->p + (((s->v + v1) / 2) * (int64_t)dt) / SIM_US_PER_S;
     latch(s, s->p, p1);
     s->p = p1;
     s->v = v1;
@@ -248,8 +248,8 @@ co402_plant_t co402_sim_plant(co402_sim_t *s)
 
 void co402_sim_set_level(co402_sim_t *s, uint32_t mask, bool on)
 {
-    mask &= CO402_IN_ENABLE | CO402_IN_VOLTAGE;
-    s->levels = on ? (s->levels | mask) : (s->levels & ~mask);
+    uint32_t m = mask & (CO402_IN_ENABLE | CO402_IN_VOLTAGE);
+    s->levels = on ? (s->levels | m) : (s->levels & ~m);
 }
 
 void co402_sim_set_fault(co402_sim_t *s, uint16_t code)
@@ -259,7 +259,7 @@ void co402_sim_set_fault(co402_sim_t *s, uint16_t code)
 
 int32_t co402_sim_position(const co402_sim_t *s)
 {
-    return (int32_t)floor_div(s->p + (CO402_Q16 / 2), CO402_Q16);
+    return (int32_t)sim_floor_div(s->p + (CO402_Q16 / 2), CO402_Q16);
 }
 
 int32_t co402_sim_velocity(const co402_sim_t *s)

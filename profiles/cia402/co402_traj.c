@@ -5,11 +5,12 @@
 
 #include "co/co402_plant.h"
 
-#define US_PER_S 1000000LL
 #define V_UNLIMITED INT64_MAX
+#define TRAJ_US_PER_S 1000000LL
 
-uint64_t co402_isqrt(uint64_t x)
+uint64_t co402_isqrt(uint64_t v)
 {
+    uint64_t x = v;
     uint64_t r = 0U;
     uint64_t bit = (uint64_t)1U << 62U;
 
@@ -28,7 +29,7 @@ uint64_t co402_isqrt(uint64_t x)
     return r;
 }
 
-static int64_t abs64(int64_t v)
+static int64_t magnitude(int64_t v)
 {
     return (v < 0) ? -v : v;
 }
@@ -39,7 +40,7 @@ static int64_t dv_of(uint32_t acc, uint32_t dt_us)
     if (acc == 0U) {
         return V_UNLIMITED;
     }
-    return ((int64_t)acc * CO402_Q16 * (int64_t)dt_us) / US_PER_S;
+    return ((int64_t)acc * CO402_Q16 * (int64_t)dt_us) / TRAJ_US_PER_S;
 }
 
 /* The highest speed (Q16) from which a stop with dec ends within s (Q16):
@@ -73,17 +74,18 @@ void co402_traj_set(co402_traj_t *t, int64_t p, int64_t v)
 static void advance(co402_traj_t *t, int64_t v1, uint32_t dt_us)
 {
     if (dt_us != 0U) {
-        t->a = (int32_t)((((v1 - t->v) / CO402_Q16) * US_PER_S) / (int64_t)dt_us);
+        t->a = (int32_t)((((v1 - t->v) / CO402_Q16) * TRAJ_US_PER_S) / (int64_t)dt_us);
     }
-    t->p += (((t->v + v1) / 2) * (int64_t)dt_us) / US_PER_S;
+    t->p += (((t->v + v1) / 2) * (int64_t)dt_us) / TRAJ_US_PER_S;
     t->v = v1;
 }
 
 /* The next velocity going from v towards vt: acc while speeding up, dec
  * while slowing down, never through zero in one step. */
-static int64_t ramp(int64_t v, int64_t vt, uint32_t acc, uint32_t dec, uint32_t dt_us)
+static int64_t ramp(int64_t v, int64_t goal, uint32_t acc, uint32_t dec, uint32_t dt_us)
 {
     int64_t dv;
+    int64_t vt = goal;
 
     if (v == vt) {
         return v;
@@ -91,13 +93,13 @@ static int64_t ramp(int64_t v, int64_t vt, uint32_t acc, uint32_t dec, uint32_t 
     if ((v != 0) && ((v > 0) != (vt > 0)) && (vt != 0)) {
         vt = 0; /* reverse: first down to zero */
     }
-    if (abs64(vt) > abs64(v)) {
+    if (magnitude(vt) > magnitude(v)) {
         dv = dv_of(acc, dt_us);
     } else {
         dv = dv_of(dec, dt_us);
     }
     if (vt > v) {
-        return ((vt - v) > dv) ? (v + dv) : vt;
+        return ((vt - v) > dv) ? (v + dv) : vt; /* up */
     }
     return ((v - vt) > dv) ? (v - dv) : vt;
 }
@@ -110,7 +112,7 @@ bool co402_traj_vel(co402_traj_t *t, int64_t vtarget, uint32_t acc, uint32_t dec
 
 int64_t co402_traj_stop_point(const co402_traj_t *t, uint32_t dec)
 {
-    int64_t v = abs64(t->v);
+    int64_t v = magnitude(t->v);
     int64_t s;
 
     if ((dec == 0U) || (v == 0)) {
@@ -118,7 +120,7 @@ int64_t co402_traj_stop_point(const co402_traj_t *t, uint32_t dec)
     }
     /* v^2 / (2 dec) in Q16: (v_q16 / 2^8)^2 / (2 dec) */
     v /= 256;
-    s = (v > 3037000499LL) ? INT64_MAX / 4 : ((v * v) / (2 * (int64_t)dec));
+    s = (v > 3037000499LL) ? (INT64_MAX / 4) : ((v * v) / (2 * (int64_t)dec));
     return (t->v > 0) ? (t->p + s) : (t->p - s);
 }
 
@@ -144,17 +146,17 @@ bool co402_traj_pos(co402_traj_t *t, int64_t target, uint32_t vmax, uint32_t acc
         return true;
     }
     if (s != 0) {
-        dir = (s > 0) ? 1 : -1;
+        dir = (s > 0) ? (int64_t)1 : (int64_t)-1;
     } else {
-        dir = (t->v > 0) ? -1 : 1;
+        dir = (t->v > 0) ? (int64_t)-1 : (int64_t)1;
     }
-    vlim = brake_speed(dec, abs64(s));
+    vlim = brake_speed(dec, magnitude(s));
     if ((vmax != 0U) && (vlim > ((int64_t)vmax * CO402_Q16))) {
         vlim = (int64_t)vmax * CO402_Q16;
     }
     vt = dir * vlim;
-    if ((t->v != 0) && ((t->v > 0) == (dir > 0)) && (abs64(t->v) > vlim) &&
-        within(abs64(t->v) - vlim, dv)) {
+    if ((t->v != 0) && ((t->v > 0) == (dir > 0)) && (magnitude(t->v) > vlim) &&
+        within(magnitude(t->v) - vlim, dv)) {
         /* on the braking curve: follow it (the curve is what dec allows;
          * the excess is discretisation) */
         v1 = vt;
@@ -167,7 +169,7 @@ bool co402_traj_pos(co402_traj_t *t, int64_t target, uint32_t vmax, uint32_t acc
     advance(t, v1, dt_us);
     /* at (or within this step past) the target, slow enough to stop there */
     if ((((target - t->p) * dir) <= 0) && (((t->p - p_before) * dir) >= 0) &&
-        within(abs64(t->v), dv)) {
+        within(magnitude(t->v), dv)) {
         t->p = target;
         t->v = 0;
         t->a = 0;

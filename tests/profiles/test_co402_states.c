@@ -675,6 +675,77 @@ static void option_bit7_dont_care(void **state)
     expect_sw(0x0237);
 }
 
+static void option_setpoint_bit15(void **state)
+{
+    (void)state;
+    t402_start(&fx, 1, CO402_OPT_SW15_MIRRORS_12 | CO402_OPT_NO_VOLTAGE_BIT, NULL);
+    t402_enable(&fx);
+    t402_run(&fx, 20000);
+    expect_sw(0x0627);
+    t402_set(&fx, 0x607A, 0, 100000, 4);
+    sdo_cw(0x005F); /* new set-point, relative (SSD 630 example) */
+    expect_sw(0x9227);
+    sdo_cw(0x000F);
+    expect_sw(0x0227);
+}
+
+static void option_mode_change_at_rest(void **state)
+{
+    (void)state;
+    t402_start(&fx, 1, CO402_OPT_MODE_AT_REST, NULL);
+    t402_set(&fx, 0x6060, 0, 3, 1);
+    t402_enable(&fx);
+    t402_set(&fx, 0x60FF, 0, 5000, 4);
+    t402_run(&fx, 200000);
+    tb_xfer(BUS, "601 2F 60 60 00 01 00 00 00", "581 80 60 60 00 22 00 00 08");
+    t402_set(&fx, 0x60FF, 0, 0, 4);
+    tb_xfer(BUS, "601 2F 60 60 00 01 00 00 00", "581 80 60 60 00 22 00 00 08"); /* still moving */
+    t402_run(&fx, 200000);
+    tb_xfer(BUS, "601 2F 60 60 00 01 00 00 00", "581 60 60 60 00 00 00 00 00");
+}
+
+static void option_fault_holds_zero(void **state)
+{
+    (void)state;
+    t402_start(&fx, 1, CO402_OPT_FAULT_HOLDS_ZERO, NULL);
+    t402_set(&fx, 0x6060, 0, 3, 1);
+    t402_enable(&fx);
+    t402_set(&fx, 0x60FF, 0, 20000, 4);
+    t402_run(&fx, 300000);
+    co402_fault_event(AX, 0x2310);
+    t402_run_until(&fx, 0x004F, 0x0008, 100000);
+    /* in Fault the power stage holds the axis (no coasting) */
+    assert_int_equal(fx.sim.d.kind, CO402_DEMAND_POSITION);
+    t402_run(&fx, 100000);
+    assert_int_equal(co402_sim_velocity(&fx.sim), 0);
+    tb_expect(BUS, "081 10 23 03 00 00 00 00 00");
+    sdo_cw(0x0080);
+    expect_sw(0x0250);
+    t402_run(&fx, 1000);
+    assert_int_equal(fx.sim.d.kind, CO402_DEMAND_OFF);
+}
+
+static void option_quick_stop_clears_targets(void **state)
+{
+    (void)state;
+    t402_start(&fx, 1, CO402_OPT_QS_CLEARS_TARGET, NULL);
+    t402_set(&fx, 0x6060, 0, 3, 1);
+    t402_enable(&fx);
+    t402_set(&fx, 0x60FF, 0, 20000, 4);
+    t402_set(&fx, 0x607A, 0, 1234, 4);
+    t402_run(&fx, 100000);
+    sdo_cw(0x0002);
+    assert_int_equal(t402_get(&fx, 0x60FF, 0), 0);
+    assert_int_equal(t402_get(&fx, 0x607A, 0), 0);
+    /* halt keeps them */
+    t402_start(&fx, 1, CO402_OPT_QS_CLEARS_TARGET, NULL);
+    t402_set(&fx, 0x6060, 0, 3, 1);
+    t402_enable(&fx);
+    t402_set(&fx, 0x60FF, 0, 20000, 4);
+    sdo_cw(0x010F);
+    assert_int_equal(t402_get(&fx, 0x60FF, 0), 20000);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -708,6 +779,10 @@ int main(void)
         cmocka_unit_test_setup(option_status_bits, setup),
         cmocka_unit_test_setup(option_remote_is_enable, setup),
         cmocka_unit_test_setup(option_bit7_dont_care, setup),
+        cmocka_unit_test_setup(option_setpoint_bit15, setup),
+        cmocka_unit_test_setup(option_mode_change_at_rest, setup),
+        cmocka_unit_test_setup(option_fault_holds_zero, setup),
+        cmocka_unit_test_setup(option_quick_stop_clears_targets, setup),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -164,8 +164,12 @@ typedef struct co402_axis {
     uint32_t fe_timer;               /* following-error timer start */
     uint32_t hm_edges[CO402_IN_EDGES];
     uint32_t hm_index;
-    uint32_t next_vel, next_acc, next_dec; /* pp: buffered profile (inc/s, inc/s^2) */
-    uint32_t cur_vel, cur_acc, cur_dec;    /* pp: active profile */
+    uint32_t next_vel;               /* pp: buffered profile (inc/s, inc/s^2) */
+    uint32_t next_acc;
+    uint32_t next_dec;
+    uint32_t cur_vel;                /* pp: active profile */
+    uint32_t cur_acc;
+    uint32_t cur_dec;
     int32_t tr_a;                    /* profile generator: acceleration */
     uint16_t faults[CO402_FAULTS_MAX]; /* fault conditions present */
     uint16_t raised[CO402_FAULTS_MAX]; /* EMCY codes raised since the last fault reset */

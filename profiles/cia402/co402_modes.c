@@ -60,10 +60,17 @@ static uint32_t vl_ramp(const co402_axis_t *ax, uint8_t dv_id, uint8_t dt_id)
     return (a > (int64_t)UINT32_MAX) ? UINT32_MAX : (uint32_t)a;
 }
 
+/* vl deceleration: 0x6049, or 0x6048 for both ways where 0x6049 is absent */
+static uint32_t vl_dec(const co402_axis_t *ax)
+{
+    return co402_has(ax, O_VL_DEC_DV) ? vl_ramp(ax, O_VL_DEC_DV, O_VL_DEC_DT)
+                                      : vl_ramp(ax, O_VL_ACC_DV, O_VL_ACC_DT);
+}
+
 uint32_t co402_slow_dec(const co402_axis_t *ax)
 {
     if (ax->mode == CO402_MODE_VL) {
-        return vl_ramp(ax, O_VL_DEC_DV, O_VL_DEC_DT);
+        return vl_dec(ax);
     }
     if (ax->mode == CO402_MODE_HM) {
         return co402_acc_in(ax, (uint32_t)co402_get(ax, O_HM_ACC, 0));
@@ -353,8 +360,8 @@ static void vl_run(co402_axis_t *ax, co402_demand_t *d)
         vt = 0; /* ramp function generator disabled / reference 0 */
     }
     if (((cw & CO402_CW_CHANGE_NOW) != 0U) || ((cw & CO402_CW_NEW_SETPOINT) == 0U)) {
-        (void)co402_traj_vel(&t, vt, vl_ramp(ax, O_VL_ACC_DV, O_VL_ACC_DT),
-                             vl_ramp(ax, O_VL_DEC_DV, O_VL_DEC_DT), co402_tick(ax));
+        (void)co402_traj_vel(&t, vt, vl_ramp(ax, O_VL_ACC_DV, O_VL_ACC_DT), vl_dec(ax),
+                             co402_tick(ax));
     } else {
         (void)co402_traj_vel(&t, t.v, 0U, 0U, co402_tick(ax)); /* ramp locked */
     }

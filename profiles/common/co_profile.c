@@ -1,0 +1,161 @@
+/*
+ * The plug-in host: fans the node's callbacks out to the instances and
+ * collects their deadlines.
+ */
+#include "co/co_profile.h"
+
+#include <stddef.h>
+#include <string.h>
+
+/* The time of the event being dispatched. The node's callbacks carry no
+ * time; the core stamps every received frame and process call into
+ * node->now before it dispatches, so that is the time of the SYNC or NMT
+ * command at hand. (Only read, never written.) */
+static uint32_t event_time(const co_node_t *node)
+{
+    return node->now;
+}
+
+void co_profile_host_init(co_profile_host_t *h, co_profile_t *slots, uint8_t cap,
+                          const co_node_callbacks_t *app)
+{
+    (void)memset(h, 0, sizeof *h);
+    h->slots = slots;
+    h->cap = cap;
+    if (app != NULL) {
+        h->app = *app;
+    }
+}
+
+co_err_t co_profile_add(co_profile_host_t *h, const co_profile_ops_t *ops, void *inst)
+{
+    if ((ops == NULL) || (ops->attach == NULL)) {
+        return CO_ERR_VALUE;
+    }
+    if (h->n >= h->cap) {
+        return CO_ERR_NO_MEMORY;
+    }
+    h->slots[h->n].ops = ops;
+    h->slots[h->n].inst = inst;
+    h->n++;
+    return CO_OK;
+}
+
+static void cb_nmt_state(void *ctx, co_node_t *node, co_nmt_state_t state)
+{
+    co_profile_host_t *h = (co_profile_host_t *)ctx;
+
+    if (h->node == node) {
+        for (uint8_t i = 0U; i < h->n; i++) {
+            if (h->slots[i].ops->nmt_state != NULL) {
+                h->slots[i].ops->nmt_state(h->slots[i].inst, state, event_time(node));
+            }
+        }
+    }
+    if (h->app.nmt_state != NULL) {
+        h->app.nmt_state(h->app.ctx, node, state);
+    }
+}
+
+static void cb_nmt_reset(void *ctx, co_node_t *node, co_reset_t kind)
+{
+    co_profile_host_t *h = (co_profile_host_t *)ctx;
+
+    if (h->node == node) {
+        for (uint8_t i = 0U; i < h->n; i++) {
+            if (h->slots[i].ops->reset != NULL) {
+                h->slots[i].ops->reset(h->slots[i].inst, kind, event_time(node));
+            }
+        }
+    }
+    if (h->app.nmt_reset != NULL) {
+        h->app.nmt_reset(h->app.ctx, node, kind);
+    }
+}
+
+static void cb_hb_event(void *ctx, co_node_t *node, co_hb_event_t ev, uint8_t id,
+                        co_nmt_state_t state)
+{
+    co_profile_host_t *h = (co_profile_host_t *)ctx;
+
+    if (h->node == node) {
+        for (uint8_t i = 0U; i < h->n; i++) {
+            if (h->slots[i].ops->error_control != NULL) {
+                h->slots[i].ops->error_control(h->slots[i].inst, ev, id, event_time(node));
+            }
+        }
+    }
+    if (h->app.hb_event != NULL) {
+        h->app.hb_event(h->app.ctx, node, ev, id, state);
+    }
+}
+
+static void cb_sync(void *ctx, co_node_t *node, uint8_t counter)
+{
+    co_profile_host_t *h = (co_profile_host_t *)ctx;
+
+    if (h->node == node) {
+        for (uint8_t i = 0U; i < h->n; i++) {
+            if (h->slots[i].ops->sync != NULL) {
+                h->slots[i].ops->sync(h->slots[i].inst, counter, event_time(node));
+            }
+        }
+    }
+    if (h->app.sync != NULL) {
+        h->app.sync(h->app.ctx, node, counter);
+    }
+}
+
+static void cb_time(void *ctx, co_node_t *node, uint32_t ms, uint16_t days)
+{
+    const co_profile_host_t *h = (const co_profile_host_t *)ctx;
+
+    if (h->app.time != NULL) {
+        h->app.time(h->app.ctx, node, ms, days);
+    }
+}
+
+co_node_callbacks_t co_profile_host_callbacks(co_profile_host_t *h)
+{
+    co_node_callbacks_t cb;
+
+    (void)memset(&cb, 0, sizeof cb);
+    cb.ctx = h;
+    cb.nmt_state = cb_nmt_state;
+    cb.nmt_reset = cb_nmt_reset;
+    cb.hb_event = cb_hb_event;
+    cb.sync = cb_sync;
+    cb.time = cb_time;
+    return cb;
+}
+
+co_err_t co_profile_host_attach(co_profile_host_t *h, co_node_t *node, uint32_t now_us)
+{
+    for (uint8_t i = 0U; i < h->n; i++) {
+        co_err_t err = h->slots[i].ops->attach(h->slots[i].inst, node, now_us);
+        if (err != CO_OK) {
+            return err;
+        }
+    }
+    h->node = node;
+    return CO_OK;
+}
+
+uint32_t co_profile_host_process(co_profile_host_t *h, uint32_t now_us)
+{
+    uint32_t next = CO_NO_DEADLINE;
+
+    if (h->node == NULL) {
+        return next;
+    }
+    for (uint8_t i = 0U; i < h->n; i++) {
+        if (h->slots[i].ops->process != NULL) {
+            uint32_t d = h->slots[i].ops->process(h->slots[i].inst, now_us);
+            if ((d != CO_NO_DEADLINE) &&
+                ((next == CO_NO_DEADLINE) || ((int32_t)(d - now_us) < (int32_t)(next - now_us)))) {
+                next = d;
+            }
+        }
+    }
+    return next;
+}

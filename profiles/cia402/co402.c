@@ -33,6 +33,7 @@ static const obj_ref_t obj_refs[O_COUNT] = {
     {0x60C1U, 1U}, {0x60C2U, 1U}, {0x60C2U, 2U}, {0x60F4U, 0U}, {0x60FDU, 0U}, {0x60FFU, 0U},
     {0x6502U, 0U}, {0x6042U, 0U}, {0x6043U, 0U}, {0x6044U, 0U}, {0x6046U, 1U}, {0x6046U, 2U},
     {0x6048U, 1U}, {0x6048U, 2U}, {0x6049U, 1U}, {0x6049U, 2U}, {0x604AU, 1U}, {0x604AU, 2U},
+    {0x6080U, 0U},
 };
 
 #define OBJ_CONST 0x80U /* obj_type: the value is in the device's ROM image */
@@ -203,6 +204,9 @@ static void vel_factor(const co402_axis_t *ax, uint32_t *num, uint32_t *den)
 {
     if (co402_has(ax, O_VEL_NUM)) {
         factor(ax, O_VEL_NUM, O_VEL_DEN, num, den);
+    } else if ((ax->cfg.vel_num != 0U) && (ax->cfg.vel_den != 0U)) {
+        *num = ax->cfg.vel_num; /* the device's fixed velocity unit */
+        *den = ax->cfg.vel_den;
     } else {
         pos_factor(ax, num, den);
     }
@@ -277,6 +281,9 @@ uint32_t co402_acc_in(const co402_axis_t *ax, uint32_t user)
     uint32_t den;
     if (co402_has(ax, O_ACC_NUM)) {
         factor(ax, O_ACC_NUM, O_ACC_DEN, &num, &den);
+    } else if ((ax->cfg.acc_num != 0U) && (ax->cfg.acc_den != 0U)) {
+        num = ax->cfg.acc_num; /* the device's fixed acceleration unit */
+        den = ax->cfg.acc_den;
     } else {
         vel_factor(ax, &num, &den);
     }
@@ -457,9 +464,39 @@ uint16_t co402_statusword(const co402_axis_t *ax)
     return sw;
 }
 
+/* CO402_OPT_TPDO_ON_SW: ask for every TPDO whose mapping holds this axis'
+ * statusword (0x1A00 + n), in PDO order. */
+static void request_sw_tpdos(co402_axis_t *ax)
+{
+    uint32_t want = (uint32_t)axis_index(ax, 0x6041U) << 16U; /* index, sub-index 0 */
+
+    for (uint16_t n = 0U; n < ax->node->dev->n_tpdo; n++) {
+        uint16_t map = (uint16_t)(0x1A00U + n);
+        uint8_t count = 0U;
+        uint32_t len = 0U;
+        if (co_od_read(ax->node, map, 0U, &count, 1U, &len) != CO_OK) {
+            continue;
+        }
+        for (uint8_t k = 1U; k <= count; k++) {
+            uint8_t b[4] = {0U, 0U, 0U, 0U};
+            if ((co_od_read(ax->node, map, k, b, 4U, &len) == CO_OK) &&
+                ((co_get_u32(b) & 0xFFFFFF00UL) == want)) {
+                (void)co_tpdo_request(ax->node, n); /* outside Operational: refused, fine */
+                break;
+            }
+        }
+    }
+}
+
 static void publish_sw(co402_axis_t *ax)
 {
-    co402_put(ax, O_SW, co402_statusword(ax));
+    uint16_t sw = co402_statusword(ax);
+    bool changed = co402_get(ax, O_SW, sw) != (int64_t)sw;
+
+    co402_put(ax, O_SW, sw);
+    if (changed && ((ax->cfg.options & CO402_OPT_TPDO_ON_SW) != 0U) && (ax->node != NULL)) {
+        request_sw_tpdos(ax);
+    }
 }
 
 /* ----------------------------------------------------- state machine */
@@ -1061,8 +1098,12 @@ static void start_axis(co402_axis_t *ax, uint32_t now)
     ax->state = (uint8_t)CO402_NOT_READY; /* 0 */
     ax->drive = (uint8_t)DRV_OFF;
     ax->mode = (int8_t)co402_get(ax, O_MODE, 0);
-    if (!co402_mode_supported(ax, ax->mode)) {
+    if ((ax->cfg.options & CO402_OPT_VELOCITY_RAMP) != 0U) {
+        ax->mode = CO402_MODE_RAMP; /* the one mode; no 0x6060 */
+    } else if (!co402_mode_supported(ax, ax->mode)) {
         ax->mode = CO402_MODE_NONE;
+    } else {
+        /* a supported mode */
     }
     co402_put(ax, O_MODE_DISP, ax->mode);
     co402_put(ax, O_ERR, 0);
@@ -1112,7 +1153,8 @@ static uint32_t op_process(void *inst, uint32_t now_us)
     }
     while ((int32_t)(now_us - ax->next_tick) >= 0) {
         int8_t m = (int8_t)co402_get(ax, O_MODE, ax->mode);
-        if ((m != ax->mode) && co402_mode_supported(ax, m)) {
+        if ((m != ax->mode) && ((ax->cfg.options & CO402_OPT_VELOCITY_RAMP) == 0U) &&
+            co402_mode_supported(ax, m)) {
             apply_mode(ax, m); /* a device without a hook slot on 0x6060 */
         }
         run_tick(ax, ax->next_tick);

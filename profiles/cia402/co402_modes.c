@@ -67,8 +67,34 @@ static uint32_t vl_dec(const co402_axis_t *ax)
                                       : vl_ramp(ax, O_VL_ACC_DV, O_VL_ACC_DT);
 }
 
+/* Velocity ramp (CO402_OPT_VELOCITY_RAMP): full speed in increments/s. */
+static uint32_t ramp_full(const co402_axis_t *ax)
+{
+    return (ax->cfg.full_speed != 0U) ? ax->cfg.full_speed : (50U * co402_counts_per_rev(ax));
+}
+
+/* A ramp time in ms per full scale (0x6083 / 0x6084) as increments/s^2
+ * (0: a step, unlimited). */
+static uint32_t ramp_rate(const co402_axis_t *ax, uint8_t id)
+{
+    uint64_t ms = (uint64_t)(uint32_t)co402_get(ax, id, 0);
+    uint64_t a;
+
+    if (ms == 0U) {
+        return 0U;
+    }
+    a = ((uint64_t)ramp_full(ax) * 1000U) / ms;
+    if (a < 1U) {
+        return 1U;
+    }
+    return (a > (uint64_t)UINT32_MAX) ? UINT32_MAX : (uint32_t)a;
+}
+
 uint32_t co402_slow_dec(const co402_axis_t *ax)
 {
+    if (ax->mode == CO402_MODE_RAMP) {
+        return ramp_rate(ax, O_PROFILE_DEC);
+    }
     if (ax->mode == CO402_MODE_VL) {
         return vl_dec(ax);
     }
@@ -80,6 +106,9 @@ uint32_t co402_slow_dec(const co402_axis_t *ax)
 
 uint32_t co402_quick_dec(const co402_axis_t *ax)
 {
+    if (ax->mode == CO402_MODE_RAMP) {
+        return 0U; /* "as fast as possible": the demand drops to 0 at once */
+    }
     if ((ax->mode == CO402_MODE_VL) && co402_has(ax, O_VL_QS_DV)) {
         return vl_ramp(ax, O_VL_QS_DV, O_VL_QS_DT);
     }
@@ -377,6 +406,33 @@ static void vl_run(co402_axis_t *ax, co402_demand_t *d)
     }
 }
 
+/* Velocity ramp: 0x6080 per mille of full speed, 0x6083 while the speed
+ * grows, 0x6084 while it shrinks (chosen against the present ramp speed),
+ * 0x607E bit 6 reverses; bit 10 once the ramp is at the target. */
+static void ramp_run(co402_axis_t *ax, co402_demand_t *d)
+{
+    co402_traj_t t;
+    int64_t permille = co402_get(ax, O_RAMP_TARGET, 0);
+    int64_t vt = (permille * (int64_t)ramp_full(ax) * CO402_Q16) / 1000;
+
+    if ((co402_get(ax, O_POLARITY, 0) & 0x40) != 0) {
+        vt = -vt;
+    }
+    co402_traj_get(ax, &t);
+    (void)co402_traj_vel(&t, vt, ramp_rate(ax, O_PROFILE_ACC), ramp_rate(ax, O_PROFILE_DEC),
+                         co402_tick(ax));
+    t.p = ax->pos;
+    co402_traj_put(ax, &t);
+    d->kind = (uint8_t)CO402_DEMAND_VELOCITY;
+    d->vel = ax->dm_v; /* from the start of the step */
+    d->acc = t.a;
+    if (t.v == vt) {
+        ax->msw |= CO402_SW_TARGET;
+    } else {
+        ax->msw &= (uint16_t)~CO402_SW_TARGET;
+    }
+}
+
 static int16_t clamp_torque(const co402_axis_t *ax, int64_t tq)
 {
     int64_t m = co402_get(ax, O_MAX_TORQUE, 0x7FFF);
@@ -570,6 +626,9 @@ void co402_mode_run(co402_axis_t *ax, co402_demand_t *d)
         break;
     case CO402_MODE_TQ:
         tq_run(ax, d);
+        break;
+    case CO402_MODE_RAMP:
+        ramp_run(ax, d);
         break;
     case CO402_MODE_HM:
         co402_hm_run(ax, d);

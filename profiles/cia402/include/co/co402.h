@@ -53,6 +53,7 @@ typedef enum co402_state {
 #define CO402_MODE_CSP  8  /**< cyclic synchronous position */
 #define CO402_MODE_CSV  9  /**< cyclic synchronous velocity */
 #define CO402_MODE_CST  10 /**< cyclic synchronous torque */
+#define CO402_MODE_RAMP (-1) /**< manufacturer-specific: velocity ramp (CO402_OPT_VELOCITY_RAMP) */
 
 /* ---- Controlword bits. */
 #define CO402_CW_SWITCH_ON     0x0001U
@@ -117,6 +118,14 @@ typedef enum co402_state {
 #define CO402_OPT_QS_CLEARS_TARGET  0x00008000UL /**< quick stop deletes the set-points (target
                                                       position / velocity / torque := 0)
                                                       (Kollmorgen) */
+#define CO402_OPT_TPDO_ON_SW        0x00010000UL /**< every statusword change requests the TPDOs
+                                                      that map the statusword (FAULHABER: the
+                                                      only event of its event-driven TPDOs) */
+#define CO402_OPT_VELOCITY_RAMP     0x00020000UL /**< the axis' one mode is a velocity ramp: target
+                                                      0x6080 in per mille of full speed, ramps
+                                                      0x6083 / 0x6084 in ms per full scale (0: a
+                                                      step), direction 0x607E bit 6; quick stop
+                                                      as fast as possible (AnaGate Motion) */
 
 typedef struct co402_config {
     uint8_t axis;              /**< 0..7: objects at 0x6000 + 0x800 * axis */
@@ -127,10 +136,19 @@ typedef struct co402_config {
                                     (0: 4096; 0x608F overrides when the device has it) */
     uint32_t modes;            /**< supported modes as 0x6502 bits when the device lacks
                                     0x6502 (0: pp, pv, hm) */
+    uint32_t vel_num;          /**< velocity factor (internal increments/s per user unit =
+                                    vel_num / vel_den) where the device lacks 0x6094
+                                    (0: the position factor); FAULHABER: rpm */
+    uint32_t vel_den;
+    uint32_t acc_num;          /**< acceleration factor where the device lacks 0x6097
+                                    (0: the velocity factor); FAULHABER: 1/s^2 */
+    uint32_t acc_den;
+    uint32_t full_speed;       /**< CO402_OPT_VELOCITY_RAMP: increments/s at 1000 per mille
+                                    (0: 50 revolutions/s) */
 } co402_config_t;
 
 #define CO402_FAULTS_MAX 4U
-#define CO402_OBJ_COUNT 72U
+#define CO402_OBJ_COUNT 73U
 
 /** One axis. Caller-allocated; the fields are private (here for allocation). */
 typedef struct co402_axis {

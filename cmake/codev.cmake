@@ -31,10 +31,21 @@ function(co_device name toml)
   string(MAKE_C_IDENTIFIER "${name}" cname)
   set(out "${CMAKE_BINARY_DIR}/codev/${name}")
   set(products "${out}/${cname}.c" "${out}/${cname}.h" "${out}/${name}.eds" "${out}/${name}.md")
+  # a description that includes another (include = "base.toml") depends on it
+  set(included)
+  file(STRINGS "${toml}" inc_lines REGEX "^include[ \t]*=")
+  if(inc_lines)
+    set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS "${toml}")
+    get_filename_component(tdir "${toml}" DIRECTORY)
+    foreach(line IN LISTS inc_lines)
+      string(REGEX REPLACE "^include[ \t]*=[ \t]*\"([^\"]+)\".*" "\\1" inc "${line}")
+      list(APPEND included "${tdir}/${inc}")
+    endforeach()
+  endif()
   add_custom_command(
     OUTPUT ${products}
     COMMAND "${CO_PYTHON}" "${CO_ODGEN}" --base "${name}" --out "${out}" "${toml}"
-    DEPENDS "${toml}" ${CO_ODGEN_SOURCES} "${CO_REPO_ROOT}/stack/include/co/co_node.h"
+    DEPENDS "${toml}" ${included} ${CO_ODGEN_SOURCES} "${CO_REPO_ROOT}/stack/include/co/co_node.h"
     COMMENT "odgen: ${name} (C dictionary, EDS, object table)"
     VERBATIM)
   add_library(codev_${name} STATIC "${out}/${cname}.c" "${out}/${cname}.h")

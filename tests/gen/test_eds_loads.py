@@ -10,6 +10,7 @@ import warnings
 import canopen
 
 from conftest import DEVICES, run_odgen
+from model import load
 
 
 def test_devices_exist():
@@ -40,6 +41,9 @@ def read_eds(path) -> configparser.RawConfigParser:
 
 def test_eds_cia306_structure(device, generated):
     cp = read_eds(generated / f"{device.stem}.eds")
+    layout = load(device).objects  # the description states deviations of the layout
+    layout = "vendor-at-sub0" if any(o.index == 0x1018 and o.subs[0].type == "UNSIGNED32"
+                                     for o in layout) else "cia"
     for sec, keys in {
         "FileInfo": ["FileName", "FileVersion", "FileRevision", "EDSVersion", "Description",
                      "CreationTime", "CreationDate", "CreatedBy", "ModificationTime",
@@ -93,12 +97,16 @@ def test_eds_cia306_structure(device, generated):
             assert int(sec["SubNumber"], 0) == len(subs)
             assert subs[0] == 0
             s0 = cp[f"{index:04X}sub0"]
-            assert int(s0["DataType"], 0) == 0x05
+            # a documented deviation: 0x1018 with the vendor-ID in sub-index 0
+            vendor_at_sub0 = index == 0x1018 and layout == "vendor-at-sub0"
+            assert int(s0["DataType"], 0) == (0x07 if vendor_at_sub0 else 0x05)
             for sub in subs:
                 ss = cp[f"{index:04X}sub{sub:X}"]
                 assert var_keys <= set(ss) <= var_keys | optional
                 assert int(ss["ObjectType"], 0) == 0x7
-            if s0["AccessType"] in ("ro", "const") and "DefaultValue" in s0:
+            if vendor_at_sub0:
+                assert subs == [0, 1, 2]
+            elif s0["AccessType"] in ("ro", "const") and "DefaultValue" in s0:
                 assert int(s0["DefaultValue"], 0) == max(subs), f"{index:04X}sub0"
         for s in [sec] + [cp[f"{index:04X}sub{x:X}"] for x in subs]:
             if "AccessType" in s:

@@ -312,3 +312,71 @@ def test_pdo_table_is_generated(tmp_path):
     c = (tmp_path / "out" / "bad.c").read_text()
     assert "static const co_pdo_desc_t pdo[]" in c
     assert ".n_rpdo = 0U," in c and ".n_tpdo = 1U," in c
+
+
+# ------------------------------------------- include and identity layout
+
+def test_include_replaces_and_adds(tmp_path):
+    """include = "base.toml": [device] keys and objects of the same index
+    replace the base's, other objects are added."""
+    (tmp_path / "base.toml").write_text(BASE + MAP32.format(mappable="true"))
+    src = tmp_path / "variant.toml"
+    src.write_text(textwrap.dedent("""
+        include = "base.toml"
+
+        [device]
+        name = "variant"
+        product_code = 0x42
+
+        [[object]]
+        index = 0x2000
+        name = "Value"
+        type = "UNSIGNED16"
+
+        [[object]]
+        index = 0x2001
+        name = "More"
+        type = "UNSIGNED8"
+        """))
+    r = run_odgen(src, tmp_path / "out")
+    assert r.returncode == 0, r.stderr
+    from model import load
+    dev = load(src)
+    assert dev.name == "variant" and dev.info["vendor_id"] == 0x1234
+    assert dev.find(0x1018, 2).default == 0x42
+    assert dev.find(0x2000, 0).type == "UNSIGNED16" and dev.find(0x2001, 0) is not None
+    assert dev.find(0x1001, 0) is not None
+
+
+@pytest.mark.parametrize("text, needles", [
+    ('include = "missing.toml"\n', ["include 'missing.toml'", "cannot read"]),
+    ('include = 5\n', ["include must name a description file"]),
+], ids=["missing", "not-text"])
+def test_include_mistakes(tmp_path, text, needles):
+    src = tmp_path / "bad.toml"
+    src.write_text(text + BASE)
+    r = run_odgen(src, tmp_path / "out")
+    assert r.returncode == 1
+    for n in needles:
+        assert n in r.stderr, r.stderr
+
+
+def test_identity_vendor_at_sub0(tmp_path):
+    """A device that documents 0x1018 with the vendor-ID in sub-index 0."""
+    src = tmp_path / "ident.toml"
+    src.write_text(BASE.replace('device_type = 0', 'device_type = 0\nproduct_code = 3\n'
+                                'identity_layout = "vendor-at-sub0"'))
+    r = run_odgen(src, tmp_path / "out")
+    assert r.returncode == 0, r.stderr
+    from model import load
+    o = [o for o in load(src).objects if o.index == 0x1018][0]
+    assert [(s.sub, s.name, s.type, s.default) for s in o.subs] == [
+        (0, "Vendor-ID", "UNSIGNED32", 0x1234), (1, "Product code", "UNSIGNED32", 3),
+        (2, "Revision number", "UNSIGNED32", 0)]
+    src.write_text(BASE.replace('device_type = 0', 'device_type = 0\nserial = 1\n'
+                                'identity_layout = "vendor-at-sub0"'))
+    r = run_odgen(src, tmp_path / "out2")
+    assert r.returncode == 1 and "has no serial" in r.stderr
+    src.write_text(BASE.replace('device_type = 0', 'device_type = 0\nidentity_layout = "x"'))
+    r = run_odgen(src, tmp_path / "out3")
+    assert r.returncode == 1 and "identity_layout 'x'" in r.stderr

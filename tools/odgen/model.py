@@ -698,6 +698,26 @@ def _device_objects(dev: dict, what: str) -> list[Obj]:
         if key in dev:
             var(index, name, key, "VISIBLE_STRING", "const", dev[key])
     ids = ("vendor_id", "product_code", "revision", "serial")
+    layout = dev.get("identity_layout", "cia")
+    if layout not in ("cia", "vendor-at-sub0"):
+        raise DescError(f"{what}: identity_layout {layout!r} must be \"cia\" or "
+                        "\"vendor-at-sub0\"")
+    if layout == "vendor-at-sub0":
+        # A device that documents 0x1018 with the vendor-ID in sub-index 0, the
+        # product code in 1 and the revision in 2 (AnaGate Motion)
+        if "vendor_id" not in dev or "serial" in dev:
+            raise DescError(f"{what}: identity_layout vendor-at-sub0 needs vendor_id and has "
+                            "no serial")
+        o = Obj(index=0x1018, name="Identity object", code="RECORD", prefix="x1018",
+                origin="[device] vendor_id")
+        o.subs = [make_sub(0x1018, {"sub": k, "name": name, "type": "UNSIGNED32",
+                                    "access": "ro", "rom": True, "default": dev.get(key, 0)},
+                           None, what)
+                  for k, (key, name) in enumerate((("vendor_id", "Vendor-ID"),
+                                                   ("product_code", "Product code"),
+                                                   ("revision", "Revision number")))]
+        out.append(o)
+        return out
     if any(k in dev for k in ids):
         if "vendor_id" not in dev:
             raise DescError(f"{what}: 0x1018 needs at least vendor_id")
@@ -722,7 +742,8 @@ def _device_objects(dev: dict, what: str) -> list[Obj]:
 DEVICE_KEYS = {"name", "vendor_name", "product_name", "order_code", "vendor_id", "product_code",
                "revision", "serial", "device_type", "device_name", "hw_version", "sw_version",
                "options", "boot_emcy_data", "baudrates", "description", "lss",
-               "vendor_number", "product_number", "revision_number", "mandatory_objects"}
+               "vendor_number", "product_number", "revision_number", "mandatory_objects",
+               "identity_layout"}
 EDS_KEYS = {"file_version", "file_revision", "date", "time", "author", "description",
             "file_name", "eds_version", "modified_date", "modified_time", "modified_by",
             "comments", "dummy_usage", "sections", "simple_boot_up_master",
@@ -901,6 +922,47 @@ def _dcf_table(dcf) -> dict | None:
     return out
 
 
+def _include(data: dict, path: Path) -> dict:
+    """include = "other.toml": the other description (relative to this one) is
+    the base; this one's [device], [eds] and [dcf] keys replace the base's, its
+    objects replace the base's objects of the same index or are added."""
+    inc = data["include"]
+    if not isinstance(inc, str) or not inc:
+        raise DescError("include must name a description file (\"other.toml\")")
+    ipath = path.parent / inc
+    try:
+        base = tomllib.loads(ipath.read_text(encoding="utf-8"))
+    except OSError as e:
+        raise DescError(f"include {inc!r}: cannot read: {e.strerror}") from None
+    except tomllib.TOMLDecodeError as e:
+        raise DescError(f"include {inc!r}: TOML syntax: {e}") from None
+    _check_keys(base, {"device", "eds", "dcf", "object"}, f"include {inc!r}: top level")
+    out: dict = {}
+    for key in ("device", "eds", "dcf"):
+        a, b = base.get(key), data.get(key)
+        if a is None or b is None:
+            if a is not None or b is not None:
+                out[key] = a if b is None else b
+            continue
+        if not isinstance(a, dict) or not isinstance(b, dict):
+            raise DescError(f"[{key}] must be a table")
+        out[key] = {**a, **b}
+    objs = base.get("object", [])
+    mine = data.get("object", [])
+    if not isinstance(objs, list) or not isinstance(mine, list):
+        raise DescError("object must be an array of tables ([[object]])")
+    merged = list(objs)
+    for tbl in mine:
+        idx = tbl.get("index") if isinstance(tbl, dict) else None
+        at = [k for k, o in enumerate(merged) if isinstance(o, dict) and o.get("index") == idx]
+        if idx is not None and at:
+            merged[at[0]] = tbl   # replaces the base's object
+        else:
+            merged.append(tbl)
+    out["object"] = merged
+    return out
+
+
 def loads(text: str, path: str | Path = "<description>", base: str | None = None) -> Device:
     """Load a description from its text (path: for messages and the default base)."""
     path = Path(path)
@@ -908,7 +970,9 @@ def loads(text: str, path: str | Path = "<description>", base: str | None = None
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as e:
         raise DescError(f"TOML syntax: {e}") from None
-    _check_keys(data, {"device", "eds", "dcf", "object"}, "top level")
+    _check_keys(data, {"include", "device", "eds", "dcf", "object"}, "top level")
+    if "include" in data:
+        data = _include(data, path)
     dev = data.get("device")
     if not isinstance(dev, dict):
         raise DescError("[device] table missing")

@@ -583,9 +583,15 @@ static void leave_operation(co402_axis_t *ax, uint8_t opt_id, co402_state_t to)
     }
 }
 
+/* 0x605A, or its default where the device lacks it */
+static int16_t qs_code(const co402_axis_t *ax)
+{
+    return option(ax, O_QS_OPT, ((ax->cfg.options & CO402_OPT_QS_STAY) != 0U) ? 6 : 2);
+}
+
 static void quick_stop(co402_axis_t *ax)
 {
-    int16_t code = option(ax, O_QS_OPT, 2);
+    int16_t code = qs_code(ax);
 
     if ((ax->cfg.options & CO402_OPT_QS_CLEARS_TARGET) != 0U) {
         co402_put(ax, O_TARGET_POS, 0);
@@ -606,7 +612,7 @@ static void quick_stop(co402_axis_t *ax)
 /* Transition 13 and the fault reaction (0x605E). */
 static void fault_reaction(co402_axis_t *ax)
 {
-    int16_t code = option(ax, O_FR_OPT, 2);
+    int16_t code = option(ax, O_FR_OPT, ((ax->cfg.options & CO402_OPT_FR_SLOW) != 0U) ? 1 : 2);
 
     ax->state = (uint8_t)CO402_FAULT_REACTION;
     ax->msw = 0U;
@@ -711,7 +717,7 @@ static bool transition(co402_axis_t *ax, uint8_t cmd)
             enter(ax, CO402_SWITCH_ON_DISABLED); /* 12 */
             return true;
         }
-        if ((cmd == CMD_ENABLE) && (option(ax, O_QS_OPT, 2) >= 5) && (option(ax, O_QS_OPT, 2) <= 8)) {
+        if ((cmd == CMD_ENABLE) && (qs_code(ax) >= 5) && (qs_code(ax) <= 8)) {
             enter(ax, CO402_OPERATION_ENABLED); /* 16 */
             return true;
         }

@@ -126,6 +126,11 @@ typedef enum co402_state {
                                                       0x6083 / 0x6084 in ms per full scale (0: a
                                                       step), direction 0x607E bit 6; quick stop
                                                       as fast as possible (AnaGate Motion) */
+#define CO402_OPT_QS_STAY           0x00040000UL /**< without 0x605A: quick stop as option code 6
+                                                      (0x6085 ramp, then stay in Quick stop
+                                                      active), not 2 (FAULHABER) */
+#define CO402_OPT_FR_SLOW           0x00080000UL /**< without 0x605E: fault reaction as option
+                                                      code 1 (0x6084 ramp), not 2 (FAULHABER) */
 
 typedef struct co402_config {
     uint8_t axis;              /**< 0..7: objects at 0x6000 + 0x800 * axis */

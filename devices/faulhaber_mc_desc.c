@@ -1,0 +1,420 @@
+/*
+ * faulhaber-mc: attach descriptor and device plug-in (faulhaber_mc_desc.h).
+ */
+#include "faulhaber_mc_desc.h"
+
+#include <string.h>
+
+#include "co/co_endian.h"
+
+#define NUMERATOR_MAX 2000000000ULL /* factor group: numerator below 2e9 */
+
+typedef struct fh_error {
+    uint16_t bit;
+    uint16_t code;     /* EMCY code (deviation: the pp one; pv uses 0x8611) */
+    uint8_t reg;       /* 0x1001 bits besides generic */
+    bool delayed;      /* reported after the error delay 0x2322.01 */
+} fh_error_t;
+
+static const fh_error_t errors[] = {
+    {FAULHABER_ERR_OVERCURRENT, 0x2310U, CO_ERREG_CURRENT, true},
+    {FAULHABER_ERR_DEVIATION, 0x8400U, CO_ERREG_PROFILE, true},
+    {FAULHABER_ERR_OVERVOLTAGE, 0x3210U, CO_ERREG_VOLTAGE, true},
+    {FAULHABER_ERR_TEMPERATURE, 0x4310U, CO_ERREG_TEMPERATURE, false},
+    {FAULHABER_ERR_FLASH, 0x5530U, CO_ERREG_PROFILE, false},
+    {FAULHABER_ERR_CAN_PASSIVE, 0x8120U, CO_ERREG_COMM, false},
+    {FAULHABER_ERR_CAN_OVERRUN, 0x8110U, CO_ERREG_COMM, false},
+    {FAULHABER_ERR_GUARDING, 0x8130U, CO_ERREG_COMM, false},
+    {FAULHABER_ERR_BUS_OFF, 0x8140U, CO_ERREG_COMM, false},
+    {FAULHABER_ERR_CONVERSION, 0xFF01U, 0U, false},
+    {FAULHABER_ERR_SOFTWARE, 0x6100U, CO_ERREG_PROFILE, false},
+    {FAULHABER_ERR_PDO_LONG, 0x8220U, CO_ERREG_COMM, false},
+    {FAULHABER_ERR_PDO_SHORT, 0x8210U, CO_ERREG_COMM, false},
+};
+
+#define N_ERRORS (sizeof errors / sizeof errors[0])
+
+/* ------------------------------------------------------------ helpers */
+
+static faulhaber_mc_state_t *state(const co402_device_run_t *r)
+{
+    return (faulhaber_mc_state_t *)r->ctx;
+}
+
+static uint16_t u16_at(co_node_t *node, uint16_t index, uint8_t sub)
+{
+    const uint16_t *p = (const uint16_t *)co_od_value_ptr(node, index, sub);
+    return (p != NULL) ? *p : 0U;
+}
+
+static void set_u16(co_node_t *node, uint16_t index, uint8_t sub, uint16_t v)
+{
+    uint16_t *p = (uint16_t *)co_od_value_ptr(node, index, sub);
+    if (p != NULL) {
+        *p = v;
+    }
+}
+
+static uint32_t u32_at(co_node_t *node, uint16_t index, uint8_t sub)
+{
+    const uint32_t *p = (const uint32_t *)co_od_value_ptr(node, index, sub);
+    return (p != NULL) ? *p : 0U;
+}
+
+static uint8_t bit_no(uint16_t bit)
+{
+    uint8_t n = 0U;
+    while ((n < 15U) && ((bit >> n) != 1U)) {
+        n++;
+    }
+    return n;
+}
+
+/* ------------------------------------------------------------- errors */
+
+/* Report error @p e: 0x2320, EMCY with 0x2320 in bytes 3-4 (emergency
+ * mask), Fault (fault mask). */
+static void report(co402_device_run_t *r, const fh_error_t *e)
+{
+    faulhaber_mc_state_t *st = state(r);
+    uint16_t reg = (uint16_t)(u16_at(r->node, 0x2320U, 0U) | e->bit);
+    uint16_t code = e->code;
+    uint8_t mfr[5] = {(uint8_t)(reg & 0xFFU), (uint8_t)(reg >> 8U), 0U, 0U, 0U};
+    const int8_t *mode = (const int8_t *)co_od_value_ptr(r->node, 0x6061U, 0U);
+
+    if ((e->bit == FAULHABER_ERR_DEVIATION) && (mode != NULL) && (*mode == CO402_MODE_PV)) {
+        code = 0x8611U; /* as printed: 0x8611 in pv, 0x8400 in pp */
+    }
+    st->code[bit_no(e->bit)] = code;
+    set_u16(r->node, 0x2320U, 0U, reg);
+    if ((u16_at(r->node, 0x2321U, 1U) & e->bit) != 0U) {
+        co_emcy_raise(r->node, code, e->reg, mfr);
+    }
+    if (((u16_at(r->node, 0x2321U, 2U) & e->bit) != 0U) && (r->desc->n_axes > 0U)) {
+        co402_fault_raise(&r->axis[0], code);
+    }
+}
+
+static void withdraw(co402_device_run_t *r, const fh_error_t *e)
+{
+    faulhaber_mc_state_t *st = state(r);
+    uint16_t code = st->code[bit_no(e->bit)];
+
+    set_u16(r->node, 0x2320U, 0U, (uint16_t)(u16_at(r->node, 0x2320U, 0U) & ~e->bit));
+    co_emcy_clear(r->node, code);
+    if (r->desc->n_axes > 0U) {
+        co402_fault_clear(&r->axis[0], code);
+    }
+}
+
+void faulhaber_mc_error(co402_device_run_t *r, uint16_t bit, bool on)
+{
+    faulhaber_mc_state_t *st = state(r);
+
+    for (size_t i = 0U; i < N_ERRORS; i++) {
+        if (errors[i].bit != bit) {
+            continue;
+        }
+        if (on && ((st->present & bit) == 0U)) {
+            st->present |= bit;
+            st->since[bit_no(bit)] = r->node->now;
+        } else if (!on && ((st->present & bit) != 0U)) {
+            st->present &= (uint16_t)~bit;
+            if ((u16_at(r->node, 0x2320U, 0U) & bit) != 0U) {
+                withdraw(r, &errors[i]);
+            }
+        } else {
+            /* no change */
+        }
+    }
+}
+
+/* ------------------------------------------------------- factor group */
+
+static uint64_t gcd64(uint64_t a, uint64_t b)
+{
+    while (b != 0U) {
+        uint64_t t = a % b;
+        a = b;
+        b = t;
+    }
+    return a;
+}
+
+/* 0x6093 = encoder resolution x gear ratio / feed constant, with one value
+ * replaced by the one being written (@p index, @p sub, @p v). */
+static co_err_t factor(co402_device_run_t *r, uint16_t index, uint8_t sub, uint32_t v, bool commit)
+{
+    uint64_t inc = u32_at(r->node, 0x608FU, 1U);
+    uint64_t mrev = u32_at(r->node, 0x608FU, 2U);
+    uint64_t gm = (index == 0x6091U && sub == 1U) ? v : u32_at(r->node, 0x6091U, 1U);
+    uint64_t gs = (index == 0x6091U && sub == 2U) ? v : u32_at(r->node, 0x6091U, 2U);
+    uint64_t feed = (index == 0x6092U && sub == 1U) ? v : u32_at(r->node, 0x6092U, 1U);
+    uint64_t fs = (index == 0x6092U && sub == 2U) ? v : u32_at(r->node, 0x6092U, 2U);
+    uint64_t num;
+    uint64_t den;
+    uint64_t g;
+    uint32_t *p;
+
+    if ((inc == 0U) || (mrev == 0U) || (gm == 0U) || (gs == 0U) || (feed == 0U) || (fs == 0U)) {
+        return CO_ERR_VALUE;
+    }
+    if ((inc > 0xFFFFFFFFULL) || (gm * fs > 0xFFFFFFFFULL) || (mrev * gs > 0xFFFFFFFFULL)) {
+        return CO_ERR_DEV_INCOMPAT;
+    }
+    num = inc * gm * fs;
+    den = mrev * gs * feed;
+    g = gcd64(num, den);
+    num /= g;
+    den /= g;
+    if ((num >= NUMERATOR_MAX) || (den >= NUMERATOR_MAX)) {
+        return CO_ERR_DEV_INCOMPAT; /* 0x06040047 */
+    }
+    if (commit) {
+        p = (uint32_t *)co_od_value_ptr(r->node, 0x6093U, 1U);
+        if (p != NULL) {
+            *p = (uint32_t)num;
+        }
+        p = (uint32_t *)co_od_value_ptr(r->node, 0x6093U, 2U);
+        if (p != NULL) {
+            *p = (uint32_t)den;
+        }
+    }
+    return CO_OK;
+}
+
+/* -------------------------------------------------------------- hooks */
+
+static co_err_t hook_guard_time(void *ctx, co_od_io_t *io)
+{
+    co402_device_run_t *r = (co402_device_run_t *)ctx;
+
+    if ((co_get_u16(io->buf) != 0U) && (u16_at(r->node, 0x1017U, 0U) != 0U)) {
+        return CO_ERR_STORE; /* guarding and heartbeat exclude each other */
+    }
+    return CO_OK;
+}
+
+static co_err_t hook_heartbeat(void *ctx, co_od_io_t *io)
+{
+    co402_device_run_t *r = (co402_device_run_t *)ctx;
+
+    if (co_get_u16(io->buf) != 0U) {
+        uint8_t *life = (uint8_t *)co_od_value_ptr(r->node, 0x100DU, 0U);
+        set_u16(r->node, 0x100CU, 0U, 0U);
+        if (life != NULL) {
+            *life = 0U;
+        }
+    }
+    return CO_OK;
+}
+
+static co_err_t hook_restore(void *ctx, co_od_io_t *io)
+{
+    co402_device_run_t *r = (co402_device_run_t *)ctx;
+
+    if ((io->desc->sub >= 1U) && (io->desc->sub <= 3U) && (r->desc->n_axes > 0U) &&
+        (co402_state(&r->axis[0]) != CO402_SWITCH_ON_DISABLED)) {
+        return CO_ERR_STORE_STATE; /* factory values only while disabled */
+    }
+    return CO_OK;
+}
+
+static co_err_t hook_inputs(void *ctx, co_od_io_t *io)
+{
+    co402_device_run_t *r = (co402_device_run_t *)ctx;
+    const int8_t *mode = (const int8_t *)co_od_value_ptr(r->node, 0x6061U, 0U);
+
+    (void)io;
+    if ((mode != NULL) && (*mode == CO402_MODE_HM)) {
+        return CO_ERR_STORE_STATE; /* not while in homing mode */
+    }
+    return CO_OK;
+}
+
+static co_err_t hook_masks(void *ctx, co_od_io_t *io)
+{
+    co402_device_run_t *r = (co402_device_run_t *)ctx;
+
+    if (io->desc->sub == 2U) {
+        /* the fault mask's bits are set in the emergency mask too */
+        set_u16(r->node, 0x2321U, 1U, (uint16_t)(u16_at(r->node, 0x2321U, 1U) | co_get_u16(io->buf)));
+    }
+    return CO_OK;
+}
+
+static co_err_t hook_target_internal(void *ctx, co_od_io_t *io)
+{
+    co402_device_run_t *r = (co402_device_run_t *)ctx;
+    int64_t inc = (int64_t)(int32_t)co_get_u32(io->buf);
+    int64_t num = (int64_t)u32_at(r->node, 0x6093U, 1U);
+    int64_t den = (int64_t)u32_at(r->node, 0x6093U, 2U);
+    int32_t *target = (int32_t *)co_od_value_ptr(r->node, 0x607AU, 0U);
+
+    if ((num == 0) || (den == 0) || (target == NULL)) {
+        return CO_ERR_DEV_INCOMPAT;
+    }
+    *target = (int32_t)((inc * den) / num); /* internal = user * num / den */
+    return CO_OK;
+}
+
+static co_err_t hook_factor(void *ctx, co_od_io_t *io)
+{
+    co402_device_run_t *r = (co402_device_run_t *)ctx;
+
+    return factor(r, io->entry->index, io->desc->sub, co_get_u32(io->buf), true);
+}
+
+/* ------------------------------------------------------------ plug-in */
+
+static co_err_t op_attach(void *inst, co_node_t *node, uint32_t now_us)
+{
+    co402_device_run_t *r = (co402_device_run_t *)inst;
+    static const struct {
+        uint16_t index;
+        co_err_t (*write)(void *ctx, co_od_io_t *io);
+    } hooks[] = {
+        {0x100CU, hook_guard_time}, {0x1017U, hook_heartbeat}, {0x1011U, hook_restore},
+        {0x2310U, hook_inputs},     {0x2321U, hook_masks},     {0x257AU, hook_target_internal},
+        {0x6091U, hook_factor},     {0x6092U, hook_factor},
+    };
+
+    (void)now_us;
+    if (r->ctx == NULL) {
+        return CO_ERR_VALUE;
+    }
+    for (size_t i = 0U; i < (sizeof hooks / sizeof hooks[0]); i++) {
+        co_od_hook_t h = {NULL, hooks[i].write, r};
+        co_err_t err = co_od_bind_hook(node, hooks[i].index, &h);
+        if (err != CO_OK) {
+            return err;
+        }
+    }
+    (void)factor(r, 0U, 0U, 0U, true);
+    return CO_OK;
+}
+
+static uint32_t op_process(void *inst, uint32_t now_us)
+{
+    co402_device_run_t *r = (co402_device_run_t *)inst;
+    faulhaber_mc_state_t *st = state(r);
+    uint32_t delay = (uint32_t)u16_at(r->node, 0x2322U, 1U) * 10000U; /* 1/100 s */
+    uint32_t next = CO_NO_DEADLINE;
+    uint16_t reg = u16_at(r->node, 0x2320U, 0U);
+
+    for (size_t i = 0U; i < N_ERRORS; i++) {
+        const fh_error_t *e = &errors[i];
+        uint32_t due = st->since[bit_no(e->bit)] + (e->delayed ? delay : 0U);
+        if (((st->present & e->bit) == 0U) || ((reg & e->bit) != 0U)) {
+            continue;
+        }
+        if ((int32_t)(now_us - due) >= 0) {
+            report(r, e);
+            reg = u16_at(r->node, 0x2320U, 0U);
+        } else if ((next == CO_NO_DEADLINE) || ((int32_t)(due - next) < 0)) {
+            next = due;
+        } else {
+            /* a later one */
+        }
+    }
+    if (st->react) {
+        /* 0x1029.1: 0 Pre-operational (from Operational), 1 no change, 2 Stopped */
+        const uint8_t *beh = (const uint8_t *)co_od_value_ptr(r->node, 0x1029U, 1U);
+        uint8_t v = (beh != NULL) ? *beh : 0U;
+        st->react = false;
+        if ((v == 0U) && (co_node_nmt_state(r->node) == CO_NMT_OPERATIONAL)) {
+            co_node_nmt_command(r->node, 0x80U, now_us);
+        } else if (v == 2U) {
+            co_node_nmt_command(r->node, 0x02U, now_us);
+        } else {
+            /* no change */
+        }
+    }
+    if (r->desc->n_axes > 0U) {
+        /* 0x2562: last demand in increments; 0x2361: speed, unfiltered */
+        int32_t *demand = (int32_t *)co_od_value_ptr(r->node, 0x2562U, 0U);
+        int16_t *raw = (int16_t *)co_od_value_ptr(r->node, 0x2361U, 0U);
+        const int32_t *user = (const int32_t *)co_od_value_ptr(r->node, 0x6062U, 0U);
+        const int32_t *rpm = (const int32_t *)co_od_value_ptr(r->node, 0x606CU, 0U);
+        int64_t num = (int64_t)u32_at(r->node, 0x6093U, 1U);
+        int64_t den = (int64_t)u32_at(r->node, 0x6093U, 2U);
+        if ((demand != NULL) && (user != NULL) && (num != 0) && (den != 0)) {
+            *demand = (int32_t)(((int64_t)*user * num) / den);
+        }
+        if ((raw != NULL) && (rpm != NULL)) {
+            *raw = (int16_t)((*rpm > 32767) ? 32767 : ((*rpm < -32768) ? -32768 : *rpm));
+        }
+    }
+    return next;
+}
+
+static void op_reset(void *inst, co_reset_t kind, uint32_t now_us)
+{
+    co402_device_run_t *r = (co402_device_run_t *)inst;
+
+    (void)now_us;
+    if (kind == CO_RESET_NODE) {
+        (void)memset(r->ctx, 0, sizeof(faulhaber_mc_state_t)); /* 0x2320 is back at 0 */
+    }
+    (void)factor(r, 0U, 0U, 0U, true);
+}
+
+static void op_error_control(void *inst, co_hb_event_t ev, uint8_t id, uint32_t now_us)
+{
+    co402_device_run_t *r = (co402_device_run_t *)inst;
+
+    (void)id;
+    (void)now_us;
+    if ((ev == CO_HB_TIMEOUT) || (ev == CO_GUARD_LOST)) {
+        faulhaber_mc_error(r, FAULHABER_ERR_GUARDING, true);
+        state(r)->react = true; /* 0x1029, at the next process (not inside the core's event) */
+    } else if ((ev == CO_HB_RECOVERED) || (ev == CO_GUARD_RECOVERED)) {
+        faulhaber_mc_error(r, FAULHABER_ERR_GUARDING, false);
+    } else {
+        /* other events: nothing */
+    }
+}
+
+const co_profile_ops_t faulhaber_mc_ops = {
+    "faulhaber-mc", op_attach, op_process, NULL, NULL, op_reset, op_error_control,
+};
+
+/* ------------------------------------------------------------ descriptor */
+
+void faulhaber_mc_sim(uint8_t axis, co402_sim_config_t *c)
+{
+    (void)axis;
+    co402_sim_defaults(c);
+    c->counts_per_rev = 3000U;     /* BL: Hall sensors, 3000 increments/rev */
+    c->speed_max = 600000U;        /* 12000 rpm */
+    c->accel_rated = 30000000U;    /* 10000 1/s^2 at rated torque (3x: 30000 1/s^2) */
+    c->switches = CO402_IN_HOME;   /* a home switch at the positive end */
+    c->home_lo = 30000;
+    c->home_hi = INT32_MAX;
+}
+
+static void config(void *node_mem, co_node_config_t *cfg)
+{
+    faulhaber_mc_config((faulhaber_mc_node_t *)node_mem, cfg);
+}
+
+const co402_device_t faulhaber_mc_device = {
+    "faulhaber-mc",
+    &faulhaber_mc_dev,
+    sizeof(faulhaber_mc_node_t),
+    config,
+    1U,
+    {
+        .options = CO402_OPT_ONE_TRANSITION | CO402_OPT_NMT_OPERATIONAL | CO402_OPT_NO_VOLTAGE_BIT |
+                   CO402_OPT_NO_REMOTE_BIT | CO402_OPT_PP_ALWAYS_NOW | CO402_OPT_PP_TR_AFTER_MOVE |
+                   CO402_OPT_HM_BIT4_CLEARS | CO402_OPT_FAULT_HOLDS_ZERO | CO402_OPT_TPDO_ON_SW |
+                   CO402_OPT_QS_STAY | CO402_OPT_FR_SLOW,
+        .vel_num = 3000U, /* rpm: 3000 increments / 60 s */
+        .vel_den = 60U,
+        .acc_num = 3000U, /* 1/s^2: 3000 increments / s^2 */
+        .acc_den = 1U,
+    },
+    faulhaber_mc_sim,
+    &faulhaber_mc_ops,
+    sizeof(faulhaber_mc_state_t),
+};

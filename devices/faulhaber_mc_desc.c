@@ -164,12 +164,12 @@ static co_err_t factor(co402_device_run_t *r, uint16_t index, uint8_t sub, uint3
     }
     num = inc * gm * fs;
     den = mrev * gs * feed;
+    if ((num >= NUMERATOR_MAX) || (den >= NUMERATOR_MAX)) {
+        return CO_ERR_DEV_INCOMPAT; /* 0x06040047: the product, before reducing */
+    }
     g = gcd64(num, den);
     num /= g;
     den /= g;
-    if ((num >= NUMERATOR_MAX) || (den >= NUMERATOR_MAX)) {
-        return CO_ERR_DEV_INCOMPAT; /* 0x06040047 */
-    }
     if (commit) {
         p = (uint32_t *)co_od_value_ptr(r->node, 0x6093U, 1U);
         if (p != NULL) {

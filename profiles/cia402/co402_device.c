@@ -61,8 +61,9 @@ co_err_t co402_device_start(co402_device_run_t *r, const co402_device_t *d, void
 
 uint32_t co402_device_process(co402_device_run_t *r, uint32_t now_us)
 {
-    uint32_t a = co_node_process(r->node, now_us);
+    /* the plug-ins first: what their tick changed goes out in this call */
     uint32_t b = co_profile_host_process(&r->host, now_us);
+    uint32_t a = co_node_process(r->node, now_us);
 
     if (a == CO_NO_DEADLINE) {
         return b;

@@ -285,6 +285,437 @@ static void trace_velocity_mode(void **state)
     /* TPDO4 (no statusword) is never a statusword-change frame */
 }
 
+/* --------------------------------------------- NMT, guarding, heartbeat */
+
+/* Section 7.3 and 2.5/2.6: guarding replies with the toggle bit starting
+ * at 0, heartbeat, and their exclusion (9.1 item 9). */
+static void nmt_guarding_heartbeat(void **state)
+{
+    (void)state;
+    tb_send(&S->bus, "702 R");
+    sr_expect(S, "702 7F");
+    tb_send(&S->bus, "702 R");
+    sr_expect(S, "702 FF");
+    start_node(0x0040, 0);
+    tb_send(&S->bus, "702 R");
+    sr_expect(S, "702 05");
+    tb_send(&S->bus, "702 R");
+    sr_expect(S, "702 85");
+    /* guard time 100 ms, life time factor 3 */
+    sr_sdo(S, "2B 0C 10 00 64 00 00 00", "60 0C 10 00 00 00 00 00");
+    sr_sdo(S, "2F 0D 10 00 03 00 00 00", "60 0D 10 00 00 00 00 00");
+    /* a producer heartbeat time > 0 forces both to 0 ... */
+    sr_sdo(S, "2B 17 10 00 64 00 00 00", "60 17 10 00 00 00 00 00");
+    sr_sdo(S, "40 0C 10 00 00 00 00 00", "4B 0C 10 00 00 00 00 00");
+    sr_sdo(S, "40 0D 10 00 00 00 00 00", "4F 0D 10 00 00 00 00 00");
+    /* ... and a guard time is refused while it runs */
+    sr_sdo(S, "2B 0C 10 00 64 00 00 00", "80 0C 10 00 20 00 00 08");
+    sr_sdo(S, "2B 0C 10 00 00 00 00 00", "60 0C 10 00 00 00 00 00");
+    /* heartbeat "702 05" every 100 ms */
+    sr_run(S, 100);
+    sr_expect(S, "702 05");
+    sr_run(S, 99);
+    tb_expect_none(&S->bus);
+    sr_run(S, 1);
+    sr_expect(S, "702 05");
+    /* Stop, Pre-operational: the state byte follows */
+    tb_send(&S->bus, "000 02 02");
+    sr_run(S, 100);
+    sr_expect(S, "702 04");
+    tb_send(&S->bus, "000 80 02");
+    sr_run(S, 100);
+    sr_expect(S, "702 7F");
+    /* the producer off: guarding may be configured again */
+    sr_sdo(S, "2B 17 10 00 00 00 00 00", "60 17 10 00 00 00 00 00");
+    sr_sdo(S, "2B 0C 10 00 64 00 00 00", "60 0C 10 00 00 00 00 00");
+}
+
+/* Sections 2.6, 2.7, 7.9: the consumer watches master 0x7F for 1500 ms
+ * (0x1016.1 = 0x007F05DC); its loss sets 0x2320 bit 0x0100, 0x1001 bit 4,
+ * sends EMCY 0x8130 and, by 0x1029.1 = 0, goes to Pre-operational. */
+static void heartbeat_consumer_and_error_behaviour(void **state)
+{
+    (void)state;
+    sr_sdo(S, "23 16 10 01 DC 05 7F 00", "60 16 10 01 00 00 00 00");
+    start_node(0x0040, 0);
+    tb_send(&S->bus, "77F 05");
+    sr_run(S, 1000);
+    tb_send(&S->bus, "77F 05");
+    sr_run(S, 1499);
+    tb_expect_none(&S->bus);
+    sr_run(S, 1);
+    /* The FAULHABER's EMCY carries 0x2320 in bytes 3-4 (00 01); this one is
+     * the core's own, whose manufacturer bytes are zero (see the report). */
+    sr_expect(S, "082 30 81 11 00 00 00 00 00");
+    sr_run(S, 1);
+    tb_expect_none(&S->bus);
+    assert_int_equal(sr_get(S, 0x2320, 0), 0x0100);
+    assert_int_equal(co_node_nmt_state(S->run.node), CO_NMT_PRE_OPERATIONAL);
+    /* the master is back: the error ends */
+    tb_send(&S->bus, "77F 05");
+    sr_run(S, 1);
+    sr_expect(S, "082 00 00 00 00 00 00 00 00");
+    assert_int_equal(sr_get(S, 0x2320, 0), 0x0000);
+    /* 0x1029.1 = 1: no state change */
+    tb_send(&S->bus, "000 01 02");
+    sr_poll(S);
+    tb_flush(&S->bus);
+    sr_sdo(S, "2F 29 10 01 01 00 00 00", "60 29 10 01 00 00 00 00");
+    sr_sdo(S, "2F 29 10 01 03 00 00 00", "80 29 10 01 31 00 09 06");
+    sr_run(S, 1500);
+    sr_expect(S, "082 30 81 11 00 00 00 00 00");
+    sr_run(S, 1);
+    assert_int_equal(co_node_nmt_state(S->run.node), CO_NMT_OPERATIONAL);
+}
+
+/* ------------------------------------------ device control (7.4, 6.1) */
+
+/* Section 7.4 enable sequence by SDO with the statusword after each step,
+ * and section 6.1: in Pre-operational the controlword does not move it. */
+static void enable_by_sdo_and_rpdo(void **state)
+{
+    (void)state;
+    /* Pre-operational: written, but the state machine does not react */
+    sr_sdo(S, "2B 40 60 00 06 00 00 00", "60 40 60 00 00 00 00 00");
+    sr_sdo(S, "40 41 60 00 00 00 00 00", "4B 41 60 00 40 00 00 00");
+    sr_sdo(S, "40 40 60 00 00 00 00 00", "4B 40 60 00 06 00 00 00");
+    start_node(0x0040, 0);
+    sr_sdo(S, "2B 40 60 00 06 00 00 00", "60 40 60 00 00 00 00 00");
+    sr_poll(S);
+    expect_sw_pdos(0x0021, 0, 0);
+    sr_sdo(S, "2B 40 60 00 07 00 00 00", "60 40 60 00 00 00 00 00");
+    sr_poll(S);
+    expect_sw_pdos(0x0023, 0, 0);
+    sr_sdo(S, "2B 40 60 00 0F 00 00 00", "60 40 60 00 00 00 00 00");
+    sr_poll(S);
+    expect_sw_pdos(0x0027, 0, 0);
+    tb_expect_none(&S->bus);
+    /* disable voltage, then the same sequence through RxPDO1 */
+    sr_sdo(S, "2B 40 60 00 00 00 00 00", "60 40 60 00 00 00 00 00");
+    sr_poll(S);
+    expect_sw_pdos(0x0040, 0, 0);
+    tb_send(&S->bus, "202 06 00");
+    sr_poll(S);
+    expect_sw_pdos(0x0021, 0, 0);
+    tb_send(&S->bus, "202 07 00");
+    sr_poll(S);
+    expect_sw_pdos(0x0023, 0, 0);
+    tb_send(&S->bus, "202 0F 00");
+    sr_poll(S);
+    expect_sw_pdos(0x0027, 0, 0);
+    /* quick stop: option code 6 behaviour, stays in Quick stop active
+     * (0x0007) and returns with enable operation (transition 16) */
+    tb_send(&S->bus, "202 0B 00");
+    sr_poll(S);
+    expect_sw_pdos(0x0007, 0, 0);
+    sr_run(S, 50);
+    sr_expect(S, "182 07 04"); /* at rest: bit 10 */
+    sr_skip_cob(S, 0x282, 6);
+    sr_skip_cob(S, 0x382, 6);
+    tb_send(&S->bus, "202 0F 00");
+    sr_poll(S);
+    expect_sw_pdos(0x0027, 0, 0);
+    tb_expect_none(&S->bus);
+    /* a PDO needs Operational: in Pre-operational RxPDO1 is ignored */
+    tb_send(&S->bus, "000 80 02");
+    tb_send(&S->bus, "202 06 00");
+    sr_poll(S);
+    tb_expect_none(&S->bus);
+    sr_sdo(S, "40 41 60 00 00 00 00 00", "4B 41 60 00 27 00 00 00");
+}
+
+/* Sections 7.4 (fault reset), 7.6 (the EMCY example) and 7.7 (error
+ * configuration): over-current with the fault mask set. */
+static void fault_and_emcy_example(void **state)
+{
+    (void)state;
+    start_node(0x0040, 0);
+    /* 7.7: 0x2321.02 = 0x0001: over-current -> Fault; it also sets the bit
+     * in the emergency mask (already set by default: 0xFFFF) */
+    sr_sdo_write(S, 0x2321, 1, 0x0000, 2);
+    sr_sdo_write(S, 0x2321, 2, 0x0001, 2);
+    sr_sdo(S, "40 21 23 01 00 00 00 00", "4B 21 23 01 01 00 00 00");
+    sr_sdo_write(S, 0x6040, 0, 0x0006, 2);
+    sr_poll(S);
+    expect_sw_pdos(0x0021, 0, 0);
+    sr_sdo_write(S, 0x6040, 0, 0x0007, 2);
+    sr_poll(S);
+    expect_sw_pdos(0x0023, 0, 0);
+    sr_sdo_write(S, 0x6040, 0, 0x000F, 2);
+    sr_poll(S);
+    expect_sw_pdos(0x0027, 0, 0);
+    /* the continuous current limit is exceeded; the error delay 0x2322.01
+     * = 200 (2 s) passes before it is reported */
+    faulhaber_mc_error(&S->run, FAULHABER_ERR_OVERCURRENT, true);
+    sr_run(S, 1999);
+    tb_expect_none(&S->bus);
+    sr_run(S, 1);
+    /* 7.6: the manual prints "10 23 01 00 00 00 00 00", which contradicts
+     * its own tables; sent is code 0x2310, error register 0x03 (current,
+     * with CiA 301's generic bit) and 0x2320 = 0x0001 in bytes 3-4 */
+    sr_expect(S, "082 10 23 03 01 00 00 00 00");
+    /* the fault mask: Fault reaction active (0x6084 ramp, at rest at once),
+     * then Fault */
+    sr_poll(S);
+    expect_sw_pdos(0x000F, 0, 0);
+    sr_run(S, 1);
+    expect_sw_pdos(0x0008, 0, 0);
+    tb_expect_none(&S->bus);
+    sr_sdo(S, "40 20 23 00 00 00 00 00", "4B 20 23 00 01 00 00 00");
+    sr_sdo(S, "40 01 10 00 00 00 00 00", "4F 01 10 00 03 00 00 00");
+    /* 0x1003: error code, upper word 0x2320 (the manual's "error register") */
+    sr_sdo(S, "40 03 10 01 00 00 00 00", "43 03 10 01 10 23 01 00");
+    /* a fault reset while the condition lasts does nothing */
+    sr_sdo_write(S, 0x6040, 0, 0x0080, 2);
+    sr_poll(S);
+    tb_expect_none(&S->bus);
+    /* the condition ends: EMCY 0x0000 */
+    faulhaber_mc_error(&S->run, FAULHABER_ERR_OVERCURRENT, false);
+    sr_expect(S, "082 00 00 00 00 00 00 00 00");
+    /* 7.4 fault reset sequence: 0x0080 (a rising edge), 6, 7, F */
+    sr_sdo_write(S, 0x6040, 0, 0x0000, 2);
+    sr_sdo_write(S, 0x6040, 0, 0x0080, 2);
+    sr_poll(S);
+    expect_sw_pdos(0x0040, 0, 0);
+    sr_sdo_write(S, 0x6040, 0, 0x0006, 2);
+    sr_poll(S);
+    expect_sw_pdos(0x0021, 0, 0);
+    sr_sdo_write(S, 0x6040, 0, 0x0007, 2);
+    sr_poll(S);
+    expect_sw_pdos(0x0023, 0, 0);
+    sr_sdo_write(S, 0x6040, 0, 0x000F, 2);
+    sr_poll(S);
+    expect_sw_pdos(0x0027, 0, 0);
+    tb_expect_none(&S->bus);
+}
+
+/* 9.1 item 4: with the factory masks no error leads to Fault; errors are
+ * EMCYs only. The emergency mask off: 0x2320 only. */
+static void errors_do_not_fault_by_default(void **state)
+{
+    (void)state;
+    start_node(0x0040, 0);
+    faulhaber_mc_error(&S->run, FAULHABER_ERR_TEMPERATURE, true);
+    sr_poll(S);
+    sr_expect(S, "082 10 43 09 08 00 00 00 00");
+    sr_sdo(S, "40 41 60 00 00 00 00 00", "4B 41 60 00 40 00 00 00");
+    faulhaber_mc_error(&S->run, FAULHABER_ERR_TEMPERATURE, false);
+    sr_expect(S, "082 00 00 00 00 00 00 00 00");
+    sr_sdo_write(S, 0x2321, 1, 0xFFF7, 2);
+    faulhaber_mc_error(&S->run, FAULHABER_ERR_TEMPERATURE, true);
+    sr_run(S, 10);
+    tb_expect_none(&S->bus);
+    sr_sdo(S, "40 20 23 00 00 00 00 00", "4B 20 23 00 08 00 00 00");
+    /* 0x2322.01 = 200 -> reported after 2 s (section 7.7) */
+    sr_sdo(S, "40 22 23 01 00 00 00 00", "4B 22 23 01 C8 00 00 00");
+}
+
+/* ------------------------------------------- modes (7.5, 6.5-6.7) */
+
+static void enable(void)
+{
+    sr_sdo_write(S, 0x6040, 0, 0x0006, 2);
+    sr_sdo_write(S, 0x6040, 0, 0x0007, 2);
+    sr_sdo_write(S, 0x6040, 0, 0x000F, 2);
+    assert_int_equal(co402_state(&S->run.axis[0]), CO402_OPERATION_ENABLED);
+}
+
+/* Section 7.5.3: relative move of 10000 increments with controlword
+ * 0x007F, the set-point handshake on bits 4/12, target reached; a second
+ * 0x007F adds 10000 to the previous target. In Pre-operational (no TPDOs),
+ * the statusword read by SDO. */
+static void relative_move(void **state)
+{
+    (void)state;
+    tb_send(&S->bus, "000 01 02");
+    tb_send(&S->bus, "000 80 02"); /* the state machine needs Operational once */
+    tb_flush(&S->bus);
+    start_node(0x0040, 0);
+    enable();
+    sr_poll(S);
+    tb_flush(&S->bus);
+    tb_send(&S->bus, "000 80 02");
+    sr_sdo(S, "2F 60 60 00 01 00 00 00", "60 60 60 00 00 00 00 00");
+    sr_sdo(S, "23 7A 60 00 10 27 00 00", "60 7A 60 00 00 00 00 00");
+    tb_send(&S->bus, "000 01 02");
+    sr_poll(S);
+    tb_flush(&S->bus);
+    sr_sdo(S, "2B 40 60 00 7F 00 00 00", "60 40 60 00 00 00 00 00");
+    sr_poll(S);
+    expect_sw_pdos_moving(0x1027); /* set-point acknowledged, moving */
+    sr_sdo(S, "2B 40 60 00 6F 00 00 00", "60 40 60 00 00 00 00 00");
+    sr_poll(S);
+    expect_sw_pdos_moving(0x0027); /* bit 4 cleared: bit 12 follows */
+    run_until_sw(0x0027, 0x0427, 2000);
+    sr_between(sr_get(S, 0x6064, 0), 10000 - 20, 10000 + 20);
+    /* a second 0x007F after the rising edge: +10000 from the last target */
+    sr_sdo(S, "2B 40 60 00 7F 00 00 00", "60 40 60 00 00 00 00 00");
+    sr_poll(S);
+    expect_sw_pdos_moving(0x1027); /* target reached cleared by the set-point */
+    sr_sdo(S, "2B 40 60 00 0F 00 00 00", "60 40 60 00 00 00 00 00");
+    sr_poll(S);
+    expect_sw_pdos_moving(0x0027);
+    run_until_sw(0x0027, 0x0427, 2000);
+    sr_between(sr_get(S, 0x6064, 0), 20000 - 20, 20000 + 20);
+    /* the same through RxPDO2 (controlword + target): 0F then 7F */
+    tb_send(&S->bus, "302 0F 00 10 27 00 00");
+    tb_send(&S->bus, "302 7F 00 10 27 00 00");
+    sr_poll(S);
+    expect_sw_pdos_moving(0x1027);
+    tb_send(&S->bus, "302 0F 00 10 27 00 00");
+    sr_poll(S);
+    expect_sw_pdos_moving(0x0027);
+    run_until_sw(0x0027, 0x0427, 2000);
+    sr_between(sr_get(S, 0x6064, 0), 30000 - 20, 30000 + 20);
+}
+
+/* Section 7.5.1-2: 500 rpm in profile velocity by SDO, by RxPDO3, then
+ * stop with 0x60FF = 0 or with disable operation (0x0007). */
+static void velocity_host_example(void **state)
+{
+    (void)state;
+    start_node(0x0040, 0);
+    enable();
+    sr_poll(S);
+    tb_flush(&S->bus);
+    /* (the TPDOs sent while the motor turns are flushed before each SDO) */
+    sr_sdo(S, "2F 60 60 00 03 00 00 00", "60 60 60 00 00 00 00 00");
+    sr_sdo(S, "23 FF 60 00 F4 01 00 00", "60 FF 60 00 00 00 00 00");
+    sr_run(S, 500);
+    tb_flush(&S->bus);
+    sr_between(sr_get(S, 0x606C, 0), 490, 510);
+    assert_int_equal(sr_get(S, 0x6041, 0), 0x0427);
+    /* stop: 0x60FF = 0 -> speed 0 (bit 12) and target reached */
+    sr_sdo(S, "23 FF 60 00 00 00 00 00", "60 FF 60 00 00 00 00 00");
+    sr_run(S, 500);
+    tb_flush(&S->bus);
+    assert_int_equal(sr_get(S, 0x6041, 0), 0x1427);
+    /* RxPDO3: controlword + target velocity */
+    tb_send(&S->bus, "402 0F 00 F4 01 00 00");
+    sr_run(S, 500);
+    tb_flush(&S->bus);
+    sr_between(sr_get(S, 0x606C, 0), 490, 510);
+    /* stop by disable operation: Switched on after the ramp */
+    sr_sdo(S, "2B 40 60 00 07 00 00 00", "60 40 60 00 00 00 00 00");
+    sr_run(S, 100);
+    assert_int_equal(sr_get(S, 0x6041, 0), 0x0023);
+    sr_between(sr_get(S, 0x606C, 0), -10, 10); /* stopped below 0x606F, then off */
+    tb_flush(&S->bus);
+}
+
+/* Section 6.6: homing with method 20 (default) on the positive home
+ * switch; homing attained drops when bit 4 is cleared; an abort by
+ * clearing bit 4 sets bit 10 with bit 12 = 0. */
+static void homing(void **state)
+{
+    (void)state;
+    start_node(0x0040, 0);
+    enable();
+    sr_sdo(S, "2F 60 60 00 06 00 00 00", "60 60 60 00 00 00 00 00");
+    sr_poll(S);
+    tb_flush(&S->bus);
+    /* 0x2310 cannot change in homing mode (0x08000022, an assumption) */
+    sr_sdo(S, "2F 10 23 03 01 00 00 00", "80 10 23 03 22 00 00 08");
+    sr_sdo(S, "2B 40 60 00 1F 00 00 00", "60 40 60 00 00 00 00 00");
+    sr_poll(S);
+    expect_sw_pdos_moving(0x0027); /* started: bits 12 and 10 = 0 */
+    /* home found: attained while the axis stops (0x1027), then target
+     * reached at rest (0x1427) */
+    run_until_sw(0x0027, 0x1027, 5000);
+    run_until_sw(0x1027, 0x1427, 1000);
+    /* the home switch edge (30000 in the plant) is 0; the axis stopped
+     * behind it with 0x609A */
+    sr_between(sr_get(S, 0x6064, 0), 1, 3000);
+    tb_flush(&S->bus); /* the core's data-change TPDO4 frames */
+    sr_sdo(S, "2B 40 60 00 0F 00 00 00", "60 40 60 00 00 00 00 00");
+    sr_poll(S);
+    expect_sw_pdos(0x0427, (int32_t)sr_get(S, 0x6064, 0), 0);
+    /* again, from the switch, and aborted while it runs */
+    sr_sdo(S, "2B 40 60 00 1F 00 00 00", "60 40 60 00 00 00 00 00");
+    sr_poll(S);
+    expect_sw_pdos_moving(0x0027);
+    sr_run(S, 100);
+    tb_flush(&S->bus);
+    sr_sdo(S, "2B 40 60 00 0F 00 00 00", "60 40 60 00 00 00 00 00");
+    run_until_sw(0x0027, 0x0427, 2000);
+}
+
+/* ------------------------------------------------- PDO set-up (4.4) */
+
+static void pdo_setup_and_rtr(void **state)
+{
+    (void)state;
+    start_node(0x0040, 0);
+    /* TxPDO4 (position, velocity) has no statusword: fetched by RTR */
+    tb_send(&S->bus, "482 R8");
+    sr_poll(S);
+    sr_expect(S, "482 00 00 00 00 00 00 00 00");
+    /* by SYNC after its transmission type is set to 1 */
+    sr_sdo(S, "2F 03 18 02 01 00 00 00", "60 03 18 02 00 00 00 00");
+    tb_send(&S->bus, "080");
+    sr_poll(S);
+    sr_expect(S, "482 00 00 00 00 00 00 00 00");
+    /* remap TxPDO4 to statusword + modes display (CiA 301 procedure):
+     * invalidate, sub 0 = 0, entries, sub 0 = n, valid again */
+    tb_send(&S->bus, "000 80 02");
+    sr_sdo(S, "23 03 18 01 82 04 00 80", "60 03 18 01 00 00 00 00");
+    sr_sdo(S, "2F 03 1A 00 00 00 00 00", "60 03 1A 00 00 00 00 00");
+    sr_sdo(S, "23 03 1A 01 10 00 41 60", "60 03 1A 01 00 00 00 00");
+    sr_sdo(S, "23 03 1A 02 08 00 61 60", "60 03 1A 02 00 00 00 00");
+    /* not mappable (0x1000), or beyond 64 bits */
+    sr_sdo(S, "23 03 1A 03 20 00 00 10", "80 03 1A 03 41 00 04 06");
+    sr_sdo(S, "23 03 1A 03 20 00 64 60", "60 03 1A 03 00 00 00 00");
+    sr_sdo(S, "23 03 1A 04 20 00 64 60", "60 03 1A 04 00 00 00 00");
+    sr_sdo(S, "2F 03 1A 00 04 00 00 00", "80 03 1A 00 42 00 04 06");
+    sr_sdo(S, "2F 03 1A 00 02 00 00 00", "60 03 1A 00 00 00 00 00");
+    sr_sdo(S, "23 03 18 01 82 04 00 00", "60 03 18 01 00 00 00 00");
+    tb_send(&S->bus, "000 01 02");
+    sr_poll(S);
+    tb_flush(&S->bus);
+    tb_send(&S->bus, "080");
+    sr_poll(S);
+    sr_expect(S, "482 40 00 01");
+    /* RxPDO length (section 4.4): too short -> not processed, EMCY 0x8210;
+     * too long -> processed, EMCY 0x8220. The FAULHABER also puts 0x2320
+     * (0x4000 / 0x2000) into bytes 3-4; the core's PDO EMCYs carry zeros. */
+    tb_send(&S->bus, "202 06");
+    sr_poll(S);
+    sr_expect(S, "082 10 82 11 00 00 00 00 00");
+    tb_send(&S->bus, "202 06 00 00");
+    sr_poll(S);
+    sr_expect(S, "082 00 00 00 00 00 00 00 00"); /* the short one has ended */
+    sr_expect(S, "082 20 82 11 00 00 00 00 00");
+    sr_expect(S, "182 21 00");
+    sr_skip_cob(S, 0x282, 6);
+    sr_skip_cob(S, 0x382, 6);
+}
+
+/* ------------------------------------------------- factor group (4.2) */
+
+/* Feed constant 360 -> 1 degree per user unit: 0x6093 = 3000/360 = 25/3;
+ * a numerator of 2e9 or more is refused with 0x06040047. */
+static void factor_group(void **state)
+{
+    (void)state;
+    sr_sdo(S, "23 92 60 01 68 01 00 00", "60 92 60 01 00 00 00 00");
+    sr_sdo(S, "40 93 60 01 00 00 00 00", "43 93 60 01 19 00 00 00");
+    sr_sdo(S, "40 93 60 02 00 00 00 00", "43 93 60 02 03 00 00 00");
+    sr_sdo(S, "23 91 60 01 40 42 0F 00", "80 91 60 01 47 00 04 06"); /* 1e6: 3e9 */
+    sr_sdo(S, "40 91 60 01 00 00 00 00", "43 91 60 01 01 00 00 00");
+    /* 0x257A in increments sets 0x607A in degrees */
+    sr_sdo(S, "23 7A 25 00 B8 0B 00 00", "60 7A 25 00 00 00 00 00");
+    sr_sdo(S, "40 7A 60 00 00 00 00 00", "43 7A 60 00 68 01 00 00");
+    /* a move of 90 degrees is 750 increments */
+    start_node(0x0040, 0);
+    enable();
+    sr_sdo_write(S, 0x607A, 0, 90, 4);
+    sr_sdo_write(S, 0x6040, 0, 0x001F, 2);
+    sr_run(S, 1000);
+    sr_between(sr_get(S, 0x6063, 0), 750 - 20, 750 + 20);
+    sr_between(sr_get(S, 0x6064, 0), 88, 92);
+    tb_flush(&S->bus);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -292,6 +723,16 @@ int main(void)
         cmocka_unit_test_setup(store_restore, setup),
         cmocka_unit_test_setup(factory_restore_only_when_disabled, setup),
         cmocka_unit_test_setup(trace_velocity_mode, setup_trace),
+        cmocka_unit_test_setup(nmt_guarding_heartbeat, setup),
+        cmocka_unit_test_setup(heartbeat_consumer_and_error_behaviour, setup),
+        cmocka_unit_test_setup(enable_by_sdo_and_rpdo, setup),
+        cmocka_unit_test_setup(fault_and_emcy_example, setup),
+        cmocka_unit_test_setup(errors_do_not_fault_by_default, setup),
+        cmocka_unit_test_setup(relative_move, setup),
+        cmocka_unit_test_setup(velocity_host_example, setup),
+        cmocka_unit_test_setup(homing, setup),
+        cmocka_unit_test_setup(pdo_setup_and_rtr, setup),
+        cmocka_unit_test_setup(factor_group, setup),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -71,5 +71,5 @@ uint32_t co402_device_process(co402_device_run_t *r, uint32_t now_us)
     if (b == CO_NO_DEADLINE) {
         return a;
     }
-    return ((int32_t)(b - a) < 0) ? b : a;
+    return (((b - a) & 0x80000000UL) != 0U) ? b : a; /* b before a (wrap-safe) */
 }

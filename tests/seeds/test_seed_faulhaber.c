@@ -368,6 +368,31 @@ static void heartbeat_consumer_and_error_behaviour(void **state)
     assert_int_equal(co_node_nmt_state(S->run.node), CO_NMT_OPERATIONAL);
 }
 
+/* CO402_OPT_TPDO_ON_SW: every statusword change requests the TPDOs that map
+ * the statusword (1, 2, 3; not TxPDO4), even when the statusword is back at
+ * the value last sent before the node runs (0x23 -> 0x21 -> 0x23 between
+ * two polls): they go out once, with the present data. Without the request
+ * the core's change detection would send nothing here. */
+static void statusword_change_requests_tpdos(void **state)
+{
+    (void)state;
+    start_node(0x0040, 0);
+    sr_sdo_write(S, 0x6040, 0, 0x0006, 2);
+    sr_sdo_write(S, 0x6040, 0, 0x0007, 2);
+    sr_poll(S);
+    expect_sw_pdos(0x0023, 0, 0);
+    tb_expect_none(&S->bus);
+    sr_sdo_write(S, 0x6040, 0, 0x0006, 2);
+    sr_sdo_write(S, 0x6040, 0, 0x0007, 2);
+    sr_poll(S);
+    expect_sw_pdos(0x0023, 0, 0);
+    tb_expect_none(&S->bus);
+    /* a write that changes nothing requests nothing */
+    sr_sdo_write(S, 0x6040, 0, 0x0007, 2);
+    sr_poll(S);
+    tb_expect_none(&S->bus);
+}
+
 /* ------------------------------------------ device control (7.4, 6.1) */
 
 /* Section 7.4 enable sequence by SDO with the statusword after each step,
@@ -717,6 +742,7 @@ int main(void)
         cmocka_unit_test_setup(trace_velocity_mode, setup_trace),
         cmocka_unit_test_setup(nmt_guarding_heartbeat, setup),
         cmocka_unit_test_setup(heartbeat_consumer_and_error_behaviour, setup),
+        cmocka_unit_test_setup(statusword_change_requests_tpdos, setup),
         cmocka_unit_test_setup(enable_by_sdo_and_rpdo, setup),
         cmocka_unit_test_setup(fault_and_emcy_example, setup),
         cmocka_unit_test_setup(errors_do_not_fault_by_default, setup),

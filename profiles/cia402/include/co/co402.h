@@ -118,6 +118,46 @@ typedef enum co402_state {
                                                       position / velocity / torque := 0)
                                                       (Kollmorgen) */
 
+#define CO402_OPT_UNITS_FROM_POS    0x00010000UL /**< velocities and accelerations in position
+                                                      units per s and per s^2: 0x6094/0x6097 are
+                                                      not used (Kollmorgen: 6097h is derived
+                                                      from 6093h) */
+#define CO402_OPT_VEL_RPM           0x00020000UL /**< velocities in motor rpm, accelerations in
+                                                      rpm/s (counts_per_rev; SSD 630, no factor
+                                                      group) */
+#define CO402_OPT_QS_STAY           0x00040000UL /**< without 0x605A, quick stop acts as code 6:
+                                                      quick-stop ramp, stay in Quick stop active
+                                                      (Kollmorgen) */
+#define CO402_OPT_HM_TARGET_FIRST   0x00080000UL /**< hm: bit 10 is 0 until a homing ends; at home
+                                                      and at rest bit 10 comes first, bit 12 one
+                                                      tick later (Kollmorgen: 0x0237, 0x0637,
+                                                      0x1637) */
+#define CO402_OPT_PP_TR_NEXT_TICK   0x00100000UL /**< pp: a new set-point clears bit 10 at the next
+                                                      tick, so the acknowledgement is seen with
+                                                      bit 10 still set (SSD 630: 0x9627, 0x9227) */
+#define CO402_OPT_IP_TR_AT_REST     0x00200000UL /**< ip: bit 10 = 1 while ip is not enabled and the
+                                                      axis is at rest (SSD 630: 0x0627 in ip) */
+
+/** A homing method a device accepts in 0x6098 and how the axis runs it
+ *  (co402_config_t.hm_methods; without a table the CiA 402 methods the
+ *  profile implements are accepted and run as themselves). */
+typedef struct co402_hm_method {
+    int8_t value;              /**< the 0x6098 value (manufacturer methods are negative) */
+    int8_t runs_as;            /**< the CiA 402 method it runs as (0: none, a homing error) */
+    uint8_t flags;             /**< CO402_HM_FAST_ONLY */
+} co402_hm_method_t;
+
+#define CO402_HM_FAST_ONLY 0x01U /**< every phase at 0x6099 sub 1 (sub 2 is not used) */
+
+/** How a device reports an error code the axis raises (co402_config_t.errors;
+ *  without an entry: the error register bit of the code's class, no
+ *  manufacturer bytes). */
+typedef struct co402_error {
+    uint16_t code;             /**< EMCY error code (0x603F) */
+    uint8_t reg;               /**< 0x1001 bits it sets (bit 0 is always set) */
+    uint8_t mfr[5];            /**< EMCY bytes 3..7 */
+} co402_error_t;
+
 typedef struct co402_config {
     uint8_t axis;              /**< 0..7: objects at 0x6000 + 0x800 * axis */
     uint32_t options;          /**< CO402_OPT_* */
@@ -127,6 +167,10 @@ typedef struct co402_config {
                                     (0: 4096; 0x608F overrides when the device has it) */
     uint32_t modes;            /**< supported modes as 0x6502 bits when the device lacks
                                     0x6502 (0: pp, pv, hm) */
+    const co402_hm_method_t *hm_methods; /**< homing methods of the device (NULL: CiA 402's) */
+    uint8_t n_hm_methods;
+    const co402_error_t *errors; /**< how the device reports error codes (NULL: none) */
+    uint8_t n_errors;
 } co402_config_t;
 
 #define CO402_FAULTS_MAX 4U

@@ -93,12 +93,13 @@ def test_eds_cia306_structure(device, generated):
             assert int(sec["SubNumber"], 0) == len(subs)
             assert subs[0] == 0
             s0 = cp[f"{index:04X}sub0"]
-            assert int(s0["DataType"], 0) == 0x05
+            # UNSIGNED8, but for the withdrawn 0x1004 (CiA 301 <= 4.0: UNSIGNED32)
+            assert int(s0["DataType"], 0) == (0x07 if index == 0x1004 else 0x05)
             for sub in subs:
                 ss = cp[f"{index:04X}sub{sub:X}"]
                 assert var_keys <= set(ss) <= var_keys | optional
                 assert int(ss["ObjectType"], 0) == 0x7
-            if s0["AccessType"] in ("ro", "const") and "DefaultValue" in s0:
+            if s0["AccessType"] in ("ro", "const") and "DefaultValue" in s0 and index != 0x1004:
                 assert int(s0["DefaultValue"], 0) == max(subs), f"{index:04X}sub0"
         for s in [sec] + [cp[f"{index:04X}sub{x:X}"] for x in subs]:
             if "AccessType" in s:

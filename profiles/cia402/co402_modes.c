@@ -285,7 +285,9 @@ static void speed_zero(co402_axis_t *ax)
 {
     int64_t actual = co402_vel_out(ax, ax->vel);
 
-    if (held_for(ax, mag(actual) <= co402_get(ax, O_VEL_THRESHOLD, 0),
+    if ((ax->cfg.options & CO402_OPT_PV_NO_SPEED_BIT) != 0U) {
+        ax->msw &= (uint16_t)~CO402_SW_OMS1;
+    } else if (held_for(ax, mag(actual) <= co402_get(ax, O_VEL_THRESHOLD, 0),
                  (uint32_t)co402_get(ax, O_VEL_THRESHOLD_TIME, 0), &ax->vtimer, &ax->vtimer_on)) {
         ax->msw |= CO402_SW_OMS1;
     } else {

@@ -137,6 +137,8 @@ typedef enum co402_state {
                                                       bit 10 still set (SSD 630: 0x9627, 0x9227) */
 #define CO402_OPT_IP_TR_AT_REST     0x00200000UL /**< ip: bit 10 = 1 while ip is not enabled and the
                                                       axis is at rest (SSD 630: 0x0627 in ip) */
+#define CO402_OPT_PV_NO_SPEED_BIT   0x00400000UL /**< pv: no mode-specific statusword bits (bit 12
+                                                      "speed = 0" stays 0; Kollmorgen) */
 
 /** A homing method a device accepts in 0x6098 and how the axis runs it
  *  (co402_config_t.hm_methods; without a table the CiA 402 methods the

@@ -111,6 +111,27 @@ static void identity(void **state)
     tb_xfer(BUS, "603 2F 98 60 00 FE 00 00 00", "583 60 98 60 00 00 00 00 00");
 }
 
+/* ------------------------------------------ D7.1 free mapping of TPDO1 */
+
+static void d71_free_mapping(void **state)
+{
+    const co_frame_t *f;
+
+    (void)state;
+    start_with(1, 1, NULL); /* the example's node 1 */
+    /* the answers are not printed: each is the download confirmation */
+    dl(1, "2F 00 1A 00 00 00 00 00");
+    dl(1, "23 00 1A 01 10 00 41 60");
+    dl(1, "23 00 1A 02 20 00 02 10");
+    /* step 4 is described, not printed: 2 entries */
+    dl(1, "2F 00 1A 00 02 00 00 00");
+    tseed_set(&fx, 1, 0x1002, 0, 0x00000400, 4); /* the application's status */
+    tb_send(BUS, "000 01 01");
+    f = tseed_frame(BUS, 0x181, 6);
+    TF_ASSERT_FRAME(f, "181 40 02 00 04 00 00");
+    tb_flush(BUS);
+}
+
 /* ------------------------------------------------- D7.2 state machine */
 
 static void d72_state_machine_by_sdo(void **state)
@@ -566,6 +587,22 @@ static void d711_sync_and_emcy(void **state)
     tb_xfer(BUS, "603 40 03 10 00 00 00 00 00", "583 4F 03 10 00 00 00 00 00");
 }
 
+/* ------------------------------------- D7.12 electronic gearing (no frames) */
+
+static void d712_gearing_parameters(void **state)
+{
+    (void)state;
+    /* GEARI 2040h sub 1 (default 1024), GEARO sub 2 (default 1), IN20TRIG
+     * 20B0h, the actual values 2041h; mode 0x84 itself is not simulated */
+    tb_xfer(BUS, "603 40 40 20 01 00 00 00 00", "583 43 40 20 01 00 04 00 00");
+    tb_xfer(BUS, "603 40 40 20 02 00 00 00 00", "583 43 40 20 02 01 00 00 00");
+    dl(3, "23 40 20 01 00 08 00 00");
+    dl(3, "23 40 20 02 03 00 00 00");
+    dl(3, "23 B0 20 00 10 27 00 00");
+    tb_xfer(BUS, "603 40 41 20 03 00 00 00 00", "583 4F 41 20 03 00 00 00 00");
+    tb_xfer(BUS, "603 2F 60 60 00 84 00 00 00", "583 80 60 60 00 30 00 09 06");
+}
+
 /* ------------------------------- D7.13 interpolated position, two axes */
 
 static void ip_config_axis(uint8_t id)
@@ -766,6 +803,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_setup(identity, setup),
+        cmocka_unit_test_setup(d71_free_mapping, setup),
         cmocka_unit_test_setup(d72_state_machine_by_sdo, setup),
         cmocka_unit_test_setup(d73_jog_by_sdo, setup),
         cmocka_unit_test_setup(d74_torque_by_sdo, setup),
@@ -776,6 +814,7 @@ int main(void)
         cmocka_unit_test_setup(d79_profile_position_by_pdo, setup),
         cmocka_unit_test_setup(d710_ascii_channel, setup),
         cmocka_unit_test_setup(d711_sync_and_emcy, setup),
+        cmocka_unit_test_setup(d712_gearing_parameters, setup),
         cmocka_unit_test_setup(d713_ip_two_axes, setup),
         cmocka_unit_test_setup(quick_stop_and_bit7, setup),
         cmocka_unit_test_setup(event_timer_and_mapping, setup),

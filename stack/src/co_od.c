@@ -128,45 +128,6 @@ uint32_t co_od_data_size(const co_node_t *node, const co_od_sub_t *s)
     return n;
 }
 
-/* Values of 16, 32 and 64 bits live in RAM/ROM as native integers (so the
- * application and the core use them as plain variables); every other type is
- * stored as its wire bytes. These two convert at the dictionary boundary, so
- * the wire image is little-endian on any CPU. */
-static void to_wire(uint8_t *dst, const uint8_t *src, uint8_t n)
-{
-    if (n == 2U) {
-        uint16_t v;
-        (void)memcpy(&v, src, 2U);
-        co_put_u16(dst, v);
-    } else if (n == 4U) {
-        uint32_t v;
-        (void)memcpy(&v, src, 4U);
-        co_put_u32(dst, v);
-    } else if (n == 8U) {
-        uint64_t v;
-        (void)memcpy(&v, src, 8U);
-        co_put_u64(dst, v);
-    } else {
-        (void)memcpy(dst, src, n);
-    }
-}
-
-static void from_wire(uint8_t *dst, const uint8_t *src, uint8_t n)
-{
-    if (n == 2U) {
-        uint16_t v = co_get_u16(src);
-        (void)memcpy(dst, &v, 2U);
-    } else if (n == 4U) {
-        uint32_t v = co_get_u32(src);
-        (void)memcpy(dst, &v, 4U);
-    } else if (n == 8U) {
-        uint64_t v = co_get_u64(src);
-        (void)memcpy(dst, &v, 8U);
-    } else {
-        (void)memcpy(dst, src, n);
-    }
-}
-
 static co_od_hook_t *hook_of(const co_node_t *node, const co_od_entry_t *e)
 {
     if ((e->hook == 0U) || (node->hooks == NULL) || (e->hook > node->dev->n_hooks)) {
@@ -231,7 +192,7 @@ co_err_t co_od_read_part(co_node_t *node, const co_od_entry_t *e, const co_od_su
         }
         if (fixed != 0U) {
             uint8_t wire[8];
-            to_wire(wire, v, fixed);
+            co_to_wire(wire, v, fixed);
             (void)memcpy(buf, &wire[offset], n);
         } else if (n > 0U) {
             (void)memcpy(buf, &v[offset], n);
@@ -340,7 +301,7 @@ co_err_t co_od_write_value(co_node_t *node, const co_od_entry_t *e, const co_od_
     }
     if ((v != NULL) && ((s->flags & CO_SUB_ROM) == 0U)) {
         if (fixed != 0U) {
-            from_wire(v, data, fixed);
+            co_from_wire(v, data, fixed);
         } else {
             (void)memcpy(v, data, len);
             if (len < s->size) {

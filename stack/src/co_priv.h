@@ -8,7 +8,16 @@
 #include <stdint.h>
 #include <string.h>
 
+#include "co/co_endian.h"
 #include "co/co_node.h"
+
+/* Small helpers of the per-frame paths: inlined even at -Os, where the
+ * compiler would otherwise call them (a call costs more than their body). */
+#if defined(__GNUC__)
+#define CO_INLINE static inline __attribute__((always_inline))
+#else
+#define CO_INLINE static inline
+#endif
 
 /* Receive-slot kinds (co_rx_slot_t.kind), in dispatch order of likelihood. */
 enum {
@@ -55,11 +64,93 @@ static inline uint8_t co_ram_u8(const co_node_t *node, uint16_t off)
     return node->ram[off];
 }
 
+/* The CPU stores integers little-endian, as the wire does (known to the
+ * compiler; otherwise the portable conversions below are used). */
+#if defined(__BYTE_ORDER__) && defined(__ORDER_LITTLE_ENDIAN__) && \
+    (__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__)
+#define CO_NATIVE_LE 1
+#else
+#define CO_NATIVE_LE 0
+#endif
+
+/* Values of 16, 32 and 64 bits live in RAM/ROM as native integers (so the
+ * application and the core use them as plain variables); every other type is
+ * stored as its wire bytes. These two convert @p n bytes at the dictionary
+ * boundary, so the wire image is little-endian on any CPU. */
+static inline void co_to_wire(uint8_t *dst, const uint8_t *src, uint8_t n)
+{
+    if (n == 4U) {
+        uint32_t v;
+        (void)memcpy(&v, src, 4U);
+        if (CO_NATIVE_LE) {
+            (void)memcpy(dst, &v, 4U);
+        } else {
+            co_put_u32(dst, v);
+        }
+    } else if (n == 2U) {
+        uint16_t v;
+        (void)memcpy(&v, src, 2U);
+        if (CO_NATIVE_LE) {
+            (void)memcpy(dst, &v, 2U);
+        } else {
+            co_put_u16(dst, v);
+        }
+    } else if (n == 8U) {
+        uint64_t v;
+        (void)memcpy(&v, src, 8U);
+        if (CO_NATIVE_LE) {
+            (void)memcpy(dst, &v, 8U);
+        } else {
+            co_put_u64(dst, v);
+        }
+    } else {
+        (void)memcpy(dst, src, n);
+    }
+}
+
+static inline void co_from_wire(uint8_t *dst, const uint8_t *src, uint8_t n)
+{
+    if (n == 4U) {
+        uint32_t v;
+        if (CO_NATIVE_LE) {
+            (void)memcpy(&v, src, 4U);
+        } else {
+            v = co_get_u32(src);
+        }
+        (void)memcpy(dst, &v, 4U);
+    } else if (n == 2U) {
+        uint16_t v;
+        if (CO_NATIVE_LE) {
+            (void)memcpy(&v, src, 2U);
+        } else {
+            v = co_get_u16(src);
+        }
+        (void)memcpy(dst, &v, 2U);
+    } else if (n == 8U) {
+        uint64_t v;
+        if (CO_NATIVE_LE) {
+            (void)memcpy(&v, src, 8U);
+        } else {
+            v = co_get_u64(src);
+        }
+        (void)memcpy(dst, &v, 8U);
+    } else {
+        (void)memcpy(dst, src, n);
+    }
+}
+
 /* ---- transmit (co_node.c) */
+/* Send @p f now or not at all: false while frames are held back or the HAL
+ * refuses it. */
+static inline bool co_tx_now(co_node_t *node, const co_frame_t *f)
+{
+    return (node->txq_len == 0U) && (node->hal.ops->send(node->hal.ctx, f) == 0);
+}
 void co_tx(co_node_t *node, uint32_t id, const uint8_t *data, uint8_t len);
 /* Send now or not at all (nothing held back): for streams that resume later. */
 bool co_tx_try(co_node_t *node, uint32_t id, const uint8_t *data, uint8_t len);
 void co_rx_rebuild(co_node_t *node);
+void co_rx_dispatch(co_node_t *node, const co_frame_t *f, uint16_t cob, uint32_t now_us);
 
 /* ---- object dictionary internals (co_od.c) */
 co_err_t co_od_lookup(const co_node_t *node, uint16_t index, uint8_t sub,
@@ -126,39 +217,64 @@ void co_emcy_history_clear(co_node_t *node);
 #define CO_PDO_F_STARTED   0x0400U /* TPDO: SYNC start value reached */
 #define CO_PDO_F_SAMPLED   0x0800U /* TPDO 252: data[] sampled at the last SYNC */
 #define CO_PDO_F_RTR       0x1000U /* TPDO: a remote request waits for an answer */
+#define CO_PDO_F_PLAIN     0x2000U /* every mapping entry is plain (co_pdo_plain) */
 
 #define CO_PDO_COB_INVALID 0x80000000UL
 #define CO_PDO_COB_NO_RTR  0x40000000UL
 
-static inline uint32_t co_pdo_cob(const co_node_t *node, uint16_t i)
+CO_INLINE uint32_t co_pdo_cob(const co_node_t *node, uint16_t i)
 {
     return co_ram_u32(node, node->dev->pdo[i].cob);
 }
 
-static inline uint8_t co_pdo_type(const co_node_t *node, uint16_t i)
+CO_INLINE uint8_t co_pdo_type(const co_node_t *node, uint16_t i)
 {
     return co_ram_u8(node, node->dev->pdo[i].type);
 }
 
 /* Valid COB-ID and an enabled, valid mapping. */
-static inline bool co_pdo_usable(const co_node_t *node, uint16_t i)
+CO_INLINE bool co_pdo_usable(const co_node_t *node, uint16_t i)
 {
     return ((co_pdo_cob(node, i) & CO_PDO_COB_INVALID) == 0U) &&
            ((node->pdo[i].flags & CO_PDO_F_MAP_OK) != 0U);
 }
 
+/* RAM offset of mapping entry k of PDO p if it is a plain value, copied
+ * directly (co_pdo_config.c decides), else CO_PDO_NONE. */
+static inline uint16_t co_pdo_plain(const co_pdo_t *p, uint8_t k)
+{
+#if CO_PDO_FAST_MAX > 0
+    if (k < CO_PDO_FAST_MAX) {
+        return p->plain[k];
+    }
+#else
+    (void)p;
+    (void)k;
+#endif
+    return CO_PDO_NONE;
+}
+
 /* Event timer of PDO i in us (0: off). */
-uint32_t co_pdo_event_us(const co_node_t *node, uint16_t i);
+static inline uint32_t co_pdo_event_us(const co_node_t *node, uint16_t i)
+{
+    uint16_t off = node->dev->pdo[i].event;
+    uint32_t unit = ((node->dev->options & CO_OPT_EVENT_TIMER_100US) != 0U) ? 100UL : 1000UL;
+
+    return (off == CO_PDO_NONE) ? 0U : ((uint32_t)co_ram_u16(node, off) * unit);
+}
 co_err_t co_pdo_check_write(const co_node_t *node, uint16_t index, uint8_t sub,
                             const uint8_t *data, uint32_t len);
 void co_pdo_written(co_node_t *node, uint16_t index, uint8_t sub);
 void co_pdo_reset(co_node_t *node);
 void co_pdo_rx_rebuild(co_node_t *node);
-const co_pdo_slot_t *co_pdo_rx_find(const co_node_t *node, uint16_t cob);
 void co_pdo_nmt(co_node_t *node, co_nmt_state_t st);
-/* Bit copies between little-endian bit strings. */
-void co_bits_put(uint8_t *dst, uint16_t dpos, const uint8_t *src, uint8_t n);
-void co_bits_get(uint8_t *dst, const uint8_t *src, uint16_t spos, uint8_t n);
+/* The mapped objects of PDO i, any mapping (co_pdo_map.c): sample them into
+ * @p out (8 bytes, zeroed by the caller; an object that cannot be read is
+ * sent as zeros), or write them from @p data (@p dlc bytes; entries the
+ * frame does not cover are skipped, a refused value is dropped). Plain
+ * entries are copied directly, the others go through the dictionary. */
+void co_pdo_sample(co_node_t *node, uint16_t i, uint8_t *out);
+void co_pdo_store(co_node_t *node, uint16_t i, const uint8_t *data, uint8_t dlc);
 void co_rpdo_rx(co_node_t *node, uint16_t i, const co_frame_t *f);
 void co_rpdo_sync(co_node_t *node);
 uint32_t co_rpdo_process(co_node_t *node, uint32_t next);

@@ -229,7 +229,10 @@ typedef struct co_node {
     uint8_t txq_len;
     uint8_t n_active;
     uint8_t n_emcy_q;
+    uint8_t rpdo_buffered;   /**< some RPDO may hold data for the next SYNC */
     uint8_t rx_filter[16];   /**< bit per (COB-ID & 0x7F): quick reject */
+    uint16_t rx_fc;          /**< bit per function code (COB-ID >> 7) in rx[] */
+    uint16_t pdo_fc;         /**< bit per function code in pdo_rx[] */
     uint32_t hb_deadline;
     uint32_t guard_deadline;
     uint32_t emcy_next;      /**< earliest time the next EMCY may go (inhibit) */

@@ -11,6 +11,13 @@
 
 #define CO_PDO_NONE 0xFFFFU /**< co_pdo_desc_t: this sub-entry does not exist */
 
+#ifndef CO_PDO_FAST_MAX
+/** Mapping entries per PDO (the first ones) whose object the core resolves
+ *  once, when the mapping is enabled, instead of at every PDO: 2 bytes of RAM
+ *  per PDO each (0..8). Only plain values profit (see co_pdo_t.plain). */
+#define CO_PDO_FAST_MAX 4U
+#endif
+
 /** Where the parameters of one PDO live: offsets into the RAM image of the
  *  native values of the communication record (0x1400+n / 0x1800+n) and the
  *  mapping record (0x1600+n / 0x1A00+n). RPDOs first, then TPDOs. */
@@ -34,6 +41,10 @@ typedef struct co_pdo {
     uint8_t len;      /**< bytes the mapping covers */
     uint8_t dlc;      /**< RPDO: length of the buffered frame */
     uint8_t data[8];  /**< TPDO: last sent / sampled; RPDO: buffered until SYNC */
+#if CO_PDO_FAST_MAX > 0
+    uint16_t plain[CO_PDO_FAST_MAX]; /**< mapping entry k is a plain value (copied
+                           directly, whole, byte-aligned) at this RAM offset, or CO_PDO_NONE */
+#endif
 } co_pdo_t;
 
 /** Receive-table entry of a PDO COB-ID (private to the core). */

@@ -32,7 +32,7 @@ static uint8_t array_len(const co_node_t *node, uint16_t index, uint8_t type, ui
         const co_od_sub_t *s = &e->subs[k];
         if ((s->sub != k) || (s->type != type) ||
             ((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) != 0U) ||
-            (s->off != (uint16_t)(e->subs[1].off + ((uint16_t)(k - 1U) * co_type_size(type))))) {
+            (s->off != (uint16_t)(e->subs[1].off + ((uint16_t)(k - 1U) * co_type_len(type))))) {
             break;
         }
         n++;
@@ -65,16 +65,6 @@ void co_comm_bind(co_node_t *node)
                         ? (uint32_t *)ram_of(node, 0x1016U, 1U, (uint8_t)CO_UNSIGNED32)
                         : NULL;
     node->hb_prod = (uint16_t *)ram_of(node, 0x1017U, 0U, (uint8_t)CO_UNSIGNED16);
-}
-
-co_err_t co_comm_check_read(const co_node_t *node, uint16_t index, uint8_t sub)
-{
-    /* 0x1003: entries beyond the number of recorded errors hold no data. */
-    if ((index == 0x1003U) && (sub > 0U) && (node->hist_count != NULL) &&
-        (sub > *node->hist_count)) {
-        return CO_ERR_NO_DATA;
-    }
-    return CO_OK;
 }
 
 static co_err_t check_hb_consumer(const co_node_t *node, uint8_t sub, uint32_t v)

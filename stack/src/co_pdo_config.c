@@ -69,7 +69,7 @@ static co_err_t check_entry(const co_node_t *node, bool tx, uint32_t v, uint8_t 
         if (tx) {
             return CO_ERR_NO_MAP;
         }
-        size = co_type_size((uint8_t)index);
+        size = co_type_len((uint8_t)index);
     } else {
         const co_od_sub_t *s;
         co_err_t err = co_od_lookup(node, index, sub, e, &s);
@@ -79,7 +79,7 @@ static co_err_t check_entry(const co_node_t *node, bool tx, uint32_t v, uint8_t 
         if (err != CO_OK) {
             return CO_ERR_NO_OBJECT;
         }
-        size = co_type_size(s->type);
+        size = co_type_len(s->type);
         if ((size == 0U) || ((s->flags & (tx ? CO_SUB_MAP_T : CO_SUB_MAP_R)) == 0U)) {
             return CO_ERR_NO_MAP;
         }
@@ -100,7 +100,7 @@ static co_err_t check_entry(const co_node_t *node, bool tx, uint32_t v, uint8_t 
  * (the dictionary refuses values above 1). */
 static bool is_plain(const co_od_entry_t *e, const co_od_sub_t *s, bool tx, uint8_t bits)
 {
-    uint8_t size = co_type_size(s->type);
+    uint8_t size = co_type_len(s->type);
 
     return (e->index >= 0x2000U) && (e->hook == 0U) &&
            ((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO | CO_SUB_LIMIT)) == 0U) &&

@@ -81,7 +81,7 @@ static void store(co_node_t *node, uint32_t v, uint16_t pos, const uint8_t *data
 
     if ((index > 0x0007U) &&
         (co_od_lookup(node, index, (uint8_t)((v >> 8U) & 0xFFU), &e, &s) == CO_OK)) {
-        uint8_t size = co_type_size(s->type);
+        uint8_t size = co_type_len(s->type);
         if (((pos & 7U) == 0U) && (bits == (uint8_t)(size * 8U))) {
             (void)co_od_write_value(node, e, s, &data[pos >> 3U], size);
         } else {

@@ -18,6 +18,14 @@
 #else
 #define CO_INLINE static inline
 #endif
+/* Rare paths kept out of the per-frame functions they would otherwise be
+ * inlined into (their stack frame and saved registers would be paid on
+ * every frame). */
+#if defined(__GNUC__)
+#define CO_NOINLINE __attribute__((noinline))
+#else
+#define CO_NOINLINE
+#endif
 
 /* Receive-slot kinds (co_rx_slot_t.kind), in dispatch order of likelihood. */
 enum {
@@ -153,13 +161,39 @@ void co_rx_rebuild(co_node_t *node);
 void co_rx_dispatch(co_node_t *node, const co_frame_t *f, uint16_t cob, uint32_t now_us);
 
 /* ---- object dictionary internals (co_od.c) */
+#define CO_TYPE_SIZES 0x1CU
+extern const uint8_t co_type_sizes[CO_TYPE_SIZES];
+
+/* Size in bytes of a fixed-size type, 0 for strings and DOMAIN. */
+CO_INLINE uint8_t co_type_len(uint8_t type)
+{
+    return (type < CO_TYPE_SIZES) ? co_type_sizes[type] : 0U;
+}
+
+/* Strings and DOMAINs: values of variable length, read and written in parts. */
+CO_INLINE bool co_od_is_streamed(const co_od_sub_t *s)
+{
+    return co_type_len(s->type) == 0U;
+}
+
+/* Where the value of @p s lives: RAM image, ROM image, or NULL (HOOKIO). */
+CO_INLINE void *co_od_loc(const co_node_t *node, const co_od_sub_t *s)
+{
+    if ((s->flags & CO_SUB_HOOKIO) != 0U) {
+        return NULL;
+    }
+    if ((s->flags & CO_SUB_ROM) != 0U) {
+        /* ROM values are only ever read through this pointer. */
+        return (void *)(uintptr_t)&node->dev->rom[s->off];
+    }
+    return &node->ram[s->off];
+}
+
 co_err_t co_od_lookup(const co_node_t *node, uint16_t index, uint8_t sub,
                       const co_od_entry_t **e, const co_od_sub_t **s);
-void *co_od_loc(const co_node_t *node, const co_od_sub_t *s);
 co_err_t co_od_check_access(const co_node_t *node, const co_od_sub_t *s, bool write);
 /* Current size of the value (strings: up to the first NUL); 0 for HOOKIO. */
 uint32_t co_od_data_size(const co_node_t *node, const co_od_sub_t *s);
-bool co_od_is_streamed(const co_od_sub_t *s);
 bool co_type_is_signed(uint8_t type);
 /* Read a chunk; at offset 0 the read hook runs first. *total gets the total
  * size (0 if a hook does not know it); *last is set on the final chunk. */
@@ -177,7 +211,15 @@ co_err_t co_od_write_part(co_node_t *node, const co_od_entry_t *e, const co_od_s
 void co_od_restore(co_node_t *node, uint16_t from, uint16_t to);
 
 /* ---- communication objects owned by the core (co_comm.c) */
-co_err_t co_comm_check_read(const co_node_t *node, uint16_t index, uint8_t sub);
+/* 0x1003: entries beyond the number of recorded errors hold no data. */
+CO_INLINE co_err_t co_comm_check_read(const co_node_t *node, uint16_t index, uint8_t sub)
+{
+    if ((index == 0x1003U) && (sub > 0U) && (node->hist_count != NULL) &&
+        (sub > *node->hist_count)) {
+        return CO_ERR_NO_DATA;
+    }
+    return CO_OK;
+}
 co_err_t co_comm_check_write(const co_node_t *node, uint16_t index, uint8_t sub,
                              const uint8_t *data, uint32_t len);
 void co_comm_written(co_node_t *node, uint16_t index, uint8_t sub);

@@ -138,7 +138,7 @@ static co_err_t open_download(co_node_t *node, uint16_t index, uint8_t sub, bool
         err = co_od_check_access(node, s, true);
     }
     if ((err == CO_OK) && size_ind) {
-        uint8_t fixed = co_type_size(s->type);
+        uint8_t fixed = co_type_len(s->type);
         if ((fixed != 0U) && (size != fixed)) {
             err = CO_ERR_TYPE_MISMATCH;
         } else if ((fixed == 0U) && ((s->flags & CO_SUB_HOOKIO) == 0U) && (size > s->size)) {
@@ -225,7 +225,7 @@ static co_err_t read_seg(co_node_t *node, uint32_t at, uint8_t *buf, uint32_t *g
 
 /* ------------------------------------------------------------ initiate */
 
-static void initiate_download(co_node_t *node, const uint8_t *d, uint16_t index, uint8_t sub)
+CO_NOINLINE static void initiate_download(co_node_t *node, const uint8_t *d, uint16_t index, uint8_t sub)
 {
     bool expedited = (d[0] & 0x02U) != 0U;
     bool size_ind = (d[0] & 0x01U) != 0U;
@@ -235,7 +235,7 @@ static void initiate_download(co_node_t *node, const uint8_t *d, uint16_t index,
         uint32_t len = size_ind ? (4U - ((uint32_t)(d[0] >> 2U) & 3U)) : 4U;
         err = open_download(node, index, sub, size_ind, len);
         if ((err == CO_OK) && !size_ind) {
-            uint8_t fixed = co_type_size(node->sdo.desc->type);
+            uint8_t fixed = co_type_len(node->sdo.desc->type);
             if ((fixed != 0U) && (fixed < 4U)) {
                 len = fixed; /* size not indicated: take what the object needs */
             }
@@ -378,7 +378,7 @@ static void upload_segment(co_node_t *node, const uint8_t *d)
 
 /* ------------------------------------------------------------ block download */
 
-static void block_download_initiate(co_node_t *node, const uint8_t *d, uint16_t index,
+CO_NOINLINE static void block_download_initiate(co_node_t *node, const uint8_t *d, uint16_t index,
                                     uint8_t sub)
 {
     bool size_ind = (d[0] & 0x02U) != 0U;
@@ -499,7 +499,7 @@ static void block_download_end(co_node_t *node, const uint8_t *d)
 
 /* ------------------------------------------------------------ block upload */
 
-static void block_upload_initiate(co_node_t *node, const uint8_t *d, uint16_t index, uint8_t sub)
+CO_NOINLINE static void block_upload_initiate(co_node_t *node, const uint8_t *d, uint16_t index, uint8_t sub)
 {
     co_sdo_srv_t *t = &node->sdo;
     uint8_t blksize = d[4];
@@ -690,41 +690,27 @@ static void idle_request(co_node_t *node, const uint8_t *d)
     }
 }
 
-void co_sdo_rx(co_node_t *node, const co_frame_t *f)
+/* A frame whose DLC is not 8. CiA 301: SDO frames are 8 bytes; anything
+ * else is not a valid request. */
+CO_NOINLINE static void bad_length(co_node_t *node, const co_frame_t *f)
+{
+    const uint8_t *d = f->data;
+
+    if (node->sdo.state == (uint8_t)S_IDLE) {
+        abort_at(node, (f->dlc >= 3U) ? co_get_u16(&d[1]) : 0U, (f->dlc >= 4U) ? d[3] : 0U,
+                 CO_ERR_CMD);
+    } else {
+        abort_cur(node, CO_ERR_CMD);
+    }
+}
+
+/* A request while a segmented or block transfer is open. */
+CO_NOINLINE static void transfer_request(co_node_t *node, const uint8_t *d)
 {
     co_sdo_srv_t *t = &node->sdo;
-    const uint8_t *d = f->data;
     uint8_t ccs = (uint8_t)(d[0] >> 5U);
 
-    if ((node->nmt == (uint8_t)CO_NMT_STOPPED) || co_frame_is_rtr(f)) {
-        return;
-    }
-    if (f->dlc != 8U) {
-        /* CiA 301: SDO frames are 8 bytes; anything else is not a valid request */
-        if (t->state == (uint8_t)S_IDLE) {
-            abort_at(node, (f->dlc >= 3U) ? co_get_u16(&d[1]) : 0U, (f->dlc >= 4U) ? d[3] : 0U,
-                     CO_ERR_CMD);
-        } else {
-            abort_cur(node, CO_ERR_CMD);
-        }
-        return;
-    }
-    if (t->state == (uint8_t)S_BLK_DL) {
-        if (d[0] == 0x80U) {
-            co_sdo_reset(node); /* abort from the client */
-        } else {
-            block_download_segment(node, d);
-        }
-        return;
-    }
-    if (ccs == 4U) {
-        co_sdo_reset(node); /* client abort: the transfer ends, no answer */
-        return;
-    }
     switch (t->state) {
-    case S_IDLE:
-        idle_request(node, d);
-        break;
     case S_DL_SEG:
         if (ccs == 0U) {
             download_segment(node, d);
@@ -769,6 +755,37 @@ void co_sdo_rx(co_node_t *node, const co_frame_t *f)
     default:
         co_sdo_reset(node);
         break;
+    }
+}
+
+void co_sdo_rx(co_node_t *node, const co_frame_t *f)
+{
+    co_sdo_srv_t *t = &node->sdo;
+    const uint8_t *d = f->data;
+
+    if ((node->nmt == (uint8_t)CO_NMT_STOPPED) || co_frame_is_rtr(f)) {
+        return;
+    }
+    if (f->dlc != 8U) {
+        bad_length(node, f);
+        return;
+    }
+    if (t->state == (uint8_t)S_BLK_DL) {
+        if (d[0] == 0x80U) {
+            co_sdo_reset(node); /* abort from the client */
+        } else {
+            block_download_segment(node, d);
+        }
+        return;
+    }
+    if ((d[0] >> 5U) == 4U) {
+        co_sdo_reset(node); /* client abort: the transfer ends, no answer */
+        return;
+    }
+    if (t->state == (uint8_t)S_IDLE) {
+        idle_request(node, d);
+    } else {
+        transfer_request(node, d);
     }
 }
 

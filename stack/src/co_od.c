@@ -142,9 +142,8 @@ static void io_init(co_od_io_t *io, co_node_t *node, const co_od_entry_t *e, con
 }
 
 /* A chunk of a value the entry's hook produces (CO_SUB_HOOKIO). */
-CO_NOINLINE static co_err_t read_hookio(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
-                            uint32_t offset, uint8_t *buf, uint32_t cap, uint32_t *len,
-                            uint32_t *total, bool *last)
+CO_NOINLINE static co_err_t read_hookio(co_node_t *node, const co_od_entry_t *e,
+                                        const co_od_sub_t *s, co_od_chunk_t *c)
 {
     co_od_hook_t *h = hook_of(node, e);
     co_od_io_t io;
@@ -154,14 +153,14 @@ CO_NOINLINE static co_err_t read_hookio(co_node_t *node, const co_od_entry_t *e,
         return CO_ERR_NO_ACCESS;
     }
     io_init(&io, node, e, s);
-    io.offset = offset;
-    io.buf = buf;
-    io.len = cap;
+    io.offset = c->offset;
+    io.buf = c->buf;
+    io.len = c->cap;
     err = h->read(h->ctx, &io);
     if (err == CO_OK) {
-        *len = (io.len > cap) ? cap : io.len;
-        *total = io.total;
-        *last = io.last;
+        c->len = (io.len > c->cap) ? c->cap : io.len;
+        c->total = io.total;
+        c->last = io.last;
     }
     return err;
 }
@@ -181,16 +180,16 @@ CO_NOINLINE static co_err_t read_hook(co_node_t *node, const co_od_entry_t *e,
 }
 
 co_err_t co_od_read_part(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
-                         uint32_t offset, uint8_t *buf, uint32_t cap, uint32_t *len,
-                         uint32_t *total, bool *last)
+                         co_od_chunk_t *c)
 {
     const uint8_t *v;
     uint8_t fixed = co_type_len(s->type);
+    uint32_t offset = c->offset;
     uint32_t size;
     uint32_t n;
 
     if ((s->flags & CO_SUB_HOOKIO) != 0U) {
-        return read_hookio(node, e, s, offset, buf, cap, len, total, last);
+        return read_hookio(node, e, s, c);
     }
     if (offset == 0U) {
         co_err_t err = co_comm_check_read(node, e->index, s->sub);
@@ -204,21 +203,21 @@ co_err_t co_od_read_part(co_node_t *node, const co_od_entry_t *e, const co_od_su
     v = (const uint8_t *)co_od_loc(node, s);
     size = (fixed != 0U) ? s->size : co_od_data_size(node, s);
     n = (offset < size) ? (size - offset) : 0U;
-    if (n > cap) {
-        n = cap;
+    if (n > c->cap) {
+        n = c->cap;
     }
     if (fixed != 0U) {
         uint8_t wire[8];
         co_to_wire(wire, v, fixed);
-        (void)memcpy(buf, &wire[offset], n);
+        (void)memcpy(c->buf, &wire[offset], n);
     } else if (n > 0U) {
-        (void)memcpy(buf, &v[offset], n);
+        (void)memcpy(c->buf, &v[offset], n);
     } else {
         /* empty */
     }
-    *len = n;
-    *total = size;
-    *last = (offset + n) >= size;
+    c->len = n;
+    c->total = size;
+    c->last = (offset + n) >= size;
     return CO_OK;
 }
 
@@ -425,16 +424,18 @@ co_err_t co_od_read(co_node_t *node, uint16_t index, uint8_t sub, void *buf, uin
 {
     const co_od_entry_t *e;
     const co_od_sub_t *s;
-    uint32_t total = 0U;
-    bool last = false;
+    co_od_chunk_t c = {(uint8_t *)buf, 0U, cap, 0U, 0U, false};
     co_err_t err = co_od_lookup(node, index, sub, &e, &s);
 
     if (err != CO_OK) {
         return err;
     }
-    err = co_od_read_part(node, e, s, 0U, (uint8_t *)buf, cap, len, &total, &last);
-    if ((err == CO_OK) && !last) {
-        err = CO_ERR_TYPE_TOO_LONG; /* the caller's buffer is too small */
+    err = co_od_read_part(node, e, s, &c);
+    if (err == CO_OK) {
+        *len = c.len;
+        if (!c.last) {
+            err = CO_ERR_TYPE_TOO_LONG; /* the caller's buffer is too small */
+        }
     }
     return err;
 }

@@ -41,13 +41,11 @@ static void sample(co_node_t *node, uint32_t v, uint16_t pos, uint8_t *out)
     const co_od_entry_t *e;
     const co_od_sub_t *s;
     uint8_t tmp[8] = {0};
-    uint32_t len = 0U;
-    uint32_t total;
-    bool last;
+    co_od_chunk_t c = {tmp, 0U, 8U, 0U, 0U, false};
 
     if ((co_od_lookup(node, (uint16_t)(v >> 16U), (uint8_t)((v >> 8U) & 0xFFU), &e, &s) ==
          CO_OK) &&
-        (co_od_read_part(node, e, s, 0U, tmp, 8U, &len, &total, &last) == CO_OK)) {
+        (co_od_read_part(node, e, s, &c) == CO_OK)) {
         if (((pos & 7U) == 0U) && ((bits & 7U) == 0U)) {
             (void)memcpy(&out[pos >> 3U], tmp, (size_t)bits >> 3U);
         } else {

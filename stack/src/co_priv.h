@@ -195,11 +195,19 @@ co_err_t co_od_check_access(const co_node_t *node, const co_od_sub_t *s, bool wr
 /* Current size of the value (strings: up to the first NUL); 0 for HOOKIO. */
 uint32_t co_od_data_size(const co_node_t *node, const co_od_sub_t *s);
 bool co_type_is_signed(uint8_t type);
-/* Read a chunk; at offset 0 the read hook runs first. *total gets the total
- * size (0 if a hook does not know it); *last is set on the final chunk. */
+/* One chunk of a value being read: the caller sets buf, offset and cap;
+ * co_od_read_part sets len, total (0 if a hook does not know it) and last. */
+typedef struct co_od_chunk {
+    uint8_t *buf;
+    uint32_t offset;
+    uint32_t cap;
+    uint32_t len;
+    uint32_t total;
+    bool last;
+} co_od_chunk_t;
+/* Read a chunk; at offset 0 the read hook runs first. */
 co_err_t co_od_read_part(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
-                         uint32_t offset, uint8_t *buf, uint32_t cap, uint32_t *len,
-                         uint32_t *total, bool *last);
+                         co_od_chunk_t *c);
 /* Write a complete value (checks, hook, commit, notification). */
 co_err_t co_od_write_value(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
                            const uint8_t *data, uint32_t len);

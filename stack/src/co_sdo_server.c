@@ -168,29 +168,26 @@ static co_err_t open_upload(co_node_t *node, uint16_t index, uint8_t sub, bool *
     co_sdo_srv_t *t = &node->sdo;
     const co_od_entry_t *e;
     const co_od_sub_t *s;
-    uint32_t got = 0U;
-    uint32_t total = 0U;
+    co_od_chunk_t c = {t->buf, 0U, SEG, 0U, 0U, false};
     co_err_t err = co_od_lookup(node, index, sub, &e, &s);
 
     if (err == CO_OK) {
         err = co_od_check_access(node, s, false);
     }
     if (err == CO_OK) {
-        err = co_od_read_part(node, e, s, 0U, t->buf, SEG, &got, &total, last);
+        err = co_od_read_part(node, e, s, &c);
     }
     if (err == CO_OK) {
+        *last = c.last;
         t->entry = e;
         t->desc = s;
-        t->size = total;
-        t->flags = (uint8_t)(F_STAGED | ((total != 0U) || *last ? F_SIZE : 0U));
-        t->buf_len = (uint8_t)got;
+        t->size = c.last ? c.len : c.total;
+        t->flags = (uint8_t)(F_STAGED | ((c.total != 0U) || c.last ? F_SIZE : 0U));
+        t->buf_len = (uint8_t)c.len;
         t->offset = 0U;
         t->toggle = 0U;
         t->crc = 0U;
         t->seqno = 0U;
-        if (*last) {
-            t->size = got;
-        }
     }
     return err;
 }
@@ -199,7 +196,7 @@ static co_err_t open_upload(co_node_t *node, uint16_t index, uint8_t sub, bool *
 static co_err_t read_seg(co_node_t *node, uint32_t at, uint8_t *buf, uint32_t *got, bool *last)
 {
     co_sdo_srv_t *t = &node->sdo;
-    uint32_t total = 0U;
+    co_od_chunk_t c = {buf, at, SEG, 0U, 0U, false};
     co_err_t err;
 
     if ((at == 0U) && ((t->flags & F_STAGED) != 0U)) {
@@ -211,7 +208,9 @@ static co_err_t read_seg(co_node_t *node, uint32_t at, uint8_t *buf, uint32_t *g
         *last = ((t->flags & F_SIZE) != 0U) && (*got >= t->size);
         return CO_OK;
     }
-    err = co_od_read_part(node, t->entry, t->desc, at, buf, SEG, got, &total, last);
+    err = co_od_read_part(node, t->entry, t->desc, &c);
+    *got = c.len;
+    *last = c.last;
     if ((err == CO_OK) && ((t->flags & F_SIZE) != 0U)) {
         if ((at + *got) > t->size) {
             /* never beyond the size announced (a hook reported a smaller total) */

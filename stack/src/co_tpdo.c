@@ -96,9 +96,9 @@ static void send_sync(co_node_t *node, uint16_t i)
     }
 }
 
-/* Cyclic synchronous (1-240): every n-th SYNC, the first one at the SYNC
- * whose counter equals the start value when the SYNC has a counter. */
-static void sync_cyclic(co_node_t *node, uint16_t i, uint8_t type, uint8_t counter)
+/* Cyclic synchronous (1-240): due every n-th SYNC, the first time at the
+ * SYNC whose counter equals the start value when the SYNC has a counter. */
+static bool cyclic_due(co_node_t *node, uint16_t i, uint8_t type, uint8_t counter)
 {
     co_pdo_t *p = &node->pdo[i];
     uint16_t off = node->dev->pdo[i].start;
@@ -107,31 +107,29 @@ static void sync_cyclic(co_node_t *node, uint16_t i, uint8_t type, uint8_t count
     if ((start != 0U) && ((p->flags & CO_PDO_F_STARTED) == 0U) &&
         (node->sync_overflow != NULL) && (*node->sync_overflow > 1U)) {
         /* the first transmission waits for the SYNC counter */
-        if (counter == start) {
-            p->flags |= CO_PDO_F_STARTED;
-            p->count = 0U;
-            send_sync(node, i);
+        if (counter != start) {
+            return false;
         }
-        return;
+        p->flags |= CO_PDO_F_STARTED;
+    } else {
+        p->count++;
+        if (p->count < type) {
+            return false;
+        }
     }
-    p->count++;
-    if (p->count >= type) {
-        p->count = 0U;
-        send_sync(node, i);
-    }
+    p->count = 0U;
+    return true;
 }
 
-/* Acyclic (0): at the SYNC after a change of the data or a request. */
-static void sync_acyclic(co_node_t *node, uint16_t i)
+/* Acyclic (0): due at the SYNC after a change of the data or a request. */
+static bool acyclic_due(co_node_t *node, uint16_t i)
 {
-    co_pdo_t *p = &node->pdo[i];
+    const co_pdo_t *p = &node->pdo[i];
     uint8_t now[8];
 
     build(node, i, now);
-    if (((p->flags & (CO_PDO_F_EVENT | CO_PDO_F_SENT)) != CO_PDO_F_SENT) ||
-        (memcmp(now, p->data, 8U) != 0)) {
-        send_sync(node, i);
-    }
+    return ((p->flags & (CO_PDO_F_EVENT | CO_PDO_F_SENT)) != CO_PDO_F_SENT) ||
+           (memcmp(now, p->data, 8U) != 0);
 }
 
 void co_tpdo_sync(co_node_t *node, uint8_t counter)
@@ -150,10 +148,10 @@ void co_tpdo_sync(co_node_t *node, uint8_t counter)
             if (type == 252U) {
                 build(node, i, p->data); /* sampled now, sent on request */
                 p->flags |= CO_PDO_F_SAMPLED;
-            } else if (type == 0U) {
-                sync_acyclic(node, i);
+            } else if ((type == 0U) ? acyclic_due(node, i) : cyclic_due(node, i, type, counter)) {
+                send_sync(node, i);
             } else {
-                sync_cyclic(node, i, type, counter);
+                /* not this SYNC */
             }
         }
     }

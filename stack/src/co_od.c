@@ -124,7 +124,7 @@ uint32_t co_od_data_size(const co_node_t *node, const co_od_sub_t *s)
     return n;
 }
 
-CO_INLINE co_od_hook_t *hook_of(const co_node_t *node, const co_od_entry_t *e)
+static inline co_od_hook_t *hook_of(const co_node_t *node, const co_od_entry_t *e)
 {
     if ((e->hook == 0U) || (node->hooks == NULL) || (e->hook > node->dev->n_hooks)) {
         return NULL;

@@ -13,10 +13,12 @@
 
 /* Small helpers of the per-frame paths: inlined even at -Os, where the
  * compiler would otherwise call them (a call costs more than their body). */
+#ifndef CO_INLINE
 #if defined(__GNUC__)
 #define CO_INLINE static inline __attribute__((always_inline))
 #else
 #define CO_INLINE static inline
+#endif
 #endif
 /* Rare paths kept out of the per-frame functions they would otherwise be
  * inlined into (their stack frame and saved registers would be paid on
@@ -72,45 +74,38 @@ static inline uint8_t co_ram_u8(const co_node_t *node, uint16_t off)
     return node->ram[off];
 }
 
-/* The CPU stores integers little-endian, as the wire does (known to the
- * compiler; otherwise the portable conversions below are used). */
-#if defined(__BYTE_ORDER__) && defined(__ORDER_LITTLE_ENDIAN__) && \
-    (__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__)
-#define CO_NATIVE_LE 1
-#else
-#define CO_NATIVE_LE 0
+/* The CPU stores integers little-endian, like the wire (the compiler says
+ * so; without that knowledge the portable conversion is used). */
+#if defined(__BYTE_ORDER__) && defined(__ORDER_LITTLE_ENDIAN__)
+#if __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+#define CO_NATIVE_LE true
+#endif
+#endif
+#ifndef CO_NATIVE_LE
+#define CO_NATIVE_LE false
 #endif
 
 /* Values of 16, 32 and 64 bits live in RAM/ROM as native integers (so the
  * application and the core use them as plain variables); every other type is
  * stored as its wire bytes. These two convert @p n bytes at the dictionary
- * boundary, so the wire image is little-endian on any CPU. */
+ * boundary, so the wire image is little-endian on any CPU (on a
+ * little-endian CPU both are copies). */
 static inline void co_to_wire(uint8_t *dst, const uint8_t *src, uint8_t n)
 {
-    if (n == 4U) {
+    if ((n == 4U) && CO_NATIVE_LE) {
+        (void)memcpy(dst, src, 4U);
+    } else if (n == 4U) {
         uint32_t v;
         (void)memcpy(&v, src, 4U);
-        if (CO_NATIVE_LE) {
-            (void)memcpy(dst, &v, 4U);
-        } else {
-            co_put_u32(dst, v);
-        }
-    } else if (n == 2U) {
+        co_put_u32(dst, v);
+    } else if ((n == 2U) && !CO_NATIVE_LE) {
         uint16_t v;
         (void)memcpy(&v, src, 2U);
-        if (CO_NATIVE_LE) {
-            (void)memcpy(dst, &v, 2U);
-        } else {
-            co_put_u16(dst, v);
-        }
-    } else if (n == 8U) {
+        co_put_u16(dst, v);
+    } else if ((n == 8U) && !CO_NATIVE_LE) {
         uint64_t v;
         (void)memcpy(&v, src, 8U);
-        if (CO_NATIVE_LE) {
-            (void)memcpy(dst, &v, 8U);
-        } else {
-            co_put_u64(dst, v);
-        }
+        co_put_u64(dst, v);
     } else {
         (void)memcpy(dst, src, n);
     }
@@ -118,29 +113,16 @@ static inline void co_to_wire(uint8_t *dst, const uint8_t *src, uint8_t n)
 
 static inline void co_from_wire(uint8_t *dst, const uint8_t *src, uint8_t n)
 {
-    if (n == 4U) {
-        uint32_t v;
-        if (CO_NATIVE_LE) {
-            (void)memcpy(&v, src, 4U);
-        } else {
-            v = co_get_u32(src);
-        }
+    if ((n == 4U) && CO_NATIVE_LE) {
+        (void)memcpy(dst, src, 4U);
+    } else if (n == 4U) {
+        uint32_t v = co_get_u32(src);
         (void)memcpy(dst, &v, 4U);
-    } else if (n == 2U) {
-        uint16_t v;
-        if (CO_NATIVE_LE) {
-            (void)memcpy(&v, src, 2U);
-        } else {
-            v = co_get_u16(src);
-        }
+    } else if ((n == 2U) && !CO_NATIVE_LE) {
+        uint16_t v = co_get_u16(src);
         (void)memcpy(dst, &v, 2U);
-    } else if (n == 8U) {
-        uint64_t v;
-        if (CO_NATIVE_LE) {
-            (void)memcpy(&v, src, 8U);
-        } else {
-            v = co_get_u64(src);
-        }
+    } else if ((n == 8U) && !CO_NATIVE_LE) {
+        uint64_t v = co_get_u64(src);
         (void)memcpy(dst, &v, 8U);
     } else {
         (void)memcpy(dst, src, n);
@@ -165,13 +147,13 @@ void co_rx_dispatch(co_node_t *node, const co_frame_t *f, uint16_t cob, uint32_t
 extern const uint8_t co_type_sizes[CO_TYPE_SIZES];
 
 /* Size in bytes of a fixed-size type, 0 for strings and DOMAIN. */
-CO_INLINE uint8_t co_type_len(uint8_t type)
+static inline uint8_t co_type_len(uint8_t type)
 {
     return (type < CO_TYPE_SIZES) ? co_type_sizes[type] : 0U;
 }
 
 /* Strings and DOMAINs: values of variable length, read and written in parts. */
-CO_INLINE bool co_od_is_streamed(const co_od_sub_t *s)
+static inline bool co_od_is_streamed(const co_od_sub_t *s)
 {
     return co_type_len(s->type) == 0U;
 }
@@ -220,7 +202,7 @@ void co_od_restore(co_node_t *node, uint16_t from, uint16_t to);
 
 /* ---- communication objects owned by the core (co_comm.c) */
 /* 0x1003: entries beyond the number of recorded errors hold no data. */
-CO_INLINE co_err_t co_comm_check_read(const co_node_t *node, uint16_t index, uint8_t sub)
+static inline co_err_t co_comm_check_read(const co_node_t *node, uint16_t index, uint8_t sub)
 {
     if ((index == 0x1003U) && (sub > 0U) && (node->hist_count != NULL) &&
         (sub > *node->hist_count)) {

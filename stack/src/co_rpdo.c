@@ -40,14 +40,16 @@ static void apply_plain(co_node_t *node, const co_pdo_t *p, uint16_t map, uint8_
                         const uint8_t *data, uint8_t dlc)
 {
     uint8_t at = 0U;
+    uint16_t entry = map;
 
     for (uint8_t k = 0U; k < count; k++) {
-        uint8_t n = (uint8_t)((co_ram_u32(node, (uint16_t)(map + (4U * k))) & 0xFFU) >> 3U);
+        uint8_t n = (uint8_t)((co_ram_u32(node, entry) & 0xFFU) >> 3U);
         if ((uint8_t)(at + n) > dlc) {
             break;
         }
         co_from_wire(&node->ram[co_pdo_plain(p, k)], &data[at], n);
         at = (uint8_t)(at + n);
+        entry = (uint16_t)(entry + 4U);
     }
 }
 

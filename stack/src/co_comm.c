@@ -40,7 +40,22 @@ static uint8_t array_len(const co_node_t *node, uint16_t index, uint8_t type, ui
     return n;
 }
 
-void co_comm_bind(co_node_t *node)
+/* A device that needs a service or option this build leaves out
+ * (co_config.h) is refused. */
+static co_err_t check_build(const co_node_t *node)
+{
+    bool missing = (node->dev->options & ~(uint32_t)CO_OPTIONS) != 0U;
+
+#if !CO_TIME
+    missing = missing || (node->time_cob != NULL);
+#endif
+#if !CO_SYNC_PRODUCER
+    missing = missing || (node->sync_period != NULL);
+#endif
+    return missing ? CO_ERR_DEV_INCOMPAT : CO_OK;
+}
+
+co_err_t co_comm_bind(co_node_t *node)
 {
     node->errreg = (uint8_t *)ram_of(node, 0x1001U, 0U, (uint8_t)CO_UNSIGNED8);
     node->hist_count = (uint8_t *)ram_of(node, 0x1003U, 0U, (uint8_t)CO_UNSIGNED8);
@@ -65,6 +80,7 @@ void co_comm_bind(co_node_t *node)
                         ? (uint32_t *)ram_of(node, 0x1016U, 1U, (uint8_t)CO_UNSIGNED32)
                         : NULL;
     node->hb_prod = (uint16_t *)ram_of(node, 0x1017U, 0U, (uint8_t)CO_UNSIGNED16);
+    return check_build(node);
 }
 
 static co_err_t check_hb_consumer(const co_node_t *node, uint8_t sub, uint32_t v)
@@ -134,8 +150,8 @@ co_err_t co_comm_check_write(const co_node_t *node, uint16_t index, uint8_t sub,
         break;
     case 0x1012U:
         /* TIME: the CAN-ID is fixed while consumed or produced (bits 31, 30) */
-        if ((sub == 0U) && (len == 4U) && (node->time_cob != NULL)) {
-            return check_cob(*node->time_cob, co_get_u32(data), 0xC0000000UL, true, 0U);
+        if ((sub == 0U) && (len == 4U) && (co_time_cob(node) != NULL)) {
+            return check_cob(*co_time_cob(node), co_get_u32(data), 0xC0000000UL, true, 0U);
         }
         break;
     case 0x1014U:

@@ -78,8 +78,8 @@ void co_rx_rebuild(co_node_t *node)
     if ((node->sync_cob != NULL) && ((*node->sync_cob & 0x40000000UL) == 0U)) {
         rx_add(node, (uint16_t)(*node->sync_cob & 0x7FFU), CO_RX_SYNC, 0U);
     }
-    if ((node->time_cob != NULL) && ((*node->time_cob & 0x80000000UL) != 0U)) {
-        rx_add(node, (uint16_t)(*node->time_cob & 0x7FFU), CO_RX_TIME, 0U);
+    if ((co_time_cob(node) != NULL) && ((*co_time_cob(node) & 0x80000000UL) != 0U)) {
+        rx_add(node, (uint16_t)(*co_time_cob(node) & 0x7FFU), CO_RX_TIME, 0U);
     }
     for (uint8_t k = 0U; k < node->n_hb_cons; k++) {
         uint32_t v = node->hb_cons[k];
@@ -252,7 +252,9 @@ co_err_t co_node_init(co_node_t *node, const co_node_config_t *cfg, uint32_t now
     node->pdo_rx = cfg->pdo_rx;
     node->now = now_us;
     co_store_reset(node, CO_RESET_NODE); /* defaults, then the stored set */
-    co_comm_bind(node);
+    if (co_comm_bind(node) != CO_OK) {
+        return CO_ERR_DEV_INCOMPAT;
+    }
     co_nmt_boot(node);
     return CO_OK;
 }

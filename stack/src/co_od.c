@@ -76,8 +76,7 @@ co_err_t co_od_lookup(const co_node_t *node, uint16_t index, uint8_t sub,
 {
     *e = find(node->dev->od, node->dev->od_count, index);
     if (*e == NULL) {
-        return ((node->dev->options & CO_OPT_UNKNOWN_INDEX_NO_ACCESS) != 0U) ? CO_ERR_NO_ACCESS
-                                                                             : CO_ERR_NO_OBJECT;
+        return co_opt(node, CO_OPT_UNKNOWN_INDEX_NO_ACCESS) ? CO_ERR_NO_ACCESS : CO_ERR_NO_OBJECT;
     }
     *s = find_sub(*e, sub);
     return (*s == NULL) ? CO_ERR_NO_SUB : CO_OK;
@@ -87,8 +86,7 @@ co_err_t co_od_check_access(const co_node_t *node, const co_od_sub_t *s, bool wr
 {
     if (write) {
         if (((s->flags & CO_SUB_W) == 0U) || ((s->flags & (CO_SUB_CONST | CO_SUB_ROM)) != 0U)) {
-            return ((node->dev->options & CO_OPT_READ_ONLY_NO_ACCESS) != 0U) ? CO_ERR_NO_ACCESS
-                                                                            : CO_ERR_READ_ONLY;
+            return co_opt(node, CO_OPT_READ_ONLY_NO_ACCESS) ? CO_ERR_NO_ACCESS : CO_ERR_READ_ONLY;
         }
     } else if ((s->flags & CO_SUB_R) == 0U) {
         return CO_ERR_WRITE_ONLY;

@@ -158,7 +158,7 @@ static bool mapping_locked(const co_node_t *node, uint16_t i)
     if ((co_pdo_cob(node, i) & CO_PDO_COB_INVALID) != 0U) {
         return false;
     }
-    return ((node->dev->options & CO_OPT_PDO_MAP_WHILE_VALID) == 0U) ||
+    return !co_opt(node, CO_OPT_PDO_MAP_WHILE_VALID) ||
            (node->nmt == (uint8_t)CO_NMT_OPERATIONAL);
 }
 

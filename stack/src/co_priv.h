@@ -39,6 +39,13 @@ enum {
     CO_RX_TIME
 };
 
+/* A personality option of the node's device; options this build leaves out
+ * (CO_OPTIONS) are constant false, so their code is not built. */
+static inline bool co_opt(const co_node_t *node, uint32_t opt)
+{
+    return (node->dev->options & (opt & (uint32_t)CO_OPTIONS)) != 0U;
+}
+
 /* Wrap-safe "a is at or after b". */
 static inline bool co_time_reached(uint32_t now, uint32_t when)
 {
@@ -213,7 +220,20 @@ static inline co_err_t co_comm_check_read(const co_node_t *node, uint16_t index,
 co_err_t co_comm_check_write(const co_node_t *node, uint16_t index, uint8_t sub,
                              const uint8_t *data, uint32_t len);
 void co_comm_written(co_node_t *node, uint16_t index, uint8_t sub);
-void co_comm_bind(co_node_t *node);
+/* Find where the core's objects live; CO_ERR_DEV_INCOMPAT for a device that
+ * needs a service this build leaves out (co_config.h). */
+co_err_t co_comm_bind(co_node_t *node);
+
+/* 0x1012 COB-ID TIME; NULL without it, and always without CO_TIME. */
+static inline const uint32_t *co_time_cob(const co_node_t *node)
+{
+#if CO_TIME
+    return node->time_cob;
+#else
+    (void)node;
+    return NULL;
+#endif
+}
 
 /* ---- services */
 void co_nmt_rx(co_node_t *node, const co_frame_t *f);

@@ -73,7 +73,7 @@ static bool length_ok(co_node_t *node, uint16_t i, uint8_t dlc)
     uint8_t len = node->pdo[i].len;
 
     if (dlc < len) {
-        if ((node->dev->options & CO_OPT_RPDO_SHORT_OK) == 0U) {
+        if (!co_opt(node, CO_OPT_RPDO_SHORT_OK)) {
             rpdo_error(node, i, CO_PDO_F_SHORT, CO_EMCY_PDO_SHORT, true);
             return false; /* CiA 301: not processed */
         }

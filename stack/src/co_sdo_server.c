@@ -250,7 +250,7 @@ CO_NOINLINE static void initiate_download(co_node_t *node, const uint8_t *d, uin
         reply(node, 0x60U, index, sub, 0U);
         return;
     }
-    if ((node->dev->options & CO_OPT_SDO_EXPEDITED_ONLY) != 0U) {
+    if (co_opt(node, CO_OPT_SDO_EXPEDITED_ONLY)) {
         abort_at(node, index, sub, CO_ERR_CMD);
         return;
     }
@@ -269,8 +269,8 @@ static void respond_upload(co_node_t *node, bool last)
     uint16_t index = t->entry->index;
     uint8_t sub = t->desc->sub;
 
-    if (last && (t->size <= 4U) && ((t->size > 0U) ||
-                                    ((node->dev->options & CO_OPT_SDO_EXPEDITED_ONLY) != 0U))) {
+    if (last && (t->size <= 4U) &&
+        ((t->size > 0U) || co_opt(node, CO_OPT_SDO_EXPEDITED_ONLY))) {
         uint8_t d[8] = {0};
         uint32_t n = (t->size == 0U) ? 1U : t->size;
         d[0] = (uint8_t)(0x43U | ((4U - n) << 2U));
@@ -281,7 +281,7 @@ static void respond_upload(co_node_t *node, bool last)
         send8(node, d);
         return;
     }
-    if ((node->dev->options & CO_OPT_SDO_EXPEDITED_ONLY) != 0U) {
+    if (co_opt(node, CO_OPT_SDO_EXPEDITED_ONLY)) {
         abort_at(node, index, sub, CO_ERR_NO_ACCESS);
         return;
     }
@@ -652,7 +652,7 @@ static void idle_request(co_node_t *node, const uint8_t *d)
     uint16_t index = co_get_u16(&d[1]);
     uint8_t sub = d[3];
     uint8_t ccs = (uint8_t)(d[0] >> 5U);
-    bool blocks = (node->dev->options & (CO_OPT_SDO_NO_BLOCK | CO_OPT_SDO_EXPEDITED_ONLY)) == 0U;
+    bool blocks = !co_opt(node, CO_OPT_SDO_NO_BLOCK | CO_OPT_SDO_EXPEDITED_ONLY);
 
     switch (ccs) {
     case 1U:

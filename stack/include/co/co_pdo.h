@@ -9,14 +9,9 @@
 
 #include <stdint.h>
 
-#define CO_PDO_NONE 0xFFFFU /**< co_pdo_desc_t: this sub-entry does not exist */
+#include "co/co_config.h"
 
-#ifndef CO_PDO_FAST_MAX
-/** Mapping entries per PDO (the first ones) whose object the core resolves
- *  once, when the mapping is enabled, instead of at every PDO: 2 bytes of RAM
- *  per PDO each (0..8). Only plain values profit (see co_pdo_t.plain). */
-#define CO_PDO_FAST_MAX 4U
-#endif
+#define CO_PDO_NONE 0xFFFFU /**< co_pdo_desc_t: this sub-entry does not exist */
 
 /** Where the parameters of one PDO live: offsets into the RAM image of the
  *  native values of the communication record (0x1400+n / 0x1800+n) and the

@@ -44,15 +44,25 @@ static uint8_t array_len(const co_node_t *node, uint16_t index, uint8_t type, ui
  * (co_config.h) is refused. */
 static co_err_t check_build(const co_node_t *node)
 {
-    bool missing = (node->dev->options & ~(uint32_t)CO_OPTIONS) != 0U;
+    co_err_t err = CO_OK;
 
+#if CO_OPTIONS != 0xFFFFFFFFUL
+    if ((node->dev->options & ~(uint32_t)CO_OPTIONS) != 0U) {
+        err = CO_ERR_DEV_INCOMPAT;
+    }
+#endif
 #if !CO_TIME
-    missing = missing || (node->time_cob != NULL);
+    if (node->time_cob != NULL) {
+        err = CO_ERR_DEV_INCOMPAT;
+    }
 #endif
 #if !CO_SYNC_PRODUCER
-    missing = missing || (node->sync_period != NULL);
+    if (node->sync_period != NULL) {
+        err = CO_ERR_DEV_INCOMPAT;
+    }
 #endif
-    return missing ? CO_ERR_DEV_INCOMPAT : CO_OK;
+    (void)node;
+    return err;
 }
 
 co_err_t co_comm_bind(co_node_t *node)

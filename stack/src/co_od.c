@@ -204,7 +204,9 @@ co_err_t co_od_read_part(co_node_t *node, const co_od_entry_t *e, const co_od_su
     if (n > c->cap) {
         n = c->cap;
     }
-    if (fixed != 0U) {
+    if ((fixed != 0U) && (offset == 0U) && (n == fixed)) {
+        co_to_wire(c->buf, v, fixed); /* the whole value */
+    } else if (fixed != 0U) {
         uint8_t wire[8];
         co_to_wire(wire, v, fixed);
         (void)memcpy(c->buf, &wire[offset], n);

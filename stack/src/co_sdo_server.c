@@ -161,35 +161,59 @@ static co_err_t open_download(co_node_t *node, uint16_t index, uint8_t sub, bool
     return err;
 }
 
-/* Checks common to every upload initiate; stages the first chunk (which
- * also runs the read hook once). */
-static co_err_t open_upload(co_node_t *node, uint16_t index, uint8_t sub, bool *last)
+/* Checks common to every upload initiate; reads the first chunk into t->buf
+ * (which also runs the read hook once). */
+static co_err_t stage_upload(co_node_t *node, uint16_t index, uint8_t sub, co_od_chunk_t *c,
+                             const co_od_entry_t **e, const co_od_sub_t **s)
 {
-    co_sdo_srv_t *t = &node->sdo;
-    const co_od_entry_t *e;
-    const co_od_sub_t *s;
-    co_od_chunk_t c = {t->buf, 0U, SEG, 0U, 0U, false};
-    co_err_t err = co_od_lookup(node, index, sub, &e, &s);
+    co_err_t err = co_od_lookup(node, index, sub, e, s);
 
     if (err == CO_OK) {
-        err = co_od_check_access(node, s, false);
+        err = co_od_check_access(node, *s, false);
     }
     if (err == CO_OK) {
-        err = co_od_read_part(node, e, s, &c);
-    }
-    if (err == CO_OK) {
-        *last = c.last;
-        t->entry = e;
-        t->desc = s;
-        t->size = c.last ? c.len : c.total;
-        t->flags = (uint8_t)(F_STAGED | ((c.total != 0U) || c.last ? F_SIZE : 0U));
-        t->buf_len = (uint8_t)c.len;
-        t->offset = 0U;
-        t->toggle = 0U;
-        t->crc = 0U;
-        t->seqno = 0U;
+        c->buf = node->sdo.buf;
+        c->offset = 0U;
+        c->cap = SEG;
+        err = co_od_read_part(node, *e, *s, c);
     }
     return err;
+}
+
+/* The transfer state of an upload that goes on segmented or by block, its
+ * first chunk staged in t->buf. */
+static void open_upload(co_sdo_srv_t *t, const co_od_entry_t *e, const co_od_sub_t *s,
+                        const co_od_chunk_t *c)
+{
+    t->entry = e;
+    t->desc = s;
+    t->size = c->last ? c->len : c->total;
+    t->flags = (uint8_t)(F_STAGED | ((c->total != 0U) || c->last ? F_SIZE : 0U));
+    t->buf_len = (uint8_t)c->len;
+    t->offset = 0U;
+    t->toggle = 0U;
+    t->crc = 0U;
+    t->seqno = 0U;
+}
+
+/* The whole value is staged and fits an expedited answer (an empty one only
+ * with CO_OPT_SDO_EXPEDITED_ONLY). */
+static bool fits_expedited(const co_node_t *node, bool last, uint32_t size)
+{
+    return last && (size <= 4U) && ((size > 0U) || co_opt(node, CO_OPT_SDO_EXPEDITED_ONLY));
+}
+
+/* Expedited upload answer with the @p size bytes staged in t->buf. */
+static void send_expedited(co_node_t *node, uint16_t index, uint8_t sub, uint32_t size)
+{
+    uint8_t d[8] = {0};
+    uint32_t n = (size == 0U) ? 1U : size;
+
+    d[0] = (uint8_t)(0x43U | ((4U - n) << 2U));
+    co_put_u16(&d[1], index);
+    d[3] = sub;
+    (void)memcpy(&d[4], node->sdo.buf, size);
+    send8(node, d);
 }
 
 /* Read up to SEG bytes of the value at byte @p at into @p buf (SEG bytes). */
@@ -269,16 +293,10 @@ static void respond_upload(co_node_t *node, bool last)
     uint16_t index = t->entry->index;
     uint8_t sub = t->desc->sub;
 
-    if (last && (t->size <= 4U) &&
-        ((t->size > 0U) || co_opt(node, CO_OPT_SDO_EXPEDITED_ONLY))) {
-        uint8_t d[8] = {0};
-        uint32_t n = (t->size == 0U) ? 1U : t->size;
-        d[0] = (uint8_t)(0x43U | ((4U - n) << 2U));
-        co_put_u16(&d[1], index);
-        d[3] = sub;
-        (void)memcpy(&d[4], t->buf, t->size);
+    if (fits_expedited(node, last, t->size)) {
+        uint32_t size = t->size;
         co_sdo_reset(node);
-        send8(node, d);
+        send_expedited(node, index, sub, size);
         return;
     }
     if (co_opt(node, CO_OPT_SDO_EXPEDITED_ONLY)) {
@@ -289,16 +307,22 @@ static void respond_upload(co_node_t *node, bool last)
     reply(node, ((t->flags & F_SIZE) != 0U) ? 0x41U : 0x40U, index, sub, t->size);
 }
 
+/* Called in S_IDLE (no transfer open): an expedited answer leaves it so. */
 static void initiate_upload(co_node_t *node, uint16_t index, uint8_t sub)
 {
-    bool last = false;
-    co_err_t err = open_upload(node, index, sub, &last);
+    const co_od_entry_t *e;
+    const co_od_sub_t *s;
+    co_od_chunk_t c;
+    co_err_t err = stage_upload(node, index, sub, &c, &e, &s);
 
     if (err != CO_OK) {
         abort_at(node, index, sub, err);
-        return;
+    } else if (fits_expedited(node, c.last, c.len)) {
+        send_expedited(node, index, sub, c.len);
+    } else {
+        open_upload(&node->sdo, e, s, &c);
+        respond_upload(node, c.last);
     }
-    respond_upload(node, last);
 }
 
 /* ------------------------------------------------------------ segmented */
@@ -503,7 +527,9 @@ CO_NOINLINE static void block_upload_initiate(co_node_t *node, const uint8_t *d,
     co_sdo_srv_t *t = &node->sdo;
     uint8_t blksize = d[4];
     uint8_t pst = d[5];
-    bool last = false;
+    const co_od_entry_t *e;
+    const co_od_sub_t *s;
+    co_od_chunk_t c;
     co_err_t err;
 
     if ((d[0] & 0x03U) != 0U) {
@@ -514,13 +540,14 @@ CO_NOINLINE static void block_upload_initiate(co_node_t *node, const uint8_t *d,
         abort_at(node, index, sub, CO_ERR_BLKSIZE);
         return;
     }
-    err = open_upload(node, index, sub, &last);
+    err = stage_upload(node, index, sub, &c, &e, &s);
     if (err != CO_OK) {
         abort_at(node, index, sub, err);
         return;
     }
+    open_upload(t, e, s, &c);
     if ((pst != 0U) && ((t->flags & F_SIZE) != 0U) && (t->size <= pst)) {
-        respond_upload(node, last); /* protocol switch to segmented/expedited */
+        respond_upload(node, c.last); /* protocol switch to segmented/expedited */
         return;
     }
     t->blksize = blksize;

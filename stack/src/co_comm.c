@@ -61,6 +61,11 @@ static co_err_t check_build(const co_node_t *node)
         err = CO_ERR_DEV_INCOMPAT;
     }
 #endif
+#if !CO_LIMITS
+    if (node->dev->limits != NULL) {
+        err = CO_ERR_DEV_INCOMPAT;
+    }
+#endif
     (void)node;
     return err;
 }

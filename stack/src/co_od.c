@@ -221,6 +221,7 @@ co_err_t co_od_read_part(co_node_t *node, const co_od_entry_t *e, const co_od_su
     return CO_OK;
 }
 
+#if CO_LIMITS
 static uint64_t load_uint(const uint8_t *p, uint8_t n)
 {
     uint64_t v = 0U;
@@ -230,42 +231,52 @@ static uint64_t load_uint(const uint8_t *p, uint8_t n)
     return v;
 }
 
+/* A value against its entry in the device's limit table. */
+static co_err_t check_range(const co_od_limit_t *lim, uint8_t type, const uint8_t *data,
+                            uint8_t n)
+{
+    uint64_t raw = load_uint(data, n);
+
+    if (co_type_is_signed(type)) {
+        int64_t v;
+        if ((n < 8U) && ((raw >> ((8U * n) - 1U)) != 0U)) {
+            raw |= ~((UINT64_C(1) << (8U * n)) - 1U); /* sign-extend */
+        }
+        v = (int64_t)raw;
+        if (v < lim->min) {
+            return CO_ERR_VALUE_LOW;
+        }
+        if (v > lim->max) {
+            return CO_ERR_VALUE_HIGH;
+        }
+    } else if ((type != (uint8_t)CO_REAL32) && (type != (uint8_t)CO_REAL64)) {
+        if (raw < (uint64_t)lim->min) {
+            return CO_ERR_VALUE_LOW;
+        }
+        if (raw > (uint64_t)lim->max) {
+            return CO_ERR_VALUE_HIGH;
+        }
+    } else {
+        /* REAL limits are not checked by the core (use a hook). */
+    }
+    return CO_OK;
+}
+#endif
+
 static co_err_t check_limits(const co_node_t *node, const co_od_sub_t *s, const uint8_t *data,
                              uint32_t len)
 {
     if (s->type == (uint8_t)CO_BOOLEAN) {
         return (data[0] > 1U) ? CO_ERR_VALUE : CO_OK;
     }
-    if (((s->flags & CO_SUB_LIMIT) == 0U) || (node->dev->limits == NULL) || (len > 8U)) {
-        return CO_OK;
+#if CO_LIMITS
+    if (((s->flags & CO_SUB_LIMIT) != 0U) && (node->dev->limits != NULL) && (len <= 8U)) {
+        return check_range(&node->dev->limits[s->limit], s->type, data, (uint8_t)len);
     }
-    {
-        const co_od_limit_t *lim = &node->dev->limits[s->limit];
-        uint8_t n = (uint8_t)len;
-        uint64_t raw = load_uint(data, n);
-        if (co_type_is_signed(s->type)) {
-            int64_t v;
-            if ((n < 8U) && ((raw >> ((8U * n) - 1U)) != 0U)) {
-                raw |= ~((UINT64_C(1) << (8U * n)) - 1U); /* sign-extend */
-            }
-            v = (int64_t)raw;
-            if (v < lim->min) {
-                return CO_ERR_VALUE_LOW;
-            }
-            if (v > lim->max) {
-                return CO_ERR_VALUE_HIGH;
-            }
-        } else if ((s->type != (uint8_t)CO_REAL32) && (s->type != (uint8_t)CO_REAL64)) {
-            if (raw < (uint64_t)lim->min) {
-                return CO_ERR_VALUE_LOW;
-            }
-            if (raw > (uint64_t)lim->max) {
-                return CO_ERR_VALUE_HIGH;
-            }
-        } else {
-            /* REAL limits are not checked by the core (use a hook). */
-        }
-    }
+#else
+    (void)node;
+    (void)len;
+#endif
     return CO_OK;
 }
 

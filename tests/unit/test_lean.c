@@ -1,6 +1,7 @@
 /*
  * The core built with the minimal slave's options (no storage, no TIME, no
- * SYNC producer, no personality options, 4 heartbeat consumers;
+ * SYNC producer, no value limits, no personality options, 4 heartbeat
+ * consumers;
  * targets/cortex-m/minimal-config.cmake) on the lean-test device: the
  * services it keeps work with exact frames, 0x1010/0x1011 behave as without
  * non-volatile memory, and devices that need what is left out are refused.
@@ -98,6 +99,7 @@ static void services_kept(void **state)
 
 static void refuses_what_is_left_out(void **state)
 {
+    static const co_od_limit_t limits[1] = {{0, 10}};
     co_dev_t dev = lean_test_dev;
     td_node_t td;
     co_node_config_t cfg;
@@ -107,6 +109,11 @@ static void refuses_what_is_left_out(void **state)
     assert_int_equal(start(&dev), CO_ERR_DEV_INCOMPAT);
     tb_expect_none(BUS);
     dev.options = 0U;
+    /* value limits */
+    dev.limits = limits;
+    assert_int_equal(start(&dev), CO_ERR_DEV_INCOMPAT);
+    tb_expect_none(BUS);
+    dev.limits = NULL;
     assert_int_equal(start(&dev), CO_OK);
     tb_expect(BUS, "701 00");
     /* the test device has TIME (0x1012) and a SYNC producer (0x1006) */

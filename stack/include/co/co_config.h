@@ -56,6 +56,11 @@
  *  refused (the SYNC consumer is always in). */
 #define CO_SYNC_PRODUCER 1
 #endif
+#ifndef CO_LIMITS
+/** Value limits of the dictionary (CO_SUB_LIMIT, co_dev_t.limits). Left out:
+ *  a device with a limit table is refused. */
+#define CO_LIMITS 1
+#endif
 #ifndef CO_OPTIONS
 /** Personality options (CO_OPT_*, co_node.h) the core implements. A device
  *  whose co_dev_t.options has others is refused; the code of options left

@@ -248,7 +248,8 @@ static co_err_t read_seg(co_node_t *node, uint32_t at, uint8_t *buf, uint32_t *g
 
 /* ------------------------------------------------------------ initiate */
 
-CO_NOINLINE static void initiate_download(co_node_t *node, const uint8_t *d, uint16_t index, uint8_t sub)
+CO_NOINLINE static void initiate_download(co_node_t *node, const uint8_t *d, uint16_t index,
+                                          uint8_t sub)
 {
     bool expedited = (d[0] & 0x02U) != 0U;
     bool size_ind = (d[0] & 0x01U) != 0U;
@@ -401,7 +402,7 @@ static void upload_segment(co_node_t *node, const uint8_t *d)
 
 /* ------------------------------------------------------------ block download */
 
-CO_NOINLINE static void block_download_initiate(co_node_t *node, const uint8_t *d, uint16_t index,
+static void block_download_initiate(co_node_t *node, const uint8_t *d, uint16_t index,
                                     uint8_t sub)
 {
     bool size_ind = (d[0] & 0x02U) != 0U;
@@ -522,7 +523,8 @@ static void block_download_end(co_node_t *node, const uint8_t *d)
 
 /* ------------------------------------------------------------ block upload */
 
-CO_NOINLINE static void block_upload_initiate(co_node_t *node, const uint8_t *d, uint16_t index, uint8_t sub)
+CO_NOINLINE static void block_upload_initiate(co_node_t *node, const uint8_t *d, uint16_t index,
+                                              uint8_t sub)
 {
     co_sdo_srv_t *t = &node->sdo;
     uint8_t blksize = d[4];
@@ -718,7 +720,7 @@ static void idle_request(co_node_t *node, const uint8_t *d)
 
 /* A frame whose DLC is not 8. CiA 301: SDO frames are 8 bytes; anything
  * else is not a valid request. */
-CO_NOINLINE static void bad_length(co_node_t *node, const co_frame_t *f)
+static void bad_length(co_node_t *node, const co_frame_t *f)
 {
     const uint8_t *d = f->data;
 

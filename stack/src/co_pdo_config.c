@@ -110,8 +110,9 @@ static bool is_plain(const co_od_entry_t *e, const co_od_sub_t *s, bool tx, uint
 #endif
 
 /* Validate the first @p count entries of PDO i's mapping; *len gets bytes.
- * With @p p, also note where the first CO_PDO_FAST_MAX entries are if they
- * are plain values at a byte boundary (p->plain). */
+ * With @p p, also note where the entries are if all of them (at most
+ * CO_PDO_FAST_MAX) are plain values at byte boundaries (p->plain,
+ * CO_PDO_F_PLAIN). */
 static co_err_t check_mapping(const co_node_t *node, uint16_t i, uint8_t count, uint8_t *len,
                               co_pdo_t *p)
 {
@@ -258,9 +259,6 @@ static void compile_mapping(co_node_t *node, uint16_t i)
 
     p->flags &= (uint16_t)~(CO_PDO_F_MAP_OK | CO_PDO_F_PLAIN);
     p->len = 0U;
-#if CO_PDO_FAST_MAX > 0
-    (void)memset(p->plain, 0xFF, sizeof p->plain); /* CO_PDO_NONE */
-#endif
     if ((count != 0U) && (check_mapping(node, i, count, &len, p) == CO_OK)) {
         p->flags |= CO_PDO_F_MAP_OK;
         p->len = len;

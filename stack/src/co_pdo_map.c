@@ -2,7 +2,8 @@
  * Mapped objects through the dictionary: one mapping entry (index:16 sub:8
  * bits:8) sampled into a TPDO's bits or written from an RPDO's bits by the
  * same path as SDO (hooks, limits, the core's rules), and the bit copies.
- * Plain values skip this (co_tpdo.c, co_rpdo.c copy them directly).
+ * PDOs whose entries are all plain values skip this (co_tpdo.c, co_rpdo.c
+ * copy them directly).
  */
 #include "co_priv.h"
 
@@ -94,44 +95,34 @@ static void store(co_node_t *node, uint32_t v, uint16_t pos, const uint8_t *data
 void co_pdo_sample(co_node_t *node, uint16_t i, uint8_t *out)
 {
     const co_pdo_desc_t *d = &node->dev->pdo[i];
-    const co_pdo_t *p = &node->pdo[i];
     uint8_t count = co_ram_u8(node, d->count);
     uint16_t pos = 0U;
+    uint16_t entry = d->map;
 
     for (uint8_t k = 0U; k < count; k++) {
-        uint32_t v = co_ram_u32(node, (uint16_t)(d->map + (4U * k)));
-        uint8_t bits = (uint8_t)(v & 0xFFU);
-        uint16_t at = co_pdo_plain(p, k);
-        if (at != CO_PDO_NONE) {
-            co_to_wire(&out[pos >> 3U], &node->ram[at], (uint8_t)(bits >> 3U));
-        } else {
-            sample(node, v, pos, out);
-        }
-        pos = (uint16_t)(pos + bits);
+        uint32_t v = co_ram_u32(node, entry);
+        sample(node, v, pos, out);
+        pos = (uint16_t)(pos + (v & 0xFFU));
+        entry = (uint16_t)(entry + 4U);
     }
 }
 
 void co_pdo_store(co_node_t *node, uint16_t i, const uint8_t *data, uint8_t dlc)
 {
     const co_pdo_desc_t *d = &node->dev->pdo[i];
-    const co_pdo_t *p = &node->pdo[i];
     uint8_t count = co_ram_u8(node, d->count);
     uint16_t avail = (uint16_t)((dlc > 8U) ? 64U : (dlc * 8U));
     uint16_t pos = 0U;
+    uint16_t entry = d->map;
 
     for (uint8_t k = 0U; k < count; k++) {
-        uint32_t v = co_ram_u32(node, (uint16_t)(d->map + (4U * k)));
-        uint8_t bits = (uint8_t)(v & 0xFFU);
-        uint16_t at = co_pdo_plain(p, k);
-
-        if ((uint16_t)(pos + bits) > avail) {
+        uint32_t v = co_ram_u32(node, entry);
+        uint16_t end = (uint16_t)(pos + (v & 0xFFU));
+        if (end > avail) {
             break;
         }
-        if (at != CO_PDO_NONE) {
-            co_from_wire(&node->ram[at], &data[pos >> 3U], (uint8_t)(bits >> 3U));
-        } else {
-            store(node, v, pos, data);
-        }
-        pos = (uint16_t)(pos + bits);
+        store(node, v, pos, data);
+        pos = end;
+        entry = (uint16_t)(entry + 4U);
     }
 }

@@ -291,8 +291,8 @@ CO_INLINE bool co_pdo_usable(const co_node_t *node, uint16_t i)
            ((node->pdo[i].flags & CO_PDO_F_MAP_OK) != 0U);
 }
 
-/* RAM offset of mapping entry k of PDO p if it is a plain value, copied
- * directly (co_pdo_config.c decides), else CO_PDO_NONE. */
+/* RAM offset of the value of mapping entry k of PDO p, which is plain
+ * (CO_PDO_F_PLAIN; co_pdo_config.c decides). */
 static inline uint16_t co_pdo_plain(const co_pdo_t *p, uint8_t k)
 {
 #if CO_PDO_FAST_MAX > 0
@@ -303,7 +303,7 @@ static inline uint16_t co_pdo_plain(const co_pdo_t *p, uint8_t k)
     (void)p;
     (void)k;
 #endif
-    return CO_PDO_NONE;
+    return 0U; /* not reached: no PDO is plain beyond CO_PDO_FAST_MAX entries */
 }
 
 /* Event timer of PDO i in us (0: off). */
@@ -320,11 +320,10 @@ void co_pdo_written(co_node_t *node, uint16_t index, uint8_t sub);
 void co_pdo_reset(co_node_t *node);
 void co_pdo_rx_rebuild(co_node_t *node);
 void co_pdo_nmt(co_node_t *node, co_nmt_state_t st);
-/* The mapped objects of PDO i, any mapping (co_pdo_map.c): sample them into
- * @p out (8 bytes, zeroed by the caller; an object that cannot be read is
- * sent as zeros), or write them from @p data (@p dlc bytes; entries the
- * frame does not cover are skipped, a refused value is dropped). Plain
- * entries are copied directly, the others go through the dictionary. */
+/* The mapped objects of PDO i through the dictionary (co_pdo_map.c): sample
+ * them into @p out (8 bytes, zeroed by the caller; an object that cannot be
+ * read is sent as zeros), or write them from @p data (@p dlc bytes; entries
+ * the frame does not cover are skipped, a refused value is dropped). */
 void co_pdo_sample(co_node_t *node, uint16_t i, uint8_t *out);
 void co_pdo_store(co_node_t *node, uint16_t i, const uint8_t *data, uint8_t dlc);
 void co_rpdo_rx(co_node_t *node, uint16_t i, const co_frame_t *f);

@@ -32,9 +32,10 @@
 /* ---- PDO */
 
 #ifndef CO_PDO_FAST_MAX
-/** Mapping entries per PDO (the first ones) whose object the core resolves
- *  once, when the mapping is enabled, instead of at every PDO: 2 bytes of RAM
- *  per PDO each (0..8). Only plain values profit (see co_pdo_t.plain). */
+/** Mapping entries per PDO the core resolves once, when the mapping is
+ *  enabled, instead of at every PDO: 2 bytes of RAM per PDO each (0..8). A
+ *  PDO of at most this many entries, all plain values, is copied directly
+ *  between frame and RAM image (docs/core.md, PDO). */
 #define CO_PDO_FAST_MAX 4U
 #endif
 

@@ -37,8 +37,8 @@ typedef struct co_pdo {
     uint8_t dlc;      /**< RPDO: length of the buffered frame */
     uint8_t data[8];  /**< TPDO: last sent / sampled; RPDO: buffered until SYNC */
 #if CO_PDO_FAST_MAX > 0
-    uint16_t plain[CO_PDO_FAST_MAX]; /**< mapping entry k is a plain value (copied
-                           directly, whole, byte-aligned) at this RAM offset, or CO_PDO_NONE */
+    uint16_t plain[CO_PDO_FAST_MAX]; /**< RAM offsets of the mapped values when every
+                           entry is a plain value (copied directly, whole, byte-aligned) */
 #endif
 } co_pdo_t;
 

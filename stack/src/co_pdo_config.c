@@ -273,7 +273,6 @@ static void restart(co_node_t *node, uint16_t i)
     p->flags &= (uint16_t)(CO_PDO_F_MAP_OK | CO_PDO_F_PLAIN | CO_PDO_F_TIMEOUT | CO_PDO_F_SHORT |
                            CO_PDO_F_LONG);
     p->count = 0U;
-    p->dlc = 0U;
 }
 
 void co_pdo_written(co_node_t *node, uint16_t index, uint8_t sub)

@@ -110,7 +110,7 @@ void co_rpdo_rx(co_node_t *node, uint16_t i, const co_frame_t *f)
         /* synchronous: takes effect at the next SYNC, if it came in time */
         if (co_sync_window_open(node)) {
             (void)memcpy(p->data, f->data, 8U);
-            p->dlc = f->dlc;
+            p->count = f->dlc; /* the buffered frame's length */
             p->flags |= CO_PDO_F_RXBUF;
             node->rpdo_buffered = 1U;
         }
@@ -129,7 +129,7 @@ void co_rpdo_sync(co_node_t *node)
         co_pdo_t *p = &node->pdo[i];
         if ((p->flags & CO_PDO_F_RXBUF) != 0U) {
             p->flags &= (uint16_t)~CO_PDO_F_RXBUF;
-            apply(node, i, p->data, p->dlc);
+            apply(node, i, p->data, p->count);
         }
     }
 }

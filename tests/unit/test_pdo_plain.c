@@ -4,7 +4,7 @@
  * frame and RAM image without the dictionary's path; the resolution is made
  * when the mapping is enabled. These tests mix plain entries with entries
  * that must still go through the dictionary (hooks, limits, BOOLEAN, bit
- * mapping, dummies, entries beyond the resolved ones) and change mappings
+ * mapping, dummies, more entries than are resolved) and change mappings
  * between plain and hooked objects, by SDO and by reset.
  */
 #include <setjmp.h>

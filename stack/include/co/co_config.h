@@ -26,7 +26,9 @@
                                     sub-entries beyond are not monitored) */
 #endif
 #ifndef CO_RX_SLOTS_MAX
-#define CO_RX_SLOTS_MAX (6U + CO_HB_CONSUMERS_MAX) /**< receive table of the core's services */
+/** Receive table of the core's services: NMT, SDO, guarding, SYNC, TIME and
+ *  the heartbeat consumers. */
+#define CO_RX_SLOTS_MAX (5U + CO_HB_CONSUMERS_MAX)
 #endif
 
 /* ---- PDO */

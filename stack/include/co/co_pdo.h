@@ -32,9 +32,8 @@ typedef struct co_pdo {
     uint32_t timer;   /**< TPDO event timer / RPDO deadline (absolute us) */
     uint32_t inhibit; /**< TPDO: earliest next event-driven transmission */
     uint16_t flags;
-    uint8_t count;    /**< TPDO: SYNCs counted */
+    uint8_t count;    /**< TPDO: SYNCs counted; RPDO: length of the buffered frame */
     uint8_t len;      /**< bytes the mapping covers */
-    uint8_t dlc;      /**< RPDO: length of the buffered frame */
     uint8_t data[8];  /**< TPDO: last sent / sampled; RPDO: buffered until SYNC */
 #if CO_PDO_FAST_MAX > 0
     uint16_t plain[CO_PDO_FAST_MAX]; /**< RAM offsets of the mapped values when every

@@ -12,21 +12,26 @@ static bool hal_send(co_node_t *node, const co_frame_t *f)
     return node->hal.ops->send(node->hal.ctx, f) == 0;
 }
 
+void co_tx_frame(co_node_t *node, const co_frame_t *f)
+{
+    if ((node->txq_len == 0U) && hal_send(node, f)) {
+        return;
+    }
+    if (node->txq_len < CO_TXQ_LEN) {
+        uint8_t at = (uint8_t)((node->txq_head + node->txq_len) % CO_TXQ_LEN);
+        node->txq[at] = *f;
+        node->txq_len++;
+    }
+    /* else: the hold-back queue is full too; the frame is lost (the port
+     * reports the overrun as EMCY 0x8110 where the hardware tells it). */
+}
+
 void co_tx(co_node_t *node, uint32_t id, const uint8_t *data, uint8_t len)
 {
     co_frame_t f;
 
     co_frame_set(&f, id, data, len);
-    if ((node->txq_len == 0U) && hal_send(node, &f)) {
-        return;
-    }
-    if (node->txq_len < CO_TXQ_LEN) {
-        uint8_t at = (uint8_t)((node->txq_head + node->txq_len) % CO_TXQ_LEN);
-        node->txq[at] = f;
-        node->txq_len++;
-    }
-    /* else: the hold-back queue is full too; the frame is lost (the port
-     * reports the overrun as EMCY 0x8110 where the hardware tells it). */
+    co_tx_frame(node, &f);
 }
 
 bool co_tx_try(co_node_t *node, uint32_t id, const uint8_t *data, uint8_t len)

@@ -143,6 +143,8 @@ static inline bool co_tx_now(co_node_t *node, const co_frame_t *f)
 {
     return (node->txq_len == 0U) && (node->hal.ops->send(node->hal.ctx, f) == 0);
 }
+/* Send @p f, or hold it back while the TX path is full (CO_TXQ_LEN). */
+void co_tx_frame(co_node_t *node, const co_frame_t *f);
 void co_tx(co_node_t *node, uint32_t id, const uint8_t *data, uint8_t len);
 /* Send now or not at all (nothing held back): for streams that resume later. */
 bool co_tx_try(co_node_t *node, uint32_t id, const uint8_t *data, uint8_t len);

@@ -40,7 +40,12 @@ static uint32_t tx_cob(const co_node_t *node)
 
 static void send8(co_node_t *node, const uint8_t *d)
 {
-    co_tx(node, tx_cob(node), d, 8U);
+    co_frame_t f;
+
+    f.id = tx_cob(node);
+    f.dlc = 8U;
+    (void)memcpy(f.data, d, 8U);
+    co_tx_frame(node, &f);
 }
 
 static void reply(co_node_t *node, uint8_t cmd, uint16_t index, uint8_t sub, uint32_t data)

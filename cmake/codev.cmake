@@ -1,8 +1,9 @@
-# co_device(<name> <description.toml>)
+# co_device(<name> <description.toml> [CORE <core library>])
 #
 # Runs the object-dictionary generator (tools/odgen) at build time on a device
 # description and defines the static library codev_<name> (the generated const
-# dictionary, linked with costack). Outputs go to ${CMAKE_BINARY_DIR}/codev/<name>/:
+# dictionary, linked with the core: costack, or a core built by co_core() with
+# other build-time options). Outputs go to ${CMAKE_BINARY_DIR}/codev/<name>/:
 #   <cname>.h/.c   the dictionary (<cname> = <name> with '-' -> '_')
 #   <name>.eds     CiA 306 electronic data sheet
 #   <name>.md      object table
@@ -27,6 +28,10 @@ set(CO_ODGEN "${CO_REPO_ROOT}/tools/odgen/odgen.py")
 file(GLOB CO_ODGEN_SOURCES CONFIGURE_DEPENDS "${CO_REPO_ROOT}/tools/odgen/*.py")
 
 function(co_device name toml)
+  cmake_parse_arguments(PARSE_ARGV 2 arg "" "CORE" "")
+  if(NOT arg_CORE)
+    set(arg_CORE costack)
+  endif()
   get_filename_component(toml "${toml}" ABSOLUTE BASE_DIR "${CMAKE_CURRENT_SOURCE_DIR}")
   string(MAKE_C_IDENTIFIER "${name}" cname)
   set(out "${CMAKE_BINARY_DIR}/codev/${name}")
@@ -50,7 +55,7 @@ function(co_device name toml)
     VERBATIM)
   add_library(codev_${name} STATIC "${out}/${cname}.c" "${out}/${cname}.h")
   target_include_directories(codev_${name} PUBLIC "${out}")
-  target_link_libraries(codev_${name} PUBLIC costack)
+  target_link_libraries(codev_${name} PUBLIC ${arg_CORE})
   target_compile_options(codev_${name} PRIVATE ${CO_WARNINGS})
   # One target owns the generator run (EDS and table are built with 'all' even
   # though nothing links them); the library waits for it, so the command never

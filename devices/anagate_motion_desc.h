@@ -1,6 +1,6 @@
 /*
- * anagate-motion: attach descriptors of the AnaGate Motion motor modules
- * (devices/anagate-motion*.toml).
+ * anagate-motion: the AnaGate Motion motor modules (devices/anagate-motion*.toml)
+ * as CiA 402 devices (co402_devices.h).
  *
  * Every motor is a CiA 402 axis at +0x800 * (motor - 1) whose one mode is
  * the velocity ramp (CO402_OPT_VELOCITY_RAMP: 0x6080 per mille of full
@@ -8,11 +8,11 @@
  * power stage is on and bit 9 unused. Full speed (1000 per mille) is 3000
  * rpm of the simulated motor (4096 increments per revolution).
  *
- *   anagate_motion_bt4_device    "anagate-motion"        BT, variant B: 4 motors
- *   anagate_motion_bt2_device    "anagate-motion-bt2"    BT, variant A: 2 motors
- *   anagate_motion_bl_device     "anagate-motion-bl"     BL: 2 motors
- *   anagate_motion_400vac_device "anagate-motion-400vac" 400 Vac: 2 motors, on/off,
- *                                                        phase currents in 0x6078
+ *   co402_dev_anagate_motion        "anagate-motion"        BT, variant B: 4 motors
+ *   co402_dev_anagate_motion_bt2    "anagate-motion-bt2"    BT, variant A: 2 motors
+ *   co402_dev_anagate_motion_bl     "anagate-motion-bl"     BL: 2 motors
+ *   co402_dev_anagate_motion_400vac "anagate-motion-400vac" 400 Vac: 2 motors, on/off,
+ *                                   phase currents in 0x6078 (a device plug-in)
  * A module with fewer motors keeps the objects of all four (the PDOs carry
  * four); the missing motors read 0 and ignore their controlword.
  */
@@ -26,20 +26,11 @@
 #define ANAGATE_FULL_SPEED 204800U   /**< increments/s at 1000 per mille (3000 rpm) */
 #define ANAGATE_PHASE_CURRENT 150U   /**< 400 Vac: phase current of a running motor, 0.01 A */
 
-extern const co402_device_t anagate_motion_bt4_device;
-extern const co402_device_t anagate_motion_bt2_device;
-extern const co402_device_t anagate_motion_bl_device;
-extern const co402_device_t anagate_motion_400vac_device;
-
-/** Plant parameters of a simulated motor (co402_sim_defaults: 4096
- *  increments/rev, 100 rev/s). */
-void anagate_motion_sim(uint8_t axis, co402_sim_config_t *c);
-
 /** The module's sensor and encoder inputs (T-PDO4, Tabelle 35) as the
  *  simulation or the hardware reads them: @p bytes[0..7] into 0x2000.1..8
  *  (byte 1: bit 7..0 = S1, S2, E1 C, E1 B, E1 A, E2 C, E2 B, E2 A; bytes
  *  2..7 the encoder values and edge counts; byte 8 S1 count << 4 | S2
  *  count). A change sends T-PDO4. */
-void anagate_motion_set_inputs(co402_device_run_t *r, const uint8_t bytes[8]);
+void anagate_motion_set_inputs(co_node_t *node, const uint8_t bytes[8]);
 
 #endif /* ANAGATE_MOTION_DESC_H */

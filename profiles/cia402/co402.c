@@ -202,7 +202,10 @@ static void pos_factor(const co402_axis_t *ax, uint32_t *num, uint32_t *den)
 
 static void vel_factor(const co402_axis_t *ax, uint32_t *num, uint32_t *den)
 {
-    if (co402_has(ax, O_VEL_NUM)) {
+    if ((ax->cfg.options & CO402_OPT_VEL_RPM) != 0U) {
+        *num = co402_counts_per_rev(ax); /* rpm -> increments/s */
+        *den = 60U;
+    } else if (co402_has(ax, O_VEL_NUM) && ((ax->cfg.options & CO402_OPT_UNITS_FROM_POS) == 0U)) {
         factor(ax, O_VEL_NUM, O_VEL_DEN, num, den);
     } else if ((ax->cfg.vel_num != 0U) && (ax->cfg.vel_den != 0U)) {
         *num = ax->cfg.vel_num; /* the device's fixed velocity unit */
@@ -279,7 +282,8 @@ uint32_t co402_acc_in(const co402_axis_t *ax, uint32_t user)
 {
     uint32_t num;
     uint32_t den;
-    if (co402_has(ax, O_ACC_NUM)) {
+    if (co402_has(ax, O_ACC_NUM) &&
+        ((ax->cfg.options & (CO402_OPT_UNITS_FROM_POS | CO402_OPT_VEL_RPM)) == 0U)) {
         factor(ax, O_ACC_NUM, O_ACC_DEN, &num, &den);
     } else if ((ax->cfg.acc_num != 0U) && (ax->cfg.acc_den != 0U)) {
         num = ax->cfg.acc_num; /* the device's fixed acceleration unit */
@@ -506,6 +510,12 @@ static int16_t option(const co402_axis_t *ax, uint8_t id, int16_t dflt)
     return (int16_t)co402_get(ax, id, dflt);
 }
 
+/* The quick stop option code (0x605A; without it 2, or 6 with CO402_OPT_QS_STAY). */
+static int16_t qs_code(const co402_axis_t *ax)
+{
+    return option(ax, O_QS_OPT, ((ax->cfg.options & CO402_OPT_QS_STAY) != 0U) ? 6 : 2);
+}
+
 /* An option code's ramp (1..4) as a stop kind. */
 static uint8_t ramp_of(int16_t code)
 {
@@ -581,12 +591,6 @@ static void leave_operation(co402_axis_t *ax, uint8_t opt_id, co402_state_t to)
     } else {
         enter(ax, to);
     }
-}
-
-/* 0x605A, or its default where the device lacks it */
-static int16_t qs_code(const co402_axis_t *ax)
-{
-    return option(ax, O_QS_OPT, ((ax->cfg.options & CO402_OPT_QS_STAY) != 0U) ? 6 : 2);
 }
 
 static void quick_stop(co402_axis_t *ax)
@@ -804,6 +808,19 @@ static uint8_t reg_bits(uint16_t code)
     }
 }
 
+/* Raise the EMCY of @p code as the device reports it (co402_config_t.errors). */
+static void emcy_raise(co402_axis_t *ax, uint16_t code)
+{
+    for (uint8_t i = 0U; i < ax->cfg.n_errors; i++) {
+        const co402_error_t *e = &ax->cfg.errors[i];
+        if (e->code == code) {
+            co_emcy_raise(ax->node, code, e->reg, e->mfr);
+            return;
+        }
+    }
+    co_emcy_raise(ax->node, code, reg_bits(code), NULL);
+}
+
 static void fault_enter(co402_axis_t *ax, uint16_t code)
 {
     bool known = false;
@@ -820,7 +837,7 @@ static void fault_enter(co402_axis_t *ax, uint16_t code)
         }
     }
     if (ax->node != NULL) {
-        co_emcy_raise(ax->node, code, reg_bits(code), NULL);
+        emcy_raise(ax, code);
     }
     if ((ax->state != (uint8_t)CO402_FAULT_REACTION) && (ax->state != (uint8_t)CO402_FAULT)) {
         co402_put(ax, O_ERR, code);
@@ -877,6 +894,11 @@ int32_t co402_position(const co402_axis_t *ax)
     return (int32_t)div_floor(ax->pos + (CO402_Q16 / 2), CO402_Q16);
 }
 
+int32_t co402_velocity(const co402_axis_t *ax)
+{
+    return (int32_t)div_floor(ax->vel + (CO402_Q16 / 2), CO402_Q16);
+}
+
 /* ------------------------------------------------------------- hooks */
 
 static co_err_t hook_cw(void *ctx, co_od_io_t *io)
@@ -923,8 +945,7 @@ static co_err_t hook_mode(void *ctx, co_od_io_t *io)
 
 static co_err_t hook_method(void *ctx, co_od_io_t *io)
 {
-    (void)ctx;
-    return co402_hm_supported((int8_t)io->buf[0]) ? CO_OK : CO_ERR_VALUE;
+    return co402_hm_accepted((const co402_axis_t *)ctx, (int8_t)io->buf[0]) ? CO_OK : CO_ERR_VALUE;
 }
 
 /* --------------------------------------------------------- the tick */

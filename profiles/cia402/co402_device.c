@@ -1,75 +1,109 @@
 /*
- * Running a CiA 402 device from its descriptor: node, axes on simulated
- * plants, device plug-in.
+ * CiA 402 devices: a device's axes on the plug-in host (co/co402_device.h).
  */
 #include "co/co402_device.h"
 
+#include <stddef.h>
 #include <string.h>
 
-co_err_t co402_device_start(co402_device_run_t *r, const co402_device_t *d, void *node_mem,
-                            void *ctx, co_hal_t hal, uint8_t node_id,
-                            const co_node_callbacks_t *app, uint32_t now_us)
+void co402_device_axis_config(const co402_device_t *device, uint8_t axis, co402_plant_t plant,
+                              co402_config_t *cfg)
 {
-    co_node_config_t cfg;
-    co_err_t err;
-
-    if ((d->n_axes > CO402_DEVICE_AXES_MAX) || (node_mem == NULL) || (d->config == NULL) ||
-        ((d->ctx_size != 0U) && (ctx == NULL))) {
-        return CO_ERR_VALUE;
-    }
-    (void)memset(r, 0, sizeof *r);
-    r->desc = d;
-    r->ctx = ctx;
-    if (ctx != NULL) {
-        (void)memset(ctx, 0, d->ctx_size);
-    }
-    co_profile_host_init(&r->host, r->slots, (uint8_t)(CO402_DEVICE_AXES_MAX + 1U), app);
-    for (uint8_t i = 0U; i < d->n_axes; i++) {
-        co402_sim_config_t sc;
-        co402_config_t ac = d->axis;
-        if (d->sim != NULL) {
-            d->sim(i, &sc);
-        } else {
-            co402_sim_defaults(&sc);
-        }
-        co402_sim_init(&r->sim[i], &sc, now_us);
-        ac.axis = i;
-        ac.plant = co402_sim_plant(&r->sim[i]);
-        co402_init(&r->axis[i], &ac);
-        err = co_profile_add(&r->host, &co402_profile_ops, &r->axis[i]);
-        if (err != CO_OK) {
-            return err;
-        }
-    }
-    if (d->ops != NULL) {
-        err = co_profile_add(&r->host, d->ops, r);
-        if (err != CO_OK) {
-            return err;
-        }
-    }
-    d->config(node_mem, &cfg);
-    cfg.hal = hal;
-    cfg.node_id = node_id;
-    cfg.cb = co_profile_host_callbacks(&r->host);
-    r->node = (co_node_t *)node_mem; /* the generated node struct starts with its co_node_t */
-    err = co_node_init(r->node, &cfg, now_us);
-    if (err != CO_OK) {
-        return err;
-    }
-    return co_profile_host_attach(&r->host, r->node, now_us);
+    (void)memset(cfg, 0, sizeof *cfg);
+    cfg->axis = axis;
+    cfg->options = device->options;
+    cfg->plant = plant;
+    cfg->modes = device->modes;
+    cfg->counts_per_rev = device->counts_per_rev;
+    cfg->hm_methods = device->hm_methods;
+    cfg->n_hm_methods = device->n_hm_methods;
+    cfg->errors = device->errors;
+    cfg->n_errors = device->n_errors;
+    cfg->vel_num = device->vel_num;
+    cfg->vel_den = device->vel_den;
+    cfg->acc_num = device->acc_num;
+    cfg->acc_den = device->acc_den;
+    cfg->full_speed = device->full_speed;
 }
 
-uint32_t co402_device_process(co402_device_run_t *r, uint32_t now_us)
+void co402_device_sim_config(const co402_device_t *device, co402_sim_config_t *c)
 {
-    /* the plug-ins first: what their tick changed goes out in this call */
-    uint32_t b = co_profile_host_process(&r->host, now_us);
-    uint32_t a = co_node_process(r->node, now_us);
+    co402_sim_defaults(c);
+    if (device->sim_config != NULL) {
+        device->sim_config(c);
+    }
+}
 
-    if (a == CO_NO_DEADLINE) {
-        return b;
+co_err_t co402_drive_init(co402_drive_t *drv, const co402_device_t *device,
+                          const co402_plant_t *plants, const co_node_callbacks_t *app)
+{
+    (void)memset(drv, 0, sizeof *drv);
+    if ((device->axes == 0U) || (device->axes > CO402_DRIVE_AXES_MAX) || (plants == NULL)) {
+        return CO_ERR_VALUE;
     }
-    if (b == CO_NO_DEADLINE) {
-        return a;
+    drv->device = device;
+    co_profile_host_init(&drv->host, drv->slots, (uint8_t)(CO402_DRIVE_AXES_MAX + 1U), app);
+    for (uint8_t n = 0U; n < device->axes; n++) {
+        co402_config_t cfg;
+        co_err_t err;
+        co402_device_axis_config(device, n, plants[n], &cfg);
+        co402_init(&drv->axis[n], &cfg);
+        err = co_profile_add(&drv->host, &co402_profile_ops, &drv->axis[n]);
+        if (err != CO_OK) {
+            return err;
+        }
     }
-    return (((b - a) & 0x80000000UL) != 0U) ? b : a; /* b before a (wrap-safe) */
+    if (device->plugin != NULL) {
+        return co_profile_add(&drv->host, device->plugin, drv);
+    }
+    return CO_OK;
+}
+
+void co402_drive_set_state(co402_drive_t *drv, void *state)
+{
+    drv->state = state;
+    if ((state != NULL) && (drv->device != NULL)) {
+        (void)memset(state, 0, drv->device->state_size);
+    }
+}
+
+co_node_callbacks_t co402_drive_callbacks(co402_drive_t *drv)
+{
+    return co_profile_host_callbacks(&drv->host);
+}
+
+co_err_t co402_drive_attach(co402_drive_t *drv, co_node_t *node, uint32_t now_us)
+{
+    co_err_t err;
+
+    if ((drv->device == NULL) || ((drv->device->state_size != 0U) && (drv->state == NULL))) {
+        return CO_ERR_VALUE;
+    }
+    drv->node = node;
+    err = co_profile_host_attach(&drv->host, node, now_us);
+
+    if ((err == CO_OK) && (drv->device->powered_on != NULL)) {
+        drv->device->powered_on(node, now_us);
+    }
+    return err;
+}
+
+uint32_t co402_drive_process(co402_drive_t *drv, uint32_t now_us)
+{
+    return co_profile_host_process(&drv->host, now_us);
+}
+
+co402_axis_t *co402_drive_axis(co402_drive_t *drv, uint8_t n)
+{
+    return ((drv->device != NULL) && (n < drv->device->axes)) ? &drv->axis[n] : NULL;
+}
+
+co_node_t *co402_drive_node(const co402_drive_t *drv)
+{
+    return drv->node;
+}
+
+void *co402_drive_state(const co402_drive_t *drv)
+{
+    return drv->state;
 }

@@ -32,6 +32,8 @@
 
 #define HMF_SLOW     0x01U
 #define HMF_REVERSED 0x02U
+#define HMF_FAST     0x04U /* CO402_HM_FAST_ONLY: 0x6099 sub 1 throughout */
+#define HMF_REPORTED 0x08U /* CO402_OPT_HM_TARGET_FIRST: bit 10 has been shown alone */
 
 typedef struct hm_spec {
     int8_t method;
@@ -92,6 +94,25 @@ bool co402_hm_supported(int8_t method)
     return find_spec(method, &s);
 }
 
+/* The device's entry for the 0x6098 value @p value (NULL: not in its table). */
+static const co402_hm_method_t *device_method(const co402_axis_t *ax, int8_t value)
+{
+    for (uint8_t i = 0U; i < ax->cfg.n_hm_methods; i++) {
+        if (ax->cfg.hm_methods[i].value == value) {
+            return &ax->cfg.hm_methods[i];
+        }
+    }
+    return NULL;
+}
+
+bool co402_hm_accepted(const co402_axis_t *ax, int8_t value)
+{
+    if (ax->cfg.hm_methods == NULL) {
+        return co402_hm_supported(value);
+    }
+    return device_method(ax, value) != NULL;
+}
+
 static uint32_t hm_acc(const co402_axis_t *ax)
 {
     return co402_acc_in(ax, (uint32_t)co402_get(ax, O_HM_ACC, 0));
@@ -99,6 +120,7 @@ static uint32_t hm_acc(const co402_axis_t *ax)
 
 static void set_status(co402_axis_t *ax)
 {
+    uint16_t b;
     static const uint16_t bits[] = {
         CO402_SW_TARGET,                 /* idle: not started or interrupted */
         0U,                              /* search: in progress */
@@ -109,8 +131,22 @@ static void set_status(co402_axis_t *ax)
         CO402_SW_OMS2 | CO402_SW_TARGET, /* error, at rest */
         0U,                              /* aborting */
     };
-    ax->msw = (uint16_t)((ax->msw & (uint16_t)~(CO402_SW_TARGET | CO402_SW_OMS1 | CO402_SW_OMS2)) |
-                         bits[ax->hm_phase]);
+
+    b = bits[ax->hm_phase];
+    if ((ax->cfg.options & CO402_OPT_HM_TARGET_FIRST) != 0U) {
+        if (ax->hm_phase == (uint8_t)HM_DONE) {
+            /* at home and at rest: bit 10 alone for one tick, then with bit 12 */
+            if ((ax->hm_flags & HMF_REPORTED) == 0U) {
+                b = CO402_SW_TARGET;
+                ax->hm_flags |= HMF_REPORTED;
+            }
+        } else if ((ax->hm_phase == (uint8_t)HM_IDLE) || (ax->hm_phase == (uint8_t)HM_STOPPING)) {
+            b = 0U; /* no "target reached" before a homing has ended */
+        } else {
+            /* search, index, errors, aborting: as CiA 402 */
+        }
+    }
+    ax->msw = (uint16_t)((ax->msw & (uint16_t)~(CO402_SW_TARGET | CO402_SW_OMS1 | CO402_SW_OMS2)) | b);
 }
 
 void co402_hm_enter(co402_axis_t *ax)
@@ -141,8 +177,16 @@ static void hm_start(co402_axis_t *ax)
     hm_spec_t s;
     int8_t method = (int8_t)co402_get(ax, O_HM_METHOD, 0);
 
-    ax->hm_method = method;
     ax->hm_flags = 0U;
+    if (ax->cfg.hm_methods != NULL) {
+        /* the device's value runs as a CiA 402 method (none: a homing error) */
+        const co402_hm_method_t *m = device_method(ax, method);
+        method = (m != NULL) ? m->runs_as : 0;
+        if ((m != NULL) && ((m->flags & CO402_HM_FAST_ONLY) != 0U)) {
+            ax->hm_flags = HMF_FAST;
+        }
+    }
+    ax->hm_method = method;
     for (uint8_t k = 0U; k < CO402_IN_EDGES; k++) {
         ax->hm_edges[k] = ax->fb.edge_count[k];
     }
@@ -155,7 +199,7 @@ static void hm_start(co402_axis_t *ax)
     } else if (s.sw == SW_NONE) {
         ax->hm_edge = ax->fb.pos;
         ax->hm_dir = s.dir;
-        ax->hm_flags = HMF_SLOW;
+        ax->hm_flags |= HMF_SLOW;
         ax->hm_phase = (uint8_t)HM_INDEX;
     } else {
         bool active = (ax->fb.inputs & (1UL << s.sw)) != 0U;
@@ -269,7 +313,8 @@ void co402_hm_run(co402_axis_t *ax, co402_demand_t *d)
     }
     co402_traj_get(ax, &t);
     if ((ax->hm_phase == (uint8_t)HM_SEARCH) || (ax->hm_phase == (uint8_t)HM_INDEX)) {
-        uint32_t speed = (uint32_t)co402_get(ax, ((ax->hm_flags & HMF_SLOW) != 0U) ? O_HM_SLOW : O_HM_FAST, 0);
+        bool slow = ((ax->hm_flags & HMF_SLOW) != 0U) && ((ax->hm_flags & HMF_FAST) == 0U);
+        uint32_t speed = (uint32_t)co402_get(ax, slow ? O_HM_SLOW : O_HM_FAST, 0);
         int64_t vt = (int64_t)co402_speed_in(ax, speed) * CO402_Q16 * ax->hm_dir;
         (void)co402_traj_vel(&t, vt, acc, acc, co402_tick(ax));
         co402_traj_put(ax, &t);

@@ -216,7 +216,10 @@ static void pp_setpoint(co402_axis_t *ax, uint16_t cw)
         ax->pp_flags |= PP_NEXT;
     }
     ax->pp_flags |= PP_MOVED;
-    ax->msw = (uint16_t)((ax->msw | CO402_SW_OMS1) & (uint16_t)~CO402_SW_TARGET);
+    ax->msw |= CO402_SW_OMS1;
+    if ((ax->cfg.options & CO402_OPT_PP_TR_NEXT_TICK) == 0U) {
+        ax->msw &= (uint16_t)~CO402_SW_TARGET; /* else the next tick clears it */
+    }
     ax->timer_on = false;
 }
 
@@ -243,6 +246,9 @@ void co402_mode_cw(co402_axis_t *ax, uint16_t old, uint16_t cw)
                 ax->ip_from = ax->tr_p;
                 ax->ip_to = ax->tr_p;
                 ax->ip_period = 0U;
+                if ((ax->cfg.options & CO402_OPT_IP_TR_AT_REST) != 0U) {
+                    ax->msw &= (uint16_t)~CO402_SW_TARGET; /* it was "at rest, ip off" */
+                }
             }
             ax->msw |= CO402_SW_OMS1;
         } else {
@@ -308,7 +314,9 @@ static void speed_zero(co402_axis_t *ax)
 {
     int64_t actual = co402_vel_out(ax, ax->vel);
 
-    if (held_for(ax, mag(actual) <= co402_get(ax, O_VEL_THRESHOLD, 0),
+    if ((ax->cfg.options & CO402_OPT_PV_NO_SPEED_BIT) != 0U) {
+        ax->msw &= (uint16_t)~CO402_SW_OMS1;
+    } else if (held_for(ax, mag(actual) <= co402_get(ax, O_VEL_THRESHOLD, 0),
                  (uint32_t)co402_get(ax, O_VEL_THRESHOLD_TIME, 0), &ax->vtimer, &ax->vtimer_on)) {
         ax->msw |= CO402_SW_OMS1;
     } else {
@@ -500,10 +508,18 @@ static void ip_run(co402_axis_t *ax, co402_demand_t *d)
     co402_traj_t t;
 
     if ((ax->mode == CO402_MODE_IP) && ((ax->ip_flags & IP_ACTIVE) == 0U)) {
+        int64_t v = mag(ax->vel);
         co402_traj_get(ax, &t);
         (void)co402_traj_vel(&t, 0, co402_slow_dec(ax), co402_slow_dec(ax), co402_tick(ax));
         co402_traj_put(ax, &t);
         co402_demand_pos(ax, d, &t);
+        if ((ax->cfg.options & CO402_OPT_IP_TR_AT_REST) != 0U) {
+            if ((t.v == 0) && (v <= co402_standstill(ax))) {
+                ax->msw |= CO402_SW_TARGET;
+            } else {
+                ax->msw &= (uint16_t)~CO402_SW_TARGET;
+            }
+        }
     } else {
         int64_t p;
         int64_t v;

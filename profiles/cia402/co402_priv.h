@@ -83,6 +83,7 @@ bool co402_position_mode(const co402_axis_t *ax);
 
 /* ---- co402_homing.c */
 bool co402_hm_supported(int8_t method);
+bool co402_hm_accepted(const co402_axis_t *ax, int8_t value); /* 0x6098 value of the device */
 void co402_hm_enter(co402_axis_t *ax);
 void co402_hm_cw(co402_axis_t *ax, uint16_t old, uint16_t cw);
 void co402_hm_run(co402_axis_t *ax, co402_demand_t *d);

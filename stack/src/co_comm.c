@@ -32,7 +32,7 @@ static uint8_t array_len(const co_node_t *node, uint16_t index, uint8_t type, ui
         const co_od_sub_t *s = &e->subs[k];
         if ((s->sub != k) || (s->type != type) ||
             ((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) != 0U) ||
-            (s->off != (uint16_t)(e->subs[1].off + ((uint16_t)(k - 1U) * co_type_size(type))))) {
+            (s->off != (uint16_t)(e->subs[1].off + ((uint16_t)(k - 1U) * co_type_len(type))))) {
             break;
         }
         n++;
@@ -40,7 +40,37 @@ static uint8_t array_len(const co_node_t *node, uint16_t index, uint8_t type, ui
     return n;
 }
 
-void co_comm_bind(co_node_t *node)
+/* A device that needs a service or option this build leaves out
+ * (co_config.h) is refused. */
+static co_err_t check_build(const co_node_t *node)
+{
+    co_err_t err = CO_OK;
+
+#if CO_OPTIONS != 0xFFFFFFFFUL
+    if ((node->dev->options & ~(uint32_t)CO_OPTIONS) != 0U) {
+        err = CO_ERR_DEV_INCOMPAT;
+    }
+#endif
+#if !CO_TIME
+    if (node->time_cob != NULL) {
+        err = CO_ERR_DEV_INCOMPAT;
+    }
+#endif
+#if !CO_SYNC_PRODUCER
+    if (node->sync_period != NULL) {
+        err = CO_ERR_DEV_INCOMPAT;
+    }
+#endif
+#if !CO_LIMITS
+    if (node->dev->limits != NULL) {
+        err = CO_ERR_DEV_INCOMPAT;
+    }
+#endif
+    (void)node;
+    return err;
+}
+
+co_err_t co_comm_bind(co_node_t *node)
 {
     node->errreg = (uint8_t *)ram_of(node, 0x1001U, 0U, (uint8_t)CO_UNSIGNED8);
     node->hist_count = (uint8_t *)ram_of(node, 0x1003U, 0U, (uint8_t)CO_UNSIGNED8);
@@ -65,16 +95,7 @@ void co_comm_bind(co_node_t *node)
                         ? (uint32_t *)ram_of(node, 0x1016U, 1U, (uint8_t)CO_UNSIGNED32)
                         : NULL;
     node->hb_prod = (uint16_t *)ram_of(node, 0x1017U, 0U, (uint8_t)CO_UNSIGNED16);
-}
-
-co_err_t co_comm_check_read(const co_node_t *node, uint16_t index, uint8_t sub)
-{
-    /* 0x1003: entries beyond the number of recorded errors hold no data. */
-    if ((index == 0x1003U) && (sub > 0U) && (node->hist_count != NULL) &&
-        (sub > *node->hist_count)) {
-        return CO_ERR_NO_DATA;
-    }
-    return CO_OK;
+    return check_build(node);
 }
 
 static co_err_t check_hb_consumer(const co_node_t *node, uint8_t sub, uint32_t v)
@@ -144,8 +165,8 @@ co_err_t co_comm_check_write(const co_node_t *node, uint16_t index, uint8_t sub,
         break;
     case 0x1012U:
         /* TIME: the CAN-ID is fixed while consumed or produced (bits 31, 30) */
-        if ((sub == 0U) && (len == 4U) && (node->time_cob != NULL)) {
-            return check_cob(*node->time_cob, co_get_u32(data), 0xC0000000UL, true, 0U);
+        if ((sub == 0U) && (len == 4U) && (co_time_cob(node) != NULL)) {
+            return check_cob(*co_time_cob(node), co_get_u32(data), 0xC0000000UL, true, 0U);
         }
         break;
     case 0x1014U:

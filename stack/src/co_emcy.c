@@ -108,7 +108,7 @@ void co_emcy_raise(co_node_t *node, uint16_t code, uint8_t reg_bits, const uint8
     update_errreg(node);
     history_push(node, code, mfr);
     send_code(node, code, mfr);
-    if ((node->dev->options & CO_OPT_EMCY_STATE_PAIR) != 0U) {
+    if (co_opt(node, CO_OPT_EMCY_STATE_PAIR)) {
         send_code(node, CO_EMCY_NO_ERROR, NULL);
     }
 }
@@ -126,7 +126,7 @@ void co_emcy_clear(co_node_t *node, uint16_t code)
     node->n_active--;
     node->active[i] = node->active[node->n_active];
     update_errreg(node);
-    if ((node->n_active == 0U) || ((node->dev->options & CO_OPT_EMCY_RESET_PARTIAL) != 0U)) {
+    if ((node->n_active == 0U) || co_opt(node, CO_OPT_EMCY_RESET_PARTIAL)) {
         send_code(node, CO_EMCY_NO_ERROR, NULL);
     }
 }

@@ -48,7 +48,7 @@ static bool heartbeat_producing(const co_node_t *node)
 static bool guarding_answered(const co_node_t *node)
 {
     return !heartbeat_producing(node) ||
-           ((node->dev->options & CO_OPT_GUARD_WITH_HEARTBEAT) != 0U);
+           co_opt(node, CO_OPT_GUARD_WITH_HEARTBEAT);
 }
 
 /* Life time in ms: guard time 0x100C x life time factor 0x100D (0: off). */

@@ -36,11 +36,11 @@ void co_nmt_boot(co_node_t *node)
     co_sync_reset(node);
     co_pdo_reset(node);
     co_hb_reset(node); /* also rebuilds the receive table */
-    if ((node->dev->options & CO_OPT_NO_BOOTUP) == 0U) {
+    if (!co_opt(node, CO_OPT_NO_BOOTUP)) {
         static const uint8_t bootup = 0x00U;
         co_tx(node, 0x700UL + node->node_id, &bootup, 1U);
     }
-    if (((node->dev->options & CO_OPT_BOOT_EMCY) != 0U) && (node->emcy_cob != NULL) &&
+    if (co_opt(node, CO_OPT_BOOT_EMCY) && (node->emcy_cob != NULL) &&
         ((*node->emcy_cob & 0x80000000UL) == 0U)) {
         uint8_t d[8] = {0};
         if (node->dev->boot_emcy_data != NULL) {

@@ -12,32 +12,34 @@ static bool hal_send(co_node_t *node, const co_frame_t *f)
     return node->hal.ops->send(node->hal.ctx, f) == 0;
 }
 
-void co_tx(co_node_t *node, uint32_t id, const uint8_t *data, uint8_t len)
+void co_tx_frame(co_node_t *node, const co_frame_t *f)
 {
-    co_frame_t f;
-
-    co_frame_set(&f, id, data, len);
-    if ((node->txq_len == 0U) && hal_send(node, &f)) {
+    if ((node->txq_len == 0U) && hal_send(node, f)) {
         return;
     }
     if (node->txq_len < CO_TXQ_LEN) {
         uint8_t at = (uint8_t)((node->txq_head + node->txq_len) % CO_TXQ_LEN);
-        node->txq[at] = f;
+        node->txq[at] = *f;
         node->txq_len++;
     }
     /* else: the hold-back queue is full too; the frame is lost (the port
      * reports the overrun as EMCY 0x8110 where the hardware tells it). */
 }
 
+void co_tx(co_node_t *node, uint32_t id, const uint8_t *data, uint8_t len)
+{
+    co_frame_t f;
+
+    co_frame_set(&f, id, data, len);
+    co_tx_frame(node, &f);
+}
+
 bool co_tx_try(co_node_t *node, uint32_t id, const uint8_t *data, uint8_t len)
 {
     co_frame_t f;
 
-    if (node->txq_len != 0U) {
-        return false;
-    }
     co_frame_set(&f, id, data, len);
-    return hal_send(node, &f);
+    return co_tx_now(node, &f);
 }
 
 static void tx_drain(co_node_t *node)
@@ -67,11 +69,13 @@ static void rx_add(co_node_t *node, uint16_t cob, uint8_t kind, uint8_t arg)
     node->rx[i].arg = arg;
     node->n_rx++;
     node->rx_filter[(cob & 0x7FU) >> 3U] |= (uint8_t)(1U << (cob & 7U));
+    node->rx_fc |= (uint16_t)(1U << (cob >> 7U));
 }
 
 void co_rx_rebuild(co_node_t *node)
 {
     node->n_rx = 0U;
+    node->rx_fc = 0U;
     (void)memset(node->rx_filter, 0, sizeof node->rx_filter);
     rx_add(node, 0x000U, CO_RX_NMT, 0U);
     rx_add(node, (uint16_t)(0x600U + node->node_id), CO_RX_SDO, 0U);
@@ -79,8 +83,8 @@ void co_rx_rebuild(co_node_t *node)
     if ((node->sync_cob != NULL) && ((*node->sync_cob & 0x40000000UL) == 0U)) {
         rx_add(node, (uint16_t)(*node->sync_cob & 0x7FFU), CO_RX_SYNC, 0U);
     }
-    if ((node->time_cob != NULL) && ((*node->time_cob & 0x80000000UL) != 0U)) {
-        rx_add(node, (uint16_t)(*node->time_cob & 0x7FFU), CO_RX_TIME, 0U);
+    if ((co_time_cob(node) != NULL) && ((*co_time_cob(node) & 0x80000000UL) != 0U)) {
+        rx_add(node, (uint16_t)(*co_time_cob(node) & 0x7FFU), CO_RX_TIME, 0U);
     }
     for (uint8_t k = 0U; k < node->n_hb_cons; k++) {
         uint32_t v = node->hb_cons[k];
@@ -94,17 +98,17 @@ void co_rx_rebuild(co_node_t *node)
 
 static const co_rx_slot_t *rx_find(const co_node_t *node, uint16_t cob)
 {
-    uint8_t lo = 0U;
-    uint8_t hi = node->n_rx;
+    uint32_t lo = 0U;
+    uint32_t hi = node->n_rx;
 
     while (lo < hi) {
-        uint8_t mid = (uint8_t)((lo + hi) >> 1U);
+        uint32_t mid = (lo + hi) >> 1U;
         uint16_t at = node->rx[mid].cob;
         if (at == cob) {
             return &node->rx[mid];
         }
         if (at < cob) {
-            lo = (uint8_t)(mid + 1U);
+            lo = mid + 1U;
         } else {
             hi = mid;
         }
@@ -112,30 +116,58 @@ static const co_rx_slot_t *rx_find(const co_node_t *node, uint16_t cob)
     return NULL;
 }
 
-void co_node_rx(co_node_t *node, const co_frame_t *f, uint32_t now_us)
+static const co_pdo_slot_t *pdo_find(const co_node_t *node, uint16_t cob)
 {
-    const co_rx_slot_t *slot;
-    uint16_t cob;
+    uint32_t lo = 0U;
+    uint32_t hi = node->n_pdo_rx;
 
-    if ((f->id & CO_FRAME_EFF) != 0U) {
-        return; /* the predefined connection set is 11-bit only */
+    while (lo < hi) {
+        uint32_t mid = (lo + hi) >> 1U;
+        uint16_t at = node->pdo_rx[mid].cob;
+        if (at == cob) {
+            return &node->pdo_rx[mid];
+        }
+        if (at < cob) {
+            lo = mid + 1U;
+        } else {
+            hi = mid;
+        }
     }
-    cob = (uint16_t)(f->id & 0x7FFU);
-    if ((node->rx_filter[(cob & 0x7FU) >> 3U] & (uint8_t)(1U << (cob & 7U))) == 0U) {
+    return NULL;
+}
+
+/* A frame that may be on a PDO's COB-ID. */
+static void pdo_rx(co_node_t *node, uint16_t cob, const co_frame_t *f, uint32_t now_us)
+{
+    const co_pdo_slot_t *ps = pdo_find(node, cob);
+
+    if (ps == NULL) {
         return;
     }
-    slot = rx_find(node, cob);
+    node->now = now_us;
+    if (ps->pdo < node->dev->n_rpdo) {
+        co_rpdo_rx(node, ps->pdo, f);
+    } else if (co_frame_is_rtr(f)) {
+        co_tpdo_rtr(node, ps->pdo);
+    } else {
+        /* another node's data frame on this TPDO's identifier */
+    }
+}
+
+/* A frame the filter let through: find what it is for. (Not static, so
+ * that the filter's reject path stays a leaf.) */
+void co_rx_dispatch(co_node_t *node, const co_frame_t *f, uint16_t cob, uint32_t now_us)
+{
+    const co_rx_slot_t *slot = NULL;
+    /* the function code tells which table can hold the COB-ID */
+    uint16_t fc = (uint16_t)(1U << (cob >> 7U));
+
+    if ((node->rx_fc & fc) != 0U) {
+        slot = rx_find(node, cob);
+    }
     if (slot == NULL) {
-        const co_pdo_slot_t *ps = co_pdo_rx_find(node, cob);
-        if (ps != NULL) {
-            node->now = now_us;
-            if (ps->pdo < node->dev->n_rpdo) {
-                co_rpdo_rx(node, ps->pdo, f);
-            } else if (co_frame_is_rtr(f)) {
-                co_tpdo_rtr(node, ps->pdo);
-            } else {
-                /* another node's data frame on this TPDO's identifier */
-            }
+        if ((node->pdo_fc & fc) != 0U) {
+            pdo_rx(node, cob, f, now_us);
         }
         return;
     }
@@ -161,6 +193,19 @@ void co_node_rx(co_node_t *node, const co_frame_t *f, uint32_t now_us)
         break;
     default:
         break;
+    }
+}
+
+void co_node_rx(co_node_t *node, const co_frame_t *f, uint32_t now_us)
+{
+    uint16_t cob;
+
+    if ((f->id & CO_FRAME_EFF) != 0U) {
+        return; /* the predefined connection set is 11-bit only */
+    }
+    cob = (uint16_t)(f->id & 0x7FFU);
+    if ((node->rx_filter[(cob & 0x7FU) >> 3U] & (uint8_t)(1U << (cob & 7U))) != 0U) {
+        co_rx_dispatch(node, f, cob, now_us);
     }
 }
 
@@ -212,7 +257,9 @@ co_err_t co_node_init(co_node_t *node, const co_node_config_t *cfg, uint32_t now
     node->pdo_rx = cfg->pdo_rx;
     node->now = now_us;
     co_store_reset(node, CO_RESET_NODE); /* defaults, then the stored set */
-    co_comm_bind(node);
+    if (co_comm_bind(node) != CO_OK) {
+        return CO_ERR_DEV_INCOMPAT;
+    }
     co_nmt_boot(node);
     return CO_OK;
 }

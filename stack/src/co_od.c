@@ -6,19 +6,20 @@
 #include "co/co_endian.h"
 #include "co_priv.h"
 
-const co_od_entry_t *co_od_find(const co_od_entry_t *od, uint16_t count, uint16_t index)
+/* Binary search over the entries sorted by index. */
+static const co_od_entry_t *find(const co_od_entry_t *od, uint32_t count, uint16_t index)
 {
-    uint16_t lo = 0U;
-    uint16_t hi = count;
+    uint32_t lo = 0U;
+    uint32_t hi = count;
 
     while (lo < hi) {
-        uint16_t mid = (uint16_t)((lo + hi) >> 1U);
+        uint32_t mid = (lo + hi) >> 1U;
         uint16_t at = od[mid].index;
         if (at == index) {
             return &od[mid];
         }
         if (at < index) {
-            lo = (uint16_t)(mid + 1U);
+            lo = mid + 1U;
         } else {
             hi = mid;
         }
@@ -26,9 +27,9 @@ const co_od_entry_t *co_od_find(const co_od_entry_t *od, uint16_t count, uint16_
     return NULL;
 }
 
-const co_od_sub_t *co_od_find_sub(const co_od_entry_t *e, uint8_t sub)
+/* Arrays and most records are dense: try the direct slot first. */
+static const co_od_sub_t *find_sub(const co_od_entry_t *e, uint8_t sub)
 {
-    /* Arrays and most records are dense: try the direct slot first. */
     if ((sub < e->nsubs) && (e->subs[sub].sub == sub)) {
         return &e->subs[sub];
     }
@@ -40,15 +41,27 @@ const co_od_sub_t *co_od_find_sub(const co_od_entry_t *e, uint8_t sub)
     return NULL;
 }
 
+const co_od_entry_t *co_od_find(const co_od_entry_t *od, uint16_t count, uint16_t index)
+{
+    return find(od, count, index);
+}
+
+const co_od_sub_t *co_od_find_sub(const co_od_entry_t *e, uint8_t sub)
+{
+    return find_sub(e, sub);
+}
+
+/* Indexed by type 0x00..0x1B; 0 for variable-length types. */
+const uint8_t co_type_sizes[CO_TYPE_SIZES] = {
+    0, 1, 1, 2, 4, 1, 2, 4, 4, 0, 0, 0, 6, 6, 0, 0,
+    3, 8, 5, 6, 7, 8, 3, 0, 5, 6, 7, 8
+};
+
 uint8_t co_type_size(uint8_t type)
 {
-    /* Indexed by type 0x00..0x1B; 0 for variable-length types. */
-    static const uint8_t sizes[0x1CU] = {
-        0, 1, 1, 2, 4, 1, 2, 4, 4, 0, 0, 0, 6, 6, 0, 0,
-        3, 8, 5, 6, 7, 8, 3, 0, 5, 6, 7, 8
-    };
-    return (type < 0x1CU) ? sizes[type] : 0U;
+    return co_type_len(type);
 }
+
 
 bool co_type_is_signed(uint8_t type)
 {
@@ -58,41 +71,22 @@ bool co_type_is_signed(uint8_t type)
            (type == (uint8_t)CO_INTEGER56) || (type == (uint8_t)CO_INTEGER64);
 }
 
-bool co_od_is_streamed(const co_od_sub_t *s)
-{
-    return co_type_size(s->type) == 0U;
-}
-
 co_err_t co_od_lookup(const co_node_t *node, uint16_t index, uint8_t sub,
                       const co_od_entry_t **e, const co_od_sub_t **s)
 {
-    *e = co_od_find(node->dev->od, node->dev->od_count, index);
+    *e = find(node->dev->od, node->dev->od_count, index);
     if (*e == NULL) {
-        return ((node->dev->options & CO_OPT_UNKNOWN_INDEX_NO_ACCESS) != 0U) ? CO_ERR_NO_ACCESS
-                                                                             : CO_ERR_NO_OBJECT;
+        return co_opt(node, CO_OPT_UNKNOWN_INDEX_NO_ACCESS) ? CO_ERR_NO_ACCESS : CO_ERR_NO_OBJECT;
     }
-    *s = co_od_find_sub(*e, sub);
+    *s = find_sub(*e, sub);
     return (*s == NULL) ? CO_ERR_NO_SUB : CO_OK;
-}
-
-void *co_od_loc(const co_node_t *node, const co_od_sub_t *s)
-{
-    if ((s->flags & CO_SUB_HOOKIO) != 0U) {
-        return NULL;
-    }
-    if ((s->flags & CO_SUB_ROM) != 0U) {
-        /* ROM values are only ever read through this pointer. */
-        return (void *)(uintptr_t)&node->dev->rom[s->off];
-    }
-    return &node->ram[s->off];
 }
 
 co_err_t co_od_check_access(const co_node_t *node, const co_od_sub_t *s, bool write)
 {
     if (write) {
         if (((s->flags & CO_SUB_W) == 0U) || ((s->flags & (CO_SUB_CONST | CO_SUB_ROM)) != 0U)) {
-            return ((node->dev->options & CO_OPT_READ_ONLY_NO_ACCESS) != 0U) ? CO_ERR_NO_ACCESS
-                                                                            : CO_ERR_READ_ONLY;
+            return co_opt(node, CO_OPT_READ_ONLY_NO_ACCESS) ? CO_ERR_NO_ACCESS : CO_ERR_READ_ONLY;
         }
     } else if ((s->flags & CO_SUB_R) == 0U) {
         return CO_ERR_WRITE_ONLY;
@@ -128,46 +122,7 @@ uint32_t co_od_data_size(const co_node_t *node, const co_od_sub_t *s)
     return n;
 }
 
-/* Values of 16, 32 and 64 bits live in RAM/ROM as native integers (so the
- * application and the core use them as plain variables); every other type is
- * stored as its wire bytes. These two convert at the dictionary boundary, so
- * the wire image is little-endian on any CPU. */
-static void to_wire(uint8_t *dst, const uint8_t *src, uint8_t n)
-{
-    if (n == 2U) {
-        uint16_t v;
-        (void)memcpy(&v, src, 2U);
-        co_put_u16(dst, v);
-    } else if (n == 4U) {
-        uint32_t v;
-        (void)memcpy(&v, src, 4U);
-        co_put_u32(dst, v);
-    } else if (n == 8U) {
-        uint64_t v;
-        (void)memcpy(&v, src, 8U);
-        co_put_u64(dst, v);
-    } else {
-        (void)memcpy(dst, src, n);
-    }
-}
-
-static void from_wire(uint8_t *dst, const uint8_t *src, uint8_t n)
-{
-    if (n == 2U) {
-        uint16_t v = co_get_u16(src);
-        (void)memcpy(dst, &v, 2U);
-    } else if (n == 4U) {
-        uint32_t v = co_get_u32(src);
-        (void)memcpy(dst, &v, 4U);
-    } else if (n == 8U) {
-        uint64_t v = co_get_u64(src);
-        (void)memcpy(dst, &v, 8U);
-    } else {
-        (void)memcpy(dst, src, n);
-    }
-}
-
-static co_od_hook_t *hook_of(const co_node_t *node, const co_od_entry_t *e)
+static inline co_od_hook_t *hook_of(const co_node_t *node, const co_od_entry_t *e)
 {
     if ((e->hook == 0U) || (node->hooks == NULL) || (e->hook > node->dev->n_hooks)) {
         return NULL;
@@ -184,67 +139,89 @@ static void io_init(co_od_io_t *io, co_node_t *node, const co_od_entry_t *e, con
     io->value = co_od_loc(node, s);
 }
 
-co_err_t co_od_read_part(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
-                         uint32_t offset, uint8_t *buf, uint32_t cap, uint32_t *len,
-                         uint32_t *total, bool *last)
+/* A chunk of a value the entry's hook produces (CO_SUB_HOOKIO). */
+CO_NOINLINE static co_err_t read_hookio(co_node_t *node, const co_od_entry_t *e,
+                                        const co_od_sub_t *s, co_od_chunk_t *c)
 {
     co_od_hook_t *h = hook_of(node, e);
     co_od_io_t io;
     co_err_t err;
 
+    if ((h == NULL) || (h->read == NULL)) {
+        return CO_ERR_NO_ACCESS;
+    }
+    io_init(&io, node, e, s);
+    io.offset = c->offset;
+    io.buf = c->buf;
+    io.len = c->cap;
+    err = h->read(h->ctx, &io);
+    if (err == CO_OK) {
+        c->len = (io.len > c->cap) ? c->cap : io.len;
+        c->total = io.total;
+        c->last = io.last;
+    }
+    return err;
+}
+
+/* The read hook of a stored value, before it is read (it may refresh or veto). */
+CO_NOINLINE static co_err_t read_hook(co_node_t *node, const co_od_entry_t *e,
+                                      const co_od_sub_t *s)
+{
+    co_od_hook_t *h = hook_of(node, e);
+    co_od_io_t io;
+
+    if ((h == NULL) || (h->read == NULL)) {
+        return CO_OK;
+    }
+    io_init(&io, node, e, s);
+    return h->read(h->ctx, &io);
+}
+
+co_err_t co_od_read_part(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
+                         co_od_chunk_t *c)
+{
+    const uint8_t *v;
+    uint8_t fixed = co_type_len(s->type);
+    uint32_t offset = c->offset;
+    uint32_t size;
+    uint32_t n;
+
     if ((s->flags & CO_SUB_HOOKIO) != 0U) {
-        if ((h == NULL) || (h->read == NULL)) {
-            return CO_ERR_NO_ACCESS;
-        }
-        io_init(&io, node, e, s);
-        io.offset = offset;
-        io.buf = buf;
-        io.len = cap;
-        err = h->read(h->ctx, &io);
-        if (err == CO_OK) {
-            *len = (io.len > cap) ? cap : io.len;
-            *total = io.total;
-            *last = io.last;
-        }
-        return err;
+        return read_hookio(node, e, s, c);
     }
     if (offset == 0U) {
-        err = co_comm_check_read(node, e->index, s->sub);
+        co_err_t err = co_comm_check_read(node, e->index, s->sub);
+        if ((err == CO_OK) && (e->hook != 0U)) {
+            err = read_hook(node, e, s);
+        }
         if (err != CO_OK) {
             return err;
         }
-        if ((h != NULL) && (h->read != NULL)) {
-            io_init(&io, node, e, s);
-            err = h->read(h->ctx, &io);
-            if (err != CO_OK) {
-                return err;
-            }
-        }
     }
-    {
-        uint32_t size = co_od_data_size(node, s);
-        uint32_t n = (offset < size) ? (size - offset) : 0U;
-        const uint8_t *v = (const uint8_t *)co_od_loc(node, s);
-        uint8_t fixed = co_type_size(s->type);
-        if (n > cap) {
-            n = cap;
-        }
-        if (fixed != 0U) {
-            uint8_t wire[8];
-            to_wire(wire, v, fixed);
-            (void)memcpy(buf, &wire[offset], n);
-        } else if (n > 0U) {
-            (void)memcpy(buf, &v[offset], n);
-        } else {
-            /* empty */
-        }
-        *len = n;
-        *total = size;
-        *last = (offset + n) >= size;
+    v = (const uint8_t *)co_od_loc(node, s);
+    size = (fixed != 0U) ? s->size : co_od_data_size(node, s);
+    n = (offset < size) ? (size - offset) : 0U;
+    if (n > c->cap) {
+        n = c->cap;
     }
+    if ((fixed != 0U) && (offset == 0U) && (n == fixed)) {
+        co_to_wire(c->buf, v, fixed); /* the whole value */
+    } else if (fixed != 0U) {
+        uint8_t wire[8];
+        co_to_wire(wire, v, fixed);
+        (void)memcpy(c->buf, &wire[offset], n);
+    } else if (n > 0U) {
+        (void)memcpy(c->buf, &v[offset], n);
+    } else {
+        /* empty */
+    }
+    c->len = n;
+    c->total = size;
+    c->last = (offset + n) >= size;
     return CO_OK;
 }
 
+#if CO_LIMITS
 static uint64_t load_uint(const uint8_t *p, uint8_t n)
 {
     uint64_t v = 0U;
@@ -254,42 +231,52 @@ static uint64_t load_uint(const uint8_t *p, uint8_t n)
     return v;
 }
 
+/* A value against its entry in the device's limit table. */
+static co_err_t check_range(const co_od_limit_t *lim, uint8_t type, const uint8_t *data,
+                            uint8_t n)
+{
+    uint64_t raw = load_uint(data, n);
+
+    if (co_type_is_signed(type)) {
+        int64_t v;
+        if ((n < 8U) && ((raw >> ((8U * n) - 1U)) != 0U)) {
+            raw |= ~((UINT64_C(1) << (8U * n)) - 1U); /* sign-extend */
+        }
+        v = (int64_t)raw;
+        if (v < lim->min) {
+            return CO_ERR_VALUE_LOW;
+        }
+        if (v > lim->max) {
+            return CO_ERR_VALUE_HIGH;
+        }
+    } else if ((type != (uint8_t)CO_REAL32) && (type != (uint8_t)CO_REAL64)) {
+        if (raw < (uint64_t)lim->min) {
+            return CO_ERR_VALUE_LOW;
+        }
+        if (raw > (uint64_t)lim->max) {
+            return CO_ERR_VALUE_HIGH;
+        }
+    } else {
+        /* REAL limits are not checked by the core (use a hook). */
+    }
+    return CO_OK;
+}
+#endif
+
 static co_err_t check_limits(const co_node_t *node, const co_od_sub_t *s, const uint8_t *data,
                              uint32_t len)
 {
     if (s->type == (uint8_t)CO_BOOLEAN) {
         return (data[0] > 1U) ? CO_ERR_VALUE : CO_OK;
     }
-    if (((s->flags & CO_SUB_LIMIT) == 0U) || (node->dev->limits == NULL) || (len > 8U)) {
-        return CO_OK;
+#if CO_LIMITS
+    if (((s->flags & CO_SUB_LIMIT) != 0U) && (node->dev->limits != NULL) && (len <= 8U)) {
+        return check_range(&node->dev->limits[s->limit], s->type, data, (uint8_t)len);
     }
-    {
-        const co_od_limit_t *lim = &node->dev->limits[s->limit];
-        uint8_t n = (uint8_t)len;
-        uint64_t raw = load_uint(data, n);
-        if (co_type_is_signed(s->type)) {
-            int64_t v;
-            if ((n < 8U) && ((raw >> ((8U * n) - 1U)) != 0U)) {
-                raw |= ~((UINT64_C(1) << (8U * n)) - 1U); /* sign-extend */
-            }
-            v = (int64_t)raw;
-            if (v < lim->min) {
-                return CO_ERR_VALUE_LOW;
-            }
-            if (v > lim->max) {
-                return CO_ERR_VALUE_HIGH;
-            }
-        } else if ((s->type != (uint8_t)CO_REAL32) && (s->type != (uint8_t)CO_REAL64)) {
-            if (raw < (uint64_t)lim->min) {
-                return CO_ERR_VALUE_LOW;
-            }
-            if (raw > (uint64_t)lim->max) {
-                return CO_ERR_VALUE_HIGH;
-            }
-        } else {
-            /* REAL limits are not checked by the core (use a hook). */
-        }
-    }
+#else
+    (void)node;
+    (void)len;
+#endif
     return CO_OK;
 }
 
@@ -300,7 +287,7 @@ co_err_t co_od_write_value(co_node_t *node, const co_od_entry_t *e, const co_od_
     co_od_io_t io;
     co_err_t err;
     uint8_t *v = (uint8_t *)co_od_loc(node, s);
-    uint8_t fixed = co_type_size(s->type);
+    uint8_t fixed = co_type_len(s->type);
 
     if (fixed != 0U) {
         if (len != fixed) {
@@ -340,7 +327,7 @@ co_err_t co_od_write_value(co_node_t *node, const co_od_entry_t *e, const co_od_
     }
     if ((v != NULL) && ((s->flags & CO_SUB_ROM) == 0U)) {
         if (fixed != 0U) {
-            from_wire(v, data, fixed);
+            co_from_wire(v, data, fixed);
         } else {
             (void)memcpy(v, data, len);
             if (len < s->size) {
@@ -418,7 +405,7 @@ void co_od_restore(co_node_t *node, uint16_t from, uint16_t to)
             const co_od_sub_t *s = &e->subs[k];
             if (((s->flags & (CO_SUB_NODEID | CO_SUB_ROM | CO_SUB_HOOKIO)) == CO_SUB_NODEID) &&
                 (s->off >= from) && (s->off < to)) {
-                uint8_t n = co_type_size(s->type);
+                uint8_t n = co_type_len(s->type);
                 uint8_t *p = &node->ram[s->off];
                 /* 16/32-bit values are native integers in RAM */
                 if (n == 1U) {
@@ -448,16 +435,18 @@ co_err_t co_od_read(co_node_t *node, uint16_t index, uint8_t sub, void *buf, uin
 {
     const co_od_entry_t *e;
     const co_od_sub_t *s;
-    uint32_t total = 0U;
-    bool last = false;
+    co_od_chunk_t c = {(uint8_t *)buf, 0U, cap, 0U, 0U, false};
     co_err_t err = co_od_lookup(node, index, sub, &e, &s);
 
     if (err != CO_OK) {
         return err;
     }
-    err = co_od_read_part(node, e, s, 0U, (uint8_t *)buf, cap, len, &total, &last);
-    if ((err == CO_OK) && !last) {
-        err = CO_ERR_TYPE_TOO_LONG; /* the caller's buffer is too small */
+    err = co_od_read_part(node, e, s, &c);
+    if (err == CO_OK) {
+        *len = c.len;
+        if (!c.last) {
+            err = CO_ERR_TYPE_TOO_LONG; /* the caller's buffer is too small */
+        }
     }
     return err;
 }

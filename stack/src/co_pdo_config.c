@@ -45,14 +45,6 @@ static bool is_tpdo(const co_node_t *node, uint16_t i)
     return i >= node->dev->n_rpdo;
 }
 
-uint32_t co_pdo_event_us(const co_node_t *node, uint16_t i)
-{
-    uint16_t off = node->dev->pdo[i].event;
-    uint32_t unit = ((node->dev->options & CO_OPT_EVENT_TIMER_100US) != 0U) ? 100UL : 1000UL;
-
-    return (off == CO_PDO_NONE) ? 0U : ((uint32_t)co_ram_u16(node, off) * unit);
-}
-
 /* CiA 301 7.3.5: identifiers no PDO may use. */
 static bool restricted_cob(uint32_t id)
 {
@@ -61,34 +53,37 @@ static bool restricted_cob(uint32_t id)
            ((id >= 0x6E0U) && (id <= 0x6FFU)) || (id >= 0x701U);
 }
 
-/* One mapping entry (index:16 sub:8 bits:8). *bits gets its length. */
-static co_err_t check_entry(const co_node_t *node, bool tx, uint32_t v, uint8_t *bits)
+/* One mapping entry (index:16 sub:8 bits:8). *bits gets its length, *obj
+ * the mapped sub-entry (NULL for a dummy entry) and *e its entry. */
+static co_err_t check_entry(const co_node_t *node, bool tx, uint32_t v, uint8_t *bits,
+                            const co_od_entry_t **e, const co_od_sub_t **obj)
 {
     uint16_t index = (uint16_t)(v >> 16U);
     uint8_t sub = (uint8_t)((v >> 8U) & 0xFFU);
-    const co_od_entry_t *e;
-    const co_od_sub_t *s;
     uint8_t size;
 
     *bits = (uint8_t)(v & 0xFFU);
+    *obj = NULL;
     if ((index >= 0x0001U) && (index <= 0x0007U) && (sub == 0U)) {
         /* dummy entry: a gap in an RPDO (types BOOLEAN .. UNSIGNED32) */
         if (tx) {
             return CO_ERR_NO_MAP;
         }
-        size = co_type_size((uint8_t)index);
+        size = co_type_len((uint8_t)index);
     } else {
-        co_err_t err = co_od_lookup(node, index, sub, &e, &s);
+        const co_od_sub_t *s;
+        co_err_t err = co_od_lookup(node, index, sub, e, &s);
         if (err == CO_ERR_NO_SUB) {
             return CO_ERR_NO_MAP;
         }
         if (err != CO_OK) {
             return CO_ERR_NO_OBJECT;
         }
-        size = co_type_size(s->type);
+        size = co_type_len(s->type);
         if ((size == 0U) || ((s->flags & (tx ? CO_SUB_MAP_T : CO_SUB_MAP_R)) == 0U)) {
             return CO_ERR_NO_MAP;
         }
+        *obj = s;
     }
     /* bit granularity: any length up to the object's size (the low bits) */
     if ((*bits == 0U) || (*bits > (uint8_t)(size * 8U))) {
@@ -97,26 +92,61 @@ static co_err_t check_entry(const co_node_t *node, bool tx, uint32_t v, uint8_t 
     return CO_OK;
 }
 
-/* Validate the first @p count entries of PDO i's mapping; *len gets bytes. */
-static co_err_t check_mapping(const co_node_t *node, uint16_t i, uint8_t count, uint8_t *len)
+#if CO_PDO_FAST_MAX > 0
+/* A mapped object the PDO engine may copy directly between the RAM image
+ * and the frame, with the same result as the dictionary's path: no hook, no
+ * limits, none of the core's rules (index 0x2000 and above), a RAM value of
+ * its type's size, mapped whole. An RPDO does not copy a BOOLEAN directly
+ * (the dictionary refuses values above 1). */
+static bool is_plain(const co_od_entry_t *e, const co_od_sub_t *s, bool tx, uint8_t bits)
+{
+    uint8_t size = co_type_len(s->type);
+
+    return (e->index >= 0x2000U) && (e->hook == 0U) &&
+           ((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO | CO_SUB_LIMIT)) == 0U) &&
+           (s->size == size) && (bits == (uint8_t)(size * 8U)) &&
+           (tx || (s->type != (uint8_t)CO_BOOLEAN));
+}
+#endif
+
+/* Validate the first @p count entries of PDO i's mapping; *len gets bytes.
+ * With @p p, also note where the entries are if all of them (at most
+ * CO_PDO_FAST_MAX) are plain values at byte boundaries (p->plain,
+ * CO_PDO_F_PLAIN). */
+static co_err_t check_mapping(const co_node_t *node, uint16_t i, uint8_t count, uint8_t *len,
+                              co_pdo_t *p)
 {
     const co_pdo_desc_t *d = &node->dev->pdo[i];
+    bool tx = is_tpdo(node, i);
     uint16_t total = 0U;
+    uint8_t plain = 0U;
 
     if (count > d->map_max) {
         return CO_ERR_MAP_LEN;
     }
     for (uint8_t k = 0U; k < count; k++) {
         uint8_t bits;
-        co_err_t err = check_entry(node, is_tpdo(node, i),
-                                   co_ram_u32(node, (uint16_t)(d->map + (4U * k))), &bits);
+        const co_od_entry_t *e = NULL;
+        const co_od_sub_t *s;
+        co_err_t err = check_entry(node, tx, co_ram_u32(node, (uint16_t)(d->map + (4U * k))),
+                                   &bits, &e, &s);
         if (err != CO_OK) {
             return err;
         }
+#if CO_PDO_FAST_MAX > 0
+        if ((p != NULL) && (k < CO_PDO_FAST_MAX) && (s != NULL) && ((total & 7U) == 0U) &&
+            is_plain(e, s, tx, bits)) {
+            p->plain[k] = s->off;
+            plain++;
+        }
+#endif
         total = (uint16_t)(total + bits);
     }
     if (total > 64U) {
         return CO_ERR_MAP_LEN;
+    }
+    if ((p != NULL) && (plain == count)) {
+        p->flags |= CO_PDO_F_PLAIN;
     }
     *len = (uint8_t)((total + 7U) / 8U);
     return CO_OK;
@@ -129,7 +159,7 @@ static bool mapping_locked(const co_node_t *node, uint16_t i)
     if ((co_pdo_cob(node, i) & CO_PDO_COB_INVALID) != 0U) {
         return false;
     }
-    return ((node->dev->options & CO_OPT_PDO_MAP_WHILE_VALID) == 0U) ||
+    return !co_opt(node, CO_OPT_PDO_MAP_WHILE_VALID) ||
            (node->nmt == (uint8_t)CO_NMT_OPERATIONAL);
 }
 
@@ -148,7 +178,7 @@ static co_err_t check_map_write(const co_node_t *node, uint16_t i, uint8_t sub,
         if (data[0] == 0U) {
             return CO_OK;
         }
-        return check_mapping(node, i, data[0], &len);
+        return check_mapping(node, i, data[0], &len, NULL);
     }
     if (co_ram_u8(node, d->count) != 0U) {
         return CO_ERR_NO_ACCESS; /* entries are fixed while the mapping is enabled */
@@ -156,7 +186,9 @@ static co_err_t check_map_write(const co_node_t *node, uint16_t i, uint8_t sub,
     {
         uint32_t v = co_get_u32(data);
         uint8_t bits;
-        return (v == 0U) ? CO_OK : check_entry(node, is_tpdo(node, i), v, &bits);
+        const co_od_entry_t *e;
+        const co_od_sub_t *s;
+        return (v == 0U) ? CO_OK : check_entry(node, is_tpdo(node, i), v, &bits, &e, &s);
     }
 }
 
@@ -225,9 +257,9 @@ static void compile_mapping(co_node_t *node, uint16_t i)
     uint8_t count = co_ram_u8(node, node->dev->pdo[i].count);
     uint8_t len = 0U;
 
-    p->flags &= (uint16_t)~CO_PDO_F_MAP_OK;
+    p->flags &= (uint16_t)~(CO_PDO_F_MAP_OK | CO_PDO_F_PLAIN);
     p->len = 0U;
-    if ((count != 0U) && (check_mapping(node, i, count, &len) == CO_OK)) {
+    if ((count != 0U) && (check_mapping(node, i, count, &len, p) == CO_OK)) {
         p->flags |= CO_PDO_F_MAP_OK;
         p->len = len;
     }
@@ -238,9 +270,9 @@ static void restart(co_node_t *node, uint16_t i)
 {
     co_pdo_t *p = &node->pdo[i];
 
-    p->flags &= (uint16_t)(CO_PDO_F_MAP_OK | CO_PDO_F_TIMEOUT | CO_PDO_F_SHORT | CO_PDO_F_LONG);
+    p->flags &= (uint16_t)(CO_PDO_F_MAP_OK | CO_PDO_F_PLAIN | CO_PDO_F_TIMEOUT | CO_PDO_F_SHORT |
+                           CO_PDO_F_LONG);
     p->count = 0U;
-    p->dlc = 0U;
 }
 
 void co_pdo_written(co_node_t *node, uint16_t index, uint8_t sub)
@@ -295,6 +327,7 @@ void co_pdo_rx_rebuild(co_node_t *node)
 {
     uint16_t n = (uint16_t)(node->dev->n_rpdo + node->dev->n_tpdo);
     uint16_t used = 0U;
+    uint16_t fc = 0U;
 
     if (node->pdo_rx == NULL) {
         return;
@@ -315,51 +348,10 @@ void co_pdo_rx_rebuild(co_node_t *node)
         node->pdo_rx[at].pdo = i;
         used++;
         node->rx_filter[(id & 0x7FU) >> 3U] |= (uint8_t)(1U << (id & 7U));
+        fc |= (uint16_t)(1U << (id >> 7U));
     }
+    node->pdo_fc = fc;
     node->n_pdo_rx = used;
-}
-
-const co_pdo_slot_t *co_pdo_rx_find(const co_node_t *node, uint16_t cob)
-{
-    uint16_t lo = 0U;
-    uint16_t hi = node->n_pdo_rx;
-
-    while (lo < hi) {
-        uint16_t mid = (uint16_t)((lo + hi) >> 1U);
-        uint16_t at = node->pdo_rx[mid].cob;
-        if (at == cob) {
-            return &node->pdo_rx[mid];
-        }
-        if (at < cob) {
-            lo = (uint16_t)(mid + 1U);
-        } else {
-            hi = mid;
-        }
-    }
-    return NULL;
-}
-
-void co_bits_put(uint8_t *dst, uint16_t dpos, const uint8_t *src, uint8_t n)
-{
-    for (uint8_t b = 0U; b < n; b++) {
-        uint16_t at = (uint16_t)(dpos + b);
-        uint8_t mask = (uint8_t)(1U << (at & 7U));
-        if ((src[b >> 3U] & (1U << (b & 7U))) != 0U) {
-            dst[at >> 3U] |= mask;
-        } else {
-            dst[at >> 3U] &= (uint8_t)~mask;
-        }
-    }
-}
-
-void co_bits_get(uint8_t *dst, const uint8_t *src, uint16_t spos, uint8_t n)
-{
-    for (uint8_t b = 0U; b < n; b++) {
-        uint16_t at = (uint16_t)(spos + b);
-        if ((src[at >> 3U] & (1U << (at & 7U))) != 0U) {
-            dst[b >> 3U] |= (uint8_t)(1U << (b & 7U));
-        }
-    }
 }
 
 co_err_t co_tpdo_request(co_node_t *node, uint16_t n)

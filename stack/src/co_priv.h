@@ -8,7 +8,26 @@
 #include <stdint.h>
 #include <string.h>
 
+#include "co/co_endian.h"
 #include "co/co_node.h"
+
+/* Small helpers of the per-frame paths: inlined even at -Os, where the
+ * compiler would otherwise call them (a call costs more than their body). */
+#ifndef CO_INLINE
+#if defined(__GNUC__)
+#define CO_INLINE static inline __attribute__((always_inline))
+#else
+#define CO_INLINE static inline
+#endif
+#endif
+/* Rare paths kept out of the per-frame functions they would otherwise be
+ * inlined into (their stack frame and saved registers would be paid on
+ * every frame). */
+#if defined(__GNUC__)
+#define CO_NOINLINE __attribute__((noinline))
+#else
+#define CO_NOINLINE
+#endif
 
 /* Receive-slot kinds (co_rx_slot_t.kind), in dispatch order of likelihood. */
 enum {
@@ -19,6 +38,13 @@ enum {
     CO_RX_SYNC,
     CO_RX_TIME
 };
+
+/* A personality option of the node's device; options this build leaves out
+ * (CO_OPTIONS) are constant false, so their code is not built. */
+static inline bool co_opt(const co_node_t *node, uint32_t opt)
+{
+    return (node->dev->options & (opt & (uint32_t)CO_OPTIONS)) != 0U;
+}
 
 /* Wrap-safe "a is at or after b". */
 static inline bool co_time_reached(uint32_t now, uint32_t when)
@@ -55,26 +81,124 @@ static inline uint8_t co_ram_u8(const co_node_t *node, uint16_t off)
     return node->ram[off];
 }
 
+/* The CPU stores integers little-endian, like the wire (the compiler says
+ * so; without that knowledge the portable conversion is used). */
+#if defined(__BYTE_ORDER__) && defined(__ORDER_LITTLE_ENDIAN__)
+#if __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+#define CO_NATIVE_LE true
+#endif
+#endif
+#ifndef CO_NATIVE_LE
+#define CO_NATIVE_LE false
+#endif
+
+/* Values of 16, 32 and 64 bits live in RAM/ROM as native integers (so the
+ * application and the core use them as plain variables); every other type is
+ * stored as its wire bytes. These two convert @p n bytes at the dictionary
+ * boundary, so the wire image is little-endian on any CPU (on a
+ * little-endian CPU both are copies). */
+static inline void co_to_wire(uint8_t *dst, const uint8_t *src, uint8_t n)
+{
+    if ((n == 4U) && CO_NATIVE_LE) {
+        (void)memcpy(dst, src, 4U);
+    } else if (n == 4U) {
+        uint32_t v;
+        (void)memcpy(&v, src, 4U);
+        co_put_u32(dst, v);
+    } else if ((n == 2U) && !CO_NATIVE_LE) {
+        uint16_t v;
+        (void)memcpy(&v, src, 2U);
+        co_put_u16(dst, v);
+    } else if ((n == 8U) && !CO_NATIVE_LE) {
+        uint64_t v;
+        (void)memcpy(&v, src, 8U);
+        co_put_u64(dst, v);
+    } else {
+        (void)memcpy(dst, src, n);
+    }
+}
+
+static inline void co_from_wire(uint8_t *dst, const uint8_t *src, uint8_t n)
+{
+    if ((n == 4U) && CO_NATIVE_LE) {
+        (void)memcpy(dst, src, 4U);
+    } else if (n == 4U) {
+        uint32_t v = co_get_u32(src);
+        (void)memcpy(dst, &v, 4U);
+    } else if ((n == 2U) && !CO_NATIVE_LE) {
+        uint16_t v = co_get_u16(src);
+        (void)memcpy(dst, &v, 2U);
+    } else if ((n == 8U) && !CO_NATIVE_LE) {
+        uint64_t v = co_get_u64(src);
+        (void)memcpy(dst, &v, 8U);
+    } else {
+        (void)memcpy(dst, src, n);
+    }
+}
+
 /* ---- transmit (co_node.c) */
+/* Send @p f now or not at all: false while frames are held back or the HAL
+ * refuses it. */
+static inline bool co_tx_now(co_node_t *node, const co_frame_t *f)
+{
+    return (node->txq_len == 0U) && (node->hal.ops->send(node->hal.ctx, f) == 0);
+}
+/* Send @p f, or hold it back while the TX path is full (CO_TXQ_LEN). */
+void co_tx_frame(co_node_t *node, const co_frame_t *f);
 void co_tx(co_node_t *node, uint32_t id, const uint8_t *data, uint8_t len);
 /* Send now or not at all (nothing held back): for streams that resume later. */
 bool co_tx_try(co_node_t *node, uint32_t id, const uint8_t *data, uint8_t len);
 void co_rx_rebuild(co_node_t *node);
+void co_rx_dispatch(co_node_t *node, const co_frame_t *f, uint16_t cob, uint32_t now_us);
 
 /* ---- object dictionary internals (co_od.c) */
+#define CO_TYPE_SIZES 0x1CU
+extern const uint8_t co_type_sizes[CO_TYPE_SIZES];
+
+/* Size in bytes of a fixed-size type, 0 for strings and DOMAIN. */
+static inline uint8_t co_type_len(uint8_t type)
+{
+    return (type < CO_TYPE_SIZES) ? co_type_sizes[type] : 0U;
+}
+
+/* Strings and DOMAINs: values of variable length, read and written in parts. */
+static inline bool co_od_is_streamed(const co_od_sub_t *s)
+{
+    return co_type_len(s->type) == 0U;
+}
+
+/* Where the value of @p s lives: RAM image, ROM image, or NULL (HOOKIO). */
+CO_INLINE void *co_od_loc(const co_node_t *node, const co_od_sub_t *s)
+{
+    if ((s->flags & CO_SUB_HOOKIO) != 0U) {
+        return NULL;
+    }
+    if ((s->flags & CO_SUB_ROM) != 0U) {
+        /* ROM values are only ever read through this pointer. */
+        return (void *)(uintptr_t)&node->dev->rom[s->off];
+    }
+    return &node->ram[s->off];
+}
+
 co_err_t co_od_lookup(const co_node_t *node, uint16_t index, uint8_t sub,
                       const co_od_entry_t **e, const co_od_sub_t **s);
-void *co_od_loc(const co_node_t *node, const co_od_sub_t *s);
 co_err_t co_od_check_access(const co_node_t *node, const co_od_sub_t *s, bool write);
 /* Current size of the value (strings: up to the first NUL); 0 for HOOKIO. */
 uint32_t co_od_data_size(const co_node_t *node, const co_od_sub_t *s);
-bool co_od_is_streamed(const co_od_sub_t *s);
 bool co_type_is_signed(uint8_t type);
-/* Read a chunk; at offset 0 the read hook runs first. *total gets the total
- * size (0 if a hook does not know it); *last is set on the final chunk. */
+/* One chunk of a value being read: the caller sets buf, offset and cap;
+ * co_od_read_part sets len, total (0 if a hook does not know it) and last. */
+typedef struct co_od_chunk {
+    uint8_t *buf;
+    uint32_t offset;
+    uint32_t cap;
+    uint32_t len;
+    uint32_t total;
+    bool last;
+} co_od_chunk_t;
+/* Read a chunk; at offset 0 the read hook runs first. */
 co_err_t co_od_read_part(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
-                         uint32_t offset, uint8_t *buf, uint32_t cap, uint32_t *len,
-                         uint32_t *total, bool *last);
+                         co_od_chunk_t *c);
 /* Write a complete value (checks, hook, commit, notification). */
 co_err_t co_od_write_value(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
                            const uint8_t *data, uint32_t len);
@@ -86,11 +210,32 @@ co_err_t co_od_write_part(co_node_t *node, const co_od_entry_t *e, const co_od_s
 void co_od_restore(co_node_t *node, uint16_t from, uint16_t to);
 
 /* ---- communication objects owned by the core (co_comm.c) */
-co_err_t co_comm_check_read(const co_node_t *node, uint16_t index, uint8_t sub);
+/* 0x1003: entries beyond the number of recorded errors hold no data. */
+static inline co_err_t co_comm_check_read(const co_node_t *node, uint16_t index, uint8_t sub)
+{
+    if ((index == 0x1003U) && (sub > 0U) && (node->hist_count != NULL) &&
+        (sub > *node->hist_count)) {
+        return CO_ERR_NO_DATA;
+    }
+    return CO_OK;
+}
 co_err_t co_comm_check_write(const co_node_t *node, uint16_t index, uint8_t sub,
                              const uint8_t *data, uint32_t len);
 void co_comm_written(co_node_t *node, uint16_t index, uint8_t sub);
-void co_comm_bind(co_node_t *node);
+/* Find where the core's objects live; CO_ERR_DEV_INCOMPAT for a device that
+ * needs a service this build leaves out (co_config.h). */
+co_err_t co_comm_bind(co_node_t *node);
+
+/* 0x1012 COB-ID TIME; NULL without it, and always without CO_TIME. */
+static inline const uint32_t *co_time_cob(const co_node_t *node)
+{
+#if CO_TIME
+    return node->time_cob;
+#else
+    (void)node;
+    return NULL;
+#endif
+}
 
 /* ---- services */
 void co_nmt_rx(co_node_t *node, const co_frame_t *f);
@@ -126,39 +271,63 @@ void co_emcy_history_clear(co_node_t *node);
 #define CO_PDO_F_STARTED   0x0400U /* TPDO: SYNC start value reached */
 #define CO_PDO_F_SAMPLED   0x0800U /* TPDO 252: data[] sampled at the last SYNC */
 #define CO_PDO_F_RTR       0x1000U /* TPDO: a remote request waits for an answer */
+#define CO_PDO_F_PLAIN     0x2000U /* every mapping entry is plain (co_pdo_plain) */
 
 #define CO_PDO_COB_INVALID 0x80000000UL
 #define CO_PDO_COB_NO_RTR  0x40000000UL
 
-static inline uint32_t co_pdo_cob(const co_node_t *node, uint16_t i)
+CO_INLINE uint32_t co_pdo_cob(const co_node_t *node, uint16_t i)
 {
     return co_ram_u32(node, node->dev->pdo[i].cob);
 }
 
-static inline uint8_t co_pdo_type(const co_node_t *node, uint16_t i)
+CO_INLINE uint8_t co_pdo_type(const co_node_t *node, uint16_t i)
 {
     return co_ram_u8(node, node->dev->pdo[i].type);
 }
 
 /* Valid COB-ID and an enabled, valid mapping. */
-static inline bool co_pdo_usable(const co_node_t *node, uint16_t i)
+CO_INLINE bool co_pdo_usable(const co_node_t *node, uint16_t i)
 {
     return ((co_pdo_cob(node, i) & CO_PDO_COB_INVALID) == 0U) &&
            ((node->pdo[i].flags & CO_PDO_F_MAP_OK) != 0U);
 }
 
+/* RAM offset of the value of mapping entry k of PDO p, which is plain
+ * (CO_PDO_F_PLAIN; co_pdo_config.c decides). */
+static inline uint16_t co_pdo_plain(const co_pdo_t *p, uint8_t k)
+{
+#if CO_PDO_FAST_MAX > 0
+    if (k < CO_PDO_FAST_MAX) {
+        return p->plain[k];
+    }
+#else
+    (void)p;
+    (void)k;
+#endif
+    return 0U; /* not reached: no PDO is plain beyond CO_PDO_FAST_MAX entries */
+}
+
 /* Event timer of PDO i in us (0: off). */
-uint32_t co_pdo_event_us(const co_node_t *node, uint16_t i);
+static inline uint32_t co_pdo_event_us(const co_node_t *node, uint16_t i)
+{
+    uint16_t off = node->dev->pdo[i].event;
+    uint32_t unit = ((node->dev->options & CO_OPT_EVENT_TIMER_100US) != 0U) ? 100UL : 1000UL;
+
+    return (off == CO_PDO_NONE) ? 0U : ((uint32_t)co_ram_u16(node, off) * unit);
+}
 co_err_t co_pdo_check_write(const co_node_t *node, uint16_t index, uint8_t sub,
                             const uint8_t *data, uint32_t len);
 void co_pdo_written(co_node_t *node, uint16_t index, uint8_t sub);
 void co_pdo_reset(co_node_t *node);
 void co_pdo_rx_rebuild(co_node_t *node);
-const co_pdo_slot_t *co_pdo_rx_find(const co_node_t *node, uint16_t cob);
 void co_pdo_nmt(co_node_t *node, co_nmt_state_t st);
-/* Bit copies between little-endian bit strings. */
-void co_bits_put(uint8_t *dst, uint16_t dpos, const uint8_t *src, uint8_t n);
-void co_bits_get(uint8_t *dst, const uint8_t *src, uint16_t spos, uint8_t n);
+/* The mapped objects of PDO i through the dictionary (co_pdo_map.c): sample
+ * them into @p out (8 bytes, zeroed by the caller; an object that cannot be
+ * read is sent as zeros), or write them from @p data (@p dlc bytes; entries
+ * the frame does not cover are skipped, a refused value is dropped). */
+void co_pdo_sample(co_node_t *node, uint16_t i, uint8_t *out);
+void co_pdo_store(co_node_t *node, uint16_t i, const uint8_t *data, uint8_t dlc);
 void co_rpdo_rx(co_node_t *node, uint16_t i, const co_frame_t *f);
 void co_rpdo_sync(co_node_t *node);
 uint32_t co_rpdo_process(co_node_t *node, uint32_t next);

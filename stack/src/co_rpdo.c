@@ -34,53 +34,56 @@ static void rpdo_error(co_node_t *node, uint16_t i, uint16_t flag, uint16_t code
     }
 }
 
-/* Part of an object, or not byte-aligned: the low @p bits of a value of
- * @p size bytes, extended by the sign for signed types. */
-static void unpack(uint8_t *out, const uint8_t *data, uint16_t pos, uint8_t bits, bool sign,
-                   uint8_t size)
+/* Every entry of PDO p is a plain value (CO_PDO_F_PLAIN): copy them from
+ * @p data (@p dlc bytes) into the RAM image, those the frame covers. */
+static void apply_plain(co_node_t *node, const co_pdo_t *p, uint16_t map, uint8_t count,
+                        const uint8_t *data, uint8_t dlc)
 {
-    co_bits_get(out, data, pos, bits);
-    if (sign && ((out[(bits - 1U) >> 3U] & (1U << ((bits - 1U) & 7U))) != 0U)) {
-        for (uint8_t b = bits; b < (uint8_t)(size * 8U); b++) {
-            out[b >> 3U] |= (uint8_t)(1U << (b & 7U));
+    uint8_t at = 0U;
+    uint16_t entry = map;
+
+    for (uint8_t k = 0U; k < count; k++) {
+        uint8_t n = (uint8_t)((co_ram_u32(node, entry) & 0xFFU) >> 3U);
+        if ((uint8_t)(at + n) > dlc) {
+            break;
         }
+        co_from_wire(&node->ram[co_pdo_plain(p, k)], &data[at], n);
+        at = (uint8_t)(at + n);
+        entry = (uint16_t)(entry + 4U);
     }
 }
 
-/* Write the mapped objects from @p data (@p dlc bytes): entries the frame
- * does not cover completely are skipped (only with CO_OPT_RPDO_SHORT_OK can
- * that happen). A value an object refuses (limits, a hook's veto) is
- * dropped; the other entries still take effect. */
+/* Write the mapped objects from @p data (@p dlc bytes). */
 static void apply(co_node_t *node, uint16_t i, const uint8_t *data, uint8_t dlc)
 {
     const co_pdo_desc_t *d = &node->dev->pdo[i];
-    uint8_t count = co_ram_u8(node, d->count);
-    uint16_t avail = (uint16_t)((dlc > 8U) ? 64U : (dlc * 8U));
-    uint16_t pos = 0U;
+    const co_pdo_t *p = &node->pdo[i];
 
-    for (uint8_t k = 0U; k < count; k++) {
-        uint32_t v = co_ram_u32(node, (uint16_t)(d->map + (4U * k)));
-        uint16_t index = (uint16_t)(v >> 16U);
-        uint8_t bits = (uint8_t)(v & 0xFFU);
-        const co_od_entry_t *e;
-        const co_od_sub_t *s;
-
-        if ((uint16_t)(pos + bits) > avail) {
-            break;
-        }
-        if ((index > 0x0007U) &&
-            (co_od_lookup(node, index, (uint8_t)((v >> 8U) & 0xFFU), &e, &s) == CO_OK)) {
-            uint8_t size = co_type_size(s->type);
-            if (((pos & 7U) == 0U) && (bits == (uint8_t)(size * 8U))) {
-                (void)co_od_write_value(node, e, s, &data[pos >> 3U], size);
-            } else {
-                uint8_t tmp[8] = {0};
-                unpack(tmp, data, pos, bits, co_type_is_signed(s->type), size);
-                (void)co_od_write_value(node, e, s, tmp, size);
-            }
-        }
-        pos = (uint16_t)(pos + bits);
+    if ((p->flags & CO_PDO_F_PLAIN) != 0U) {
+        apply_plain(node, p, d->map, co_ram_u8(node, d->count), data, (dlc > 8U) ? 8U : dlc);
+    } else {
+        co_pdo_store(node, i, data, dlc);
     }
+}
+
+/* The length checks of a received RPDO with their EMCYs (CiA 301): false
+ * when the frame is not processed. */
+static bool length_ok(co_node_t *node, uint16_t i, uint8_t dlc)
+{
+    uint8_t len = node->pdo[i].len;
+
+    if (dlc < len) {
+        if (!co_opt(node, CO_OPT_RPDO_SHORT_OK)) {
+            rpdo_error(node, i, CO_PDO_F_SHORT, CO_EMCY_PDO_SHORT, true);
+            return false; /* CiA 301: not processed */
+        }
+    } else {
+        rpdo_error(node, i, CO_PDO_F_SHORT, CO_EMCY_PDO_SHORT, false);
+    }
+    /* longer than mapped: processed (the first bytes), and reported */
+    rpdo_error(node, i, CO_PDO_F_LONG, CO_EMCY_PDO_LONG, dlc > len);
+    rpdo_error(node, i, CO_PDO_F_TIMEOUT, CO_EMCY_RPDO_TIMEOUT, false);
+    return true;
 }
 
 void co_rpdo_rx(co_node_t *node, uint16_t i, const co_frame_t *f)
@@ -92,28 +95,24 @@ void co_rpdo_rx(co_node_t *node, uint16_t i, const co_frame_t *f)
         !co_pdo_usable(node, i)) {
         return;
     }
-    if (f->dlc < p->len) {
-        if ((node->dev->options & CO_OPT_RPDO_SHORT_OK) == 0U) {
-            rpdo_error(node, i, CO_PDO_F_SHORT, CO_EMCY_PDO_SHORT, true);
-            return; /* CiA 301: not processed */
-        }
-    } else {
-        rpdo_error(node, i, CO_PDO_F_SHORT, CO_EMCY_PDO_SHORT, false);
+    /* the usual case, the expected length and no error to end, costs one test */
+    if (((f->dlc != p->len) ||
+         ((p->flags & (CO_PDO_F_SHORT | CO_PDO_F_LONG | CO_PDO_F_TIMEOUT)) != 0U)) &&
+        !length_ok(node, i, f->dlc)) {
+        return;
     }
-    /* longer than mapped: processed (the first bytes), and reported */
-    rpdo_error(node, i, CO_PDO_F_LONG, CO_EMCY_PDO_LONG, f->dlc > p->len);
     ev = co_pdo_event_us(node, i);
     if (ev != 0U) {
         p->timer = node->now + ev;
         p->flags |= CO_PDO_F_TIMER;
     }
-    rpdo_error(node, i, CO_PDO_F_TIMEOUT, CO_EMCY_RPDO_TIMEOUT, false);
     if (co_pdo_type(node, i) <= 240U) {
         /* synchronous: takes effect at the next SYNC, if it came in time */
         if (co_sync_window_open(node)) {
             (void)memcpy(p->data, f->data, 8U);
-            p->dlc = f->dlc;
+            p->count = f->dlc; /* the buffered frame's length */
             p->flags |= CO_PDO_F_RXBUF;
+            node->rpdo_buffered = 1U;
         }
         return;
     }
@@ -122,14 +121,15 @@ void co_rpdo_rx(co_node_t *node, uint16_t i, const co_frame_t *f)
 
 void co_rpdo_sync(co_node_t *node)
 {
-    if (node->nmt != (uint8_t)CO_NMT_OPERATIONAL) {
+    if ((node->nmt != (uint8_t)CO_NMT_OPERATIONAL) || (node->rpdo_buffered == 0U)) {
         return;
     }
+    node->rpdo_buffered = 0U;
     for (uint16_t i = 0U; i < node->dev->n_rpdo; i++) {
         co_pdo_t *p = &node->pdo[i];
         if ((p->flags & CO_PDO_F_RXBUF) != 0U) {
             p->flags &= (uint16_t)~CO_PDO_F_RXBUF;
-            apply(node, i, p->data, p->dlc);
+            apply(node, i, p->data, p->count);
         }
     }
 }

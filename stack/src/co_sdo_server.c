@@ -40,7 +40,12 @@ static uint32_t tx_cob(const co_node_t *node)
 
 static void send8(co_node_t *node, const uint8_t *d)
 {
-    co_tx(node, tx_cob(node), d, 8U);
+    co_frame_t f;
+
+    f.id = tx_cob(node);
+    f.dlc = 8U;
+    (void)memcpy(f.data, d, 8U);
+    co_tx_frame(node, &f);
 }
 
 static void reply(co_node_t *node, uint8_t cmd, uint16_t index, uint8_t sub, uint32_t data)
@@ -138,7 +143,7 @@ static co_err_t open_download(co_node_t *node, uint16_t index, uint8_t sub, bool
         err = co_od_check_access(node, s, true);
     }
     if ((err == CO_OK) && size_ind) {
-        uint8_t fixed = co_type_size(s->type);
+        uint8_t fixed = co_type_len(s->type);
         if ((fixed != 0U) && (size != fixed)) {
             err = CO_ERR_TYPE_MISMATCH;
         } else if ((fixed == 0U) && ((s->flags & CO_SUB_HOOKIO) == 0U) && (size > s->size)) {
@@ -161,45 +166,66 @@ static co_err_t open_download(co_node_t *node, uint16_t index, uint8_t sub, bool
     return err;
 }
 
-/* Checks common to every upload initiate; stages the first chunk (which
- * also runs the read hook once). */
-static co_err_t open_upload(co_node_t *node, uint16_t index, uint8_t sub, bool *last)
+/* Checks common to every upload initiate; reads the first chunk into t->buf
+ * (which also runs the read hook once). */
+static co_err_t stage_upload(co_node_t *node, uint16_t index, uint8_t sub, co_od_chunk_t *c,
+                             const co_od_entry_t **e, const co_od_sub_t **s)
 {
-    co_sdo_srv_t *t = &node->sdo;
-    const co_od_entry_t *e;
-    const co_od_sub_t *s;
-    uint32_t got = 0U;
-    uint32_t total = 0U;
-    co_err_t err = co_od_lookup(node, index, sub, &e, &s);
+    co_err_t err = co_od_lookup(node, index, sub, e, s);
 
     if (err == CO_OK) {
-        err = co_od_check_access(node, s, false);
+        err = co_od_check_access(node, *s, false);
     }
     if (err == CO_OK) {
-        err = co_od_read_part(node, e, s, 0U, t->buf, SEG, &got, &total, last);
-    }
-    if (err == CO_OK) {
-        t->entry = e;
-        t->desc = s;
-        t->size = total;
-        t->flags = (uint8_t)(F_STAGED | ((total != 0U) || *last ? F_SIZE : 0U));
-        t->buf_len = (uint8_t)got;
-        t->offset = 0U;
-        t->toggle = 0U;
-        t->crc = 0U;
-        t->seqno = 0U;
-        if (*last) {
-            t->size = got;
-        }
+        c->buf = node->sdo.buf;
+        c->offset = 0U;
+        c->cap = SEG;
+        err = co_od_read_part(node, *e, *s, c);
     }
     return err;
+}
+
+/* The transfer state of an upload that goes on segmented or by block, its
+ * first chunk staged in t->buf. */
+static void open_upload(co_sdo_srv_t *t, const co_od_entry_t *e, const co_od_sub_t *s,
+                        const co_od_chunk_t *c)
+{
+    t->entry = e;
+    t->desc = s;
+    t->size = c->last ? c->len : c->total;
+    t->flags = (uint8_t)(F_STAGED | ((c->total != 0U) || c->last ? F_SIZE : 0U));
+    t->buf_len = (uint8_t)c->len;
+    t->offset = 0U;
+    t->toggle = 0U;
+    t->crc = 0U;
+    t->seqno = 0U;
+}
+
+/* The whole value is staged and fits an expedited answer (an empty one only
+ * with CO_OPT_SDO_EXPEDITED_ONLY). */
+static bool fits_expedited(const co_node_t *node, bool last, uint32_t size)
+{
+    return last && (size <= 4U) && ((size > 0U) || co_opt(node, CO_OPT_SDO_EXPEDITED_ONLY));
+}
+
+/* Expedited upload answer with the @p size bytes staged in t->buf. */
+static void send_expedited(co_node_t *node, uint16_t index, uint8_t sub, uint32_t size)
+{
+    uint8_t d[8] = {0};
+    uint32_t n = (size == 0U) ? 1U : size;
+
+    d[0] = (uint8_t)(0x43U | ((4U - n) << 2U));
+    co_put_u16(&d[1], index);
+    d[3] = sub;
+    (void)memcpy(&d[4], node->sdo.buf, size);
+    send8(node, d);
 }
 
 /* Read up to SEG bytes of the value at byte @p at into @p buf (SEG bytes). */
 static co_err_t read_seg(co_node_t *node, uint32_t at, uint8_t *buf, uint32_t *got, bool *last)
 {
     co_sdo_srv_t *t = &node->sdo;
-    uint32_t total = 0U;
+    co_od_chunk_t c = {buf, at, SEG, 0U, 0U, false};
     co_err_t err;
 
     if ((at == 0U) && ((t->flags & F_STAGED) != 0U)) {
@@ -211,7 +237,9 @@ static co_err_t read_seg(co_node_t *node, uint32_t at, uint8_t *buf, uint32_t *g
         *last = ((t->flags & F_SIZE) != 0U) && (*got >= t->size);
         return CO_OK;
     }
-    err = co_od_read_part(node, t->entry, t->desc, at, buf, SEG, got, &total, last);
+    err = co_od_read_part(node, t->entry, t->desc, &c);
+    *got = c.len;
+    *last = c.last;
     if ((err == CO_OK) && ((t->flags & F_SIZE) != 0U)) {
         if ((at + *got) > t->size) {
             /* never beyond the size announced (a hook reported a smaller total) */
@@ -225,7 +253,8 @@ static co_err_t read_seg(co_node_t *node, uint32_t at, uint8_t *buf, uint32_t *g
 
 /* ------------------------------------------------------------ initiate */
 
-static void initiate_download(co_node_t *node, const uint8_t *d, uint16_t index, uint8_t sub)
+CO_NOINLINE static void initiate_download(co_node_t *node, const uint8_t *d, uint16_t index,
+                                          uint8_t sub)
 {
     bool expedited = (d[0] & 0x02U) != 0U;
     bool size_ind = (d[0] & 0x01U) != 0U;
@@ -235,7 +264,7 @@ static void initiate_download(co_node_t *node, const uint8_t *d, uint16_t index,
         uint32_t len = size_ind ? (4U - ((uint32_t)(d[0] >> 2U) & 3U)) : 4U;
         err = open_download(node, index, sub, size_ind, len);
         if ((err == CO_OK) && !size_ind) {
-            uint8_t fixed = co_type_size(node->sdo.desc->type);
+            uint8_t fixed = co_type_len(node->sdo.desc->type);
             if ((fixed != 0U) && (fixed < 4U)) {
                 len = fixed; /* size not indicated: take what the object needs */
             }
@@ -251,7 +280,7 @@ static void initiate_download(co_node_t *node, const uint8_t *d, uint16_t index,
         reply(node, 0x60U, index, sub, 0U);
         return;
     }
-    if ((node->dev->options & CO_OPT_SDO_EXPEDITED_ONLY) != 0U) {
+    if (co_opt(node, CO_OPT_SDO_EXPEDITED_ONLY)) {
         abort_at(node, index, sub, CO_ERR_CMD);
         return;
     }
@@ -270,19 +299,13 @@ static void respond_upload(co_node_t *node, bool last)
     uint16_t index = t->entry->index;
     uint8_t sub = t->desc->sub;
 
-    if (last && (t->size <= 4U) && ((t->size > 0U) ||
-                                    ((node->dev->options & CO_OPT_SDO_EXPEDITED_ONLY) != 0U))) {
-        uint8_t d[8] = {0};
-        uint32_t n = (t->size == 0U) ? 1U : t->size;
-        d[0] = (uint8_t)(0x43U | ((4U - n) << 2U));
-        co_put_u16(&d[1], index);
-        d[3] = sub;
-        (void)memcpy(&d[4], t->buf, t->size);
+    if (fits_expedited(node, last, t->size)) {
+        uint32_t size = t->size;
         co_sdo_reset(node);
-        send8(node, d);
+        send_expedited(node, index, sub, size);
         return;
     }
-    if ((node->dev->options & CO_OPT_SDO_EXPEDITED_ONLY) != 0U) {
+    if (co_opt(node, CO_OPT_SDO_EXPEDITED_ONLY)) {
         abort_at(node, index, sub, CO_ERR_NO_ACCESS);
         return;
     }
@@ -290,16 +313,22 @@ static void respond_upload(co_node_t *node, bool last)
     reply(node, ((t->flags & F_SIZE) != 0U) ? 0x41U : 0x40U, index, sub, t->size);
 }
 
+/* Called in S_IDLE (no transfer open): an expedited answer leaves it so. */
 static void initiate_upload(co_node_t *node, uint16_t index, uint8_t sub)
 {
-    bool last = false;
-    co_err_t err = open_upload(node, index, sub, &last);
+    const co_od_entry_t *e;
+    const co_od_sub_t *s;
+    co_od_chunk_t c;
+    co_err_t err = stage_upload(node, index, sub, &c, &e, &s);
 
     if (err != CO_OK) {
         abort_at(node, index, sub, err);
-        return;
+    } else if (fits_expedited(node, c.last, c.len)) {
+        send_expedited(node, index, sub, c.len);
+    } else {
+        open_upload(&node->sdo, e, s, &c);
+        respond_upload(node, c.last);
     }
-    respond_upload(node, last);
 }
 
 /* ------------------------------------------------------------ segmented */
@@ -499,12 +528,15 @@ static void block_download_end(co_node_t *node, const uint8_t *d)
 
 /* ------------------------------------------------------------ block upload */
 
-static void block_upload_initiate(co_node_t *node, const uint8_t *d, uint16_t index, uint8_t sub)
+CO_NOINLINE static void block_upload_initiate(co_node_t *node, const uint8_t *d, uint16_t index,
+                                              uint8_t sub)
 {
     co_sdo_srv_t *t = &node->sdo;
     uint8_t blksize = d[4];
     uint8_t pst = d[5];
-    bool last = false;
+    const co_od_entry_t *e;
+    const co_od_sub_t *s;
+    co_od_chunk_t c;
     co_err_t err;
 
     if ((d[0] & 0x03U) != 0U) {
@@ -515,13 +547,14 @@ static void block_upload_initiate(co_node_t *node, const uint8_t *d, uint16_t in
         abort_at(node, index, sub, CO_ERR_BLKSIZE);
         return;
     }
-    err = open_upload(node, index, sub, &last);
+    err = stage_upload(node, index, sub, &c, &e, &s);
     if (err != CO_OK) {
         abort_at(node, index, sub, err);
         return;
     }
+    open_upload(t, e, s, &c);
     if ((pst != 0U) && ((t->flags & F_SIZE) != 0U) && (t->size <= pst)) {
-        respond_upload(node, last); /* protocol switch to segmented/expedited */
+        respond_upload(node, c.last); /* protocol switch to segmented/expedited */
         return;
     }
     t->blksize = blksize;
@@ -653,7 +686,7 @@ static void idle_request(co_node_t *node, const uint8_t *d)
     uint16_t index = co_get_u16(&d[1]);
     uint8_t sub = d[3];
     uint8_t ccs = (uint8_t)(d[0] >> 5U);
-    bool blocks = (node->dev->options & (CO_OPT_SDO_NO_BLOCK | CO_OPT_SDO_EXPEDITED_ONLY)) == 0U;
+    bool blocks = !co_opt(node, CO_OPT_SDO_NO_BLOCK | CO_OPT_SDO_EXPEDITED_ONLY);
 
     switch (ccs) {
     case 1U:
@@ -690,41 +723,27 @@ static void idle_request(co_node_t *node, const uint8_t *d)
     }
 }
 
-void co_sdo_rx(co_node_t *node, const co_frame_t *f)
+/* A frame whose DLC is not 8. CiA 301: SDO frames are 8 bytes; anything
+ * else is not a valid request. */
+static void bad_length(co_node_t *node, const co_frame_t *f)
+{
+    const uint8_t *d = f->data;
+
+    if (node->sdo.state == (uint8_t)S_IDLE) {
+        abort_at(node, (f->dlc >= 3U) ? co_get_u16(&d[1]) : 0U, (f->dlc >= 4U) ? d[3] : 0U,
+                 CO_ERR_CMD);
+    } else {
+        abort_cur(node, CO_ERR_CMD);
+    }
+}
+
+/* A request while a segmented or block transfer is open. */
+CO_NOINLINE static void transfer_request(co_node_t *node, const uint8_t *d)
 {
     co_sdo_srv_t *t = &node->sdo;
-    const uint8_t *d = f->data;
     uint8_t ccs = (uint8_t)(d[0] >> 5U);
 
-    if ((node->nmt == (uint8_t)CO_NMT_STOPPED) || co_frame_is_rtr(f)) {
-        return;
-    }
-    if (f->dlc != 8U) {
-        /* CiA 301: SDO frames are 8 bytes; anything else is not a valid request */
-        if (t->state == (uint8_t)S_IDLE) {
-            abort_at(node, (f->dlc >= 3U) ? co_get_u16(&d[1]) : 0U, (f->dlc >= 4U) ? d[3] : 0U,
-                     CO_ERR_CMD);
-        } else {
-            abort_cur(node, CO_ERR_CMD);
-        }
-        return;
-    }
-    if (t->state == (uint8_t)S_BLK_DL) {
-        if (d[0] == 0x80U) {
-            co_sdo_reset(node); /* abort from the client */
-        } else {
-            block_download_segment(node, d);
-        }
-        return;
-    }
-    if (ccs == 4U) {
-        co_sdo_reset(node); /* client abort: the transfer ends, no answer */
-        return;
-    }
     switch (t->state) {
-    case S_IDLE:
-        idle_request(node, d);
-        break;
     case S_DL_SEG:
         if (ccs == 0U) {
             download_segment(node, d);
@@ -769,6 +788,37 @@ void co_sdo_rx(co_node_t *node, const co_frame_t *f)
     default:
         co_sdo_reset(node);
         break;
+    }
+}
+
+void co_sdo_rx(co_node_t *node, const co_frame_t *f)
+{
+    co_sdo_srv_t *t = &node->sdo;
+    const uint8_t *d = f->data;
+
+    if ((node->nmt == (uint8_t)CO_NMT_STOPPED) || co_frame_is_rtr(f)) {
+        return;
+    }
+    if (f->dlc != 8U) {
+        bad_length(node, f);
+        return;
+    }
+    if (t->state == (uint8_t)S_BLK_DL) {
+        if (d[0] == 0x80U) {
+            co_sdo_reset(node); /* abort from the client */
+        } else {
+            block_download_segment(node, d);
+        }
+        return;
+    }
+    if ((d[0] >> 5U) == 4U) {
+        co_sdo_reset(node); /* client abort: the transfer ends, no answer */
+        return;
+    }
+    if (t->state == (uint8_t)S_IDLE) {
+        idle_request(node, d);
+    } else {
+        transfer_request(node, d);
     }
 }
 

@@ -49,9 +49,16 @@ typedef struct store_bank {
     uint8_t idx;    /* 0, 1 or NO_BANK */
 } store_bank_t;
 
+/* Without CO_STORAGE the node behaves as with a HAL without NV, and the
+ * code below that reads and writes sets is not built. */
 static bool has_nv(const co_node_t *node)
 {
+#if CO_STORAGE
     return (node->hal.ops->nv_read != NULL) && (node->hal.ops->nv_write != NULL);
+#else
+    (void)node;
+    return false;
+#endif
 }
 
 static uint32_t bank_size(const co_dev_t *dev)

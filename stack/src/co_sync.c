@@ -22,8 +22,13 @@ static uint8_t overflow(const co_node_t *node)
 
 static bool producing(const co_node_t *node)
 {
+#if CO_SYNC_PRODUCER
     return (node->sync_cob != NULL) && ((*node->sync_cob & COB_SYNC_GEN) != 0U) &&
            (node->sync_period != NULL) && (*node->sync_period != 0U);
+#else
+    (void)node;
+    return false;
+#endif
 }
 
 /* Everything a SYNC sets in motion, received or produced here. */
@@ -101,8 +106,10 @@ bool co_sync_window_open(const co_node_t *node)
 
 void co_time_rx(co_node_t *node, const co_frame_t *f)
 {
-    if (!sync_allowed(node) || co_frame_is_rtr(f) || (f->dlc < 6U) || (node->time_cob == NULL) ||
-        ((*node->time_cob & COB_TIME_CONS) == 0U)) {
+    const uint32_t *cob = co_time_cob(node);
+
+    if (!sync_allowed(node) || co_frame_is_rtr(f) || (f->dlc < 6U) || (cob == NULL) ||
+        ((*cob & COB_TIME_CONS) == 0U)) {
         return;
     }
     if (node->cb.time != NULL) {
@@ -113,9 +120,10 @@ void co_time_rx(co_node_t *node, const co_frame_t *f)
 
 co_err_t co_time_send(co_node_t *node, uint32_t ms, uint16_t days)
 {
+    const uint32_t *cob = co_time_cob(node);
     uint8_t d[6];
 
-    if ((node->time_cob == NULL) || ((*node->time_cob & COB_TIME_PROD) == 0U)) {
+    if ((cob == NULL) || ((*cob & COB_TIME_PROD) == 0U)) {
         return CO_ERR_NO_ACCESS;
     }
     if (!sync_allowed(node)) {
@@ -123,6 +131,6 @@ co_err_t co_time_send(co_node_t *node, uint32_t ms, uint16_t days)
     }
     co_put_u32(d, ms & 0x0FFFFFFFUL);
     co_put_u16(&d[4], days);
-    co_tx(node, *node->time_cob & 0x7FFUL, d, 6U);
+    co_tx(node, *cob & 0x7FFUL, d, 6U);
     return CO_OK;
 }

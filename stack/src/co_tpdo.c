@@ -13,43 +13,46 @@
 
 #define RETRY_US 1000UL /* TX path full: try again this much later */
 
+/* Every entry of PDO p is a plain value (CO_PDO_F_PLAIN): copy them from
+ * the RAM image into @p out, back to back. */
+static void build_plain(const co_node_t *node, const co_pdo_t *p, uint16_t map, uint8_t count,
+                        uint8_t *out)
+{
+    uint8_t at = 0U;
+    uint16_t entry = map;
+
+    for (uint8_t k = 0U; k < count; k++) {
+        uint8_t n = (uint8_t)((co_ram_u32(node, entry) & 0xFFU) >> 3U);
+        co_to_wire(&out[at], &node->ram[co_pdo_plain(p, k)], n);
+        at = (uint8_t)(at + n);
+        entry = (uint16_t)(entry + 4U);
+    }
+}
+
 /* Sample the mapped objects into @p out (8 bytes, zero-padded). */
 static void build(co_node_t *node, uint16_t i, uint8_t *out)
 {
     const co_pdo_desc_t *d = &node->dev->pdo[i];
-    uint8_t count = co_ram_u8(node, d->count);
-    uint16_t pos = 0U;
+    const co_pdo_t *p = &node->pdo[i];
 
     (void)memset(out, 0, 8U);
-    for (uint8_t k = 0U; k < count; k++) {
-        uint32_t v = co_ram_u32(node, (uint16_t)(d->map + (4U * k)));
-        uint8_t bits = (uint8_t)(v & 0xFFU);
-        const co_od_entry_t *e;
-        const co_od_sub_t *s;
-        uint8_t tmp[8] = {0};
-        uint32_t len = 0U;
-        uint32_t total;
-        bool last;
-
-        if ((co_od_lookup(node, (uint16_t)(v >> 16U), (uint8_t)((v >> 8U) & 0xFFU), &e, &s) ==
-             CO_OK) &&
-            (co_od_read_part(node, e, s, 0U, tmp, 8U, &len, &total, &last) == CO_OK)) {
-            if (((pos & 7U) == 0U) && ((bits & 7U) == 0U)) {
-                (void)memcpy(&out[pos >> 3U], tmp, (size_t)bits >> 3U);
-            } else {
-                co_bits_put(out, pos, tmp, bits);
-            }
-        }
-        /* an object that cannot be read (a hook's veto) is sent as zeros */
-        pos = (uint16_t)(pos + bits);
+    if ((p->flags & CO_PDO_F_PLAIN) != 0U) {
+        build_plain(node, p, d->map, co_ram_u8(node, d->count), out);
+    } else {
+        co_pdo_sample(node, i, out);
     }
 }
 
+/* Send @p data (8 bytes, zero beyond the mapping) now, or not at all. */
 static bool send(co_node_t *node, uint16_t i, const uint8_t *data)
 {
     co_pdo_t *p = &node->pdo[i];
+    co_frame_t f;
 
-    if (!co_tx_try(node, co_pdo_cob(node, i) & 0x7FFUL, data, p->len)) {
+    f.id = co_pdo_cob(node, i) & 0x7FFUL;
+    f.dlc = p->len;
+    (void)memcpy(f.data, data, 8U);
+    if (!co_tx_now(node, &f)) {
         return false;
     }
     if (data != p->data) {
@@ -95,6 +98,42 @@ static void send_sync(co_node_t *node, uint16_t i)
     }
 }
 
+/* Cyclic synchronous (1-240): due every n-th SYNC, the first time at the
+ * SYNC whose counter equals the start value when the SYNC has a counter. */
+static bool cyclic_due(co_node_t *node, uint16_t i, uint8_t type, uint8_t counter)
+{
+    co_pdo_t *p = &node->pdo[i];
+    uint16_t off = node->dev->pdo[i].start;
+    uint8_t start = (off != CO_PDO_NONE) ? co_ram_u8(node, off) : 0U;
+
+    if ((start != 0U) && ((p->flags & CO_PDO_F_STARTED) == 0U) &&
+        (node->sync_overflow != NULL) && (*node->sync_overflow > 1U)) {
+        /* the first transmission waits for the SYNC counter */
+        if (counter != start) {
+            return false;
+        }
+        p->flags |= CO_PDO_F_STARTED;
+    } else {
+        p->count++;
+        if (p->count < type) {
+            return false;
+        }
+    }
+    p->count = 0U;
+    return true;
+}
+
+/* Acyclic (0): due at the SYNC after a change of the data or a request. */
+static bool acyclic_due(co_node_t *node, uint16_t i)
+{
+    const co_pdo_t *p = &node->pdo[i];
+    uint8_t now[8];
+
+    build(node, i, now);
+    return ((p->flags & (CO_PDO_F_EVENT | CO_PDO_F_SENT)) != CO_PDO_F_SENT) ||
+           (memcmp(now, p->data, 8U) != 0);
+}
+
 void co_tpdo_sync(co_node_t *node, uint8_t counter)
 {
     uint16_t n = (uint16_t)(node->dev->n_rpdo + node->dev->n_tpdo);
@@ -103,44 +142,19 @@ void co_tpdo_sync(co_node_t *node, uint8_t counter)
         return;
     }
     for (uint16_t i = node->dev->n_rpdo; i < n; i++) {
-        co_pdo_t *p = &node->pdo[i];
-        uint8_t type;
-        if (!co_pdo_usable(node, i)) {
-            continue;
-        }
-        type = co_pdo_type(node, i);
-        p->flags &= (uint16_t)~CO_PDO_F_SYNC_PEND; /* a new SYNC replaces it */
-        if (type == 252U) {
-            build(node, i, p->data); /* sampled now, sent on request */
-            p->flags |= CO_PDO_F_SAMPLED;
-        } else if (type == 0U) {
-            /* acyclic: at the SYNC after a change or a request */
-            uint8_t now[8];
-            build(node, i, now);
-            if (((p->flags & (CO_PDO_F_EVENT | CO_PDO_F_SENT)) != CO_PDO_F_SENT) ||
-                (memcmp(now, p->data, 8U) != 0)) {
+        uint8_t type = co_pdo_type(node, i);
+        /* RTR-only 253 and event-driven types do not follow SYNC */
+        if (((type <= 240U) || (type == 252U)) && co_pdo_usable(node, i)) {
+            co_pdo_t *p = &node->pdo[i];
+            p->flags &= (uint16_t)~CO_PDO_F_SYNC_PEND; /* a new SYNC replaces it */
+            if (type == 252U) {
+                build(node, i, p->data); /* sampled now, sent on request */
+                p->flags |= CO_PDO_F_SAMPLED;
+            } else if ((type == 0U) ? acyclic_due(node, i) : cyclic_due(node, i, type, counter)) {
                 send_sync(node, i);
-            }
-        } else if (type <= 240U) {
-            const co_pdo_desc_t *d = &node->dev->pdo[i];
-            uint8_t start = (d->start != CO_PDO_NONE) ? co_ram_u8(node, d->start) : 0U;
-            bool counted = (node->sync_overflow != NULL) && (*node->sync_overflow > 1U);
-            if (counted && (start != 0U) && ((p->flags & CO_PDO_F_STARTED) == 0U)) {
-                /* the first transmission waits for the SYNC counter */
-                if (counter == start) {
-                    p->flags |= CO_PDO_F_STARTED;
-                    p->count = 0U;
-                    send_sync(node, i);
-                }
             } else {
-                p->count++;
-                if (p->count >= type) {
-                    p->count = 0U;
-                    send_sync(node, i);
-                }
+                /* not this SYNC */
             }
-        } else {
-            /* RTR-only 253 and event-driven types do not follow SYNC */
         }
     }
 }

@@ -97,16 +97,17 @@ def test_eds_cia306_structure(device, generated):
             assert int(sec["SubNumber"], 0) == len(subs)
             assert subs[0] == 0
             s0 = cp[f"{index:04X}sub0"]
-            # a documented deviation: 0x1018 with the vendor-ID in sub-index 0
+            # documented deviations: 0x1018 with the vendor-ID in sub-index 0;
+            # the withdrawn 0x1004 (CiA 301 <= 4.0: UNSIGNED32)
             vendor_at_sub0 = index == 0x1018 and layout == "vendor-at-sub0"
-            assert int(s0["DataType"], 0) == (0x07 if vendor_at_sub0 else 0x05)
+            assert int(s0["DataType"], 0) == (0x07 if (vendor_at_sub0 or index == 0x1004) else 0x05)
             for sub in subs:
                 ss = cp[f"{index:04X}sub{sub:X}"]
                 assert var_keys <= set(ss) <= var_keys | optional
                 assert int(ss["ObjectType"], 0) == 0x7
             if vendor_at_sub0:
                 assert subs == [0, 1, 2]
-            elif s0["AccessType"] in ("ro", "const") and "DefaultValue" in s0:
+            elif s0["AccessType"] in ("ro", "const") and "DefaultValue" in s0 and index != 0x1004:
                 assert int(s0["DefaultValue"], 0) == max(subs), f"{index:04X}sub0"
         for s in [sec] + [cp[f"{index:04X}sub{x:X}"] for x in subs]:
             if "AccessType" in s:

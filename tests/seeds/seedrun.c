@@ -11,25 +11,41 @@
 #include "co/co_endian.h"
 #include "test_frames.h"
 
-void sr_start(seedrun_t *s, const co402_device_t *d, void *node, void *ctx, uint8_t id)
+void sr_start(seedrun_t *s, const co402_device_t *d, co_node_config_t *cfg, co_node_t *node,
+              void *state, uint8_t id)
 {
+    co402_plant_t plants[CO402_DRIVE_AXES_MAX];
     char boot[16];
 
     memset(s, 0, sizeof *s);
     tb_init(&s->bus);
     s->id = id;
+    s->node = node;
+    assert_true((d->axes > 0U) && (d->axes <= CO402_DRIVE_AXES_MAX));
+    for (uint8_t i = 0U; i < d->axes; i++) {
+        co402_sim_config_t sc;
+        co402_device_sim_config(d, &sc);
+        co402_sim_init(&s->sim[i], &sc, s->bus.now);
+        plants[i] = co402_sim_plant(&s->sim[i]);
+    }
+    assert_int_equal(co402_drive_init(&s->drv, d, plants, NULL), CO_OK);
+    co402_drive_set_state(&s->drv, state);
+    cfg->hal = tb_hal(&s->bus, 0);
+    cfg->node_id = id;
+    cfg->cb = co402_drive_callbacks(&s->drv);
     /* the node memory must be attached to the bus before init sends boot-up */
-    tb_attach(&s->bus, 0, (co_node_t *)node);
-    assert_int_equal(co402_device_start(&s->run, d, node, ctx, tb_hal(&s->bus, 0), id, NULL,
-                                        s->bus.now),
-                     CO_OK);
+    tb_attach(&s->bus, 0, node);
+    assert_int_equal(co_node_init(node, cfg, s->bus.now), CO_OK);
+    assert_int_equal(co402_drive_attach(&s->drv, node, s->bus.now), CO_OK);
     snprintf(boot, sizeof boot, "%03X 00", 0x700U + id);
     tb_expect(&s->bus, boot);
 }
 
 void sr_poll(seedrun_t *s)
 {
-    (void)co402_device_process(&s->run, s->bus.now);
+    /* the axes and the plug-in first: what their tick changed goes out now */
+    (void)co402_drive_process(&s->drv, s->bus.now);
+    (void)co_node_process(s->node, s->bus.now);
 }
 
 void sr_run(seedrun_t *s, uint32_t ms)
@@ -134,12 +150,12 @@ int64_t sr_get(seedrun_t *s, uint16_t index, uint8_t sub)
 {
     uint8_t b[8] = {0};
     uint32_t len = 0U;
-    const co_dev_t *dev = s->run.node->dev;
+    const co_dev_t *dev = s->node->dev;
     const co_od_entry_t *e = co_od_find(dev->od, dev->od_count, index);
     const co_od_sub_t *d = (e != NULL) ? co_od_find_sub(e, sub) : NULL;
 
     assert_non_null(d);
-    assert_int_equal(co_od_read(s->run.node, index, sub, b, sizeof b, &len), CO_OK);
+    assert_int_equal(co_od_read(s->node, index, sub, b, sizeof b, &len), CO_OK);
     switch (d->type) {
     case CO_INTEGER8:
         return (int8_t)b[0];
@@ -164,7 +180,7 @@ void sr_set(seedrun_t *s, uint16_t index, uint8_t sub, int64_t value, uint8_t si
     for (uint8_t i = 0U; i < size; i++) {
         b[i] = (uint8_t)(u >> (8U * i));
     }
-    assert_int_equal(co_od_write(s->run.node, index, sub, b, size, true), CO_OK);
+    assert_int_equal(co_od_write(s->node, index, sub, b, size, true), CO_OK);
 }
 
 void sr_assert_range_at(int64_t v, int64_t lo, int64_t hi, const char *file, int line)

@@ -1,7 +1,9 @@
 /*
- * Test fixture for the seed devices: one device from its attach descriptor
- * (co/co402_device.h) on the in-memory bus, time pushed in 1 ms steps, SDO
- * and frame helpers in the manuals' notation.
+ * Test fixture for the FAULHABER and AnaGate seed tests: one node of a CiA 402
+ * device (co402_devices.h: generated dictionary + co402_device_t, its axes
+ * each on its own simulated plant, its device plug-in) on the in-memory bus,
+ * time pushed in 1 ms steps (the device's axes and plug-in run before the
+ * node), SDO and frame helpers in the manuals' notation.
  */
 #ifndef SEEDRUN_H
 #define SEEDRUN_H
@@ -10,17 +12,22 @@
 #include <stdint.h>
 
 #include "co/co402_device.h"
+#include "co/co402_sim.h"
 #include "test_bus.h"
 
 typedef struct seedrun {
     tb_bus_t bus;
-    co402_device_run_t run;
+    co402_drive_t drv;
+    co402_sim_t sim[CO402_DRIVE_AXES_MAX];
+    co_node_t *node;
     uint8_t id;
 } seedrun_t;
 
-/** Start @p d as node @p id in the node memory @p node (d->node_size bytes)
- *  with plug-in state @p ctx; expects the boot-up frame. */
-void sr_start(seedrun_t *s, const co402_device_t *d, void *node, void *ctx, uint8_t id);
+/** Start @p d as node @p id: @p cfg comes from the device's <cname>_config()
+ *  and points at @p node's storage; @p state: the device plug-in's state
+ *  (d->state_size bytes, NULL if none). Expects the boot-up frame. */
+void sr_start(seedrun_t *s, const co402_device_t *d, co_node_config_t *cfg, co_node_t *node,
+              void *state, uint8_t id);
 
 /** Process node and plug-ins at the present time (frames a write caused). */
 void sr_poll(seedrun_t *s);

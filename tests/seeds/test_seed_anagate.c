@@ -1,6 +1,6 @@
 /*
- * AnaGate Motion motor modules (devices/anagate-motion*.toml with their
- * attach descriptors): the manual's Lua example ("Beispiel CANopen - Lua",
+ * AnaGate Motion motor modules (devices/anagate-motion*.toml as CiA 402
+ * devices, co402_devices.h): the manual's Lua example ("Beispiel CANopen - Lua",
  * digest /work/shared/spec/seed-003-anagate-motion.md section 6) replayed
  * frame by frame on node 0x02, the derived vectors of section 6.4, the
  * multi-axis layout at +0x800 (section 1.2), the velocity ramp (3.6) and
@@ -29,6 +29,7 @@
 #include "anagate_motion_400vac.h"
 #include "anagate_motion_bl.h"
 #include "anagate_motion_desc.h"
+#include "co402_devices.h"
 #include "seedrun.h"
 
 static seedrun_t fx;
@@ -44,7 +45,10 @@ static union {
 static int setup_bt4(void **state)
 {
     (void)state;
-    sr_start(S, &anagate_motion_bt4_device, &node, NULL, 2);
+    co_node_config_t cfg;
+
+    anagate_motion_config(&node.bt, &cfg);
+    sr_start(S, &co402_dev_anagate_motion, &cfg, &node.bt.node, NULL, 2);
     sr_run(S, 10);
     tb_expect_none(&S->bus);
     return 0;
@@ -53,7 +57,10 @@ static int setup_bt4(void **state)
 static int setup_bt2(void **state)
 {
     (void)state;
-    sr_start(S, &anagate_motion_bt2_device, &node, NULL, 2);
+    co_node_config_t cfg;
+
+    anagate_motion_config(&node.bt, &cfg);
+    sr_start(S, &co402_dev_anagate_motion_bt2, &cfg, &node.bt.node, NULL, 2);
     sr_run(S, 10);
     return 0;
 }
@@ -61,7 +68,10 @@ static int setup_bt2(void **state)
 static int setup_bl(void **state)
 {
     (void)state;
-    sr_start(S, &anagate_motion_bl_device, &node, NULL, 2);
+    co_node_config_t cfg;
+
+    anagate_motion_bl_config(&node.bl, &cfg);
+    sr_start(S, &co402_dev_anagate_motion_bl, &cfg, &node.bl.node, NULL, 2);
     sr_run(S, 10);
     return 0;
 }
@@ -69,7 +79,10 @@ static int setup_bl(void **state)
 static int setup_400vac(void **state)
 {
     (void)state;
-    sr_start(S, &anagate_motion_400vac_device, &node, NULL, 2);
+    co_node_config_t cfg;
+
+    anagate_motion_400vac_config(&node.vac, &cfg);
+    sr_start(S, &co402_dev_anagate_motion_400vac, &cfg, &node.vac.node, NULL, 2);
     sr_run(S, 10);
     return 0;
 }
@@ -82,7 +95,7 @@ static uint16_t sw_of(uint8_t motor)
 /* Speed of motor @p motor in increments/s (the simulated motor). */
 static int32_t speed_of(uint8_t motor)
 {
-    return co402_sim_velocity(&S->run.sim[motor - 1U]);
+    return co402_sim_velocity(&S->sim[motor - 1U]);
 }
 
 /* NMT start; the core sends the event-driven T-PDO4 (inputs) once on
@@ -114,7 +127,7 @@ static void lua_example(void **state)
     assert_int_equal(sw_of(1) & 0x6F, 0x21);
     for (uint8_t m = 2; m <= 4; m++) {
         /* motors 2-4 untouched (a motor the module lacks reads 0) */
-        assert_int_equal(sw_of(m), (m <= S->run.desc->n_axes) ? 0x0040 : 0x0000);
+        assert_int_equal(sw_of(m), (co402_drive_axis(&S->drv, (uint8_t)(m - 1U)) != NULL) ? 0x0040 : 0x0000);
     }
     sr_run(S, 20);
     /* 7: Switch on */
@@ -156,8 +169,8 @@ static void lua_example(void **state)
     sr_run(S, 100);
     sr_between(speed_of(1), -100, 100); /* the motor has followed */
     /* 15: the node stays Operational, motor 1 in Operation enabled */
-    assert_int_equal(co_node_nmt_state(S->run.node), CO_NMT_OPERATIONAL);
-    assert_int_equal(co402_state(&S->run.axis[0]), CO402_OPERATION_ENABLED);
+    assert_int_equal(co_node_nmt_state(S->node), CO_NMT_OPERATIONAL);
+    assert_int_equal(co402_state(co402_drive_axis(&S->drv, 0U)), CO402_OPERATION_ENABLED);
     tb_expect_none(&S->bus);
 }
 
@@ -244,7 +257,7 @@ static void fault_reset_by_rpdo(void **state)
     tb_send(&S->bus, "202 07 00");
     tb_send(&S->bus, "202 0F 00");
     sr_run(S, 5);
-    co402_fault_raise(&S->run.axis[0], 0x2310);
+    co402_fault_raise(co402_drive_axis(&S->drv, 0U), 0x2310);
     sr_expect(S, "082 10 23 03 00 00 00 00 00");
     sr_run(S, 200);
     assert_int_equal(sw_of(1) & 0x4F, 0x08);
@@ -256,7 +269,7 @@ static void fault_reset_by_rpdo(void **state)
     tb_send(&S->bus, "202 80 00");
     sr_run(S, 1);
     assert_int_equal(sw_of(1) & 0x4F, 0x08);
-    co402_fault_clear(&S->run.axis[0], 0x2310);
+    co402_fault_clear(co402_drive_axis(&S->drv, 0U), 0x2310);
     /* the last controlword had bit 7 = 1: no edge, the axis stays in Fault */
     tb_send(&S->bus, "202 80 00");
     sr_run(S, 1);
@@ -342,7 +355,7 @@ static void inputs_tpdo4(void **state)
     static const uint8_t in1[8] = {0x80, 0x05, 0x00, 0x03, 0x02, 0x00, 0x00, 0x10};
     (void)state;
     start_node();
-    anagate_motion_set_inputs(&S->run, in1); /* S1 on, E1 value 5, counts */
+    anagate_motion_set_inputs(S->node, in1); /* S1 on, E1 value 5, counts */
     sr_poll(S);
     sr_expect(S, "482 80 05 00 03 02 00 00 10");
     sr_run(S, 100);

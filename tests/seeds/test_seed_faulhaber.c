@@ -1,6 +1,6 @@
 /*
- * FAULHABER Motion Controller (devices/faulhaber-mc.toml with its attach
- * descriptor): the manual's worked examples from the digest
+ * FAULHABER Motion Controller (devices/faulhaber-mc.toml as the CiA 402
+ * device co402_dev_faulhaber_mc with its plug-in): the manual's worked examples from the digest
  * (/work/shared/spec/seed-001-faulhaber-motion-controller.md, section 7 and
  * the sections named below) replayed frame by frame on the in-memory bus,
  * against the real device description, the CiA 402 profile and the
@@ -25,6 +25,7 @@
 
 #include <cmocka.h>
 
+#include "co402_devices.h"
 #include "faulhaber_mc_desc.h"
 #include "seedrun.h"
 
@@ -34,9 +35,9 @@ static faulhaber_mc_state_t st;
 #define S (&fx)
 
 /* The unit of the manual's trace (section 7.1) stood at 13011 increments. */
-static void trace_sim(uint8_t axis, co402_sim_config_t *c)
+static void trace_sim(co402_sim_config_t *c)
 {
-    faulhaber_mc_sim(axis, c);
+    faulhaber_mc_sim(c);
     c->start_pos = 13011;
 }
 
@@ -45,7 +46,10 @@ static co402_device_t trace_device;
 static int setup(void **state)
 {
     (void)state;
-    sr_start(S, &faulhaber_mc_device, &node, &st, 2);
+    co_node_config_t cfg;
+
+    faulhaber_mc_config(&node, &cfg);
+    sr_start(S, &co402_dev_faulhaber_mc, &cfg, &node.node, &st, 2);
     sr_run(S, 10);
     tb_expect_none(&S->bus);
     return 0;
@@ -54,9 +58,12 @@ static int setup(void **state)
 static int setup_trace(void **state)
 {
     (void)state;
-    trace_device = faulhaber_mc_device;
-    trace_device.sim = trace_sim;
-    sr_start(S, &trace_device, &node, &st, 2);
+    co_node_config_t cfg;
+
+    trace_device = co402_dev_faulhaber_mc;
+    trace_device.sim_config = trace_sim;
+    faulhaber_mc_config(&node, &cfg);
+    sr_start(S, &trace_device, &cfg, &node.node, &st, 2);
     sr_run(S, 10);
     tb_expect_none(&S->bus);
     return 0;
@@ -350,7 +357,7 @@ static void heartbeat_consumer_and_error_behaviour(void **state)
     sr_run(S, 1);
     tb_expect_none(&S->bus);
     assert_int_equal(sr_get(S, 0x2320, 0), 0x0100);
-    assert_int_equal(co_node_nmt_state(S->run.node), CO_NMT_PRE_OPERATIONAL);
+    assert_int_equal(co_node_nmt_state(S->node), CO_NMT_PRE_OPERATIONAL);
     /* the master is back: the error ends */
     tb_send(&S->bus, "77F 05");
     sr_run(S, 1);
@@ -365,7 +372,7 @@ static void heartbeat_consumer_and_error_behaviour(void **state)
     sr_run(S, 1500);
     sr_expect(S, "082 30 81 11 00 00 00 00 00");
     sr_run(S, 1);
-    assert_int_equal(co_node_nmt_state(S->run.node), CO_NMT_OPERATIONAL);
+    assert_int_equal(co_node_nmt_state(S->node), CO_NMT_OPERATIONAL);
 }
 
 /* CO402_OPT_TPDO_ON_SW: every statusword change requests the TPDOs that map
@@ -471,7 +478,7 @@ static void fault_and_emcy_example(void **state)
     expect_sw_pdos(0x0027, 0, 0);
     /* the continuous current limit is exceeded; the error delay 0x2322.01
      * = 200 (2 s) passes before it is reported */
-    faulhaber_mc_error(&S->run, FAULHABER_ERR_OVERCURRENT, true);
+    faulhaber_mc_error(&S->drv, FAULHABER_ERR_OVERCURRENT, true);
     sr_run(S, 1999);
     tb_expect_none(&S->bus);
     sr_run(S, 1);
@@ -495,7 +502,7 @@ static void fault_and_emcy_example(void **state)
     sr_poll(S);
     tb_expect_none(&S->bus);
     /* the condition ends: EMCY 0x0000 */
-    faulhaber_mc_error(&S->run, FAULHABER_ERR_OVERCURRENT, false);
+    faulhaber_mc_error(&S->drv, FAULHABER_ERR_OVERCURRENT, false);
     sr_expect(S, "082 00 00 00 00 00 00 00 00");
     /* 7.4 fault reset sequence: 0x0080 (a rising edge), 6, 7, F */
     sr_sdo_write(S, 0x6040, 0, 0x0000, 2);
@@ -520,14 +527,14 @@ static void errors_do_not_fault_by_default(void **state)
 {
     (void)state;
     start_node(0x0040, 0);
-    faulhaber_mc_error(&S->run, FAULHABER_ERR_TEMPERATURE, true);
+    faulhaber_mc_error(&S->drv, FAULHABER_ERR_TEMPERATURE, true);
     sr_poll(S);
     sr_expect(S, "082 10 43 09 08 00 00 00 00");
     sr_sdo(S, "40 41 60 00 00 00 00 00", "4B 41 60 00 40 00 00 00");
-    faulhaber_mc_error(&S->run, FAULHABER_ERR_TEMPERATURE, false);
+    faulhaber_mc_error(&S->drv, FAULHABER_ERR_TEMPERATURE, false);
     sr_expect(S, "082 00 00 00 00 00 00 00 00");
     sr_sdo_write(S, 0x2321, 1, 0xFFF7, 2);
-    faulhaber_mc_error(&S->run, FAULHABER_ERR_TEMPERATURE, true);
+    faulhaber_mc_error(&S->drv, FAULHABER_ERR_TEMPERATURE, true);
     sr_run(S, 10);
     tb_expect_none(&S->bus);
     sr_sdo(S, "40 20 23 00 00 00 00 00", "4B 20 23 00 08 00 00 00");
@@ -542,7 +549,7 @@ static void enable(void)
     sr_sdo_write(S, 0x6040, 0, 0x0006, 2);
     sr_sdo_write(S, 0x6040, 0, 0x0007, 2);
     sr_sdo_write(S, 0x6040, 0, 0x000F, 2);
-    assert_int_equal(co402_state(&S->run.axis[0]), CO402_OPERATION_ENABLED);
+    assert_int_equal(co402_state(co402_drive_axis(&S->drv, 0U)), CO402_OPERATION_ENABLED);
 }
 
 /* Section 7.5.3: relative move of 10000 increments with controlword

@@ -627,7 +627,10 @@ def _make_object(tbl: dict, what: str) -> Obj:
         subs.insert(0, make_sub(index, s0, storage, what))
     subs.sort(key=lambda s: s.sub)
     s0 = subs[0]
-    if s0.sub != 0 or s0.type != "UNSIGNED8":
+    # 0x1004 "Number of PDOs supported" (CiA 301 up to 4.0, withdrawn since)
+    # defined its sub-index 0 as UNSIGNED32 (RPDOs in bits 0..15, TPDOs in 16..31)
+    wide = index == 0x1004 and code == "RECORD" and s0.type == "UNSIGNED32"
+    if s0.sub != 0 or (s0.type != "UNSIGNED8" and not wide):
         raise DescError(f"{where(index, 0)}: sub-index 0 of a {code} is UNSIGNED8")
     if code == "ARRAY":
         types = {s.type for s in subs[1:]}

@@ -7,6 +7,7 @@
 
 #include <stdbool.h>
 #include <stdint.h>
+#include <string.h>
 
 #define CO_FRAME_RTR   0x40000000UL /**< id flag: remote transmission request */
 #define CO_FRAME_EFF   0x20000000UL /**< id flag: 29-bit extended identifier   */
@@ -20,7 +21,17 @@ typedef struct co_frame {
 
 /** Fill @p f with identifier @p id and @p len bytes of @p data (rest zeroed).
  *  @p len above 8 is clamped to 8. */
-void co_frame_set(co_frame_t *f, uint32_t id, const uint8_t *data, uint8_t len);
+static inline void co_frame_set(co_frame_t *f, uint32_t id, const uint8_t *data, uint8_t len)
+{
+    uint8_t n = (len > 8U) ? 8U : len;
+
+    f->id = id;
+    f->dlc = n;
+    (void)memset(f->data, 0, sizeof f->data);
+    if (data != NULL) {
+        (void)memcpy(f->data, data, n);
+    }
+}
 
 /** True when the frames carry the same identifier, flags, length and payload
  *  bytes (bytes beyond the length are not compared). */

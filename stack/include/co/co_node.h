@@ -15,27 +15,12 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "co/co_config.h"
 #include "co/co_err.h"
 #include "co/co_frame.h"
 #include "co/co_hal.h"
 #include "co/co_od.h"
 #include "co/co_pdo.h"
-
-#ifndef CO_TXQ_LEN
-#define CO_TXQ_LEN 4U          /**< frames held back while the HAL's TX path is full */
-#endif
-#ifndef CO_EMCY_ACTIVE_MAX
-#define CO_EMCY_ACTIVE_MAX 8U  /**< distinct error codes active at once */
-#endif
-#ifndef CO_EMCY_QUEUE_LEN
-#define CO_EMCY_QUEUE_LEN 4U   /**< EMCYs waiting for the inhibit time */
-#endif
-#ifndef CO_HB_CONSUMERS_MAX
-#define CO_HB_CONSUMERS_MAX 8U /**< heartbeat consumer entries the core tracks */
-#endif
-#ifndef CO_RX_SLOTS_MAX
-#define CO_RX_SLOTS_MAX (6U + CO_HB_CONSUMERS_MAX)
-#endif
 
 #define CO_NO_DEADLINE 0xFFFFFFFFUL /**< co_node_process: nothing is due, ever */
 
@@ -229,7 +214,10 @@ typedef struct co_node {
     uint8_t txq_len;
     uint8_t n_active;
     uint8_t n_emcy_q;
+    uint8_t rpdo_buffered;   /**< some RPDO may hold data for the next SYNC */
     uint8_t rx_filter[16];   /**< bit per (COB-ID & 0x7F): quick reject */
+    uint16_t rx_fc;          /**< bit per function code (COB-ID >> 7) in rx[] */
+    uint16_t pdo_fc;         /**< bit per function code in pdo_rx[] */
     uint32_t hb_deadline;
     uint32_t guard_deadline;
     uint32_t emcy_next;      /**< earliest time the next EMCY may go (inhibit) */
@@ -249,7 +237,9 @@ typedef struct co_node {
 /** Initialise @p node from @p cfg, restore all values to their defaults and
  *  then to the stored set (0x1010) if the HAL's NV holds a valid one, send
  *  the boot-up frame and enter Pre-operational. Returns CO_OK, or
- *  CO_ERR_OD_MISSING / CO_ERR_VALUE for a bad configuration. */
+ *  CO_ERR_OD_MISSING / CO_ERR_VALUE for a bad configuration, or
+ *  CO_ERR_DEV_INCOMPAT for a device that needs a service or option this
+ *  build of the core leaves out (co_config.h); nothing is sent then. */
 co_err_t co_node_init(co_node_t *node, const co_node_config_t *cfg, uint32_t now_us);
 
 /** Bytes of non-volatile memory parameter storage (0x1010/0x1011) uses for a

@@ -9,6 +9,8 @@
 
 #include <stdint.h>
 
+#include "co/co_config.h"
+
 #define CO_PDO_NONE 0xFFFFU /**< co_pdo_desc_t: this sub-entry does not exist */
 
 /** Where the parameters of one PDO live: offsets into the RAM image of the
@@ -30,10 +32,13 @@ typedef struct co_pdo {
     uint32_t timer;   /**< TPDO event timer / RPDO deadline (absolute us) */
     uint32_t inhibit; /**< TPDO: earliest next event-driven transmission */
     uint16_t flags;
-    uint8_t count;    /**< TPDO: SYNCs counted */
+    uint8_t count;    /**< TPDO: SYNCs counted; RPDO: length of the buffered frame */
     uint8_t len;      /**< bytes the mapping covers */
-    uint8_t dlc;      /**< RPDO: length of the buffered frame */
     uint8_t data[8];  /**< TPDO: last sent / sampled; RPDO: buffered until SYNC */
+#if CO_PDO_FAST_MAX > 0
+    uint16_t plain[CO_PDO_FAST_MAX]; /**< RAM offsets of the mapped values when every
+                           entry is a plain value (copied directly, whole, byte-aligned) */
+#endif
 } co_pdo_t;
 
 /** Receive-table entry of a PDO COB-ID (private to the core). */

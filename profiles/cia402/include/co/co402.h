@@ -118,19 +118,57 @@ typedef enum co402_state {
 #define CO402_OPT_QS_CLEARS_TARGET  0x00008000UL /**< quick stop deletes the set-points (target
                                                       position / velocity / torque := 0)
                                                       (Kollmorgen) */
-#define CO402_OPT_TPDO_ON_SW        0x00010000UL /**< every statusword change requests the TPDOs
+#define CO402_OPT_UNITS_FROM_POS    0x00010000UL /**< velocities and accelerations in position
+                                                      units per s and per s^2: 0x6094/0x6097 are
+                                                      not used (Kollmorgen: 6097h is derived
+                                                      from 6093h) */
+#define CO402_OPT_VEL_RPM           0x00020000UL /**< velocities in motor rpm, accelerations in
+                                                      rpm/s (counts_per_rev; SSD 630, no factor
+                                                      group) */
+#define CO402_OPT_QS_STAY           0x00040000UL /**< without 0x605A, quick stop acts as code 6:
+                                                      quick-stop ramp, stay in Quick stop active
+                                                      (Kollmorgen) */
+#define CO402_OPT_HM_TARGET_FIRST   0x00080000UL /**< hm: bit 10 is 0 until a homing ends; at home
+                                                      and at rest bit 10 comes first, bit 12 one
+                                                      tick later (Kollmorgen: 0x0237, 0x0637,
+                                                      0x1637) */
+#define CO402_OPT_PP_TR_NEXT_TICK   0x00100000UL /**< pp: a new set-point clears bit 10 at the next
+                                                      tick, so the acknowledgement is seen with
+                                                      bit 10 still set (SSD 630: 0x9627, 0x9227) */
+#define CO402_OPT_IP_TR_AT_REST     0x00200000UL /**< ip: bit 10 = 1 while ip is not enabled and the
+                                                      axis is at rest (SSD 630: 0x0627 in ip) */
+#define CO402_OPT_PV_NO_SPEED_BIT   0x00400000UL /**< pv: no mode-specific statusword bits (bit 12
+                                                      "speed = 0" stays 0; Kollmorgen) */
+#define CO402_OPT_TPDO_ON_SW        0x00800000UL /**< every statusword change requests the TPDOs
                                                       that map the statusword (FAULHABER: the
                                                       only event of its event-driven TPDOs) */
-#define CO402_OPT_VELOCITY_RAMP     0x00020000UL /**< the axis' one mode is a velocity ramp: target
+#define CO402_OPT_VELOCITY_RAMP     0x01000000UL /**< the axis' one mode is a velocity ramp: target
                                                       0x6080 in per mille of full speed, ramps
                                                       0x6083 / 0x6084 in ms per full scale (0: a
                                                       step), direction 0x607E bit 6; quick stop
                                                       as fast as possible (AnaGate Motion) */
-#define CO402_OPT_QS_STAY           0x00040000UL /**< without 0x605A: quick stop as option code 6
-                                                      (0x6085 ramp, then stay in Quick stop
-                                                      active), not 2 (FAULHABER) */
-#define CO402_OPT_FR_SLOW           0x00080000UL /**< without 0x605E: fault reaction as option
+#define CO402_OPT_FR_SLOW           0x02000000UL /**< without 0x605E: fault reaction as option
                                                       code 1 (0x6084 ramp), not 2 (FAULHABER) */
+
+/** A homing method a device accepts in 0x6098 and how the axis runs it
+ *  (co402_config_t.hm_methods; without a table the CiA 402 methods the
+ *  profile implements are accepted and run as themselves). */
+typedef struct co402_hm_method {
+    int8_t value;              /**< the 0x6098 value (manufacturer methods are negative) */
+    int8_t runs_as;            /**< the CiA 402 method it runs as (0: none, a homing error) */
+    uint8_t flags;             /**< CO402_HM_FAST_ONLY */
+} co402_hm_method_t;
+
+#define CO402_HM_FAST_ONLY 0x01U /**< every phase at 0x6099 sub 1 (sub 2 is not used) */
+
+/** How a device reports an error code the axis raises (co402_config_t.errors;
+ *  without an entry: the error register bit of the code's class, no
+ *  manufacturer bytes). */
+typedef struct co402_error {
+    uint16_t code;             /**< EMCY error code (0x603F) */
+    uint8_t reg;               /**< 0x1001 bits it sets (bit 0 is always set) */
+    uint8_t mfr[5];            /**< EMCY bytes 3..7 */
+} co402_error_t;
 
 typedef struct co402_config {
     uint8_t axis;              /**< 0..7: objects at 0x6000 + 0x800 * axis */
@@ -150,6 +188,10 @@ typedef struct co402_config {
     uint32_t acc_den;
     uint32_t full_speed;       /**< CO402_OPT_VELOCITY_RAMP: increments/s at 1000 per mille
                                     (0: 50 revolutions/s) */
+    const co402_hm_method_t *hm_methods; /**< homing methods of the device (NULL: CiA 402's) */
+    uint8_t n_hm_methods;
+    const co402_error_t *errors; /**< how the device reports error codes (NULL: none) */
+    uint8_t n_errors;
 } co402_config_t;
 
 #define CO402_FAULTS_MAX 4U
@@ -248,5 +290,8 @@ uint16_t co402_statusword(const co402_axis_t *ax);
 
 /** Actual position in internal increments (after homing). */
 int32_t co402_position(const co402_axis_t *ax);
+
+/** Actual velocity in internal increments/s (plant feedback of the last tick). */
+int32_t co402_velocity(const co402_axis_t *ax);
 
 #endif /* CO402_H */

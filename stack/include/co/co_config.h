@@ -1,0 +1,74 @@
+/*
+ * Build-time configuration of the core: every option with its default, in
+ * one place. The defaults are the full core; the unit tests run against it.
+ * A build overrides options with -D for the core and everything that
+ * includes its headers (CMake: co_core(<library> <NAME=VALUE>...), see
+ * stack/CMakeLists.txt). The features a build leaves out are refused at
+ * co_node_init (CO_ERR_DEV_INCOMPAT) for a device that would need them, so
+ * a device never runs with less than its description says.
+ */
+#ifndef CO_CONFIG_H
+#define CO_CONFIG_H
+
+/* ---- sizes of the node's fixed tables (co_node_t) */
+
+#ifndef CO_TXQ_LEN
+#define CO_TXQ_LEN 4U          /**< frames held back while the HAL's TX path is full */
+#endif
+#ifndef CO_EMCY_ACTIVE_MAX
+#define CO_EMCY_ACTIVE_MAX 8U  /**< distinct error codes active at once */
+#endif
+#ifndef CO_EMCY_QUEUE_LEN
+#define CO_EMCY_QUEUE_LEN 4U   /**< EMCYs waiting for the inhibit time */
+#endif
+#ifndef CO_HB_CONSUMERS_MAX
+#define CO_HB_CONSUMERS_MAX 8U /**< heartbeat consumer entries the core tracks (0x1016
+                                    sub-entries beyond are not monitored) */
+#endif
+#ifndef CO_RX_SLOTS_MAX
+/** Receive table of the core's services: NMT, SDO, guarding, SYNC, TIME and
+ *  the heartbeat consumers. */
+#define CO_RX_SLOTS_MAX (5U + CO_HB_CONSUMERS_MAX)
+#endif
+
+/* ---- PDO */
+
+#ifndef CO_PDO_FAST_MAX
+/** Mapping entries per PDO the core resolves once, when the mapping is
+ *  enabled, instead of at every PDO: 2 bytes of RAM per PDO each (0..8). A
+ *  PDO of at most this many entries, all plain values, is copied directly
+ *  between frame and RAM image (docs/core.md, PDO). */
+#define CO_PDO_FAST_MAX 4U
+#endif
+
+/* ---- services a device may not need (1: in, 0: left out) */
+
+#ifndef CO_STORAGE
+/** Parameter storage, 0x1010 / 0x1011 (co_store.c). Left out, the node
+ *  behaves as with a HAL without non-volatile memory: 0x1010 / 0x1011 read 0
+ *  and writes answer 0x08000020; values start from the defaults. */
+#define CO_STORAGE 1
+#endif
+#ifndef CO_TIME
+/** TIME consumer and producer (0x1012). Left out: a device with 0x1012 is
+ *  refused. */
+#define CO_TIME 1
+#endif
+#ifndef CO_SYNC_PRODUCER
+/** SYNC producer (0x1005 bit 30, 0x1006). Left out: a device with 0x1006 is
+ *  refused (the SYNC consumer is always in). */
+#define CO_SYNC_PRODUCER 1
+#endif
+#ifndef CO_LIMITS
+/** Value limits of the dictionary (CO_SUB_LIMIT, co_dev_t.limits). Left out:
+ *  a device with a limit table is refused. */
+#define CO_LIMITS 1
+#endif
+#ifndef CO_OPTIONS
+/** Personality options (CO_OPT_*, co_node.h) the core implements. A device
+ *  whose co_dev_t.options has others is refused; the code of options left
+ *  out is not built. */
+#define CO_OPTIONS 0xFFFFFFFFUL
+#endif
+
+#endif /* CO_CONFIG_H */

@@ -1,0 +1,139 @@
+/*
+ * The core built with the minimal slave's options (no storage, no TIME, no
+ * SYNC producer, no value limits, no personality options, 4 heartbeat
+ * consumers;
+ * targets/cortex-m/minimal-config.cmake) on the lean-test device: the
+ * services it keeps work with exact frames, 0x1010/0x1011 behave as without
+ * non-volatile memory, and devices that need what is left out are refused.
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "co/co_endian.h"
+#include "lean_test.h"
+#include "test_bus.h"
+#include "test_dev.h"
+
+static tb_bus_t bus;
+static lean_test_node_t lean;
+#define BUS (&bus)
+
+static co_err_t start(const co_dev_t *dev)
+{
+    co_node_config_t cfg;
+    co_err_t err;
+
+    memset(&lean, 0, sizeof lean);
+    tb_init(&bus);
+    lean_test_config(&lean, &cfg);
+    cfg.dev = dev;
+    cfg.hal = tb_hal(&bus, 0);
+    cfg.node_id = 1;
+    err = co_node_init(&lean.node, &cfg, bus.now);
+    if (err == CO_OK) {
+        tb_attach(&bus, 0, &lean.node);
+    }
+    return err;
+}
+
+static uint32_t get_u32(uint16_t index, uint8_t sub)
+{
+    uint8_t b[4] = {0};
+    uint32_t len = 0;
+    assert_int_equal(co_od_read(&lean.node, index, sub, b, sizeof b, &len), CO_OK);
+    return co_get_u32(b);
+}
+
+static void storage_left_out(void **state)
+{
+    (void)state;
+    assert_int_equal(start(&lean_test_dev), CO_OK);
+    tb_expect(BUS, "701 00");
+    /* capability 0 on a HAL with NV; save and restore answer 0x08000020 */
+    tb_xfer(BUS, "601 40 10 10 01 00 00 00 00", "581 43 10 10 01 00 00 00 00");
+    tb_xfer(BUS, "601 40 11 10 03 00 00 00 00", "581 43 11 10 03 00 00 00 00");
+    tb_xfer(BUS, "601 23 10 10 01 73 61 76 65", "581 80 10 10 01 20 00 00 08");
+    tb_xfer(BUS, "601 23 11 10 01 6C 6F 61 64", "581 80 11 10 01 20 00 00 08");
+    assert_int_equal(bus.nv_written, 0U);
+    tb_expect_none(BUS);
+}
+
+static void services_kept(void **state)
+{
+    uint8_t v[4];
+    (void)state;
+    assert_int_equal(start(&lean_test_dev), CO_OK);
+    tb_expect(BUS, "701 00");
+    /* SDO: expedited, and a segmented download of a mapping entry */
+    tb_xfer(BUS, "601 40 08 10 00 00 00 00 00", "581 47 08 10 00 6D 69 6E 00");
+    tb_xfer(BUS, "601 21 00 22 00 04 00 00 00", "581 60 00 22 00 00 00 00 00");
+    tb_xfer(BUS, "601 07 44 33 22 11 00 00 00", "581 20 00 00 00 00 00 00 00");
+    assert_int_equal(get_u32(0x2200, 0), 0x11223344UL);
+    /* PDO: RPDO1 (255) into 0x2100, TPDO1 (SYNC) from 0x2200 */
+    tb_send(BUS, "000 01 01");
+    tb_send(BUS, "201 01 02 03 04");
+    assert_int_equal(get_u32(0x2100, 0), 0x04030201UL);
+    tb_send(BUS, "080");
+    tb_expect(BUS, "181 44 33 22 11");
+    co_put_u32(v, 0x55667788UL);
+    assert_int_equal(co_od_write(&lean.node, 0x2200, 0, v, 4, true), CO_OK);
+    tb_send(BUS, "080");
+    tb_expect(BUS, "181 88 77 66 55");
+    /* heartbeat consumer 4 of 4: node 5 every 100 ms, lost: EMCY 0x8130 */
+    tb_xfer(BUS, "601 23 16 10 04 64 00 05 00", "581 60 16 10 04 00 00 00 00");
+    tb_send(BUS, "705 05");
+    tb_advance(BUS, 150000);
+    tb_expect(BUS, "081 30 81 11 00 00 00 00 00");
+    assert_int_equal(get_u32(0x1003, 1), 0x00008130UL);
+    tb_send(BUS, "705 05");
+    tb_expect(BUS, "081 00 00 00 00 00 00 00 00");
+    /* TIME is left out */
+    assert_int_equal(co_time_send(&lean.node, 0, 0), CO_ERR_NO_ACCESS);
+    tb_expect_none(BUS);
+}
+
+static void refuses_what_is_left_out(void **state)
+{
+    static const co_od_limit_t limits[1] = {{0, 10}};
+    co_dev_t dev = lean_test_dev;
+    td_node_t td;
+    co_node_config_t cfg;
+    (void)state;
+    /* a personality option */
+    dev.options = CO_OPT_SDO_NO_BLOCK;
+    assert_int_equal(start(&dev), CO_ERR_DEV_INCOMPAT);
+    tb_expect_none(BUS);
+    dev.options = 0U;
+    /* value limits */
+    dev.limits = limits;
+    assert_int_equal(start(&dev), CO_ERR_DEV_INCOMPAT);
+    tb_expect_none(BUS);
+    dev.limits = NULL;
+    assert_int_equal(start(&dev), CO_OK);
+    tb_expect(BUS, "701 00");
+    /* the test device has TIME (0x1012) and a SYNC producer (0x1006) */
+    memset(&td, 0, sizeof td);
+    memset(&cfg, 0, sizeof cfg);
+    cfg.dev = &td_dev;
+    cfg.hal = tb_hal(&bus, 1);
+    cfg.node_id = 2;
+    cfg.ram = &td.ram;
+    cfg.hooks = td.hooks;
+    assert_int_equal(co_node_init(&td.node, &cfg, bus.now), CO_ERR_DEV_INCOMPAT);
+    tb_expect_none(BUS);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(storage_left_out),
+        cmocka_unit_test(services_kept),
+        cmocka_unit_test(refuses_what_is_left_out),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

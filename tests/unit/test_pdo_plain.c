@@ -1,0 +1,230 @@
+/*
+ * PDOs whose mapped objects are plain values (no hook, no limits, index
+ * 0x2000 and above, mapped whole at a byte boundary) are copied between
+ * frame and RAM image without the dictionary's path; the resolution is made
+ * when the mapping is enabled. These tests mix plain entries with entries
+ * that must still go through the dictionary (hooks, limits, BOOLEAN, bit
+ * mapping, dummies, more entries than are resolved) and change mappings
+ * between plain and hooked objects, by SDO and by reset.
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "pdo_fx.h"
+
+static pfx_t fx;
+#define BUS (&fx.bus)
+
+/* Map TPDO1 (0x1A00, COB-ID 0x181) or RPDO1 (0x1600, COB-ID 0x201) to the
+ * @p n entries of @p map, by SDO (invalid, count 0, entries, count, valid). */
+static void map_pdo1(bool tx, const uint32_t *map, uint8_t n)
+{
+    uint8_t comm = tx ? 0x18U : 0x14U;
+    uint8_t mapping = tx ? 0x1AU : 0x16U;
+    unsigned cob = tx ? 0x181U : 0x201U;
+    char req[64];
+    char res[64];
+
+    snprintf(req, sizeof req, "601 23 00 %02X 01 %02X %02X 00 80", comm, cob & 0xFFU, cob >> 8);
+    snprintf(res, sizeof res, "581 60 00 %02X 01 00 00 00 00", comm);
+    tb_xfer(BUS, req, res);
+    snprintf(req, sizeof req, "601 2F 00 %02X 00 00 00 00 00", mapping);
+    snprintf(res, sizeof res, "581 60 00 %02X 00 00 00 00 00", mapping);
+    tb_xfer(BUS, req, res);
+    for (uint8_t k = 0; k < n; k++) {
+        snprintf(req, sizeof req, "601 23 00 %02X %02X %02X %02X %02X %02X", mapping, k + 1U,
+                 (unsigned)(map[k] & 0xFFU), (unsigned)((map[k] >> 8) & 0xFFU),
+                 (unsigned)((map[k] >> 16) & 0xFFU), (unsigned)(map[k] >> 24));
+        snprintf(res, sizeof res, "581 60 00 %02X %02X 00 00 00 00", mapping, k + 1U);
+        tb_xfer(BUS, req, res);
+    }
+    snprintf(req, sizeof req, "601 2F 00 %02X 00 %02X 00 00 00", mapping, n);
+    snprintf(res, sizeof res, "581 60 00 %02X 00 00 00 00 00", mapping);
+    tb_xfer(BUS, req, res);
+    snprintf(req, sizeof req, "601 23 00 %02X 01 %02X %02X 00 00", comm, cob & 0xFFU, cob >> 8);
+    snprintf(res, sizeof res, "581 60 00 %02X 01 00 00 00 00", comm);
+    tb_xfer(BUS, req, res);
+}
+
+static void mixed_tpdo(void **state)
+{
+    /* plain U16, hooked U32 (the read hook refreshes it), plain U8 */
+    static const uint32_t map[] = {0x20080010UL, 0x20200020UL, 0x20070008UL};
+    (void)state;
+    pfx_start(&fx, 1, 0U);
+    map_pdo1(true, map, 3);
+    pfx_set(&fx, 0x2008, 0, 0x1234, 2);
+    pfx_set(&fx, 0x2007, 0, 0x56, 1);
+    fx.hook_value = 0xA1B2C3D4UL;
+    tb_send(BUS, "000 01 01");
+    tb_expect(BUS, "181 34 12 D4 C3 B2 A1 56");
+    fx.hook_value = 0x01020304UL;
+    pfx_set(&fx, 0x2007, 0, 0x57, 1);
+    tb_advance(BUS, 0);
+    tb_expect(BUS, "181 34 12 04 03 02 01 57");
+    tb_expect_none(BUS);
+}
+
+static void mixed_rpdo(void **state)
+{
+    /* plain U8, hooked U32, limited U16 (10..1000), plain I8 */
+    static const uint32_t map[] = {0x20070008UL, 0x20200020UL, 0x20100010UL, 0x20010008UL};
+    (void)state;
+    pfx_start(&fx, 1, 0U);
+    map_pdo1(false, map, 4);
+    tb_send(BUS, "000 01 01");
+    tb_flush(BUS);
+    tb_send(BUS, "201 11 44 33 22 11 64 00 F0");
+    assert_int_equal(pfx_get(&fx, 0x2007, 0) & 0xFF, 0x11);
+    assert_int_equal(fx.hook_written, 0x11223344UL);
+    assert_int_equal(pfx_get(&fx, 0x2010, 0) & 0xFFFF, 100);
+    assert_int_equal(pfx_get(&fx, 0x2001, 0) & 0xFF, 0xF0);
+    /* 0x2010 refuses 5: it keeps its value, the plain entries still apply */
+    tb_send(BUS, "201 22 88 77 66 55 05 00 0F");
+    assert_int_equal(pfx_get(&fx, 0x2007, 0) & 0xFF, 0x22);
+    assert_int_equal(fx.hook_written, 0x55667788UL);
+    assert_int_equal(pfx_get(&fx, 0x2010, 0) & 0xFFFF, 100);
+    assert_int_equal(pfx_get(&fx, 0x2001, 0) & 0xFF, 0x0F);
+    assert_int_equal(fx.hook_writes, 2);
+    tb_expect_none(BUS);
+}
+
+static void rpdo_more_entries_than_resolved(void **state)
+{
+    /* I8, U8, I16, BOOLEAN as 8 bits (checked: 0/1), U16, dummy U8 */
+    static const uint32_t map[] = {0x20010008UL, 0x20070008UL, 0x20020010UL,
+                                   0x20000008UL, 0x20080010UL, 0x00050008UL};
+    (void)state;
+    pfx_start(&fx, 1, 0U);
+    map_pdo1(false, map, 6);
+    tb_send(BUS, "000 01 01");
+    tb_flush(BUS);
+    tb_send(BUS, "201 F1 07 34 12 01 78 56 99");
+    assert_int_equal(pfx_get(&fx, 0x2001, 0) & 0xFF, 0xF1);
+    assert_int_equal(pfx_get(&fx, 0x2007, 0) & 0xFF, 0x07);
+    assert_int_equal(pfx_get(&fx, 0x2002, 0) & 0xFFFF, 0x1234);
+    assert_int_equal(pfx_get(&fx, 0x2000, 0) & 0xFF, 1);
+    assert_int_equal(pfx_get(&fx, 0x2008, 0) & 0xFFFF, 0x5678);
+    /* a BOOLEAN of 2 is refused; every other entry takes effect */
+    tb_send(BUS, "201 01 02 03 04 02 05 06 07");
+    assert_int_equal(pfx_get(&fx, 0x2001, 0) & 0xFF, 0x01);
+    assert_int_equal(pfx_get(&fx, 0x2007, 0) & 0xFF, 0x02);
+    assert_int_equal(pfx_get(&fx, 0x2002, 0) & 0xFFFF, 0x0403);
+    assert_int_equal(pfx_get(&fx, 0x2000, 0) & 0xFF, 1);
+    assert_int_equal(pfx_get(&fx, 0x2008, 0) & 0xFFFF, 0x0605);
+    tb_expect_none(BUS);
+}
+
+static void tpdo_more_entries_than_resolved(void **state)
+{
+    /* I8, U8, I16, U16, then the low 16 bits of a U32 */
+    static const uint32_t map[] = {0x20010008UL, 0x20070008UL, 0x20020010UL, 0x20080010UL,
+                                   0x20090010UL};
+    (void)state;
+    pfx_start(&fx, 1, 0U);
+    map_pdo1(true, map, 5);
+    pfx_set(&fx, 0x2001, 0, 0x81, 1);
+    pfx_set(&fx, 0x2007, 0, 0x42, 1);
+    pfx_set(&fx, 0x2002, 0, 0xBEEF, 2);
+    pfx_set(&fx, 0x2008, 0, 0x1357, 2);
+    pfx_set(&fx, 0x2009, 0, 0xAABBCCDDUL, 4);
+    tb_send(BUS, "000 01 01");
+    tb_expect(BUS, "181 81 42 EF BE 57 13 DD CC");
+    tb_expect_none(BUS);
+}
+
+static void remap_plain_and_hooked(void **state)
+{
+    static const uint32_t plain[] = {0x20090020UL};
+    static const uint32_t hooked[] = {0x20200020UL};
+    static const uint32_t limited[] = {0x20100010UL};
+    (void)state;
+    pfx_start(&fx, 1, 0U);
+    pfx_set(&fx, 0x2009, 0, 0x11223344UL, 4);
+    fx.hook_value = 0xCAFEF00DUL;
+    map_pdo1(true, plain, 1);
+    map_pdo1(false, plain, 1);
+    tb_send(BUS, "000 01 01");
+    tb_expect(BUS, "181 44 33 22 11");
+    tb_send(BUS, "201 01 02 03 04");
+    assert_int_equal(pfx_get(&fx, 0x2009, 0), 0x04030201UL);
+    tb_advance(BUS, 0);
+    tb_expect(BUS, "181 01 02 03 04");
+    /* remapped to the hooked object: the hook produces the data */
+    tb_send(BUS, "000 80 01");
+    map_pdo1(true, hooked, 1);
+    map_pdo1(false, limited, 1);
+    tb_send(BUS, "000 01 01");
+    tb_expect(BUS, "181 0D F0 FE CA");
+    tb_send(BUS, "201 05 00"); /* below the limit: refused (the default is 10) */
+    assert_int_equal(pfx_get(&fx, 0x2010, 0) & 0xFFFF, 10);
+    tb_send(BUS, "201 C8 00");
+    assert_int_equal(pfx_get(&fx, 0x2010, 0) & 0xFFFF, 200);
+    assert_int_equal(pfx_get(&fx, 0x2009, 0), 0x04030201UL);
+    /* and back to the plain object */
+    tb_send(BUS, "000 80 01");
+    map_pdo1(true, plain, 1);
+    tb_send(BUS, "000 01 01");
+    tb_expect(BUS, "181 01 02 03 04");
+    tb_expect_none(BUS);
+}
+
+static void reset_restores_plain_mapping(void **state)
+{
+    static const uint32_t hooked[] = {0x20200020UL};
+    (void)state;
+    pfx_start(&fx, 1, 0U);
+    map_pdo1(true, hooked, 1);
+    pfx_set(&fx, 0x6041, 0, 0x0237, 2);
+    fx.hook_value = 0xCAFEF00DUL;
+    tb_send(BUS, "000 01 01");
+    tb_expect(BUS, "181 0D F0 FE CA");
+    /* reset communication: the default mapping (0x6041, plain) is back */
+    tb_send(BUS, "000 82 01");
+    tb_expect(BUS, "701 00");
+    fx.hook_reads = 0;
+    tb_send(BUS, "000 01 01");
+    tb_expect(BUS, "181 37 02");
+    assert_int_equal(fx.hook_reads, 0);
+    tb_expect_none(BUS);
+}
+
+static void short_rpdo_plain_entries(void **state)
+{
+    /* AnaGate option: a short frame writes only the entries it covers */
+    static const uint32_t map[] = {0x20090020UL, 0x20080010UL};
+    (void)state;
+    pfx_start(&fx, 1, CO_OPT_RPDO_SHORT_OK);
+    map_pdo1(false, map, 2);
+    tb_send(BUS, "000 01 01");
+    tb_flush(BUS);
+    tb_send(BUS, "201 01 02 03 04 05");
+    assert_int_equal(pfx_get(&fx, 0x2009, 0), 0x04030201UL);
+    assert_int_equal(pfx_get(&fx, 0x2008, 0) & 0xFFFF, 0);
+    tb_send(BUS, "201 11 12 13");
+    assert_int_equal(pfx_get(&fx, 0x2009, 0), 0x04030201UL);
+    tb_send(BUS, "201 21 22 23 24 25 26");
+    assert_int_equal(pfx_get(&fx, 0x2009, 0), 0x24232221UL);
+    assert_int_equal(pfx_get(&fx, 0x2008, 0) & 0xFFFF, 0x2625);
+    tb_expect_none(BUS);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(mixed_tpdo),
+        cmocka_unit_test(mixed_rpdo),
+        cmocka_unit_test(rpdo_more_entries_than_resolved),
+        cmocka_unit_test(tpdo_more_entries_than_resolved),
+        cmocka_unit_test(remap_plain_and_hooked),
+        cmocka_unit_test(reset_restores_plain_mapping),
+        cmocka_unit_test(short_rpdo_plain_entries),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -89,6 +89,19 @@ class Sniffer:
         with self.cond:
             return len(self.frames)
 
+    def quiet_mark(self, quiet: float = 0.1, limit: float = 2.0) -> int:
+        """A mark taken once the bus has been quiet for `quiet` seconds (the
+        sniffer has caught up with everything sent before)."""
+        end = time.monotonic() + limit
+        n = self.mark()
+        while time.monotonic() < end:
+            time.sleep(quiet)
+            k = self.mark()
+            if k == n:
+                break
+            n = k
+        return n
+
     def since(self, mark: int = 0, cob: int | None = None) -> list[Frame]:
         with self.cond:
             fr = self.frames[mark:]

@@ -20,6 +20,18 @@ def test_boot_up_frame_is_the_first_frame(daemons, sniffer):
     assert sniffer.wait(lambda f: f.id & 0x7F == 0x22 and f.id != 0x722, 0.5, m) is None
 
 
+def command(node, sniffer, state: str, code: int):
+    """Send an NMT command; the heartbeats must report the new state (a
+    heartbeat already on its way may still show the old one) and keep it."""
+    m = sniffer.mark()
+    node.nmt.state = state
+    f = sniffer.wait(lambda f: f.id == HB and f.data[0] == code, 1.0, m)
+    assert f is not None, f"heartbeat never says 0x{code:02X}"
+    for _ in range(2):
+        f = sniffer.wait_cob(HB, 1.0, f.idx + 1)
+        assert f is not None and f.data[0] == code
+
+
 def hb_state(sniffer, timeout=2.0):
     """The state of the next heartbeat after now."""
     f = sniffer.wait_cob(HB, timeout, sniffer.mark())
@@ -30,11 +42,10 @@ def hb_state(sniffer, timeout=2.0):
 def test_nmt_state_cycle(node, sniffer):
     node.sdo.download(0x1017, 0, u16(50))            # heartbeat every 50 ms
     assert hb_state(sniffer) == 0x7F                  # pre-operational
-    node.nmt.state = "OPERATIONAL"
-    assert sniffer.wait_cob(0x000, 1.0, 0, bytes([NMT_START, NODE_ID])) is not None
-    assert hb_state(sniffer) == 0x05
-    node.nmt.state = "STOPPED"
-    assert hb_state(sniffer) == 0x04
+    m = sniffer.mark()
+    command(node, sniffer, "OPERATIONAL", 0x05)
+    assert sniffer.wait_cob(0x000, 1.0, m, bytes([NMT_START, NODE_ID])) is not None
+    command(node, sniffer, "STOPPED", 0x04)
     # no SDO in Stopped: the request is not answered
     node.sdo.RESPONSE_TIMEOUT = 0.5
     m = sniffer.mark()
@@ -42,23 +53,21 @@ def test_nmt_state_cycle(node, sniffer):
         node.sdo.upload(0x1000, 0)
     assert sniffer.since(m, 0x580 + NODE_ID) == []
     node.sdo.RESPONSE_TIMEOUT = 2.0
-    node.nmt.state = "PRE-OPERATIONAL"
-    assert hb_state(sniffer) == 0x7F
+    command(node, sniffer, "PRE-OPERATIONAL", 0x7F)
     assert node.sdo.upload(0x1000, 0) == bytes(4)
-    node.nmt.state = "OPERATIONAL"
-    assert hb_state(sniffer) == 0x05
+    command(node, sniffer, "OPERATIONAL", 0x05)
 
 
 def test_reset_communication_restores_communication_objects(node, sniffer):
     node.sdo.download(0x1017, 0, u16(100))
     node.sdo.download(0x2020, 0, u16(500))           # an application parameter
-    node.nmt.state = "OPERATIONAL"
-    assert hb_state(sniffer) == 0x05
+    command(node, sniffer, "OPERATIONAL", 0x05)
     m = sniffer.mark()
     node.nmt.send_command(NMT_RESET_COMM)
-    assert sniffer.wait_cob(HB, 2.0, m) .data == b"\x00"   # boot-up first
-    # communication area back to defaults: no heartbeat; pre-operational
-    assert sniffer.wait(lambda f: f.id == HB and f.data != b"\x00", 0.4, m) is None
+    boot = sniffer.wait_cob(HB, 2.0, m, b"\x00")
+    assert boot is not None, "no boot-up after reset communication"
+    # communication area back to defaults: no heartbeat after the boot-up
+    assert sniffer.wait(lambda f: f.id == HB, 0.4, boot.idx + 1) is None
     assert node.sdo.upload(0x1017, 0) == u16(0)
     # the application area is kept
     assert node.sdo.upload(0x2020, 0) == u16(500)
@@ -71,14 +80,13 @@ def test_reset_node_restores_everything(node, sniffer):
     node.sdo.download(0x2300, 0, data)               # application DOMAIN
     m = sniffer.mark()
     node.nmt.send_command(NMT_RESET_NODE)
-    assert sniffer.wait_cob(HB, 2.0, m).data == b"\x00"
+    assert sniffer.wait_cob(HB, 2.0, m, b"\x00") is not None, "no boot-up after reset node"
     assert node.sdo.upload(0x2020, 0) == u16(100)
     assert node.sdo.upload(0x1017, 0) == u16(0)
     assert node.sdo.upload(0x2300, 0) == b""          # the application was reset too
     # and it is a working node again
-    node.nmt.state = "OPERATIONAL"
     node.sdo.download(0x1017, 0, u16(50))
-    assert hb_state(sniffer) == 0x05
+    command(node, sniffer, "OPERATIONAL", 0x05)
 
 
 def test_broadcast_reaches_every_node(daemons, sniffer, network, eds_path):

@@ -19,7 +19,7 @@ def server_frames(sniffer, mark):
 
 
 def test_expedited_both_directions(node, sniffer):
-    m = sniffer.mark()
+    m = sniffer.quiet_mark()
     assert node.sdo.upload(0x1000, 0) == bytes(4)                        # device type
     assert node.sdo.upload(0x1018, 2) == u32(0x301)                      # product code
     assert node.sdo.upload(0x2002, 0) == (-1616).to_bytes(2, "little", signed=True)
@@ -34,11 +34,11 @@ def test_expedited_both_directions(node, sniffer):
 
 
 def test_segmented_both_directions(node, sniffer):
-    m = sniffer.mark()
+    m = sniffer.quiet_mark()
     assert node.sdo.upload(0x1008, 0) == b"generic-301"
     assert server_frames(sniffer, m)[0].data[0] == 0x41          # segmented, size indicated
     text = b"written in seven-byte segments!"
-    m = sniffer.mark()
+    m = sniffer.quiet_mark()
     node.sdo.download(0x2013, 0, text, force_segment=True)
     assert [f.data[0] & 0xE0 for f in server_frames(sniffer, m)][:2] == [0x60, 0x20]
     assert node.sdo.upload(0x2013, 0) == text
@@ -56,11 +56,11 @@ def test_segmented_domain_both_directions(node):
 
 def test_block_both_directions(node, sniffer):
     text = b"block transfer of a string"
-    m = sniffer.mark()
+    m = sniffer.quiet_mark()
     with node.sdo.open(0x2013, 0, "wb", block_transfer=True, size=len(text)) as f:
         f.write(text)
     assert server_frames(sniffer, m)[0].data[0] & 0xE0 == 0xA0     # block download
-    m = sniffer.mark()
+    m = sniffer.quiet_mark()
     with node.sdo.open(0x2013, 0, "rb", block_transfer=True) as f:
         assert f.read() == text
     assert server_frames(sniffer, m)[0].data[0] & 0xE0 == 0xC0     # block upload

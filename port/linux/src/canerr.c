@@ -6,21 +6,26 @@
 
 static unsigned put(co_lx_emcy_action_t *out, unsigned n, uint16_t code, bool raise)
 {
-    if (n < CO_LX_CANERR_ACTIONS_MAX) {
-        out[n].code = code;
-        out[n].raise = raise;
-        n++;
+    unsigned count = n;
+
+    if (count < CO_LX_CANERR_ACTIONS_MAX) {
+        out[count].code = code;
+        out[count].raise = raise;
+        count++;
     }
-    return n;
+    return count;
 }
 
+/* flag := on; an action when it changed */
 static unsigned set(bool *flag, bool on, uint16_t code, co_lx_emcy_action_t *out, unsigned n)
 {
+    unsigned count = n;
+
     if (*flag != on) {
         *flag = on;
-        n = put(out, n, code, on);
+        count = put(out, count, code, on);
     }
-    return n;
+    return count;
 }
 
 unsigned co_lx_canerr_frame(co_lx_canerr_t *st, uint32_t can_id, const uint8_t data[8],

@@ -13,7 +13,7 @@
 
 #define RX_BATCH 64U   /* frames taken from one socket before timers run again */
 
-static void say(const co_lx_loop_t *l, co_lx_level_t level, const char *msg)
+static void loop_say(const co_lx_loop_t *l, co_lx_level_t level, const char *msg)
 {
     if (l->log != NULL) {
         l->log(l->log_ctx, level, msg);
@@ -67,7 +67,7 @@ static int drain_member(const co_lx_loop_t *l, co_lx_member_t *m)
             bool down = (errno == ENETDOWN);
             (void)snprintf(msg, sizeof msg, "%s: %s%s", m->port->iface, strerror(errno),
                            down ? " (waiting for it to come up)" : "");
-            say(l, down ? CO_LX_WARN : CO_LX_ERROR, msg);
+            loop_say(l, down ? CO_LX_WARN : CO_LX_ERROR, msg);
             return down ? 0 : -1;
         }
         if (r == 0) {
@@ -86,7 +86,7 @@ int co_lx_loop_run(co_lx_loop_t *l)
     int rc = 0;
 
     if (fds == NULL) {
-        say(l, CO_LX_ERROR, "out of memory");
+        loop_say(l, CO_LX_ERROR, "out of memory");
         return -1;
     }
     while ((rc == 0) && (*l->stop == 0)) {
@@ -112,7 +112,7 @@ int co_lx_loop_run(co_lx_loop_t *l)
         r = ppoll(fds, (nfds_t)nfds, tsp, l->sleep_mask);
         if (r < 0) {
             if (errno != EINTR) {
-                say(l, CO_LX_ERROR, "ppoll failed");
+                loop_say(l, CO_LX_ERROR, "ppoll failed");
                 rc = -1;
             }
             continue;

@@ -10,18 +10,19 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-static int write_all(int fd, const uint8_t *p, size_t n)
+static int write_all(int fd, const uint8_t *data, size_t len)
 {
-    while (n > 0U) {
-        ssize_t w = write(fd, p, n);
+    size_t done = 0U;
+
+    while (done < len) {
+        ssize_t w = write(fd, &data[done], len - done);
         if (w < 0) {
-            if (errno == EINTR) {
-                continue;
+            if (errno != EINTR) {
+                return -1;
             }
-            return -1;
+        } else {
+            done += (size_t)w;
         }
-        p += w;
-        n -= (size_t)w;
     }
     return 0;
 }
@@ -42,7 +43,8 @@ static int open_dir_of(const char *path)
 
 static int persist(const co_lx_nv_t *nv)
 {
-    int fd = open(nv->tmp, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    int fd = open(nv->tmp, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC,
+                  S_IRUSR | S_IWUSR | S_IRGRP | S_IROTH);
     int dfd;
     int rc = 0;
 
@@ -93,7 +95,7 @@ static int load(co_lx_nv_t *nv, char *err, size_t errcap)
     }
     while (got < (uint32_t)st.st_size) {
         ssize_t r = read(fd, &nv->img[got], (size_t)st.st_size - got);
-        if (r < 0 && errno == EINTR) {
+        if ((r < 0) && (errno == EINTR)) {
             continue;
         }
         if (r <= 0) {

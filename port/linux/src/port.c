@@ -6,7 +6,7 @@
 #include <string.h>
 #include <unistd.h>
 
-static void say(const co_lx_port_t *p, co_lx_level_t level, const char *msg)
+static void port_say(const co_lx_port_t *p, co_lx_level_t level, const char *msg)
 {
     if (p->log != NULL) {
         p->log(p->log_ctx, level, msg);
@@ -21,7 +21,7 @@ static int port_send(void *ctx, const co_frame_t *f)
     if (r == 0) {
         if (p->tx_blocked) {
             p->tx_blocked = false;
-            say(p, CO_LX_DEBUG, "TX path accepts frames again");
+            port_say(p, CO_LX_DEBUG, "TX path accepts frames again");
         }
         return 0;
     }
@@ -30,7 +30,7 @@ static int port_send(void *ctx, const co_frame_t *f)
          * frame back and retries it from co_node_process */
         if (!p->tx_blocked) {
             p->tx_blocked = true;
-            say(p, CO_LX_DEBUG, "TX path full: frames held back");
+            port_say(p, CO_LX_DEBUG, "TX path full: frames held back");
         }
         p->tx_refused++;
         return 1;
@@ -39,7 +39,7 @@ static int port_send(void *ctx, const co_frame_t *f)
         char msg[96];
         (void)snprintf(msg, sizeof msg, "send on %s failed: %s (frame dropped)", p->iface,
                        strerror(errno));
-        say(p, CO_LX_WARN, msg);
+        port_say(p, CO_LX_WARN, msg);
     }
     p->tx_failed++;
     return 0;
@@ -59,7 +59,7 @@ static int port_nv_write(void *ctx, uint32_t addr, const uint8_t *buf, uint32_t 
     if (r != 0) {
         char msg[160];
         (void)snprintf(msg, sizeof msg, "%s: writing the parameter file failed", p->nv->path);
-        say(p, CO_LX_ERROR, msg);
+        port_say(p, CO_LX_ERROR, msg);
     }
     return r;
 }
@@ -103,7 +103,7 @@ static void apply(co_lx_port_t *p, const co_lx_emcy_action_t *a, unsigned n)
                        (a[i].code == CO_LX_EMCY_BUSOFF) ? "bus-off"
                        : (a[i].code == CO_LX_EMCY_PASSIVE) ? "error passive" : "overrun",
                        (unsigned)a[i].code, a[i].raise ? "raised" : "cleared");
-        say(p, a[i].raise ? CO_LX_WARN : CO_LX_INFO, msg);
+        port_say(p, a[i].raise ? CO_LX_WARN : CO_LX_INFO, msg);
         if (p->node == NULL) {
             continue;
         }

@@ -19,6 +19,7 @@ size_t co_lx_trace_format(char *buf, size_t cap, int64_t sec, uint32_t usec, con
     char id[16];
     char payload[20];
     size_t p = 0U;
+    uint8_t n_bytes = len;
     int n;
 
     if ((can_id & CAN_ERR_FLAG) != 0U) {
@@ -28,18 +29,21 @@ size_t co_lx_trace_format(char *buf, size_t cap, int64_t sec, uint32_t usec, con
     } else {
         (void)snprintf(id, sizeof id, "%03" PRIX32, can_id & CAN_SFF_MASK);
     }
-    if (len > 8U) {
-        len = 8U;
+    if (n_bytes > 8U) {
+        n_bytes = 8U;
     }
     if ((can_id & CAN_RTR_FLAG) != 0U) {
-        payload[p++] = 'R';
-        if (len != 0U) {
-            payload[p++] = hexdig[len];
+        payload[p] = 'R';
+        p++;
+        if (n_bytes != 0U) {
+            payload[p] = hexdig[n_bytes];
+            p++;
         }
     } else {
-        for (uint8_t i = 0U; i < len; i++) {
-            payload[p++] = hexdig[data[i] >> 4];
-            payload[p++] = hexdig[data[i] & 0x0FU];
+        for (uint8_t i = 0U; i < n_bytes; i++) {
+            payload[p] = hexdig[data[i] >> 4];
+            payload[p + 1U] = hexdig[data[i] & 0x0FU];
+            p += 2U;
         }
     }
     payload[p] = '\0';

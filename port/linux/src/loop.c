@@ -1,0 +1,138 @@
+/* The event loop of the Linux port (see loop.h). */
+#include "co_lx/loop.h"
+
+#include <errno.h>
+#include <poll.h>
+#include <stdbool.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "co_lx/clock.h"
+
+#define RX_BATCH 64U   /* frames taken from one socket before timers run again */
+
+static void loop_say(const co_lx_loop_t *l, co_lx_level_t level, const char *msg)
+{
+    if (l->log != NULL) {
+        l->log(l->log_ctx, level, msg);
+    }
+}
+
+const struct timespec *co_lx_sleep_for(uint32_t deadline, uint32_t now, struct timespec *ts)
+{
+    int32_t us;
+
+    if (deadline == CO_NO_DEADLINE) {
+        return NULL;
+    }
+    us = co_lx_until(deadline, now);
+    if (us < 0) {
+        us = 0;
+    }
+    ts->tv_sec = (time_t)(us / 1000000);
+    ts->tv_nsec = (long)(us % 1000000) * 1000L;
+    return ts;
+}
+
+/* Run every node's timers and application; the earliest deadline. */
+static uint32_t run_timers(co_lx_loop_t *l, uint32_t now)
+{
+    uint32_t next = CO_NO_DEADLINE;
+
+    for (size_t i = 0U; i < l->n_members; i++) {
+        co_lx_member_t *m = &l->members[i];
+        uint32_t d = co_node_process(m->node, now);
+
+        if (m->tick != NULL) {
+            uint32_t a = m->tick(m->tick_ctx, m->node, now);
+            d = (d == CO_NO_DEADLINE) ? a : ((a == CO_NO_DEADLINE) ? d : co_lx_earlier(a, d, now));
+        }
+        if (d != CO_NO_DEADLINE) {
+            next = (next == CO_NO_DEADLINE) ? d : co_lx_earlier(d, next, now);
+        }
+    }
+    return next;
+}
+
+static int drain_member(const co_lx_loop_t *l, co_lx_member_t *m)
+{
+    for (unsigned k = 0U; k < RX_BATCH; k++) {
+        uint32_t now = co_lx_now_us();
+        int r = co_lx_port_rx(m->port, now);
+
+        if (r < 0) {
+            char msg[128];
+            bool down = (errno == ENETDOWN);
+            (void)snprintf(msg, sizeof msg, "%s: %s%s", m->port->iface, strerror(errno),
+                           down ? " (waiting for it to come up)" : "");
+            loop_say(l, down ? CO_LX_WARN : CO_LX_ERROR, msg);
+            return down ? 0 : -1;
+        }
+        if (r == 0) {
+            break;
+        }
+        /* the core wants co_node_process after every received frame */
+        (void)co_node_process(m->node, now);
+    }
+    return 0;
+}
+
+int co_lx_loop_run(co_lx_loop_t *l)
+{
+    size_t nfds = l->n_members + l->n_tracers;
+    struct pollfd *fds = (struct pollfd *)calloc((nfds != 0U) ? nfds : 1U, sizeof *fds);
+    int rc = 0;
+
+    if (fds == NULL) {
+        loop_say(l, CO_LX_ERROR, "out of memory");
+        return -1;
+    }
+    while ((rc == 0) && (*l->stop == 0)) {
+        struct timespec ts;
+        const struct timespec *tsp;
+        uint32_t now = co_lx_now_us();
+        uint32_t next = run_timers(l, now);
+        bool traced = false;
+        int r;
+
+        for (size_t i = 0U; i < l->n_members; i++) {
+            fds[i].fd = l->members[i].port->fd;
+            fds[i].events = (short)(POLLIN | (l->members[i].port->tx_blocked ? POLLOUT : 0));
+            fds[i].revents = 0;
+        }
+        for (size_t i = 0U; i < l->n_tracers; i++) {
+            fds[l->n_members + i].fd = l->tracers[i].fd;
+            fds[l->n_members + i].events = POLLIN;
+            fds[l->n_members + i].revents = 0;
+        }
+        tsp = co_lx_sleep_for(next, co_lx_now_us(), &ts);
+        l->rounds++;
+        r = ppoll(fds, (nfds_t)nfds, tsp, l->sleep_mask);
+        if (r < 0) {
+            if (errno != EINTR) {
+                loop_say(l, CO_LX_ERROR, "ppoll failed");
+                rc = -1;
+            }
+            continue;
+        }
+        for (size_t i = 0U; (i < l->n_members) && (rc == 0); i++) {
+            if ((fds[i].revents & (POLLIN | POLLERR | POLLHUP | POLLNVAL)) != 0) {
+                rc = drain_member(l, &l->members[i]);
+            }
+        }
+        for (size_t i = 0U; (i < l->n_tracers) && (rc == 0); i++) {
+            if ((fds[l->n_members + i].revents & POLLIN) != 0) {
+                traced = (co_lx_tracer_drain(&l->tracers[i]) > 0) || traced;
+            }
+        }
+        if (traced) {
+            for (size_t i = 0U; i < l->n_tracers; i++) {
+                (void)fflush(l->tracers[i].out);
+            }
+        }
+    }
+    free(fds);
+    return rc;
+}

@@ -1,0 +1,152 @@
+/* One node's socket, storage and error state (see port.h). */
+#include "co_lx/port.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <string.h>
+#include <unistd.h>
+
+static void port_say(const co_lx_port_t *p, co_lx_level_t level, const char *msg)
+{
+    if (p->log != NULL) {
+        p->log(p->log_ctx, level, msg);
+    }
+}
+
+static int port_send(void *ctx, const co_frame_t *f)
+{
+    co_lx_port_t *p = (co_lx_port_t *)ctx;
+    int r = co_lx_can_send(p->fd, f);
+
+    if (r == 0) {
+        if (p->tx_blocked) {
+            p->tx_blocked = false;
+            port_say(p, CO_LX_DEBUG, "TX path accepts frames again");
+        }
+        return 0;
+    }
+    if ((r > 0) || (errno == ENETDOWN)) {
+        /* full (or the interface is down for a moment): the core holds the
+         * frame back and retries it from co_node_process */
+        if (!p->tx_blocked) {
+            p->tx_blocked = true;
+            port_say(p, CO_LX_DEBUG, "TX path full: frames held back");
+        }
+        p->tx_refused++;
+        return 1;
+    }
+    if (p->tx_failed == 0U) {
+        char msg[96];
+        (void)snprintf(msg, sizeof msg, "send on %s failed: %s (frame dropped)", p->iface,
+                       strerror(errno));
+        port_say(p, CO_LX_WARN, msg);
+    }
+    p->tx_failed++;
+    return 0;
+}
+
+static int port_nv_read(void *ctx, uint32_t addr, uint8_t *buf, uint32_t len)
+{
+    const co_lx_port_t *p = (const co_lx_port_t *)ctx;
+    return co_lx_nv_read(p->nv, addr, buf, len);
+}
+
+static int port_nv_write(void *ctx, uint32_t addr, const uint8_t *buf, uint32_t len)
+{
+    const co_lx_port_t *p = (const co_lx_port_t *)ctx;
+    int r = co_lx_nv_write(p->nv, addr, buf, len);
+
+    if (r != 0) {
+        char msg[160];
+        (void)snprintf(msg, sizeof msg, "%s: writing the parameter file failed", p->nv->path);
+        port_say(p, CO_LX_ERROR, msg);
+    }
+    return r;
+}
+
+static const co_hal_ops_t ops_nv = {port_send, port_nv_read, port_nv_write};
+static const co_hal_ops_t ops_plain = {port_send, NULL, NULL};
+
+int co_lx_port_open(co_lx_port_t *p, const char *iface, co_lx_nv_t *nv, co_lx_can_fail_t *why)
+{
+    co_lx_log_fn log = p->log;
+    void *log_ctx = p->log_ctx;
+
+    (void)memset(p, 0, sizeof *p);
+    p->log = log;
+    p->log_ctx = log_ctx;
+    p->nv = nv;
+    (void)snprintf(p->iface, sizeof p->iface, "%s", iface);
+    p->fd = co_lx_can_open(iface, why);
+    return (p->fd < 0) ? -1 : 0;
+}
+
+co_hal_t co_lx_port_hal(co_lx_port_t *p)
+{
+    co_hal_t h;
+
+    h.ops = (p->nv != NULL) ? &ops_nv : &ops_plain;
+    h.ctx = p;
+    return h;
+}
+
+void co_lx_port_attach(co_lx_port_t *p, co_node_t *node)
+{
+    p->node = node;
+}
+
+static void apply(co_lx_port_t *p, const co_lx_emcy_action_t *a, unsigned n)
+{
+    for (unsigned i = 0U; i < n; i++) {
+        char msg[96];
+        (void)snprintf(msg, sizeof msg, "%s: CAN controller %s: EMCY 0x%04X %s", p->iface,
+                       (a[i].code == CO_LX_EMCY_BUSOFF) ? "bus-off"
+                       : (a[i].code == CO_LX_EMCY_PASSIVE) ? "error passive" : "overrun",
+                       (unsigned)a[i].code, a[i].raise ? "raised" : "cleared");
+        port_say(p, a[i].raise ? CO_LX_WARN : CO_LX_INFO, msg);
+        if (p->node == NULL) {
+            continue;
+        }
+        if (a[i].raise) {
+            co_emcy_raise(p->node, a[i].code, CO_ERREG_COMM, NULL);
+        } else {
+            co_emcy_clear(p->node, a[i].code);
+        }
+    }
+}
+
+int co_lx_port_rx(co_lx_port_t *p, uint32_t now_us)
+{
+    struct can_frame cf;
+    co_lx_emcy_action_t act[CO_LX_CANERR_ACTIONS_MAX];
+    uint32_t dropped = p->dropped;
+    unsigned n;
+    co_frame_t f;
+    int r = co_lx_can_recv(p->fd, &cf, NULL, &dropped);
+
+    if (r <= 0) {
+        return r;
+    }
+    if ((cf.can_id & CAN_ERR_FLAG) != 0U) {
+        n = co_lx_canerr_frame(&p->err, cf.can_id, cf.data, act);
+        apply(p, act, n);
+        return 1;
+    }
+    n = co_lx_canerr_rx(&p->err, dropped - p->dropped, act);
+    p->dropped = dropped;
+    apply(p, act, n);
+    p->rx_frames++;
+    if (p->node != NULL) {
+        co_lx_frame_from_can(&cf, &f);
+        co_node_rx(p->node, &f, now_us);
+    }
+    return 1;
+}
+
+void co_lx_port_close(co_lx_port_t *p)
+{
+    if (p->fd >= 0) {
+        (void)close(p->fd);
+        p->fd = -1;
+    }
+}

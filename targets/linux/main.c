@@ -1,0 +1,396 @@
+/*
+ * canopen-device: simulated CANopen devices on a SocketCAN interface.
+ * Options in options.h, devices in device_registry.h, the loop in
+ * port/linux (co_lx/loop.h).
+ */
+#include <errno.h>
+#include <signal.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "co/co_node.h"
+#include "co_lx/clock.h"
+#include "co_lx/loop.h"
+#include "co_lx/nvfile.h"
+#include "co_lx/port.h"
+#include "co_lx/trace.h"
+#include "device_registry.h"
+#include "options.h"
+
+#ifndef CO_VERSION
+#define CO_VERSION "0.0.0"
+#endif
+
+#define PROG "canopen-device"
+
+typedef struct dnode {
+    const device_entry_t *dev;
+    co_node_t node;
+    void *ram;
+    co_od_hook_t *hooks;
+    co_pdo_t *pdo;          /* the device's RPDOs then TPDOs */
+    co_pdo_slot_t *pdo_rx;
+    void *app;
+    co_lx_port_t port;
+    co_lx_nv_t nv;
+    int has_nv;
+    char tag[64];
+} dnode_t;
+
+static co_lx_level_t log_level = CO_LX_INFO;
+static volatile sig_atomic_t stop_flag;
+
+static void on_signal(int sig)
+{
+    (void)sig;
+    stop_flag = 1;
+}
+
+static const char *level_name(co_lx_level_t l)
+{
+    static const char *const names[] = {"error", "warn", "info", "debug"};
+    return names[(unsigned)l & 3U];
+}
+
+static void log_line(const char *tag, co_lx_level_t level, const char *fmt, ...)
+    __attribute__((format(printf, 3, 4)));
+
+static void log_line(const char *tag, co_lx_level_t level, const char *fmt, ...)
+{
+    va_list ap;
+
+    if (level > log_level) {
+        return;
+    }
+    (void)fprintf(stderr, PROG ": %s: ", level_name(level));
+    if (tag != NULL) {
+        (void)fprintf(stderr, "%s: ", tag);
+    }
+    va_start(ap, fmt);
+    (void)vfprintf(stderr, fmt, ap);
+    va_end(ap);
+    (void)fputc('\n', stderr);
+}
+
+static void port_log(void *ctx, co_lx_level_t level, const char *msg)
+{
+    log_line((const char *)ctx, level, "%s", msg);
+}
+
+static const char *state_name(co_nmt_state_t s)
+{
+    switch (s) {
+    case CO_NMT_INITIALISING: return "initialising";
+    case CO_NMT_STOPPED: return "stopped";
+    case CO_NMT_OPERATIONAL: return "operational";
+    case CO_NMT_PRE_OPERATIONAL: return "pre-operational";
+    default: return "?";
+    }
+}
+
+/* ---------------------------------------------------- core callbacks */
+
+static void cb_nmt_state(void *ctx, co_node_t *node, co_nmt_state_t state)
+{
+    dnode_t *d = (dnode_t *)ctx;
+
+    log_line(d->tag, CO_LX_INFO, "NMT %s", state_name(state));
+    if (d->dev->nmt != NULL) {
+        d->dev->nmt(d->app, node, state);
+    }
+}
+
+static void cb_nmt_reset(void *ctx, co_node_t *node, co_reset_t kind)
+{
+    dnode_t *d = (dnode_t *)ctx;
+
+    log_line(d->tag, CO_LX_INFO, "NMT reset %s",
+             (kind == CO_RESET_NODE) ? "node" : "communication");
+    if (d->dev->reset != NULL) {
+        d->dev->reset(d->app, node, kind);
+    }
+}
+
+static void cb_hb_event(void *ctx, co_node_t *node, co_hb_event_t ev, uint8_t id,
+                        co_nmt_state_t state)
+{
+    static const char *const names[] = {"heartbeat started", "heartbeat timeout",
+                                        "heartbeat recovered", "heartbeat state",
+                                        "life guarding lost", "life guarding recovered"};
+    dnode_t *d = (dnode_t *)ctx;
+
+    (void)node;
+    log_line(d->tag, (ev == CO_HB_TIMEOUT || ev == CO_GUARD_LOST) ? CO_LX_WARN : CO_LX_INFO,
+             "%s (producer %u, %s)", names[(unsigned)ev % 6U], (unsigned)id, state_name(state));
+}
+
+static void cb_sync(void *ctx, co_node_t *node, uint8_t counter)
+{
+    dnode_t *d = (dnode_t *)ctx;
+
+    if (d->dev->sync != NULL) {
+        d->dev->sync(d->app, node, counter);
+    }
+}
+
+static uint32_t tick(void *ctx, co_node_t *node, uint32_t now_us)
+{
+    dnode_t *d = (dnode_t *)ctx;
+
+    return (d->dev->process != NULL) ? d->dev->process(d->app, node, now_us) : CO_NO_DEADLINE;
+}
+
+/* ---------------------------------------------------- start and stop */
+
+static void can_failure(const char *iface, co_lx_can_fail_t why)
+{
+    switch (why) {
+    case CO_LX_CAN_NO_IFACE:
+        (void)fprintf(stderr,
+                      PROG ": interface %s not found; create it with: "
+                      "ip link add dev %s type vcan; ip link set up %s\n",
+                      iface, iface, iface);
+        break;
+    case CO_LX_CAN_DOWN:
+        (void)fprintf(stderr, PROG ": interface %s is down; bring it up with: ip link set up %s\n",
+                      iface, iface);
+        break;
+    case CO_LX_CAN_NO_SUPPORT:
+        (void)fprintf(stderr,
+                      PROG ": cannot open %s: this kernel has no SocketCAN support "
+                      "(run it where CAN is available, e.g. through tools/vcan-run)\n",
+                      iface);
+        break;
+    case CO_LX_CAN_NOT_CAN:
+        (void)fprintf(stderr, PROG ": %s is not a CAN interface\n", iface);
+        break;
+    default:
+        (void)fprintf(stderr, PROG ": cannot open %s: %s\n", iface, strerror(errno));
+        break;
+    }
+}
+
+static int start_node(dnode_t *d, const opt_node_t *spec, const char *iface)
+{
+    co_node_config_t cfg;
+    co_lx_can_fail_t why = CO_LX_CAN_OK;
+    char err[256];
+    co_err_t e;
+
+    d->dev = device_find(spec->device);
+    (void)snprintf(d->tag, sizeof d->tag, "node %u (%s)", (unsigned)spec->id, d->dev->name);
+    if ((d->dev->ram_size != d->dev->dev->ram_size) ||
+        (d->dev->n_hooks < d->dev->dev->n_hooks)) {
+        log_line(d->tag, CO_LX_ERROR, "registry entry does not fit the dictionary");
+        return -1;
+    }
+    d->ram = calloc(1U, d->dev->ram_size);
+    d->hooks = (co_od_hook_t *)calloc((d->dev->n_hooks != 0U) ? d->dev->n_hooks : 1U,
+                                      sizeof *d->hooks);
+    {
+        size_t n_pdo = (size_t)d->dev->dev->n_rpdo + d->dev->dev->n_tpdo;
+        d->pdo = (co_pdo_t *)calloc((n_pdo != 0U) ? n_pdo : 1U, sizeof *d->pdo);
+        d->pdo_rx = (co_pdo_slot_t *)calloc((n_pdo != 0U) ? n_pdo : 1U, sizeof *d->pdo_rx);
+    }
+    d->app = calloc(1U, (d->dev->app_size != 0U) ? d->dev->app_size : 1U);
+    if ((d->ram == NULL) || (d->hooks == NULL) || (d->app == NULL) || (d->pdo == NULL) ||
+        (d->pdo_rx == NULL)) {
+        log_line(d->tag, CO_LX_ERROR, "out of memory");
+        return -1;
+    }
+    if (spec->storage != NULL) {
+        if (co_lx_nv_open(&d->nv, spec->storage, CO_LX_NV_SIZE_DEFAULT, err, sizeof err) != 0) {
+            (void)fprintf(stderr, PROG ": %s\n", err);
+            return -1;
+        }
+        d->has_nv = 1;
+    }
+    d->port.log = port_log;
+    d->port.log_ctx = d->tag;
+    if (co_lx_port_open(&d->port, iface, d->has_nv ? &d->nv : NULL, &why) != 0) {
+        can_failure(iface, why);
+        return -1;
+    }
+    (void)memset(&cfg, 0, sizeof cfg);
+    cfg.dev = d->dev->dev;
+    cfg.hal = co_lx_port_hal(&d->port);
+    cfg.node_id = spec->id;
+    cfg.ram = d->ram;
+    cfg.hooks = d->hooks;
+    cfg.pdo = d->pdo;
+    cfg.pdo_rx = d->pdo_rx;
+    cfg.cb.ctx = d;
+    cfg.cb.nmt_state = cb_nmt_state;
+    cfg.cb.nmt_reset = cb_nmt_reset;
+    cfg.cb.hb_event = cb_hb_event;
+    cfg.cb.sync = cb_sync;
+    e = co_node_init(&d->node, &cfg, co_lx_now_us());
+    if (e != CO_OK) {
+        log_line(d->tag, CO_LX_ERROR, "co_node_init failed: 0x%08lX", (unsigned long)e);
+        return -1;
+    }
+    co_lx_port_attach(&d->port, &d->node);
+    if ((d->dev->attach != NULL) && (d->dev->attach(d->app, &d->node) != 0)) {
+        log_line(d->tag, CO_LX_ERROR, "device application failed to start");
+        return -1;
+    }
+    log_line(d->tag, CO_LX_INFO, "up on %s%s%s", iface, d->has_nv ? ", parameters in " : "",
+             d->has_nv ? spec->storage : "");
+    return 0;
+}
+
+static void stop_node(dnode_t *d)
+{
+    if ((d->dev != NULL) && (d->dev->detach != NULL) && (d->port.node != NULL)) {
+        d->dev->detach(d->app, &d->node);
+    }
+    co_lx_port_close(&d->port);
+    if (d->has_nv) {
+        co_lx_nv_close(&d->nv);
+    }
+    free(d->ram);
+    free(d->hooks);
+    free(d->pdo);
+    free(d->pdo_rx);
+    free(d->app);
+}
+
+static int export_eds(const options_t *o)
+{
+    const device_entry_t *dev = device_find(o->nodes[0].device);
+    size_t len = strlen((const char *)dev->eds);
+    int to_stdout = (strcmp(o->export_path, "-") == 0);
+    FILE *f = to_stdout ? stdout : fopen(o->export_path, "w");
+
+    if (f == NULL) {
+        (void)fprintf(stderr, PROG ": %s: %s\n", o->export_path, strerror(errno));
+        return 1;
+    }
+    if ((fwrite(dev->eds, 1U, len, f) != len) | (to_stdout ? fflush(f) : fclose(f))) {
+        (void)fprintf(stderr, PROG ": %s: write failed\n", o->export_path);
+        return 1;
+    }
+    return 0;
+}
+
+static int run(const options_t *o)
+{
+    struct sigaction sa;
+    sigset_t block;
+    sigset_t old;
+    co_lx_tracer_t tracer;
+    co_lx_member_t *members;
+    dnode_t *nodes;
+    co_lx_loop_t loop;
+    FILE *trace_out = NULL;
+    size_t started = 0U;
+    int rc = 0;
+
+    (void)memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_signal;
+    (void)sigemptyset(&sa.sa_mask);
+    (void)sigaction(SIGTERM, &sa, NULL);
+    (void)sigaction(SIGINT, &sa, NULL);
+    sa.sa_handler = SIG_IGN;
+    (void)sigaction(SIGPIPE, &sa, NULL);
+    (void)sigemptyset(&block);
+    (void)sigaddset(&block, SIGTERM);
+    (void)sigaddset(&block, SIGINT);
+    (void)sigprocmask(SIG_BLOCK, &block, &old);
+
+    tracer.fd = -1;
+    tracer.out = NULL;
+    nodes = (dnode_t *)calloc(o->n_nodes, sizeof *nodes);
+    members = (co_lx_member_t *)calloc(o->n_nodes, sizeof *members);
+    if ((nodes == NULL) || (members == NULL)) {
+        (void)fprintf(stderr, PROG ": out of memory\n");
+        free(nodes);
+        free(members);
+        return 1;
+    }
+    if (o->trace != NULL) {
+        co_lx_can_fail_t why = CO_LX_CAN_OK;
+        trace_out = (strcmp(o->trace, "-") == 0) ? stdout : fopen(o->trace, "w");
+        if (trace_out == NULL) {
+            (void)fprintf(stderr, PROG ": %s: %s\n", o->trace, strerror(errno));
+            rc = 1;
+        } else if (co_lx_tracer_open(&tracer, o->iface, trace_out, &why) != 0) {
+            can_failure(o->iface, why);
+            rc = 1;
+        } else {
+            /* tracing from before the first boot-up */
+        }
+    }
+    for (size_t i = 0U; (rc == 0) && (i < o->n_nodes); i++) {
+        rc = (start_node(&nodes[i], &o->nodes[i], o->iface) == 0) ? 0 : 1;
+        members[i].port = &nodes[i].port;
+        members[i].node = &nodes[i].node;
+        members[i].tick = tick;
+        members[i].tick_ctx = &nodes[i];
+        started = i + 1U;
+    }
+    if (rc == 0) {
+        (void)memset(&loop, 0, sizeof loop);
+        loop.members = members;
+        loop.n_members = o->n_nodes;
+        loop.tracers = &tracer;
+        loop.n_tracers = (tracer.fd >= 0) ? 1U : 0U;
+        loop.stop = &stop_flag;
+        loop.sleep_mask = &old;
+        loop.log = port_log;
+        loop.log_ctx = NULL;
+        rc = (co_lx_loop_run(&loop) == 0) ? 0 : 1;
+        log_line(NULL, CO_LX_INFO, "%s after %llu loop rounds", rc == 0 ? "stopped" : "failed",
+                 (unsigned long long)loop.rounds);
+    }
+    for (size_t i = 0U; i < started; i++) {
+        stop_node(&nodes[i]);
+    }
+    co_lx_tracer_close(&tracer);
+    if ((trace_out != NULL) && (trace_out != stdout)) {
+        (void)fclose(trace_out);
+    }
+    free(nodes);
+    free(members);
+    return rc;
+}
+
+int main(int argc, char **argv)
+{
+    options_t *o = (options_t *)calloc(1U, sizeof *o);
+    char err[256];
+    int rc = 0;
+
+    if (o == NULL) {
+        return 1;
+    }
+    if (options_parse(o, argc, argv, err, sizeof err) != 0) {
+        (void)fprintf(stderr, PROG ": %s\n", err);
+        free(o);
+        return 2;
+    }
+    log_level = o->log_level;
+    switch (o->mode) {
+    case OPT_HELP:
+        (void)fputs(options_usage, stdout);
+        break;
+    case OPT_VERSION:
+        (void)printf(PROG " %s\n", CO_VERSION);
+        break;
+    case OPT_LIST:
+        for (size_t i = 0U; i < device_count(); i++) {
+            (void)printf("%-14s %s\n", device_at(i)->name, device_at(i)->summary);
+        }
+        break;
+    case OPT_EXPORT_EDS:
+        rc = export_eds(o);
+        break;
+    default:
+        rc = run(o);
+        break;
+    }
+    free(o);
+    return rc;
+}

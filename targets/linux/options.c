@@ -1,0 +1,259 @@
+/* Command line of canopen-device (see options.h). */
+#include "options.h"
+
+#include <errno.h>
+#include <stdbool.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "device_registry.h"
+
+const char options_usage[] =
+    "Usage: canopen-device [OPTION]...\n"
+    "Run simulated CANopen devices (CiA 301 slaves) on a SocketCAN interface.\n"
+    "\n"
+    "  --iface IF           CAN interface (default vcan0)\n"
+    "  --node-id N          node-ID 1..127 (default 1)\n"
+    "  --device NAME        device type (default generic-301; see --list-devices)\n"
+    "  --storage PATH       parameter file for 0x1010/0x1011 (default: none, store refused)\n"
+    "  --node ID[:DEVICE[:PATH]]\n"
+    "                       one more node in this process (repeatable)\n"
+    "  --trace FILE|-       write every frame on the bus in candump -L format\n"
+    "  --log-level LEVEL    error, warn, info (default) or debug; messages go to stderr\n"
+    "  --export-eds PATH    write the EDS of --device to PATH ('-': stdout) and exit\n"
+    "  --list-devices       list the device types and exit\n"
+    "  --help               show this help and exit\n"
+    "  --version            show the version and exit\n"
+    "\n"
+    "SIGTERM or SIGINT stop the daemon cleanly (exit 0). Exit 1: the interface or a\n"
+    "file cannot be used; exit 2: usage error.\n"
+    "A virtual bus: ip link add dev vcan0 type vcan; ip link set up vcan0\n";
+
+enum { O_NONE, O_ARG, O_FLAG };
+
+typedef struct opt_def {
+    const char *name;
+    int kind;
+} opt_def_t;
+
+static const opt_def_t defs[] = {
+    {"iface", O_ARG},        {"node-id", O_ARG},      {"device", O_ARG},
+    {"storage", O_ARG},      {"node", O_ARG},         {"trace", O_ARG},
+    {"log-level", O_ARG},    {"export-eds", O_ARG},   {"list-devices", O_FLAG},
+    {"help", O_FLAG},        {"version", O_FLAG},
+};
+
+static int fail(char *err, size_t cap, const char *fmt, const char *a, const char *b)
+{
+    (void)snprintf(err, cap, fmt, a, b);
+    return -1;
+}
+
+static int parse_id(const char *s, uint8_t *id)
+{
+    char *end = NULL;
+    unsigned long v;
+
+    if ((s[0] < '0') || (s[0] > '9')) {
+        return -1;
+    }
+    errno = 0;
+    v = strtoul(s, &end, 0);
+    if ((errno != 0) || (end == s) || (*end != '\0') || (v < 1UL) || (v > 127UL)) {
+        return -1;
+    }
+    *id = (uint8_t)v;
+    return 0;
+}
+
+/* ID[:DEVICE[:PATH]], split in place */
+static int parse_node(char *spec, opt_node_t *n, char *err, size_t cap)
+{
+    char *dev = strchr(spec, ':');
+    char *path = NULL;
+
+    n->device = "generic-301";
+    n->storage = NULL;
+    if (dev != NULL) {
+        *dev = '\0';
+        dev++;
+        path = strchr(dev, ':');
+        if (path != NULL) {
+            *path = '\0';
+            path++;
+        }
+        if (*dev != '\0') {
+            n->device = dev;
+        }
+        if ((path != NULL) && (*path != '\0')) {
+            n->storage = path;
+        }
+    }
+    if (parse_id(spec, &n->id) != 0) {
+        return fail(err, cap, "--node: node-ID must be 1..127, got '%s'%s", spec, "");
+    }
+    return 0;
+}
+
+static int set_level(options_t *o, const char *v)
+{
+    static const char *const names[] = {"error", "warn", "info", "debug"};
+
+    for (unsigned i = 0U; i < 4U; i++) {
+        if (strcmp(v, names[i]) == 0) {
+            o->log_level = (co_lx_level_t)i;
+            return 0;
+        }
+    }
+    return -1;
+}
+
+int options_parse(options_t *o, int argc, char **argv, char *err, size_t cap)
+{
+    opt_node_t primary = {1U, "generic-301", NULL};
+    bool primary_given = false;
+    bool device_given = false;
+    bool want_help = false;
+    bool want_version = false;
+    bool want_list = false;
+    size_t extra = 0U;
+    opt_node_t extras[OPT_NODES_MAX];
+    int i;
+
+    (void)memset(o, 0, sizeof *o);
+    o->mode = OPT_RUN;
+    o->iface = "vcan0";
+    o->log_level = CO_LX_INFO;
+
+    for (i = 1; i < argc; i++) {
+        char *a = argv[i];
+        char *val = NULL;
+        const opt_def_t *d = NULL;
+        size_t len;
+        char *eq;
+
+        if ((a[0] != '-') || (a[1] != '-') || (a[2] == '\0')) {
+            return fail(err, cap, "unexpected argument '%s' (try --help)%s", a, "");
+        }
+        eq = strchr(a, '=');
+        len = (eq != NULL) ? (size_t)(eq - a - 2) : strlen(a + 2);
+        for (size_t k = 0U; k < sizeof defs / sizeof defs[0]; k++) {
+            if ((strlen(defs[k].name) == len) && (strncmp(defs[k].name, a + 2, len) == 0)) {
+                d = &defs[k];
+            }
+        }
+        if (d == NULL) {
+            return fail(err, cap, "unknown option '%s' (try --help)%s", a, "");
+        }
+        if (d->kind == O_ARG) {
+            if (eq != NULL) {
+                val = eq + 1;
+            } else if (i + 1 < argc) {
+                val = argv[++i];
+            } else {
+                return fail(err, cap, "option --%s needs a value (try --help)%s", d->name, "");
+            }
+        } else if (eq != NULL) {
+            return fail(err, cap, "option --%s takes no value%s", d->name, "");
+        } else {
+            /* a flag */
+        }
+
+        if (strcmp(d->name, "iface") == 0) {
+            if ((val[0] == '\0') || (strlen(val) >= 16U)) {
+                return fail(err, cap, "--iface: bad interface name '%s'%s", val, "");
+            }
+            o->iface = val;
+        } else if (strcmp(d->name, "node-id") == 0) {
+            if (parse_id(val, &primary.id) != 0) {
+                return fail(err, cap, "--node-id must be 1..127, got '%s'%s", val, "");
+            }
+            primary_given = true;
+        } else if (strcmp(d->name, "device") == 0) {
+            primary.device = val;
+            device_given = true;
+        } else if (strcmp(d->name, "storage") == 0) {
+            if (val[0] == '\0') {
+                return fail(err, cap, "--storage needs a file name%s%s", "", "");
+            }
+            primary.storage = val;
+            primary_given = true;
+        } else if (strcmp(d->name, "node") == 0) {
+            if (extra >= OPT_NODES_MAX) {
+                return fail(err, cap, "too many --node options%s%s", "", "");
+            }
+            if (parse_node(val, &extras[extra], err, cap) != 0) {
+                return -1;
+            }
+            extra++;
+        } else if (strcmp(d->name, "trace") == 0) {
+            if (val[0] == '\0') {
+                return fail(err, cap, "--trace needs a file name or '-'%s%s", "", "");
+            }
+            o->trace = val;
+        } else if (strcmp(d->name, "log-level") == 0) {
+            if (set_level(o, val) != 0) {
+                return fail(err, cap,
+                            "--log-level must be error, warn, info or debug, got '%s'%s", val,
+                            "");
+            }
+        } else if (strcmp(d->name, "export-eds") == 0) {
+            if (val[0] == '\0') {
+                return fail(err, cap, "--export-eds needs a file name or '-'%s%s", "", "");
+            }
+            o->export_path = val;
+            o->mode = OPT_EXPORT_EDS;
+        } else if (strcmp(d->name, "list-devices") == 0) {
+            want_list = true;
+        } else if (strcmp(d->name, "help") == 0) {
+            want_help = true;
+        } else {
+            want_version = true;
+        }
+    }
+
+    /* --help, then --version, then --list-devices win over everything else */
+    if (want_help || want_version || want_list) {
+        o->mode = want_help ? OPT_HELP : (want_version ? OPT_VERSION : OPT_LIST);
+        return 0;
+    }
+    if (device_find(primary.device) == NULL) {
+        return fail(err, cap, "unknown device '%s' (see --list-devices)%s", primary.device, "");
+    }
+    if (o->mode == OPT_EXPORT_EDS) {
+        o->nodes[0] = primary;
+        o->n_nodes = 1U;
+        return 0;
+    }
+    if (primary_given || device_given || (extra == 0U)) {
+        o->nodes[o->n_nodes++] = primary;
+    }
+    for (size_t k = 0U; k < extra; k++) {
+        if (device_find(extras[k].device) == NULL) {
+            return fail(err, cap, "unknown device '%s' (see --list-devices)%s", extras[k].device,
+                        "");
+        }
+        for (size_t j = 0U; j < o->n_nodes; j++) {
+            if (o->nodes[j].id == extras[k].id) {
+                char id[8];
+                (void)snprintf(id, sizeof id, "%u", (unsigned)extras[k].id);
+                return fail(err, cap, "node-ID %s given twice%s", id, "");
+            }
+        }
+        if (o->n_nodes >= OPT_NODES_MAX) {
+            return fail(err, cap, "too many nodes%s%s", "", "");
+        }
+        o->nodes[o->n_nodes++] = extras[k];
+    }
+    for (size_t k = 0U; k < o->n_nodes; k++) {
+        for (size_t j = k + 1U; j < o->n_nodes; j++) {
+            if ((o->nodes[k].storage != NULL) && (o->nodes[j].storage != NULL) &&
+                (strcmp(o->nodes[k].storage, o->nodes[j].storage) == 0)) {
+                return fail(err, cap, "two nodes share the parameter file '%s'%s",
+                            o->nodes[k].storage, "");
+            }
+        }
+    }
+    return 0;
+}

@@ -1,0 +1,56 @@
+/*
+ * Command line of canopen-device.
+ *
+ *   canopen-device [--iface IF] [--node-id N] [--device NAME] [--storage PATH]
+ *                  [--node ID[:DEVICE[:PATH]]]... [--trace FILE|-]
+ *                  [--log-level error|warn|info|debug]
+ *   canopen-device --export-eds PATH [--device NAME]
+ *   canopen-device --list-devices | --help | --version
+ *
+ * --node-id/--device/--storage describe one node (the default node: id 1,
+ * generic-301, no storage); each --node adds one more node on the same
+ * interface. With --node only, the default node is not started unless
+ * --node-id is given.
+ */
+#ifndef OPTIONS_H
+#define OPTIONS_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "co_lx/port.h"
+
+#define OPT_NODES_MAX 127U
+
+typedef enum opt_mode {
+    OPT_RUN,
+    OPT_HELP,
+    OPT_VERSION,
+    OPT_LIST,
+    OPT_EXPORT_EDS
+} opt_mode_t;
+
+typedef struct opt_node {
+    uint8_t id;
+    const char *device;   /**< registry name */
+    const char *storage;  /**< parameter file, NULL for none */
+} opt_node_t;
+
+typedef struct options {
+    opt_mode_t mode;
+    const char *iface;
+    const char *trace;        /**< NULL: no trace; "-": stdout */
+    const char *export_path;
+    co_lx_level_t log_level;
+    size_t n_nodes;
+    opt_node_t nodes[OPT_NODES_MAX];
+} options_t;
+
+/** Parse @p argv. Returns 0, or -1 with a one-line message (no newline) in
+ *  @p err: a usage error (exit status 2). Strings point into argv. */
+int options_parse(options_t *o, int argc, char **argv, char *err, size_t errcap);
+
+/** The --help text. */
+extern const char options_usage[];
+
+#endif /* OPTIONS_H */

@@ -1,0 +1,223 @@
+"""Integration tests: canopen-device on a virtual CAN bus, python-canopen as
+the master.
+
+Run through tools/vcan-run (tools/run-tests does), which provides vcan0
+natively or in a VM:
+
+    tools/vcan-run -- .venv/bin/python -m pytest tests/integration
+
+The daemon is $CODEV_BUILD_DIR/bin/canopen-device (default build/host).
+Every test starts its own daemon(s) and stops them with SIGTERM, checking
+the exit status 0. `sniffer` is a second raw socket on the bus that records
+every frame with the kernel's timestamp, for exact frames and timing.
+"""
+from __future__ import annotations
+
+import os
+import signal
+import socket
+import subprocess
+import threading
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+import can
+import canopen
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+IFACE = os.environ.get("CO_IFACE", "vcan0")
+
+
+def build_dir() -> Path:
+    d = Path(os.environ.get("CODEV_BUILD_DIR", ROOT / "build" / "host"))
+    return d if d.is_absolute() else ROOT / d
+
+
+DAEMON = build_dir() / "bin" / "canopen-device"
+
+
+def pytest_sessionstart(session):
+    if not DAEMON.is_file():
+        pytest.exit(f"{DAEMON} is not built (cmake --build build/host)", returncode=2)
+    try:
+        s = socket.socket(socket.AF_CAN, socket.SOCK_RAW, socket.CAN_RAW)
+        s.bind((IFACE,))
+        s.close()
+    except OSError as e:
+        pytest.exit(f"no CAN interface {IFACE} ({e}): run the suite through tools/vcan-run",
+                    returncode=2)
+
+
+# ------------------------------------------------------------------ frames
+
+@dataclass
+class Frame:
+    t: float          # kernel receive time, s
+    id: int
+    data: bytes
+    rtr: bool = False
+    idx: int = -1     # position in Sniffer.frames
+
+    def __str__(self) -> str:
+        return f"{self.id:03X} " + ("R" if self.rtr else self.data.hex(" ").upper())
+
+
+class Sniffer:
+    """Records every frame on the bus from a socket of its own."""
+
+    def __init__(self):
+        self.bus = can.Bus(interface="socketcan", channel=IFACE)
+        self.frames: list[Frame] = []
+        self.cond = threading.Condition()
+        self.running = True
+        self.thread = threading.Thread(target=self._run, daemon=True)
+        self.thread.start()
+
+    def _run(self):
+        while self.running:
+            m = self.bus.recv(0.05)
+            if m is None or m.is_error_frame:
+                continue
+            with self.cond:
+                self.frames.append(Frame(m.timestamp, m.arbitration_id, bytes(m.data),
+                                         m.is_remote_frame, len(self.frames)))
+                self.cond.notify_all()
+
+    def mark(self) -> int:
+        with self.cond:
+            return len(self.frames)
+
+    def quiet_mark(self, quiet: float = 0.1, limit: float = 2.0) -> int:
+        """A mark taken once the bus has been quiet for `quiet` seconds (the
+        sniffer has caught up with everything sent before)."""
+        end = time.monotonic() + limit
+        n = self.mark()
+        while time.monotonic() < end:
+            time.sleep(quiet)
+            k = self.mark()
+            if k == n:
+                break
+            n = k
+        return n
+
+    def since(self, mark: int = 0, cob: int | None = None) -> list[Frame]:
+        with self.cond:
+            fr = self.frames[mark:]
+        return [f for f in fr if cob is None or f.id == cob]
+
+    def wait(self, pred, timeout: float = 3.0, mark: int = 0) -> Frame | None:
+        """The first frame from index `mark` on for which pred(frame) holds."""
+        end = time.monotonic() + timeout
+        i = mark
+        with self.cond:
+            while True:
+                while i < len(self.frames):
+                    if pred(self.frames[i]):
+                        return self.frames[i]
+                    i += 1
+                left = end - time.monotonic()
+                if left <= 0:
+                    return None
+                self.cond.wait(left)
+
+    def wait_cob(self, cob: int, timeout: float = 3.0, mark: int = 0, data: bytes | None = None):
+        return self.wait(lambda f: f.id == cob and (data is None or f.data == data), timeout, mark)
+
+    def send(self, cob: int, data: bytes = b"", rtr: bool = False, dlc: int | None = None):
+        self.bus.send(can.Message(arbitration_id=cob, data=data, is_extended_id=False,
+                                  is_remote_frame=rtr, dlc=dlc if dlc is not None else len(data)))
+
+    def close(self):
+        self.running = False
+        self.thread.join()
+        self.bus.shutdown()
+
+
+@pytest.fixture
+def sniffer():
+    s = Sniffer()
+    yield s
+    s.close()
+
+
+# ------------------------------------------------------------------ daemon
+
+class Daemon:
+    def __init__(self, args: list[str], log: Path, stdout=subprocess.DEVNULL):
+        self.args = [str(DAEMON), "--iface", IFACE, *args]
+        self.log = log
+        self._err = open(log, "w")
+        self.proc = subprocess.Popen(self.args, stdout=stdout, stderr=self._err)
+
+    def stop(self, sig=signal.SIGTERM, timeout: float = 10.0) -> int:
+        if self.proc.poll() is None:
+            self.proc.send_signal(sig)
+        try:
+            rc = self.proc.wait(timeout)
+        except subprocess.TimeoutExpired:
+            self.proc.kill()
+            rc = self.proc.wait()
+        self._err.close()
+        return rc
+
+    def stderr(self) -> str:
+        return self.log.read_text()
+
+
+@pytest.fixture
+def daemons(tmp_path):
+    """Start daemons: daemons.start('--node-id', '5', ...). Stopped with
+    SIGTERM at the end of the test, which must give exit status 0."""
+    started: list[Daemon] = []
+
+    class Starter:
+        def start(self, *args: str, stdout=subprocess.DEVNULL) -> Daemon:
+            d = Daemon(list(args), tmp_path / f"daemon{len(started)}.log", stdout)
+            started.append(d)
+            return d
+
+    yield Starter()
+    for d in started:
+        if d.proc.poll() is None:
+            rc = d.stop()
+            assert rc == 0, f"{d.args}: exit {rc}\n{d.stderr()}"
+
+
+@pytest.fixture(scope="session")
+def eds_path(tmp_path_factory) -> Path:
+    p = tmp_path_factory.mktemp("eds") / "generic-301.eds"
+    subprocess.run([str(DAEMON), "--device", "generic-301", "--export-eds", str(p)], check=True)
+    return p
+
+
+@pytest.fixture
+def network():
+    net = canopen.Network()
+    net.connect(interface="socketcan", channel=IFACE)
+    yield net
+    net.disconnect()
+
+
+NODE_ID = 5
+
+
+@pytest.fixture
+def node(network, eds_path, daemons, sniffer):
+    """generic-301 as node 5 (booted: its boot-up was seen), as a
+    python-canopen RemoteNode."""
+    n = network.add_node(NODE_ID, str(eds_path))
+    n.sdo.RESPONSE_TIMEOUT = 2.0
+    m = sniffer.mark()
+    n.daemon = daemons.start("--node-id", str(NODE_ID))
+    assert sniffer.wait_cob(0x700 + NODE_ID, 5.0, m, b"\x00") is not None, "no boot-up"
+    return n
+
+
+def u32(v: int) -> bytes:
+    return v.to_bytes(4, "little")
+
+
+def u16(v: int) -> bytes:
+    return v.to_bytes(2, "little")

@@ -1,0 +1,361 @@
+#!/usr/bin/env python3
+"""The main job's master: brings up simulated devices on a virtual CAN bus
+and drives them with python-canopen, printing a readable transcript.
+
+    tools/run-demo            (builds, then runs this through tools/vcan-run)
+    master.py [--daemon PATH] [--iface vcan0]
+
+Steps: boot-ups, identity over SDO, NMT states, heartbeats watched, a PDO
+mapped and exchanged at SYNC, a parameter stored and read back after the
+device process restarts. A step that fails is reported as FAILED with its
+reason and the demo goes on; the exit status is 1 when any step failed.
+"""
+from __future__ import annotations
+
+import argparse
+import signal
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+import traceback
+from pathlib import Path
+
+import can
+import canopen
+
+ROOT = Path(__file__).resolve().parents[2]
+GENERIC_ID = 5
+T0 = time.monotonic()
+
+
+def say(text: str = "") -> None:
+    print(f"[{time.monotonic() - T0:7.3f}] {text}" if text else "", flush=True)
+
+
+def hexs(b: bytes) -> str:
+    return b.hex(" ").upper()
+
+
+class Watch:
+    """A raw socket that records frames; the transcript shows those asked for."""
+
+    def __init__(self, iface: str):
+        self.bus = can.Bus(interface="socketcan", channel=iface)
+        self.frames: list[can.Message] = []
+        self.lock = threading.Condition()
+        self.alive = True
+        self.t = threading.Thread(target=self.run, daemon=True)
+        self.t.start()
+
+    def run(self):
+        while self.alive:
+            m = self.bus.recv(0.05)
+            if m is not None and not m.is_error_frame:
+                with self.lock:
+                    self.frames.append(m)
+                    self.lock.notify_all()
+
+    def mark(self) -> int:
+        with self.lock:
+            return len(self.frames)
+
+    def wait(self, pred, timeout: float, mark: int):
+        end = time.monotonic() + timeout
+        i = mark
+        with self.lock:
+            while True:
+                while i < len(self.frames):
+                    if pred(self.frames[i]):
+                        return self.frames[i], i
+                    i += 1
+                left = end - time.monotonic()
+                if left <= 0:
+                    return None, i
+                self.lock.wait(left)
+
+    def since(self, mark: int, cob: int | None = None):
+        with self.lock:
+            return [m for m in self.frames[mark:] if cob is None or m.arbitration_id == cob]
+
+    def send(self, cob: int, data: bytes = b""):
+        self.bus.send(can.Message(arbitration_id=cob, data=data, is_extended_id=False))
+
+    def close(self):
+        self.alive = False
+        self.t.join()
+        self.bus.shutdown()
+
+
+STATES = {0x00: "boot-up", 0x04: "stopped", 0x05: "operational", 0x7F: "pre-operational"}
+
+
+class Demo:
+    def __init__(self, daemon: Path, iface: str):
+        self.daemon = daemon
+        self.iface = iface
+        self.tmp = Path(tempfile.mkdtemp(prefix="canopen-demo-"))
+        self.procs: dict[int, subprocess.Popen] = {}
+        self.results: list[tuple[str, bool, str]] = []
+        self.watch = Watch(iface)
+        self.net = canopen.Network()
+        self.net.connect(interface="socketcan", channel=iface)
+        self.eds: dict[str, Path] = {}
+        self.nodes: dict[int, canopen.RemoteNode] = {}
+        self.device_of: dict[int, str] = {}
+
+    # ------------------------------------------------------------ helpers
+    def step(self, title: str, fn) -> None:
+        print(f"\n== {title} ==", flush=True)
+        try:
+            note = fn() or ""
+            self.results.append((title, True, note))
+        except Exception as e:  # a failed step is reported, the demo goes on
+            reason = f"{type(e).__name__}: {e}" if str(e) else type(e).__name__
+            if isinstance(e, canopen.SdoAbortedError):
+                reason = f"SDO abort 0x{e.code:08X} ({e})"
+            say(f"FAILED: {reason}")
+            if not isinstance(e, (canopen.SdoAbortedError, canopen.SdoCommunicationError,
+                                  AssertionError, TimeoutError)):
+                traceback.print_exc(limit=2, file=sys.stdout)
+            self.results.append((title, False, reason))
+
+    def start_device(self, node_id: int, device: str, storage: bool = False) -> None:
+        args = [str(self.daemon), "--iface", self.iface, "--node-id", str(node_id),
+                "--device", device, "--log-level", "error"]
+        if storage:
+            args += ["--storage", str(self.tmp / f"node{node_id}.params")]
+        m = self.watch.mark()
+        say("start  " + " ".join(a if a != str(self.daemon) else "canopen-device" for a in args))
+        self.procs[node_id] = subprocess.Popen(args)
+        f, _ = self.watch.wait(lambda f: f.arbitration_id == 0x700 + node_id, 5.0, m)
+        if f is None or bytes(f.data) != b"\x00":
+            raise TimeoutError(f"no boot-up from node {node_id}")
+        say(f"<- {f.arbitration_id:03X} {hexs(f.data)}   boot-up of node {node_id} ({device})")
+        if node_id in self.net:
+            del self.net[node_id]
+        node = self.net.add_node(node_id, str(self.eds[device]))
+        node.sdo.RESPONSE_TIMEOUT = 2.0
+        self.nodes[node_id] = node
+        self.device_of[node_id] = device
+
+    def stop_device(self, node_id: int) -> int:
+        p = self.procs.pop(node_id)
+        p.send_signal(signal.SIGTERM)
+        rc = p.wait(10)
+        say(f"SIGTERM node {node_id}: exit {rc}")
+        return rc
+
+    def nmt(self, node_id: int, state: str) -> None:
+        m = self.watch.mark()
+        self.nodes[node_id].nmt.state = state
+        f, _ = self.watch.wait(lambda f: f.arbitration_id == 0, 1.0, m)
+        say(f"-> 000 {hexs(f.data)}   NMT {state.lower()} node {node_id}")
+
+    def heartbeat_state(self, node_id: int, timeout: float = 2.0) -> int:
+        f, _ = self.watch.wait(lambda f: f.arbitration_id == 0x700 + node_id, timeout,
+                               self.watch.mark())
+        if f is None:
+            raise TimeoutError(f"no heartbeat from node {node_id}")
+        return f.data[0]
+
+    # ------------------------------------------------------------ steps
+    def boot(self):
+        for name in self.devices:
+            p = self.tmp / f"{name}.eds"
+            subprocess.run([str(self.daemon), "--device", name, "--export-eds", str(p)],
+                           check=True)
+            self.eds[name] = p
+        say(f"EDS exported: {', '.join(sorted(self.eds))}")
+        self.start_device(GENERIC_ID, "generic-301", storage=True)
+        for k, name in enumerate(n for n in self.devices if n != "generic-301"):
+            self.start_device(GENERIC_ID + 1 + k, name)
+        return f"{len(self.nodes)} node(s) up"
+
+    def identity(self):
+        for nid, node in self.nodes.items():
+            say(f"node {nid} ({self.device_of[nid]}):")
+            sdo = node.sdo
+            rows = [
+                ("0x1000 device type", f"0x{int.from_bytes(sdo.upload(0x1000, 0), 'little'):08X}"),
+                ("0x1008 device name", sdo.upload(0x1008, 0).decode("ascii")),
+                ("0x1009 hardware version", sdo.upload(0x1009, 0).decode("ascii")),
+                ("0x100A software version", sdo.upload(0x100A, 0).decode("ascii")),
+            ]
+            for sub, what in ((1, "vendor-ID"), (2, "product code"), (3, "revision"),
+                              (4, "serial number")):
+                v = int.from_bytes(sdo.upload(0x1018, sub), "little")
+                rows.append((f"0x1018:{sub} {what}", f"0x{v:08X}"))
+            for k, v in rows:
+                say(f"   {k:<26} {v}")
+
+    def nmt_and_heartbeats(self):
+        nid = GENERIC_ID
+        node = self.nodes[nid]
+        node.sdo.download(0x1017, 0, (200).to_bytes(2, "little"))
+        say("0x1017 producer heartbeat time := 200 ms")
+        m = self.watch.mark()
+        time.sleep(1.05)
+        beats = self.watch.since(m, 0x700 + nid)
+        prev = None
+        for b in beats:
+            gap = f"  (+{(b.timestamp - prev) * 1000:.1f} ms)" if prev is not None else ""
+            prev = b.timestamp
+            say(f"<- {b.arbitration_id:03X} {hexs(b.data)}   heartbeat: "
+                f"{STATES.get(b.data[0], '?')}{gap}")
+        if len(beats) < 3:
+            raise AssertionError(f"only {len(beats)} heartbeats in 1 s")
+        iv = [(b.timestamp - a.timestamp) * 1000 for a, b in zip(beats, beats[1:])]
+        say(f"heartbeat period measured: {sum(iv) / len(iv):.1f} ms (set 200 ms)")
+        for state, code in (("OPERATIONAL", 0x05), ("STOPPED", 0x04),
+                            ("PRE-OPERATIONAL", 0x7F), ("OPERATIONAL", 0x05)):
+            self.nmt(nid, state)
+            got = self.heartbeat_state(nid)
+            say(f"   heartbeat says: {STATES.get(got, hex(got))}")
+            if got != code:
+                raise AssertionError(f"expected {STATES[code]}, heartbeat says 0x{got:02X}")
+
+    def pdo_at_sync(self):
+        nid = GENERIC_ID
+        node = self.nodes[nid]
+        node.tpdo.read()
+        node.rpdo.read()
+        tp, rp = node.tpdo[1], node.rpdo[1]
+        tp.clear()
+        tp.add_variable(0x2102)            # Process data U32
+        tp.add_variable(0x2101)            # Process data U16
+        tp.trans_type = 1                  # every SYNC
+        tp.enabled = True
+        node.tpdo.save()
+        say(f"TPDO1 0x{tp.cob_id:03X} mapped: 0x2102 (U32), 0x2101 (U16), every SYNC")
+        say(f"RPDO1 0x{rp.cob_id:03X} mapped: "
+            + ", ".join(f"0x{v.index:04X} ({v.length} bit)" for v in rp.map))
+        self.nmt(nid, "OPERATIONAL")
+        rp[0x2102].raw = 0x12345678
+        rp[0x2101].raw = 0xBEEF
+        rp[0x2100].raw = 0x42
+        rp.transmit()
+        say(f"-> {rp.cob_id:03X} {hexs(bytes(rp.data))}   RPDO1 from the master")
+        time.sleep(0.05)
+        got = None
+        for k in range(3):
+            m = self.watch.mark()
+            self.watch.send(0x080)
+            say("-> 080      SYNC")
+            f, _ = self.watch.wait(lambda f: f.arbitration_id == tp.cob_id, 1.0, m)
+            if f is None:
+                raise TimeoutError("no TPDO1 after SYNC")
+            got = bytes(f.data)
+            u32v = int.from_bytes(got[:4], "little")
+            u16v = int.from_bytes(got[4:6], "little")
+            say(f"<- {f.arbitration_id:03X} {hexs(got)}   TPDO1: 0x2102 = 0x{u32v:08X}, "
+                f"0x2101 = 0x{u16v:04X}")
+            time.sleep(0.05)
+        if got != bytes.fromhex("78563412EFBE"):
+            raise AssertionError("TPDO1 does not carry what RPDO1 wrote")
+        return "RPDO values came back in the TPDO at SYNC"
+
+    def store_and_restart(self):
+        nid = GENERIC_ID
+        node = self.nodes[nid]
+        node.sdo.download(0x2020, 0, (777).to_bytes(2, "little"))
+        say("0x2020 Limited UNSIGNED16 := 777")
+        node.sdo.download(0x1010, 1, b"save")
+        say("0x1010:1 store all parameters := 'save'")
+        self.stop_device(nid)
+        self.start_device(nid, "generic-301", storage=True)
+        v = int.from_bytes(self.nodes[nid].sdo.upload(0x2020, 0), "little")
+        say(f"0x2020 after restart: {v}")
+        if v != 777:
+            raise AssertionError(f"read back {v}, stored 777")
+        self.nodes[nid].sdo.download(0x1011, 1, b"load")
+        say("0x1011:1 restore default parameters := 'load' (defaults from the next reset)")
+
+    def emergency(self):
+        nid = GENERIC_ID
+        node = self.nodes[nid]
+        node.sdo.download(0x1016, 1, ((0x7E << 16) | 300).to_bytes(4, "little"))
+        say("0x1016:1 := node 0x7E, 300 ms (the master plays node 0x7E)")
+        m = self.watch.mark()
+        self.watch.send(0x77E, b"\x05")
+        say("-> 77E 05   one heartbeat of node 0x7E, then silence")
+        f, _ = self.watch.wait(lambda f: f.arbitration_id == 0x80 + nid, 2.0, m)
+        if f is None:
+            raise TimeoutError("no EMCY")
+        code = int.from_bytes(f.data[:2], "little")
+        say(f"<- {f.arbitration_id:03X} {hexs(f.data)}   EMCY 0x{code:04X} "
+            f"(heartbeat consumer), error register 0x{f.data[2]:02X}")
+        m = self.watch.mark()
+        self.watch.send(0x77E, b"\x05")
+        f, _ = self.watch.wait(lambda f: f.arbitration_id == 0x80 + nid, 2.0, m)
+        if f is None:
+            raise TimeoutError("no EMCY reset")
+        say(f"<- {f.arbitration_id:03X} {hexs(f.data)}   EMCY 0x0000: error reset")
+        node.sdo.download(0x1016, 1, bytes(4))
+
+    def shutdown(self):
+        m = self.watch.mark()
+        self.net.send_message(0x000, bytes([0x02, 0]))
+        say("-> 000 02 00   NMT stop, all nodes")
+        time.sleep(0.3)
+        for f in self.watch.since(m):
+            if f.arbitration_id >= 0x701:
+                say(f"<- {f.arbitration_id:03X} {hexs(f.data)}   heartbeat: "
+                    f"{STATES.get(f.data[0], '?')}")
+                break
+        for nid in list(self.procs):
+            if self.stop_device(nid) != 0:
+                raise AssertionError(f"node {nid} did not stop cleanly")
+
+    # ------------------------------------------------------------ main
+    def run(self) -> int:
+        listing = subprocess.run([str(self.daemon), "--list-devices"], check=True,
+                                 capture_output=True, text=True).stdout
+        self.devices = [ln.split()[0] for ln in listing.splitlines() if ln.strip()]
+        print(f"canopen demo: python-canopen {canopen.__version__} master on {self.iface}; "
+              f"devices: {', '.join(self.devices)}", flush=True)
+        self.step("boot-up", self.boot)
+        if not self.nodes:
+            return self.summary()
+        self.step("identity over SDO", self.identity)
+        self.step("NMT and heartbeats", self.nmt_and_heartbeats)
+        self.step("PDO mapped and exchanged at SYNC", self.pdo_at_sync)
+        self.step("emergency: heartbeat consumer timeout", self.emergency)
+        self.step("parameter stored, process restarted, read back", self.store_and_restart)
+        self.step("stop", self.shutdown)
+        return self.summary()
+
+    def summary(self) -> int:
+        print("\n== summary ==", flush=True)
+        for title, ok, note in self.results:
+            print(f"  {'ok    ' if ok else 'FAILED'}  {title}" + (f": {note}" if note else ""))
+        failed = sum(1 for _, ok, _ in self.results if not ok)
+        print(f"demo: {len(self.results) - failed} steps ok, {failed} failed", flush=True)
+        return 1 if failed else 0
+
+    def close(self):
+        for p in self.procs.values():
+            p.send_signal(signal.SIGTERM)
+            try:
+                p.wait(5)
+            except subprocess.TimeoutExpired:
+                p.kill()
+        self.net.disconnect()
+        self.watch.close()
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--daemon", default=str(ROOT / "build" / "host" / "bin" / "canopen-device"))
+    ap.add_argument("--iface", default="vcan0")
+    a = ap.parse_args()
+    demo = Demo(Path(a.daemon), a.iface)
+    try:
+        return demo.run()
+    finally:
+        demo.close()
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -136,6 +136,9 @@ void co_rpdo_sync(co_node_t *node)
 
 uint32_t co_rpdo_process(co_node_t *node, uint32_t next)
 {
+    if (node->nmt != (uint8_t)CO_NMT_OPERATIONAL) {
+        return next; /* leaving Operational disarms every deadline */
+    }
     for (uint16_t i = 0U; i < node->dev->n_rpdo; i++) {
         co_pdo_t *p = &node->pdo[i];
         if ((p->flags & CO_PDO_F_TIMER) == 0U) {

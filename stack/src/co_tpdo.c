@@ -159,32 +159,30 @@ void co_tpdo_sync(co_node_t *node, uint8_t counter)
     }
 }
 
-void co_tpdo_rtr(co_node_t *node, uint16_t i)
-{
-    co_pdo_t *p = &node->pdo[i];
-
-    if ((node->nmt != (uint8_t)CO_NMT_OPERATIONAL) || !co_pdo_usable(node, i)) {
-        return;
-    }
-    p->flags |= CO_PDO_F_RTR;
-    (void)co_tpdo_process(node, CO_NO_DEADLINE);
-}
-
 /* Answer a remote request: type 252 with the data sampled at the last SYNC,
  * every other type with the data of now. */
 static bool answer_rtr(co_node_t *node, uint16_t i)
 {
     co_pdo_t *p = &node->pdo[i];
+    uint8_t type = co_pdo_type(node, i);
     uint8_t now[8];
 
-    if ((co_pdo_type(node, i) == 252U) && ((p->flags & CO_PDO_F_SAMPLED) != 0U)) {
+    if ((type == 252U) && ((p->flags & CO_PDO_F_SAMPLED) != 0U)) {
         return send(node, i, p->data);
     }
     build(node, i, now);
-    if (co_pdo_type(node, i) >= 254U) {
-        return send_event(node, i, now);
+    return (type >= 254U) ? send_event(node, i, now) : send(node, i, now);
+}
+
+void co_tpdo_rtr(co_node_t *node, uint16_t i)
+{
+    if ((node->nmt != (uint8_t)CO_NMT_OPERATIONAL) || !co_pdo_usable(node, i)) {
+        return;
     }
-    return send(node, i, now);
+    /* answered at once; only when the TX path is full does co_tpdo_process retry */
+    if (!answer_rtr(node, i)) {
+        node->pdo[i].flags |= CO_PDO_F_RTR;
+    }
 }
 
 /* Event-driven (254/255): change of the data, a request, or the event timer,
@@ -200,9 +198,13 @@ static uint32_t event_driven(co_node_t *node, uint16_t i, uint32_t next)
     if (((p->flags & CO_PDO_F_INHIBIT) != 0U) && co_time_reached(node->now, p->inhibit)) {
         p->flags &= (uint16_t)~CO_PDO_F_INHIBIT;
     }
-    build(node, i, now);
-    if (((p->flags & CO_PDO_F_SENT) == 0U) || (memcmp(now, p->data, 8U) != 0)) {
-        p->flags |= CO_PDO_F_EVENT;
+    if ((p->flags & (CO_PDO_F_EVENT | CO_PDO_F_INHIBIT)) !=
+        (CO_PDO_F_EVENT | CO_PDO_F_INHIBIT)) {
+        /* sample unless already due and waiting for the inhibit time anyway */
+        build(node, i, now);
+        if (((p->flags & CO_PDO_F_SENT) == 0U) || (memcmp(now, p->data, 8U) != 0)) {
+            p->flags |= CO_PDO_F_EVENT;
+        }
     }
     if ((p->flags & CO_PDO_F_EVENT) != 0U) {
         if ((p->flags & CO_PDO_F_INHIBIT) != 0U) {

@@ -7,6 +7,9 @@
  * application part: per-node state of app_size bytes (zeroed) and optional
  * callbacks. A profile (CiA 402 drive, 401 I/O, ...) plugs in here:
  *
+ *   prepare  before co_node_init: may put the profile's callbacks in front
+ *            of the daemon's (cfg->cb); the profile's device description is
+ *            entry->profile. Non-zero stops the daemon (exit 1).
  *   attach   after co_node_init (boot-up sent, Pre-operational): bind hooks,
  *            set up the state; non-zero stops the daemon (exit 1).
  *   process  every loop round and at the deadline it returned last: run the
@@ -33,6 +36,9 @@ typedef struct device_entry {
     uint8_t n_hooks;          /**< hook slots (== dev->n_hooks) */
     const unsigned char *eds; /**< EDS text (CiA 306, ASCII), NUL-terminated */
     size_t app_size;          /**< bytes of per-node application state */
+    const void *profile;      /**< the profile's description of the device (or NULL) */
+    int (*prepare)(void *app, const struct device_entry *entry, co_node_config_t *cfg,
+                   uint32_t now_us);
     int (*attach)(void *app, co_node_t *node);
     uint32_t (*process)(void *app, co_node_t *node, uint32_t now_us);
     void (*sync)(void *app, co_node_t *node, uint8_t counter);

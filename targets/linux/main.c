@@ -226,6 +226,10 @@ static int start_node(dnode_t *d, const opt_node_t *spec, const char *iface)
     cfg.cb.nmt_reset = cb_nmt_reset;
     cfg.cb.hb_event = cb_hb_event;
     cfg.cb.sync = cb_sync;
+    if ((d->dev->prepare != NULL) && (d->dev->prepare(d->app, d->dev, &cfg, co_lx_now_us()) != 0)) {
+        log_line(d->tag, CO_LX_ERROR, "device application failed to prepare");
+        return -1;
+    }
     e = co_node_init(&d->node, &cfg, co_lx_now_us());
     if (e != CO_OK) {
         log_line(d->tag, CO_LX_ERROR, "co_node_init failed: 0x%08lX", (unsigned long)e);
@@ -381,7 +385,7 @@ int main(int argc, char **argv)
         break;
     case OPT_LIST:
         for (size_t i = 0U; i < device_count(); i++) {
-            (void)printf("%-14s %s\n", device_at(i)->name, device_at(i)->summary);
+            (void)printf("%-22s %s\n", device_at(i)->name, device_at(i)->summary);
         }
         break;
     case OPT_EXPORT_EDS:

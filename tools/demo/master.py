@@ -7,7 +7,9 @@ and drives them with python-canopen, printing a readable transcript.
 
 Steps: boot-ups, identity over SDO, NMT states, heartbeats watched, a PDO
 mapped and exchanged at SYNC, a parameter stored and read back after the
-device process restarts. A step that fails is reported as FAILED with its
+device process restarts, and a CiA 402 drive (simulated motor) enabled,
+moved in profile position with its statusword, position and velocity
+sampled by TPDOs at SYNC and plotted to a PNG (tools/plot-trace), then homed. A step that fails is reported as FAILED with its
 reason and the demo goes on; the exit status is 1 when any step failed.
 """
 from __future__ import annotations
@@ -26,7 +28,11 @@ import can
 import canopen
 
 ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from cia402_master import Drive, Sample, state_of, write_csv  # noqa: E402
+
 GENERIC_ID = 5
+DEFAULT_DEVICES = ("generic-301", "cia402")
 T0 = time.monotonic()
 
 
@@ -92,8 +98,10 @@ STATES = {0x00: "boot-up", 0x04: "stopped", 0x05: "operational", 0x7F: "pre-oper
 
 
 class Demo:
-    def __init__(self, daemon: Path, iface: str):
+    def __init__(self, daemon: Path, iface: str, out: Path, devices: list[str] | None):
         self.daemon = daemon
+        self.out = out
+        self.wanted = devices
         self.iface = iface
         self.tmp = Path(tempfile.mkdtemp(prefix="canopen-demo-"))
         self.procs: dict[int, subprocess.Popen] = {}
@@ -294,6 +302,85 @@ class Demo:
         say(f"<- {f.arbitration_id:03X} {hexs(f.data)}   EMCY 0x0000: error reset")
         node.sdo.download(0x1016, 1, bytes(4))
 
+    def drive_id(self) -> int:
+        return next(n for n, d in self.device_of.items() if d == "cia402")
+
+    def drive_move(self):
+        nid = self.drive_id()
+        node = self.nodes[nid]
+        node.tpdo.read()
+        for k, objs in ((1, (0x6041, 0x6064)), (2, (0x606C, 0x6062))):
+            tp = node.tpdo[k]
+            tp.clear()
+            for o in objs:
+                tp.add_variable(o)
+            tp.trans_type = 1
+            tp.enabled = True
+        node.tpdo.save()
+        t1, t2 = node.tpdo[1].cob_id, node.tpdo[2].cob_id
+        say(f"node {nid}: TPDO1 0x{t1:03X} := statusword 0x6041 + position actual 0x6064, "
+            f"TPDO2 0x{t2:03X} := velocity actual 0x606C + position demand 0x6062, every SYNC")
+        self.nmt(nid, "OPERATIONAL")
+        drive = Drive(node, 0, lambda text: say("   " + text))
+        drive.enable()
+        target, velocity, acc = 43008, 20480, 40960   # 10.5 rev at 5 rev/s, 4096 increments/rev
+        drive.set_mode(1)
+        m = self.watch.mark()
+        self.net.sync.start(0.02)
+        say("SYNC every 20 ms from the master")
+        try:
+            time.sleep(0.2)
+            drive.pp_move(target, velocity, acc)
+            time.sleep(0.3)
+        finally:
+            self.net.sync.stop()
+        frames = self.watch.since(m)
+        samples = []
+        t0 = frames[0].timestamp if frames else 0.0
+        last2 = None
+        for f in frames:
+            if f.arbitration_id == t2:
+                last2 = bytes(f.data)
+            elif f.arbitration_id == t1 and last2 is not None:
+                d1 = bytes(f.data)
+                sw = int.from_bytes(d1[0:2], "little")
+                pos = int.from_bytes(d1[2:6], "little", signed=True)
+                vel = int.from_bytes(last2[0:4], "little", signed=True)
+                dem = int.from_bytes(last2[4:8], "little", signed=True)
+                if not samples or samples[-1].statusword != sw:
+                    say(f"<- {t1:03X} {hexs(d1)}   (SYNC at +{f.timestamp - t0:5.2f} s) "
+                        f"statusword 0x{sw:04X} "
+                        f"({'target reached' if sw & 0x0400 else 'moving'}"
+                        f"{', set-point acknowledged' if sw & 0x1000 else ''}), position {pos}")
+                samples.append(Sample(f.timestamp - t0, pos, dem, vel, sw))
+        say(f"{len(samples)} samples of the move from TPDO1/TPDO2 at SYNC")
+        if len(samples) < 50:
+            raise AssertionError(f"only {len(samples)} PDO samples")
+        end = samples[-1]
+        if abs(end.position - target) > 2 or not end.statusword & 0x0400:
+            raise AssertionError(f"move ended at {end.position}, statusword "
+                                 f"0x{end.statusword:04X}")
+        self.out.mkdir(parents=True, exist_ok=True)
+        csv_path, png = self.out / "cia402-move.csv", self.out / "cia402-move.png"
+        write_csv(csv_path, samples)
+        subprocess.run([sys.executable, str(ROOT / "tools" / "plot-trace"), str(csv_path),
+                        "-o", str(png), "--title",
+                        f"cia402 node {nid}: profile position 0 to {target}"], check=True)
+        say(f"trace {csv_path.relative_to(ROOT) if csv_path.is_relative_to(ROOT) else csv_path}"
+            f", plot {png.relative_to(ROOT) if png.is_relative_to(ROOT) else png}")
+        return f"target {target} reached ({state_of(end.statusword)}), plot {png.name}"
+
+    def drive_homing(self):
+        nid = self.drive_id()
+        drive = Drive(self.nodes[nid], 0, lambda text: say("   " + text))
+        before = drive.read(0x6064, signed=True)
+        sw, pos = drive.homing(34, (8192, 2048))   # next index pulse, positive direction
+        say(f"position {before} before homing, {pos} after: the next index pulse (every 4096 "
+            f"increments) became the home offset 0")
+        if not sw & 0x1000 or abs(pos) > 100 or abs(before - pos) < 1000:
+            raise AssertionError(f"homing: statusword 0x{sw:04X}, position {pos}")
+        return "homing attained on the index pulse"
+
     def shutdown(self):
         m = self.watch.mark()
         self.net.send_message(0x000, bytes([0x02, 0]))
@@ -312,7 +399,14 @@ class Demo:
     def run(self) -> int:
         listing = subprocess.run([str(self.daemon), "--list-devices"], check=True,
                                  capture_output=True, text=True).stdout
-        self.devices = [ln.split()[0] for ln in listing.splitlines() if ln.strip()]
+        known = [ln.split()[0] for ln in listing.splitlines() if ln.strip()]
+        wanted = known if self.wanted == ["all"] else (self.wanted or list(DEFAULT_DEVICES))
+        unknown = [d for d in wanted if d not in known]
+        if unknown:
+            print(f"demo: unknown device(s) {', '.join(unknown)}; the daemon has "
+                  f"{', '.join(known)}", flush=True)
+            return 2
+        self.devices = ["generic-301"] + [d for d in wanted if d != "generic-301"]
         print(f"canopen demo: python-canopen {canopen.__version__} master on {self.iface}; "
               f"devices: {', '.join(self.devices)}", flush=True)
         self.step("boot-up", self.boot)
@@ -323,6 +417,9 @@ class Demo:
         self.step("PDO mapped and exchanged at SYNC", self.pdo_at_sync)
         self.step("emergency: heartbeat consumer timeout", self.emergency)
         self.step("parameter stored, process restarted, read back", self.store_and_restart)
+        if "cia402" in self.devices:
+            self.step("CiA 402 drive: enable, profile-position move, plot", self.drive_move)
+            self.step("CiA 402 drive: homing", self.drive_homing)
         self.step("stop", self.shutdown)
         return self.summary()
 
@@ -349,8 +446,13 @@ def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--daemon", default=str(ROOT / "build" / "host" / "bin" / "canopen-device"))
     ap.add_argument("--iface", default="vcan0")
+    ap.add_argument("--out", default=str(ROOT / "build" / "demo"),
+                    help="where the move trace (CSV) and its plot (PNG) go")
+    ap.add_argument("--devices", nargs="+", metavar="NAME",
+                    help="devices to bring up (default: generic-301 cia402; 'all': every "
+                         "device of canopen-device --list-devices)")
     a = ap.parse_args()
-    demo = Demo(Path(a.daemon), a.iface)
+    demo = Demo(Path(a.daemon), a.iface, Path(a.out), a.devices)
     try:
         return demo.run()
     finally:

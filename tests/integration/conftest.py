@@ -37,6 +37,12 @@ def build_dir() -> Path:
 
 DAEMON = build_dir() / "bin" / "canopen-device"
 
+# Generous: the suite runs the ASan build of the daemon, often in a VM
+# without KVM on a loaded machine. Timing itself is checked by tests of
+# their own (heartbeat period), not by these limits.
+BOOT_TIMEOUT = 20.0   # process start to boot-up frame
+SDO_TIMEOUT = 5.0     # python-canopen's wait for one SDO response
+
 
 def pytest_sessionstart(session):
     if not DAEMON.is_file():
@@ -208,10 +214,10 @@ def node(network, eds_path, daemons, sniffer):
     """generic-301 as node 5 (booted: its boot-up was seen), as a
     python-canopen RemoteNode."""
     n = network.add_node(NODE_ID, str(eds_path))
-    n.sdo.RESPONSE_TIMEOUT = 2.0
+    n.sdo.RESPONSE_TIMEOUT = SDO_TIMEOUT
     m = sniffer.mark()
     n.daemon = daemons.start("--node-id", str(NODE_ID))
-    assert sniffer.wait_cob(0x700 + NODE_ID, 5.0, m, b"\x00") is not None, "no boot-up"
+    assert sniffer.wait_cob(0x700 + NODE_ID, BOOT_TIMEOUT, m, b"\x00") is not None, "no boot-up"
     return n
 
 

@@ -9,7 +9,7 @@ import time
 import canopen
 import pytest
 
-from conftest import DAEMON, IFACE, NODE_ID
+from conftest import BOOT_TIMEOUT, SDO_TIMEOUT, DAEMON, IFACE, NODE_ID
 
 
 def run(*args, timeout=10):
@@ -98,7 +98,7 @@ def test_export_eds_loads_in_python_canopen(tmp_path):
 def test_signal_stops_cleanly_with_exit_0(daemons, sniffer, sig):
     m = sniffer.mark()
     d = daemons.start("--node-id", "12")
-    assert sniffer.wait_cob(0x70C, 5.0, m, b"\x00") is not None
+    assert sniffer.wait_cob(0x70C, BOOT_TIMEOUT, m, b"\x00") is not None
     t = time.monotonic()
     rc = d.stop(sig)
     assert rc == 0
@@ -110,9 +110,9 @@ def test_sigterm_while_busy(daemons, sniffer, network, eds_path):
     """SIGTERM in the middle of a transfer and with heartbeats running."""
     m = sniffer.mark()
     d = daemons.start("--node-id", "13")
-    assert sniffer.wait_cob(0x70D, 5.0, m, b"\x00") is not None
+    assert sniffer.wait_cob(0x70D, BOOT_TIMEOUT, m, b"\x00") is not None
     n = network.add_node(13, str(eds_path))
-    n.sdo.RESPONSE_TIMEOUT = 2.0
+    n.sdo.RESPONSE_TIMEOUT = SDO_TIMEOUT
     n.sdo.download(0x1017, 0, (10).to_bytes(2, "little"))
     sniffer.send(0x60D, bytes([0x21, 0x00, 0x23, 0x00, 0x00, 0x10, 0, 0]))  # open a download
     assert sniffer.wait_cob(0x58D, 2.0, m) is not None
@@ -124,7 +124,7 @@ def test_log_levels(daemons, sniffer):
     quiet = daemons.start("--node-id", "14", "--log-level", "error")
     loud = daemons.start("--node-id", "15", "--log-level", "debug")
     for nid in (14, 15):
-        assert sniffer.wait_cob(0x700 + nid, 5.0, m, b"\x00") is not None
+        assert sniffer.wait_cob(0x700 + nid, BOOT_TIMEOUT, m, b"\x00") is not None
     assert quiet.stop() == 0 and loud.stop() == 0
     assert quiet.stderr() == ""
     assert "info: node 15 (generic-301): up on " + IFACE in loud.stderr()

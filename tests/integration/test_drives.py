@@ -20,7 +20,7 @@ from pathlib import Path
 import canopen
 import pytest
 
-from conftest import DAEMON
+from conftest import BOOT_TIMEOUT, SDO_TIMEOUT, DAEMON
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "tools" / "demo"))
 from cia402_master import Drive, state_of  # noqa: E402
@@ -69,10 +69,10 @@ def start(device, network, daemons, sniffer, tmp_path) -> canopen.RemoteNode:
     eds = tmp_path / f"{device}.eds"
     subprocess.run([str(DAEMON), "--device", device, "--export-eds", str(eds)], check=True)
     node = network.add_node(NODE, str(eds))
-    node.sdo.RESPONSE_TIMEOUT = 2.0
+    node.sdo.RESPONSE_TIMEOUT = SDO_TIMEOUT
     m = sniffer.mark()
     daemons.start("--node-id", str(NODE), "--device", device)
-    assert sniffer.wait_cob(0x700 + NODE, 5.0, m, b"\x00") is not None, "no boot-up"
+    assert sniffer.wait_cob(0x700 + NODE, BOOT_TIMEOUT, m, b"\x00") is not None, "no boot-up"
     return node
 
 

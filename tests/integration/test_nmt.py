@@ -4,7 +4,7 @@ from __future__ import annotations
 import canopen
 import pytest
 
-from conftest import NODE_ID, u16
+from conftest import BOOT_TIMEOUT, SDO_TIMEOUT, NODE_ID, u16
 
 HB = 0x700 + NODE_ID
 NMT_START, NMT_STOP, NMT_PREOP, NMT_RESET_NODE, NMT_RESET_COMM = 0x01, 0x02, 0x80, 0x81, 0x82
@@ -52,7 +52,7 @@ def test_nmt_state_cycle(node, sniffer):
     with pytest.raises(canopen.SdoCommunicationError):
         node.sdo.upload(0x1000, 0)
     assert sniffer.since(m, 0x580 + NODE_ID) == []
-    node.sdo.RESPONSE_TIMEOUT = 2.0
+    node.sdo.RESPONSE_TIMEOUT = SDO_TIMEOUT
     command(node, sniffer, "PRE-OPERATIONAL", 0x7F)
     assert node.sdo.upload(0x1000, 0) == bytes(4)
     command(node, sniffer, "OPERATIONAL", 0x05)
@@ -93,10 +93,10 @@ def test_broadcast_reaches_every_node(daemons, sniffer, network, eds_path):
     m = sniffer.mark()
     daemons.start("--node", "6", "--node", "7:generic-301")
     for nid in (6, 7):
-        assert sniffer.wait_cob(0x700 + nid, 5.0, m, b"\x00") is not None
+        assert sniffer.wait_cob(0x700 + nid, BOOT_TIMEOUT, m, b"\x00") is not None
     nodes = [network.add_node(nid, str(eds_path)) for nid in (6, 7)]
     for n in nodes:
-        n.sdo.RESPONSE_TIMEOUT = 2.0
+        n.sdo.RESPONSE_TIMEOUT = SDO_TIMEOUT
         n.sdo.download(0x1017, 0, u16(50))
     for cs, state in ((NMT_START, 0x05), (NMT_STOP, 0x04), (NMT_PREOP, 0x7F)):
         network.send_message(0x000, bytes([cs, 0]))
@@ -124,7 +124,7 @@ def test_nodes_in_one_process_see_each_other(daemons, sniffer, network, eds_path
     m = sniffer.mark()
     daemons.start("--node", "8", "--node", "9")
     for nid in (8, 9):
-        assert sniffer.wait_cob(0x700 + nid, 5.0, m, b"\x00") is not None
+        assert sniffer.wait_cob(0x700 + nid, BOOT_TIMEOUT, m, b"\x00") is not None
     n8, n9 = (network.add_node(nid, str(eds_path)) for nid in (8, 9))
     n8.sdo.download(0x1017, 0, u16(50))
     n9.sdo.download(0x1016, 1, (8 << 16 | 200).to_bytes(4, "little"))

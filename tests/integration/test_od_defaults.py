@@ -23,7 +23,7 @@ from pathlib import Path
 import canopen
 import pytest
 
-from conftest import DAEMON
+from conftest import BOOT_TIMEOUT, SDO_TIMEOUT, DAEMON
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "gen"))
 from compare import decode, eds_vars, expected  # noqa: E402  (tests/gen/compare.py)
@@ -61,12 +61,12 @@ def test_every_readable_object_holds_its_eds_default(device, network, daemons, s
     subprocess.run([str(DAEMON), "--device", device, "--export-eds", str(eds)], check=True)
     od = canopen.import_od(str(eds), node_id=NODE)
     node = network.add_node(NODE, od)
-    node.sdo.RESPONSE_TIMEOUT = 2.0
+    node.sdo.RESPONSE_TIMEOUT = SDO_TIMEOUT
     m = sniffer.mark()
     started = time.monotonic()
     daemons.start("--node-id", str(NODE), "--device", device,
                   "--storage", str(tmp_path / "params"))
-    assert sniffer.wait_cob(0x700 + NODE, 5.0, m, b"\x00") is not None, "no boot-up"
+    assert sniffer.wait_cob(0x700 + NODE, BOOT_TIMEOUT, m, b"\x00") is not None, "no boot-up"
     checked = 0
     for (index, sub), var in sorted(eds_vars(od).items()):
         where = f"{device} 0x{index:04X} sub {sub} ({var.name})"

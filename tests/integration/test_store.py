@@ -15,7 +15,7 @@ import time
 import canopen
 import pytest
 
-from conftest import NODE_ID, u16, u32
+from conftest import BOOT_TIMEOUT, SDO_TIMEOUT, NODE_ID, u16, u32
 
 SAVE = u32(0x65766173)
 LOAD = u32(0x64616F6C)
@@ -30,11 +30,11 @@ def storage(tmp_path):
 def boot(daemons, sniffer, network, eds_path, storage):
     m = sniffer.mark()
     d = daemons.start("--node-id", str(NODE_ID), "--storage", str(storage))
-    assert sniffer.wait_cob(HB, 5.0, m, b"\x00") is not None, "no boot-up"
+    assert sniffer.wait_cob(HB, BOOT_TIMEOUT, m, b"\x00") is not None, "no boot-up"
     if NODE_ID in network:
         del network[NODE_ID]
     n = network.add_node(NODE_ID, str(eds_path))
-    n.sdo.RESPONSE_TIMEOUT = 2.0
+    n.sdo.RESPONSE_TIMEOUT = SDO_TIMEOUT
     n.daemon = d
     return n
 

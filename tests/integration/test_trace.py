@@ -7,14 +7,14 @@ import shutil
 import subprocess
 import time
 
-from conftest import IFACE, NODE_ID, u16
+from conftest import BOOT_TIMEOUT, SDO_TIMEOUT, IFACE, NODE_ID, u16
 
 LINE = re.compile(r"^\((\d{10})\.(\d{6})\) (\S+) ([0-9A-F]{3}|[0-9A-F]{8})#(R[0-8]?|(?:[0-9A-F]{2}){0,8})$")
 
 
 def exercise(network, eds_path, sniffer, m):
     node = network.add_node(NODE_ID, str(eds_path))
-    node.sdo.RESPONSE_TIMEOUT = 2.0
+    node.sdo.RESPONSE_TIMEOUT = SDO_TIMEOUT
     assert node.sdo.upload(0x1000, 0) == bytes(4)
     assert node.sdo.upload(0x1008, 0) == b"generic-301"
     node.nmt.state = "OPERATIONAL"
@@ -32,7 +32,7 @@ def test_trace_file_in_candump_format(daemons, sniffer, network, eds_path, tmp_p
         time.sleep(0.3)
     m = sniffer.mark()
     d = daemons.start("--node-id", str(NODE_ID), "--trace", str(trace))
-    assert sniffer.wait_cob(0x700 + NODE_ID, 5.0, m, b"\x00") is not None
+    assert sniffer.wait_cob(0x700 + NODE_ID, BOOT_TIMEOUT, m, b"\x00") is not None
     exercise(network, eds_path, sniffer, m)
     assert d.stop() == 0
     lines = trace.read_text().splitlines()
@@ -65,7 +65,7 @@ def test_trace_to_stdout(daemons, sniffer, tmp_path):
     out = open(tmp_path / "stdout.log", "w")
     m = sniffer.mark()
     d = daemons.start("--node-id", "21", "--trace", "-", stdout=out)
-    assert sniffer.wait_cob(0x715, 5.0, m, b"\x00") is not None
+    assert sniffer.wait_cob(0x715, BOOT_TIMEOUT, m, b"\x00") is not None
     sniffer.send(0x615, bytes([0x40, 0x18, 0x10, 0x02, 0, 0, 0, 0]))
     assert sniffer.wait_cob(0x595, 2.0, m) is not None
     time.sleep(0.1)

@@ -7,12 +7,17 @@
 #include "co/co_endian.h"
 #include "co_priv.h"
 
+/* 0x1001: the OR of the active errors' bits, each with the generic bit
+ * (CiA 301), or with CO_OPT_ERREG_NO_GENERIC the generic bit only for an
+ * error that names no other bit. */
 static uint8_t errreg_now(const co_node_t *node)
 {
+    bool generic = !co_opt(node, CO_OPT_ERREG_NO_GENERIC);
     uint8_t r = 0U;
 
     for (uint8_t i = 0U; i < node->n_active; i++) {
-        r |= (uint8_t)(node->active[i].reg | CO_ERREG_GENERIC);
+        uint8_t bits = node->active[i].reg;
+        r |= (uint8_t)(bits | (((bits == 0U) || generic) ? CO_ERREG_GENERIC : 0U));
     }
     return r;
 }
@@ -90,8 +95,12 @@ static void history_push(co_node_t *node, uint16_t code, const uint8_t *mfr)
     for (uint8_t i = (uint8_t)(n - 1U); i > 0U; i--) {
         node->hist[i] = node->hist[i - 1U];
     }
-    /* bits 0..15 error code, 16..31 additional information (mfr bytes 0..1) */
-    node->hist[0] = code | ((mfr != NULL) ? ((uint32_t)co_get_u16(mfr) << 16U) : 0U);
+    /* bits 0..15 error code, 16..31 additional information (mfr bytes 0..1;
+     * none with CO_OPT_HISTORY_CODE_ONLY) */
+    node->hist[0] = code;
+    if ((mfr != NULL) && !co_opt(node, CO_OPT_HISTORY_CODE_ONLY)) {
+        node->hist[0] |= (uint32_t)co_get_u16(mfr) << 16U;
+    }
     *node->hist_count = n;
 }
 

@@ -549,27 +549,28 @@ static void d711_sync_and_emcy(void **state)
         assert_int_equal(t2[n], (n % 3U) == 0U);
     }
     /* The EMCY example (resolver unplugged): error 4310h motor temperature,
-     * category 1, then the state report with the register. The manual prints
-     * register 08h (7 bytes, node 1); this core always sets bit 0 (generic)
-     * with an error, as 1001h's own description in the manual says: 09h. */
+     * category 1, then the state report with the register 08h as the manual
+     * prints it (7 bytes, node 1; D2.8's example has the same pair with
+     * category 01): the temperature bit only, not the generic bit 0
+     * (CO_OPT_ERREG_NO_GENERIC; CiA 301 would give 09h). */
     tb_send(BUS, "000 80 03"); /* Pre-operational: no PDOs in between */
     co402_sim_set_fault(sim, 0x4310);
     tseed_run(&fx, 1000);
-    tb_expect(BUS, "083 10 43 09 01 00 00 00 00");
-    tb_expect(BUS, "083 00 00 09 00 00 00 00 00");
+    tb_expect(BUS, "083 10 43 08 01 00 00 00 00");
+    tb_expect(BUS, "083 00 00 08 00 00 00 00 00");
     tb_expect_none(BUS);
     assert_int_equal(co402_state(tseed_axis(&fx, 0)), CO402_FAULT);
     /* a further error (D2.8 transition 3): its EMCY, then the report */
     co402_sim_set_fault(sim, 0x3110);
     tseed_run(&fx, 1000);
-    tb_expect(BUS, "083 10 31 0D 02 00 00 00 00");
-    tb_expect(BUS, "083 00 00 0D 00 00 00 00 00");
-    /* 1003h: newest first; the low word is the EMCY code (the high word
-     * carries the category, CiA 301's "additional information") */
+    tb_expect(BUS, "083 10 31 0C 02 00 00 00 00");
+    tb_expect(BUS, "083 00 00 0C 00 00 00 00 00");
+    /* 1003h: newest first, the bare EMCY code (D8.1-9; the category is in
+     * the EMCY only, CO_OPT_HISTORY_CODE_ONLY) */
     tb_xfer(BUS, "603 40 03 10 00 00 00 00 00", "583 4F 03 10 00 02 00 00 00");
-    assert_int_equal(tseed_get(&fx, 0, 0x1003, 1) & 0xFFFF, 0x3110);
-    assert_int_equal(tseed_get(&fx, 0, 0x1003, 2) & 0xFFFF, 0x4310);
-    assert_int_equal(tseed_get(&fx, 0, 0x1001, 0), 0x0D);
+    tb_xfer(BUS, "603 40 03 10 01 00 00 00 00", "583 43 03 10 01 10 31 00 00");
+    tb_xfer(BUS, "603 40 03 10 02 00 00 00 00", "583 43 03 10 02 10 43 00 00");
+    tb_xfer(BUS, "603 40 01 10 00 00 00 00 00", "583 4F 01 10 00 0C 00 00 00");
     /* causes gone, fault reset (bit 7): transition 2 (one cleared, register
      * shows the rest) and 4 (all cleared) */
     co402_sim_set_fault(sim, 0);
@@ -579,7 +580,7 @@ static void d711_sync_and_emcy(void **state)
     {
         const co_frame_t *a = tseed_frame(BUS, 0x083, 8);
         const co_frame_t *b = tseed_frame(BUS, 0x083, 8);
-        TF_ASSERT_FRAME(a, "083 00 00 05 00 00 00 00 00"); /* 3110h remains */
+        TF_ASSERT_FRAME(a, "083 00 00 04 00 00 00 00 00"); /* 3110h remains */
         TF_ASSERT_FRAME(b, "083 00 00 00 00 00 00 00 00");
     }
     tb_expect_none(BUS);
@@ -715,12 +716,13 @@ static void d713_ip_two_axes(void **state)
     f = tseed_frame(BUS, 0x282, 8);
     assert_between(tseed_i32(f, 0), 995, 1005);
     tb_expect_none(BUS);
-    /* EMCY during the run: 4310h on axis 1, register 09h (see D7.11), then
-     * the state report; the fault reaction changes the statusword of TPDO1 */
+    /* EMCY during the run as printed: 4310h on axis 1, register 08h,
+     * category 01, then the state report with register 08h; the fault
+     * reaction changes the statusword of TPDO1 */
     co402_sim_set_fault(&fx.n[0].sim, 0x4310);
     tseed_run(&fx, 1000);
-    tb_expect(BUS, "081 10 43 09 01 00 00 00 00");
-    tb_expect(BUS, "081 00 00 09 00 00 00 00 00");
+    tb_expect(BUS, "081 10 43 08 01 00 00 00 00");
+    tb_expect(BUS, "081 00 00 08 00 00 00 00 00");
     /* the axis stands: the fault reaction (quick-stop ramp) ends in the
      * same tick, Fault with the power stage off */
     tseed_run(&fx, 1000);

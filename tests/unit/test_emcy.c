@@ -235,6 +235,67 @@ static void option_state_pair(void **state)
     tb_expect_none(BUS);
 }
 
+static void option_erreg_no_generic(void **state)
+{
+    restart_with_options(state, CO_OPT_ERREG_NO_GENERIC);
+    /* Kollmorgen: an error sets the bits it names, not the generic bit */
+    co_emcy_raise(NODE, 0x4310U, CO_ERREG_TEMPERATURE, NULL);
+    tb_expect(BUS, "081 10 43 08 00 00 00 00 00");
+    tb_xfer(BUS, "601 40 01 10 00 00 00 00 00", "581 4F 01 10 00 08 00 00 00");
+    co_emcy_raise(NODE, 0x3110U, CO_ERREG_VOLTAGE, NULL);
+    tb_expect(BUS, "081 10 31 0C 00 00 00 00 00");
+    /* an error that names no bit: the generic bit stands for it */
+    co_emcy_raise(NODE, 0x5400U, 0U, NULL);
+    tb_expect(BUS, "081 00 54 0D 00 00 00 00 00");
+    tb_expect_none(BUS);
+    co_emcy_clear(NODE, 0x5400U);
+    tb_xfer(BUS, "601 40 01 10 00 00 00 00 00", "581 4F 01 10 00 0C 00 00 00");
+    co_emcy_clear(NODE, 0x4310U);
+    tb_xfer(BUS, "601 40 01 10 00 00 00 00 00", "581 4F 01 10 00 04 00 00 00");
+    co_emcy_clear(NODE, 0x3110U);
+    tb_expect(BUS, "081 00 00 00 00 00 00 00 00");
+    tb_expect_none(BUS);
+    tb_xfer(BUS, "601 40 01 10 00 00 00 00 00", "581 4F 01 10 00 00 00 00 00");
+}
+
+static void option_erreg_no_generic_with_state_pair(void **state)
+{
+    static const uint8_t cat1[5] = {0x01, 0x00, 0x00, 0x00, 0x00};
+    static const uint8_t cat2[5] = {0x02, 0x00, 0x00, 0x00, 0x00};
+
+    /* the Kollmorgen EMCY example: 4310h with category 1, then the state
+     * report with the register (08h, not 09h) */
+    restart_with_options(state, CO_OPT_ERREG_NO_GENERIC | CO_OPT_EMCY_STATE_PAIR |
+                                    CO_OPT_EMCY_RESET_PARTIAL | CO_OPT_HISTORY_CODE_ONLY);
+    co_emcy_raise(NODE, 0x4310U, CO_ERREG_TEMPERATURE, cat1);
+    tb_expect(BUS, "081 10 43 08 01 00 00 00 00");
+    tb_expect(BUS, "081 00 00 08 00 00 00 00 00");
+    co_emcy_raise(NODE, 0x3110U, CO_ERREG_VOLTAGE, cat2);
+    tb_expect(BUS, "081 10 31 0C 02 00 00 00 00");
+    tb_expect(BUS, "081 00 00 0C 00 00 00 00 00");
+    co_emcy_clear(NODE, 0x4310U);
+    tb_expect(BUS, "081 00 00 04 00 00 00 00 00");
+    tb_expect_none(BUS);
+}
+
+static void option_history_code_only(void **state)
+{
+    static const uint8_t cat[5] = {0x01, 0x00, 0x00, 0x00, 0x00};
+
+    restart_with_options(state, CO_OPT_HISTORY_CODE_ONLY);
+    /* the manufacturer bytes still go out in the EMCY ... */
+    co_emcy_raise(NODE, 0x2310U, CO_ERREG_CURRENT, MFR);
+    tb_expect(BUS, "081 10 23 03 01 02 03 04 05");
+    co_emcy_raise(NODE, 0x4310U, CO_ERREG_TEMPERATURE, cat);
+    tb_expect(BUS, "081 10 43 0B 01 00 00 00 00");
+    tb_expect_none(BUS);
+    /* ... but 0x1003 holds the bare code (CiA 301 would give 0x00014310
+     * and 0x02012310) */
+    tb_xfer(BUS, "601 40 03 10 00 00 00 00 00", "581 4F 03 10 00 02 00 00 00");
+    tb_xfer(BUS, "601 40 03 10 01 00 00 00 00", "581 43 03 10 01 10 43 00 00");
+    tb_xfer(BUS, "601 40 03 10 02 00 00 00 00", "581 43 03 10 02 10 23 00 00");
+}
+
 /* ---------------------------------------------------------- COB-ID 0x1014 */
 
 static void cob_id_valid_bit(void **state)
@@ -379,6 +440,9 @@ int main(void)
         cmocka_unit_test_setup(history_write_zero_clears, setup),
         cmocka_unit_test_setup(option_reset_partial, setup),
         cmocka_unit_test_setup(option_state_pair, setup),
+        cmocka_unit_test_setup(option_erreg_no_generic, setup),
+        cmocka_unit_test_setup(option_erreg_no_generic_with_state_pair, setup),
+        cmocka_unit_test_setup(option_history_code_only, setup),
         cmocka_unit_test_setup(cob_id_valid_bit, setup),
         cmocka_unit_test_setup(cob_id_change_only_while_invalid, setup),
         cmocka_unit_test_setup(cob_id_bad_values, setup),

@@ -39,6 +39,10 @@
 #define CO_OPT_RPDO_SHORT_OK           0x0400U /**< an RPDO shorter than its mapping writes the
                                                     entries it covers, no EMCY (AnaGate) */
 #define CO_OPT_EVENT_TIMER_100US       0x0800U /**< PDO event timer in 100 us, not ms (Kollmorgen) */
+#define CO_OPT_ERREG_NO_GENERIC        0x00100000UL /**< 0x1001: an error sets only the bits it names;
+                                                         bit 0 only for one that names none (Kollmorgen) */
+#define CO_OPT_HISTORY_CODE_ONLY       0x00200000UL /**< 0x1003 entries hold the error code only, no
+                                                         manufacturer bytes above it (Kollmorgen) */
 
 /** Error register 0x1001 bits. */
 #define CO_ERREG_GENERIC      0x01U
@@ -282,7 +286,8 @@ co_err_t co_od_bind_hook(co_node_t *node, uint16_t index, const co_od_hook_t *ho
 
 /** Raise an error: set it active, update 0x1001 and 0x1003 and send an EMCY
  *  with @p code, the register and @p mfr (5 bytes, NULL for zeros).
- *  @p reg_bits are the 0x1001 bits this error sets (generic is always set).
+ *  @p reg_bits are the 0x1001 bits this error sets (the generic bit is added;
+ *  with CO_OPT_ERREG_NO_GENERIC only when @p reg_bits is 0).
  *  Raising an active code again does nothing. */
 void co_emcy_raise(co_node_t *node, uint16_t code, uint8_t reg_bits, const uint8_t *mfr);
 

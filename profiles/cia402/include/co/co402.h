@@ -166,7 +166,8 @@ typedef struct co402_hm_method {
  *  manufacturer bytes). */
 typedef struct co402_error {
     uint16_t code;             /**< EMCY error code (0x603F) */
-    uint8_t reg;               /**< 0x1001 bits it sets (bit 0 is always set) */
+    uint8_t reg;               /**< 0x1001 bits it sets (the core adds bit 0, see
+                                    co_emcy_raise) */
     uint8_t mfr[5];            /**< EMCY bytes 3..7 */
 } co402_error_t;
 

@@ -8,7 +8,10 @@
  * per revolution: BL controller with Hall sensors), a simulated BL motor,
  * and a plug-in for what is FAULHABER's own:
  *   - the error register 0x2320 with the masks 0x2321 (emergency, fault)
- *     and the error delay 0x2322.01; its EMCYs carry 0x2320 in bytes 3-4;
+ *     and the error delay 0x2322.01; its EMCYs carry 0x2320 in bytes 3-4,
+ *     also the ones the core raises itself (heartbeat / guarding 0x8130,
+ *     RPDO length 0x8210 / 0x8220) and the CAN port's (0x8110, 0x8120,
+ *     0x8140), through the plug-in's emcy_mfr;
  *     writing the fault mask sets the same bits in the emergency mask; an
  *     error whose fault-mask bit is set puts the axis into Fault
  *     (faulhaber_mc_error() reports a drive error condition);
@@ -51,6 +54,8 @@ typedef struct faulhaber_mc_state {
     uint32_t since[16];      /* when each present condition arose */
     uint16_t code[16];       /* EMCY code each reported error was raised with */
     uint16_t present;        /* conditions present (the delay may still run) */
+    uint16_t core;           /* 0x2320 bits of errors the core raised (op_emcy_mfr) */
+    uint16_t faulted;        /* ... of those, the ones whose fault-mask reaction ran */
     bool react;              /* a 0x1029 reaction is due */
 } faulhaber_mc_state_t;
 

@@ -1264,5 +1264,5 @@ static void op_error_control(void *inst, co_hb_event_t ev, uint8_t id, uint32_t 
 }
 
 const co_profile_ops_t co402_profile_ops = {
-    "cia402", op_attach, op_process, op_sync, op_nmt_state, op_reset, op_error_control,
+    "cia402", op_attach, op_process, op_sync, op_nmt_state, op_reset, op_error_control, NULL,
 };

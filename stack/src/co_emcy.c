@@ -106,6 +106,9 @@ static void history_push(co_node_t *node, uint16_t code, const uint8_t *mfr)
 
 void co_emcy_raise(co_node_t *node, uint16_t code, uint8_t reg_bits, const uint8_t *mfr)
 {
+    uint8_t filled[5];
+    const uint8_t *data = mfr;
+
     if (co_emcy_is_active(node, code) || (code == CO_EMCY_NO_ERROR)) {
         return;
     }
@@ -115,8 +118,14 @@ void co_emcy_raise(co_node_t *node, uint16_t code, uint8_t reg_bits, const uint8
         node->n_active++;
     }
     update_errreg(node);
-    history_push(node, code, mfr);
-    send_code(node, code, mfr);
+    if ((data == NULL) && (node->cb.emcy_mfr != NULL)) {
+        /* the device fills the manufacturer bytes of the core's own EMCYs */
+        (void)memset(filled, 0, sizeof filled);
+        node->cb.emcy_mfr(node->cb.ctx, node, code, filled);
+        data = filled;
+    }
+    history_push(node, code, data);
+    send_code(node, code, data);
     if (co_opt(node, CO_OPT_EMCY_STATE_PAIR)) {
         send_code(node, CO_EMCY_NO_ERROR, NULL);
     }

@@ -126,6 +126,16 @@ typedef struct co_node_callbacks {
     /** A TIME_OF_DAY arrived (0x1012 consumer bit set): milliseconds after
      *  midnight and days since 1 January 1984. */
     void (*time)(void *ctx, struct co_node *node, uint32_t ms, uint16_t days);
+    /** An error is raised without manufacturer data (co_emcy_raise with mfr
+     *  NULL): every EMCY the core raises itself (0x8130 heartbeat / life
+     *  guarding, 0x8210 / 0x8220 RPDO length, 0x8240 SYNC length, 0x8250
+     *  RPDO timeout) and those a port raises that way (0x81xx CAN
+     *  controller). Fill the manufacturer-specific EMCY bytes 3..7 @p mfr
+     *  (zero on entry); they go out in the EMCY and bytes 0..1 into 0x1003
+     *  like any manufacturer data. Called with the error active and 0x1001
+     *  updated, before the frame. It must not raise or clear errors. NULL:
+     *  zeros (CiA 301 leaves the field to the manufacturer). */
+    void (*emcy_mfr)(void *ctx, struct co_node *node, uint16_t code, uint8_t mfr[5]);
 } co_node_callbacks_t;
 
 /** Everything co_node_init needs. */
@@ -287,7 +297,8 @@ co_err_t co_od_bind_hook(co_node_t *node, uint16_t index, const co_od_hook_t *ho
 /** Raise an error: set it active, update 0x1001 and 0x1003 and send an EMCY
  *  with @p code, the register and @p mfr (5 bytes, NULL for zeros).
  *  @p reg_bits are the 0x1001 bits this error sets (the generic bit is added;
- *  with CO_OPT_ERREG_NO_GENERIC only when @p reg_bits is 0).
+ *  with CO_OPT_ERREG_NO_GENERIC only when @p reg_bits is 0). With @p mfr
+ *  NULL the emcy_mfr callback (if any) fills the manufacturer bytes. 
  *  Raising an active code again does nothing. */
 void co_emcy_raise(co_node_t *node, uint16_t code, uint8_t reg_bits, const uint8_t *mfr);
 

@@ -381,19 +381,6 @@ static uint32_t op_process(void *inst, uint32_t now_us)
         }
     }
     core_errors(r, true);
-    if (st->react) {
-        /* 0x1029.1: 0 Pre-operational (from Operational), 1 no change, 2 Stopped */
-        const uint8_t *beh = (const uint8_t *)co_od_value_ptr(co402_drive_node(r), 0x1029U, 1U);
-        uint8_t v = (beh != NULL) ? *beh : 0U;
-        st->react = false;
-        if ((v == 0U) && (co_node_nmt_state(co402_drive_node(r)) == CO_NMT_OPERATIONAL)) {
-            co_node_nmt_command(co402_drive_node(r), 0x80U, now_us);
-        } else if (v == 2U) {
-            co_node_nmt_command(co402_drive_node(r), 0x02U, now_us);
-        } else {
-            /* no change */
-        }
-    }
     if (co402_drive_axis(r, 0U) != NULL) {
         /* 0x2562: last demand in increments; 0x2361: speed, unfiltered */
         int32_t *demand = (int32_t *)co_od_value_ptr(co402_drive_node(r), 0x2562U, 0U);
@@ -423,20 +410,8 @@ static void op_reset(void *inst, co_reset_t kind, uint32_t now_us)
     (void)factor(r, 0U, 0U, 0U, true);
 }
 
-static void op_error_control(void *inst, co_hb_event_t ev, uint8_t id, uint32_t now_us)
-{
-    co402_drive_t *r = (co402_drive_t *)inst;
-
-    (void)id;
-    (void)now_us;
-    /* the error itself is the core's EMCY 0x8130 (op_emcy_mfr) */
-    if ((ev == CO_HB_TIMEOUT) || (ev == CO_GUARD_LOST)) {
-        state(r)->react = true; /* 0x1029, at the next process (not inside the core's event) */
-    }
-}
-
 const co_profile_ops_t faulhaber_mc_ops = {
-    "faulhaber-mc", op_attach, op_process, NULL, NULL, op_reset, op_error_control, op_emcy_mfr,
+    "faulhaber-mc", op_attach, op_process, NULL, NULL, op_reset, NULL, op_emcy_mfr,
 };
 
 /* ---------------------------------------------------------------- device */

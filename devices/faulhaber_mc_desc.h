@@ -17,7 +17,6 @@
  *     (faulhaber_mc_error() reports a drive error condition);
  *   - heartbeat and node guarding exclude each other (0x1017 > 0 clears
  *     0x100C/0x100D; a guard time while producing heartbeats: 0x08000020);
- *   - 0x1029 communication error reaction (heartbeat or guarding loss);
  *   - factory restore (0x1011.1-3) only in Switch on disabled, 0x2310 not
  *     while homing (0x08000022);
  *   - the position factor 0x6093 computed from 0x608F, 0x6091 and 0x6092
@@ -56,7 +55,6 @@ typedef struct faulhaber_mc_state {
     uint16_t present;        /* conditions present (the delay may still run) */
     uint16_t core;           /* 0x2320 bits of errors the core raised (op_emcy_mfr) */
     uint16_t faulted;        /* ... of those, the ones whose fault-mask reaction ran */
-    bool react;              /* a 0x1029 reaction is due */
 } faulhaber_mc_state_t;
 
 /** The plug-in (instance: the co402_drive_t), for devices of other

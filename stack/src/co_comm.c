@@ -192,6 +192,12 @@ co_err_t co_comm_check_write(const co_node_t *node, uint16_t index, uint8_t sub,
             return check_hb_consumer(node, sub, co_get_u32(data));
         }
         break;
+    case 0x1029U:
+        /* error behaviour: 0..2, 0x80..0xFF manufacturer-specific; 3..0x7F reserved */
+        if ((sub > 0U) && (len == 1U) && (data[0] >= 3U) && (data[0] <= 0x7FU)) {
+            return CO_ERR_VALUE;
+        }
+        break;
     default:
         break;
     }

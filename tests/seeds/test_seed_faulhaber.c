@@ -339,7 +339,8 @@ static void nmt_guarding_heartbeat(void **state)
 
 /* Sections 2.6, 2.7, 7.9: the consumer watches master 0x7F for 1500 ms
  * (0x1016.1 = 0x007F05DC); its loss sets 0x2320 bit 0x0100, 0x1001 bit 4,
- * sends EMCY 0x8130 and, by 0x1029.1 = 0, goes to Pre-operational. */
+ * sends EMCY 0x8130 and, by 0x1029.1 = 0, goes to Pre-operational (the
+ * core's error behaviour, in the same step as the EMCY). */
 static void heartbeat_consumer_and_error_behaviour(void **state)
 {
     (void)state;

@@ -19,7 +19,8 @@ typedef struct td_ram {
     uint32_t sync_window;  /* 0x1007 */
     uint32_t time_cob;     /* 0x1012, default 0x80000100 (consumer) */
     uint8_t sync_overflow; /* 0x1019 */
-    uint8_t pad3[3];
+    uint8_t err_beh[3];    /* 0x1029 sub1..3: communication error (default 0, CiA 301),
+                              two device-specific classes (default 1) */
     uint32_t node_id;      /* 0x100B, $NODEID */
     uint16_t guard_time;   /* 0x100C */
     uint8_t life_factor;   /* 0x100D */

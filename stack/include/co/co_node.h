@@ -275,6 +275,18 @@ co_nmt_state_t co_node_nmt_state(const co_node_t *node);
 /** Execute an NMT command locally (as if received for this node). */
 void co_node_nmt_command(co_node_t *node, uint8_t cs, uint32_t now_us);
 
+/** 0x1029 sub-index of the communication error class. */
+#define CO_ERRBEH_COMM 1U
+
+/** A serious error of class @p sub (0x1029 sub-index: CO_ERRBEH_COMM for a
+ *  communication error, 2.. device-specific classes) was detected: the NMT
+ *  state changes as 0x1029 sub @p sub says (0 Pre-operational, only from
+ *  Operational; 1 no change; 2 Stopped; other values no change). Without
+ *  0x1029 or that sub-index nothing changes. The core applies class 1 itself
+ *  to a heartbeat consumer timeout and to life guarding; a port calls it
+ *  with CO_ERRBEH_COMM for bus-off, a device or profile for its own classes. */
+void co_node_error_behaviour(co_node_t *node, uint8_t sub, uint32_t now_us);
+
 /** Read a whole value (up to @p cap bytes) through the dictionary path,
  *  hooks included. *len receives the length. */
 co_err_t co_od_read(co_node_t *node, uint16_t index, uint8_t sub, void *buf, uint32_t cap,

@@ -733,6 +733,85 @@ static void d713_ip_two_axes(void **state)
     assert_int_equal(co402_state(tseed_axis(&fx, 1)), CO402_OPERATION_ENABLED);
 }
 
+/* --------------------------------------- D2.4, D2.5: response monitoring */
+
+/* Node guarding with guard time 100 ms x life time factor 3, armed by the
+ * first request (§5.2.1.10). On expiry the drive shows warning n04 (2000h
+ * bit 3; statusword bits 7 and 11), brakes on the quick-stop ramp 6085h and
+ * blocks further motion; no NMT change (no 1029h, D8.1-22). The manual
+ * lists no EMCY code for it: the core sends CiA 301's 8130h (error register
+ * 10h, communication, no generic bit), paired with the state report.
+ * Controlword bit 7 (fault reset) clears n04 (D6.2), then the drive moves
+ * again. */
+static void guarding_loss_is_warning_n04(void **state)
+{
+    (void)state;
+    /* TPDO3 / TPDO4 (actual values on every change) off, as the examples do */
+    dl(3, "23 02 18 01 83 03 00 C0");
+    dl(3, "23 03 18 01 83 04 00 C0");
+    dl(3, "2B 0C 10 00 64 00 00 00");
+    dl(3, "2F 0D 10 00 03 00 00 00");
+    dl(3, "2F 60 60 00 03 00 00 00");
+    dl(3, "23 85 60 00 00 00 10 00"); /* 2^20 units/s^2 */
+    dl(3, "2B 40 60 00 06 00 00 00");
+    dl(3, "2B 40 60 00 07 00 00 00");
+    dl(3, "2B 40 60 00 0F 00 00 00");
+    dl(3, "23 FF 60 00 00 00 01 00"); /* 65536 units/s */
+    /* Operational: TPDO1 and TPDO2 (statusword, mode) send once */
+    tb_send(BUS, "000 01 03");
+    tb_expect(BUS, "183 37 02");
+    tb_expect(BUS, "283 37 02 03");
+    tb_expect_none(BUS);
+    /* the first guarding request arms life guarding (Operational: 05) */
+    tb_xfer(BUS, "703 R1", "703 05");
+    tseed_run(&fx, 100000);
+    assert_between(tseed_get(&fx, 0, 0x606C, 0), 65000, 66000);
+    assert_int_equal(tseed_sw(&fx, 0), 0x0637);
+    tb_flush(BUS);
+    tseed_run(&fx, 199000);
+    tb_expect_none(BUS);
+    tseed_run(&fx, 1000);
+    tb_expect(BUS, "083 30 81 10 00 00 00 00 00");
+    tb_expect(BUS, "083 00 00 10 00 00 00 00 00");
+    /* n04: warning (bit 7) and internal limit (bit 11) in the statusword */
+    tb_expect(BUS, "183 B7 0E");
+    tb_expect(BUS, "283 B7 0E 03");
+    tb_expect_none(BUS);
+    assert_int_equal(co_node_nmt_state(&kn[0].node), CO_NMT_OPERATIONAL);
+    assert_int_equal(co402_state(tseed_axis(&fx, 0)), CO402_OPERATION_ENABLED);
+    assert_int_equal(tseed_get(&fx, 0, 0x2000, 0), 0x00000008);
+    /* the quick-stop ramp: 65536 units/s at 2^20 units/s^2, 62.5 ms */
+    tseed_run(&fx, 70000);
+    assert_between(tseed_get(&fx, 0, 0x606C, 0), -1000, 1000);
+    tb_expect_none(BUS);
+    /* further motion is blocked: a new set-point, enable operation again */
+    dl(3, "23 FF 60 00 00 80 00 00"); /* 32768 units/s */
+    dl(3, "2B 40 60 00 0F 00 00 00");
+    tseed_run(&fx, 100000);
+    assert_between(tseed_get(&fx, 0, 0x606C, 0), -1000, 1000);
+    tb_expect_none(BUS);
+    /* the master guards again: the EMCY ends (error register 00h), n04 stays */
+    tb_send(BUS, "703 R1");
+    tb_expect(BUS, "703 85");
+    tb_expect(BUS, "083 00 00 00 00 00 00 00 00");
+    tb_expect_none(BUS);
+    tseed_run(&fx, 1000);
+    assert_int_equal(tseed_get(&fx, 0, 0x2000, 0), 0x00000008);
+    assert_int_equal(tseed_sw(&fx, 0), 0x0EB7);
+    /* fault reset (bit 7; 0x008F decodes as enable operation, bit 7 don't
+     * care): n04 ends, the statusword shows it, the axis takes the set-point */
+    dl(3, "2B 40 60 00 8F 00 00 00");
+    tseed_run(&fx, 1000);
+    tb_expect(BUS, "183 37 02");
+    tb_expect(BUS, "283 37 02 03");
+    assert_int_equal(tseed_get(&fx, 0, 0x2000, 0), 0);
+    tb_send(BUS, "703 R1");
+    tb_expect(BUS, "703 05");
+    tseed_run(&fx, 100000);
+    tb_flush(BUS);
+    assert_between(tseed_get(&fx, 0, 0x606C, 0), 32268, 33268);
+}
+
 /* -------------------------------------------- D8.1: further deviations */
 
 static void quick_stop_and_bit7(void **state)
@@ -818,6 +897,7 @@ int main(void)
         cmocka_unit_test_setup(d711_sync_and_emcy, setup),
         cmocka_unit_test_setup(d712_gearing_parameters, setup),
         cmocka_unit_test_setup(d713_ip_two_axes, setup),
+        cmocka_unit_test_setup(guarding_loss_is_warning_n04, setup),
         cmocka_unit_test_setup(quick_stop_and_bit7, setup),
         cmocka_unit_test_setup(event_timer_and_mapping, setup),
     };

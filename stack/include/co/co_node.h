@@ -43,6 +43,8 @@
                                                          bit 0 only for one that names none (Kollmorgen) */
 #define CO_OPT_HISTORY_CODE_ONLY       0x00200000UL /**< 0x1003 entries hold the error code only, no
                                                          manufacturer bytes above it (Kollmorgen) */
+#define CO_OPT_SDO_NO_SEG_DOWNLOAD     0x00400000UL /**< a segmented SDO download is refused at its
+                                                         initiate with 0x06010000 (SSD 630) */
 
 /** Error register 0x1001 bits. */
 #define CO_ERREG_GENERIC      0x01U

@@ -227,10 +227,28 @@ static void store_restore(void **state)
     tb_send(&S->bus, "000 81 02");
     sr_expect(S, "702 00");
     sr_sdo(S, "40 81 60 00 00 00 00 00", "43 81 60 00 B8 0B 00 00");
-    /* subs 4..6 (the last saved set) are FAULHABER's; the core restores
-     * defaults only: they read 0 and refuse the signature */
-    sr_sdo(S, "40 11 10 04 00 00 00 00", "43 11 10 04 00 00 00 00");
-    sr_sdo(S, "23 11 10 04 6C 6F 61 64", "80 11 10 04 20 00 00 08");
+    /* subs 4..6 restore the last saved set (section 8; CO_OPT_RESTORE_SAVED):
+     * they read 1; the factory restore above kept the saved 1234, which
+     * comes back at the next reset */
+    sr_sdo(S, "40 11 10 04 00 00 00 00", "43 11 10 04 01 00 00 00");
+    sr_sdo(S, "40 11 10 05 00 00 00 00", "43 11 10 05 01 00 00 00");
+    sr_sdo(S, "40 11 10 06 00 00 00 00", "43 11 10 06 01 00 00 00");
+    sr_sdo(S, "23 11 10 04 6C 6F 61 64", "60 11 10 04 00 00 00 00");
+    sr_sdo(S, "40 81 60 00 00 00 00 00", "43 81 60 00 B8 0B 00 00");
+    tb_send(&S->bus, "000 81 02");
+    sr_expect(S, "702 00");
+    sr_sdo(S, "40 81 60 00 00 00 00 00", "43 81 60 00 D2 04 00 00");
+    /* the application group alone: factory (sub 3), then saved (sub 6) */
+    sr_sdo(S, "23 11 10 03 6C 6F 61 64", "60 11 10 03 00 00 00 00");
+    tb_send(&S->bus, "000 81 02");
+    sr_expect(S, "702 00");
+    sr_sdo(S, "40 81 60 00 00 00 00 00", "43 81 60 00 B8 0B 00 00");
+    sr_sdo(S, "23 11 10 06 6C 6F 61 64", "60 11 10 06 00 00 00 00");
+    tb_send(&S->bus, "000 81 02");
+    sr_expect(S, "702 00");
+    sr_sdo(S, "40 81 60 00 00 00 00 00", "43 81 60 00 D2 04 00 00");
+    /* a wrong signature: 0x08000020 */
+    sr_sdo(S, "23 11 10 05 73 61 76 65", "80 11 10 05 20 00 00 08");
 }
 
 /* Section 8 / 9.1 item 16: factory restore only in Switch on disabled. */

@@ -19,6 +19,7 @@ typedef struct td_rom {
     char x1009[3];
     char x100A[5];
     uint8_t n1029;
+    uint8_t n1011;
 } td_rom_t;
 
 static const td_rom_t rom = {
@@ -33,6 +34,7 @@ static const td_rom_t rom = {
     .x1009 = {'1', '.', '0'},
     .x100A = {'0', '.', '1', '.', '0'},
     .n1029 = 3U,
+    .n1011 = 6U,
 };
 
 static const td_ram_t defaults = {
@@ -97,10 +99,10 @@ static const co_od_sub_t s1010[] = {
     {3, (uint8_t)CO_UNSIGNED32, CO_SUB_RW, 4U, (uint16_t)(F(store) + 8U), 0U},
 };
 static const co_od_sub_t s1011[] = {
-    ROM(0, CO_UNSIGNED8, CO_SUB_RO | CO_SUB_CONST, n1010),
-    {1, (uint8_t)CO_UNSIGNED32, CO_SUB_RW, 4U, F(restore), 0U},
-    {2, (uint8_t)CO_UNSIGNED32, CO_SUB_RW, 4U, (uint16_t)(F(restore) + 4U), 0U},
-    {3, (uint8_t)CO_UNSIGNED32, CO_SUB_RW, 4U, (uint16_t)(F(restore) + 8U), 0U},
+    ROM(0, CO_UNSIGNED8, CO_SUB_RO | CO_SUB_CONST, n1011),
+#define R(i) {(i), (uint8_t)CO_UNSIGNED32, CO_SUB_RW, 4U, (uint16_t)(F(restore) + 4U * ((i) - 1U)), 0U}
+    R(1), R(2), R(3), R(4), R(5), R(6),
+#undef R
 };
 static const co_od_sub_t s1014[] = {RAM(0, CO_UNSIGNED32, CO_SUB_RW | CO_SUB_NODEID, emcy_cob)};
 static const co_od_sub_t s1015[] = {RAM(0, CO_UNSIGNED16, CO_SUB_RW, emcy_inhibit)};

@@ -70,7 +70,8 @@ typedef struct td_ram {
     uint32_t mfr_status;   /* 0x1002 */
     uint32_t hist[8];      /* 0x1003 sub1..8 */
     uint32_t store[3];     /* 0x1010 sub1..3 (core: capability) */
-    uint32_t restore[3];   /* 0x1011 sub1..3 (core: capability) */
+    uint32_t restore[6];   /* 0x1011 sub1..6 (core: capability; 4..6 only with
+                              CO_OPT_RESTORE_SAVED, else 0) */
 } td_ram_t;
 
 extern const co_dev_t td_dev;

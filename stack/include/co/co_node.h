@@ -45,6 +45,9 @@
                                                          manufacturer bytes above it (Kollmorgen) */
 #define CO_OPT_SDO_NO_SEG_DOWNLOAD     0x00400000UL /**< a segmented SDO download is refused at its
                                                          initiate with 0x06010000 (SSD 630) */
+#define CO_OPT_RESTORE_SAVED           0x00800000UL /**< 0x1011 sub 4/5/6 restore the saved set (all /
+                                                         comm. / application); sub 1..3 keep its data
+                                                         (FAULHABER) */
 
 /** Error register 0x1001 bits. */
 #define CO_ERREG_GENERIC      0x01U

@@ -67,6 +67,7 @@ void co_nmt_boot(co_node_t *node)
  * reserved and manufacturer-specific values (3..0xFF): no change (a device
  * acts on its own values itself). Without 0x1029 (or that sub-index) the
  * state does not change. */
+#if CO_ERROR_BEHAVIOUR
 void co_nmt_error(co_node_t *node, uint8_t sub)
 {
     const co_od_entry_t *e = co_od_find(node->dev->od, node->dev->od_count, 0x1029U);
@@ -87,6 +88,7 @@ void co_nmt_error(co_node_t *node, uint8_t sub)
         /* no change */
     }
 }
+#endif
 
 void co_node_error_behaviour(co_node_t *node, uint8_t sub, uint32_t now_us)
 {

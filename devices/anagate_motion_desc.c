@@ -48,7 +48,7 @@ static uint32_t vac_process(void *inst, uint32_t now_us)
 }
 
 static const co_profile_ops_t vac_ops = {
-    "anagate-motion-400vac", vac_attach, vac_process, NULL, NULL, NULL, NULL,
+    "anagate-motion-400vac", vac_attach, vac_process, NULL, NULL, NULL, NULL, NULL,
 };
 
 const co402_device_t co402_dev_anagate_motion = {

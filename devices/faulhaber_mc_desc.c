@@ -15,23 +15,28 @@ typedef struct fh_error {
     uint16_t bit;
     uint16_t code;     /* EMCY code (deviation: the pp one; pv uses 0x8611) */
     uint8_t reg;       /* 0x1001 bits besides generic */
-    bool delayed;      /* reported after the error delay 0x2322.01 */
+    uint8_t flags;     /* FH_* */
 } fh_error_t;
 
+#define FH_DELAYED 0x01U /* reported after the error delay 0x2322.01 */
+#define FH_CORE    0x02U /* also raised by the core or the CAN port (their EMCY, with
+                            0x2320 filled in by emcy_mfr) */
+#define FH_STICKY  0x04U /* never withdrawn: the 0x2320 bit stays (CAN overrun, bus-off) */
+
 static const fh_error_t errors[] = {
-    {FAULHABER_ERR_OVERCURRENT, 0x2310U, CO_ERREG_CURRENT, true},
-    {FAULHABER_ERR_DEVIATION, 0x8400U, CO_ERREG_PROFILE, true},
-    {FAULHABER_ERR_OVERVOLTAGE, 0x3210U, CO_ERREG_VOLTAGE, true},
-    {FAULHABER_ERR_TEMPERATURE, 0x4310U, CO_ERREG_TEMPERATURE, false},
-    {FAULHABER_ERR_FLASH, 0x5530U, CO_ERREG_PROFILE, false},
-    {FAULHABER_ERR_CAN_PASSIVE, 0x8120U, CO_ERREG_COMM, false},
-    {FAULHABER_ERR_CAN_OVERRUN, 0x8110U, CO_ERREG_COMM, false},
-    {FAULHABER_ERR_GUARDING, 0x8130U, CO_ERREG_COMM, false},
-    {FAULHABER_ERR_BUS_OFF, 0x8140U, CO_ERREG_COMM, false},
-    {FAULHABER_ERR_CONVERSION, 0xFF01U, 0U, false},
-    {FAULHABER_ERR_SOFTWARE, 0x6100U, CO_ERREG_PROFILE, false},
-    {FAULHABER_ERR_PDO_LONG, 0x8220U, CO_ERREG_COMM, false},
-    {FAULHABER_ERR_PDO_SHORT, 0x8210U, CO_ERREG_COMM, false},
+    {FAULHABER_ERR_OVERCURRENT, 0x2310U, CO_ERREG_CURRENT, FH_DELAYED},
+    {FAULHABER_ERR_DEVIATION, 0x8400U, CO_ERREG_PROFILE, FH_DELAYED},
+    {FAULHABER_ERR_OVERVOLTAGE, 0x3210U, CO_ERREG_VOLTAGE, FH_DELAYED},
+    {FAULHABER_ERR_TEMPERATURE, 0x4310U, CO_ERREG_TEMPERATURE, 0U},
+    {FAULHABER_ERR_FLASH, 0x5530U, CO_ERREG_PROFILE, 0U},
+    {FAULHABER_ERR_CAN_PASSIVE, 0x8120U, CO_ERREG_COMM, FH_CORE},
+    {FAULHABER_ERR_CAN_OVERRUN, 0x8110U, CO_ERREG_COMM, FH_CORE | FH_STICKY},
+    {FAULHABER_ERR_GUARDING, 0x8130U, CO_ERREG_COMM, FH_CORE},
+    {FAULHABER_ERR_BUS_OFF, 0x8140U, CO_ERREG_COMM, FH_CORE | FH_STICKY},
+    {FAULHABER_ERR_CONVERSION, 0xFF01U, 0U, 0U},
+    {FAULHABER_ERR_SOFTWARE, 0x6100U, CO_ERREG_PROFILE, 0U},
+    {FAULHABER_ERR_PDO_LONG, 0x8220U, CO_ERREG_COMM, FH_CORE},
+    {FAULHABER_ERR_PDO_SHORT, 0x8210U, CO_ERREG_COMM, FH_CORE},
 };
 
 #define N_ERRORS (sizeof errors / sizeof errors[0])
@@ -107,6 +112,62 @@ static void withdraw(co402_drive_t *r, const fh_error_t *e)
     if (co402_drive_axis(r, 0U) != NULL) {
         co402_fault_clear(co402_drive_axis(r, 0U), code);
     }
+}
+
+/* The errors the core raised: when the core has ended one, its 0x2320 bit
+ * goes (not the sticky ones) and the fault condition with it; with @p react,
+ * the fault mask puts the axis into Fault once for each that lasts (not
+ * inside the core's call: the fault raises an EMCY). */
+static void core_errors(co402_drive_t *r, bool react)
+{
+    faulhaber_mc_state_t *st = state(r);
+    co_node_t *node = co402_drive_node(r);
+    co402_axis_t *ax = co402_drive_axis(r, 0U);
+
+    for (size_t i = 0U; i < N_ERRORS; i++) {
+        const fh_error_t *e = &errors[i];
+        if ((st->core & e->bit) == 0U) {
+            continue;
+        }
+        if (!co_emcy_is_active(node, e->code)) {
+            st->core &= (uint16_t)~e->bit;
+            st->faulted &= (uint16_t)~e->bit;
+            if ((e->flags & FH_STICKY) == 0U) {
+                set_u16(node, 0x2320U, 0U, (uint16_t)(u16_at(node, 0x2320U, 0U) & ~e->bit));
+            }
+            if (ax != NULL) {
+                co402_fault_clear(ax, e->code);
+            }
+        } else if (react && ((st->faulted & e->bit) == 0U) &&
+                   ((u16_at(node, 0x2321U, 2U) & e->bit) != 0U) && (ax != NULL)) {
+            st->faulted |= e->bit;
+            co402_fault_raise(ax, e->code);
+        } else {
+            /* reported, or no fault reaction */
+        }
+    }
+}
+
+/* An EMCY the core (or the CAN port) raises without manufacturer data: its
+ * 0x2320 bit is set and the EMCY carries 0x2320 in bytes 3-4, like the
+ * FAULHABER's own (errors the core ended meanwhile are out of 0x2320
+ * first). Its fault-mask reaction follows in op_process. */
+static void op_emcy_mfr(void *inst, uint16_t code, uint8_t mfr[5])
+{
+    co402_drive_t *r = (co402_drive_t *)inst;
+    co_node_t *node = co402_drive_node(r);
+    uint16_t reg;
+
+    core_errors(r, false);
+    for (size_t i = 0U; i < N_ERRORS; i++) {
+        if (((errors[i].flags & FH_CORE) != 0U) && (errors[i].code == code)) {
+            set_u16(node, 0x2320U, 0U, (uint16_t)(u16_at(node, 0x2320U, 0U) | errors[i].bit));
+            state(r)->core |= errors[i].bit;
+        }
+    }
+    reg = u16_at(node, 0x2320U, 0U);
+    mfr[0] = (uint8_t)(reg & 0xFFU);
+    mfr[1] = (uint8_t)(reg >> 8U);
 }
 
 void faulhaber_mc_error(co402_drive_t *r, uint16_t bit, bool on)
@@ -306,7 +367,7 @@ static uint32_t op_process(void *inst, uint32_t now_us)
 
     for (size_t i = 0U; i < N_ERRORS; i++) {
         const fh_error_t *e = &errors[i];
-        uint32_t due = st->since[bit_no(e->bit)] + (e->delayed ? delay : 0U);
+        uint32_t due = st->since[bit_no(e->bit)] + (((e->flags & FH_DELAYED) != 0U) ? delay : 0U);
         if (((st->present & e->bit) == 0U) || ((reg & e->bit) != 0U)) {
             continue;
         }
@@ -319,19 +380,7 @@ static uint32_t op_process(void *inst, uint32_t now_us)
             /* a later one */
         }
     }
-    if (st->react) {
-        /* 0x1029.1: 0 Pre-operational (from Operational), 1 no change, 2 Stopped */
-        const uint8_t *beh = (const uint8_t *)co_od_value_ptr(co402_drive_node(r), 0x1029U, 1U);
-        uint8_t v = (beh != NULL) ? *beh : 0U;
-        st->react = false;
-        if ((v == 0U) && (co_node_nmt_state(co402_drive_node(r)) == CO_NMT_OPERATIONAL)) {
-            co_node_nmt_command(co402_drive_node(r), 0x80U, now_us);
-        } else if (v == 2U) {
-            co_node_nmt_command(co402_drive_node(r), 0x02U, now_us);
-        } else {
-            /* no change */
-        }
-    }
+    core_errors(r, true);
     if (co402_drive_axis(r, 0U) != NULL) {
         /* 0x2562: last demand in increments; 0x2361: speed, unfiltered */
         int32_t *demand = (int32_t *)co_od_value_ptr(co402_drive_node(r), 0x2562U, 0U);
@@ -361,24 +410,8 @@ static void op_reset(void *inst, co_reset_t kind, uint32_t now_us)
     (void)factor(r, 0U, 0U, 0U, true);
 }
 
-static void op_error_control(void *inst, co_hb_event_t ev, uint8_t id, uint32_t now_us)
-{
-    co402_drive_t *r = (co402_drive_t *)inst;
-
-    (void)id;
-    (void)now_us;
-    if ((ev == CO_HB_TIMEOUT) || (ev == CO_GUARD_LOST)) {
-        faulhaber_mc_error(r, FAULHABER_ERR_GUARDING, true);
-        state(r)->react = true; /* 0x1029, at the next process (not inside the core's event) */
-    } else if ((ev == CO_HB_RECOVERED) || (ev == CO_GUARD_RECOVERED)) {
-        faulhaber_mc_error(r, FAULHABER_ERR_GUARDING, false);
-    } else {
-        /* other events: nothing */
-    }
-}
-
 const co_profile_ops_t faulhaber_mc_ops = {
-    "faulhaber-mc", op_attach, op_process, NULL, NULL, op_reset, op_error_control,
+    "faulhaber-mc", op_attach, op_process, NULL, NULL, op_reset, NULL, op_emcy_mfr,
 };
 
 /* ---------------------------------------------------------------- device */

@@ -8,13 +8,15 @@
  * per revolution: BL controller with Hall sensors), a simulated BL motor,
  * and a plug-in for what is FAULHABER's own:
  *   - the error register 0x2320 with the masks 0x2321 (emergency, fault)
- *     and the error delay 0x2322.01; its EMCYs carry 0x2320 in bytes 3-4;
+ *     and the error delay 0x2322.01; its EMCYs carry 0x2320 in bytes 3-4,
+ *     also the ones the core raises itself (heartbeat / guarding 0x8130,
+ *     RPDO length 0x8210 / 0x8220) and the CAN port's (0x8110, 0x8120,
+ *     0x8140), through the plug-in's emcy_mfr;
  *     writing the fault mask sets the same bits in the emergency mask; an
  *     error whose fault-mask bit is set puts the axis into Fault
  *     (faulhaber_mc_error() reports a drive error condition);
  *   - heartbeat and node guarding exclude each other (0x1017 > 0 clears
  *     0x100C/0x100D; a guard time while producing heartbeats: 0x08000020);
- *   - 0x1029 communication error reaction (heartbeat or guarding loss);
  *   - factory restore (0x1011.1-3) only in Switch on disabled, 0x2310 not
  *     while homing (0x08000022);
  *   - the position factor 0x6093 computed from 0x608F, 0x6091 and 0x6092
@@ -51,7 +53,8 @@ typedef struct faulhaber_mc_state {
     uint32_t since[16];      /* when each present condition arose */
     uint16_t code[16];       /* EMCY code each reported error was raised with */
     uint16_t present;        /* conditions present (the delay may still run) */
-    bool react;              /* a 0x1029 reaction is due */
+    uint16_t core;           /* 0x2320 bits of errors the core raised (op_emcy_mfr) */
+    uint16_t faulted;        /* ... of those, the ones whose fault-mask reaction ran */
 } faulhaber_mc_state_t;
 
 /** The plug-in (instance: the co402_drive_t), for devices of other

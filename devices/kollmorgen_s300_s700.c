@@ -18,7 +18,13 @@
  *   - homing reports 0x0237 while it runs, then 0x0637 at home and 0x1637
  *     (§6.3.7, §6.3.9): CO402_OPT_HM_TARGET_FIRST;
  *   - its 17 homing methods, manufacturer methods negative (D6.9);
- *   - every EMCY carries its error category in byte 3 (D2.8).
+ *   - every EMCY carries its error category in byte 3 (D2.8);
+ *   - response monitoring (D2.4, D2.5): a node-guarding or heartbeat loss
+ *     is warning n04, not a fault and no NMT change (no 0x1029): the axis
+ *     brakes on the quick-stop ramp 0x6085 and holds, statusword bits 7 and
+ *     11, until controlword bit 7 (fault reset) clears it
+ *     (CO402_OPT_LOSS_WARN_STOP); the plug-in below shows n04 as bit 3 of
+ *     the manufacturer warnings 0x2000.
  *
  * The simulated motor: 2^20 increments per revolution (PRBASE 20, as 0x6063
  * and 0x608F say), one index pulse per revolution, 100 rev/s top speed.
@@ -63,6 +69,49 @@ static const co402_error_t errors[] = {
     {0xFF08U, MFR, CAT(2U)},  {0xFF11U, MFR, CAT(2U)},
 };
 
+/* 0x2000 bit 3, warning n04 "response monitoring": set while the axis
+ * holds a connection loss (CO402_OPT_LOSS_WARN_STOP), i.e. from the loss
+ * until the fault reset. */
+#define WARN_N04 ((uint32_t)0x00000008U)
+
+static void show_n04(co402_drive_t *r)
+{
+    uint32_t *warnings = (uint32_t *)co_od_value_ptr(co402_drive_node(r), 0x2000U, 0U);
+    const co402_axis_t *ax = co402_drive_axis(r, 0U);
+
+    if ((warnings != NULL) && (ax != NULL)) {
+        *warnings = co402_connection_lost(ax) ? (*warnings | WARN_N04) : (*warnings & (uint32_t)~WARN_N04);
+    }
+}
+
+static co_err_t op_attach(void *inst, co_node_t *node, uint32_t now_us)
+{
+    (void)node;
+    (void)now_us;
+    show_n04((co402_drive_t *)inst);
+    return CO_OK;
+}
+
+static uint32_t op_process(void *inst, uint32_t now_us)
+{
+    (void)now_us;
+    show_n04((co402_drive_t *)inst);
+    return CO_NO_DEADLINE;
+}
+
+/* the axes have taken the loss already (they come first on the host) */
+static void op_error_control(void *inst, co_hb_event_t ev, uint8_t id, uint32_t now_us)
+{
+    (void)ev;
+    (void)id;
+    (void)now_us;
+    show_n04((co402_drive_t *)inst);
+}
+
+static const co_profile_ops_t kollmorgen_ops = {
+    "kollmorgen-s300-s700", op_attach, op_process, NULL, NULL, NULL, op_error_control, NULL,
+};
+
 static void sim_config(co402_sim_config_t *c)
 {
     c->counts_per_rev = 1048576U;   /* 2^20 */
@@ -76,10 +125,11 @@ const co402_device_t co402_dev_kollmorgen_s300_s700 = {
     .axes = 1U,
     .options = CO402_OPT_VOLTAGE_WHEN_ON | CO402_OPT_BIT7_DONT_CARE | CO402_OPT_QS_STAY |
                CO402_OPT_QS_CLEARS_TARGET | CO402_OPT_UNITS_FROM_POS | CO402_OPT_HM_TARGET_FIRST |
-               CO402_OPT_PV_NO_SPEED_BIT,
+               CO402_OPT_PV_NO_SPEED_BIT | CO402_OPT_LOSS_WARN_STOP,
     .hm_methods = hm_methods,
     .n_hm_methods = (uint8_t)(sizeof hm_methods / sizeof hm_methods[0]),
     .errors = errors,
     .n_errors = (uint8_t)(sizeof errors / sizeof errors[0]),
     .sim_config = sim_config,
+    .plugin = &kollmorgen_ops,
 };

@@ -450,8 +450,11 @@ uint16_t co402_statusword(const co402_axis_t *ax)
             sw |= CO402_SW_VOLTAGE;
         }
     }
-    if (ax->warning) {
+    if (ax->warning || ax->loss) {
         sw |= CO402_SW_WARNING;
+    }
+    if (ax->loss) {
+        sw |= CO402_SW_LIMIT; /* "internal limit active" in every state (Kollmorgen n04) */
     }
     if ((o & CO402_OPT_NO_REMOTE_BIT) == 0U) {
         if (((o & CO402_OPT_REMOTE_IS_ENABLE) == 0U) || ((ax->fb.inputs & CO402_IN_ENABLE) != 0U)) {
@@ -543,8 +546,14 @@ static void enter(co402_axis_t *ax, co402_state_t st)
     ax->state = (uint8_t)st;
     switch (st) {
     case CO402_OPERATION_ENABLED:
-        ax->drive = (uint8_t)DRV_RUN;
-        co402_mode_enter(ax);
+        if (ax->loss) {
+            ax->drive = (uint8_t)DRV_HOLD; /* no motion until the loss is reset */
+            ax->target = ax->pos;
+            co402_sync_traj(ax);
+        } else {
+            ax->drive = (uint8_t)DRV_RUN;
+            co402_mode_enter(ax);
+        }
         break;
     case CO402_QUICK_STOP_ACTIVE:
     case CO402_FAULT_REACTION:
@@ -696,7 +705,7 @@ static bool transition(co402_axis_t *ax, uint8_t cmd)
         break;
     case (uint8_t)CO402_OPERATION_ENABLED:
         if (cmd == CMD_ENABLE) {
-            if (ax->drive == (uint8_t)DRV_STOP) {
+            if ((ax->drive == (uint8_t)DRV_STOP) && !ax->loss) {
                 ax->drive = (uint8_t)DRV_RUN; /* a pending 5 / 8 is called off */
                 co402_mode_enter(ax);
             }
@@ -756,6 +765,20 @@ static void fault_reset(co402_axis_t *ax)
     enter(ax, CO402_SWITCH_ON_DISABLED); /* 15 */
 }
 
+/* CO402_OPT_LOSS_WARN_STOP: a fault reset ends the connection-loss warning;
+ * an axis held in Operation enabled by it runs its mode again. */
+static void loss_reset(co402_axis_t *ax)
+{
+    ax->loss = false;
+    if ((ax->state == (uint8_t)CO402_OPERATION_ENABLED) &&
+        ((ax->drive == (uint8_t)DRV_HOLD) ||
+         ((ax->drive == (uint8_t)DRV_STOP) &&
+          (ax->after_stop == (uint8_t)CO402_QUICK_STOP_ACTIVE)))) {
+        ax->drive = (uint8_t)DRV_RUN;
+        co402_mode_enter(ax);
+    }
+}
+
 static void controlword(co402_axis_t *ax, uint16_t cw)
 {
     uint16_t old = ax->cw;
@@ -765,6 +788,9 @@ static void controlword(co402_axis_t *ax, uint16_t cw)
         (ax->nmt != (uint8_t)CO_NMT_OPERATIONAL)) {
         publish_sw(ax);
         return;
+    }
+    if (ax->loss && ((cw & CO402_CW_FAULT_RESET) != 0U) && ((old & CO402_CW_FAULT_RESET) == 0U)) {
+        loss_reset(ax);
     }
     if (ax->state == (uint8_t)CO402_FAULT) {
         if (((cw & CO402_CW_FAULT_RESET) != 0U) && ((old & CO402_CW_FAULT_RESET) == 0U) &&
@@ -882,6 +908,11 @@ void co402_set_warning(co402_axis_t *ax, bool on)
 {
     ax->warning = on;
     publish_sw(ax);
+}
+
+bool co402_connection_lost(const co402_axis_t *ax)
+{
+    return ax->loss;
 }
 
 co402_state_t co402_state(const co402_axis_t *ax)
@@ -1117,6 +1148,7 @@ static void start_axis(co402_axis_t *ax, uint32_t now)
     (void)memset(ax->raised, 0, sizeof ax->raised);
     (void)memset(ax->to_clear, 0, sizeof ax->to_clear);
     ax->plant_fault = 0U;
+    ax->loss = false;
     ax->msw = 0U;
     ax->pp_flags = 0U;
     ax->hm_phase = (uint8_t)HM_IDLE;
@@ -1252,6 +1284,17 @@ static void op_reset(void *inst, co_reset_t kind, uint32_t now_us)
     }
 }
 
+/* CO402_OPT_LOSS_WARN_STOP: the warning; an axis that runs its mode stops
+ * on the quick-stop ramp and holds at rest (in Operation enabled). */
+static void loss_warning(co402_axis_t *ax)
+{
+    ax->loss = true;
+    if ((ax->state == (uint8_t)CO402_OPERATION_ENABLED) && (ax->drive == (uint8_t)DRV_RUN)) {
+        start_stop(ax, (uint8_t)STOP_QUICK, CO402_QUICK_STOP_ACTIVE);
+    }
+    publish_sw(ax);
+}
+
 static void op_error_control(void *inst, co_hb_event_t ev, uint8_t id, uint32_t now_us)
 {
     co402_axis_t *ax = (co402_axis_t *)inst;
@@ -1259,10 +1302,14 @@ static void op_error_control(void *inst, co_hb_event_t ev, uint8_t id, uint32_t 
     (void)id;
     (void)now_us;
     if (ax->attached && ((ev == CO_HB_TIMEOUT) || (ev == CO_GUARD_LOST))) {
-        abort_connection(ax, CO402_ERR_HB_GUARD);
+        if ((ax->cfg.options & CO402_OPT_LOSS_WARN_STOP) != 0U) {
+            loss_warning(ax);
+        } else {
+            abort_connection(ax, CO402_ERR_HB_GUARD);
+        }
     }
 }
 
 const co_profile_ops_t co402_profile_ops = {
-    "cia402", op_attach, op_process, op_sync, op_nmt_state, op_reset, op_error_control,
+    "cia402", op_attach, op_process, op_sync, op_nmt_state, op_reset, op_error_control, NULL,
 };

@@ -106,6 +106,22 @@ static void cb_sync(void *ctx, co_node_t *node, uint8_t counter)
     }
 }
 
+static void cb_emcy_mfr(void *ctx, co_node_t *node, uint16_t code, uint8_t mfr[5])
+{
+    co_profile_host_t *h = (co_profile_host_t *)ctx;
+
+    if (h->node == node) {
+        for (uint8_t i = 0U; i < h->n; i++) {
+            if (h->slots[i].ops->emcy_mfr != NULL) {
+                h->slots[i].ops->emcy_mfr(h->slots[i].inst, code, mfr);
+            }
+        }
+    }
+    if (h->app.emcy_mfr != NULL) {
+        h->app.emcy_mfr(h->app.ctx, node, code, mfr);
+    }
+}
+
 static void cb_time(void *ctx, co_node_t *node, uint32_t ms, uint16_t days)
 {
     const co_profile_host_t *h = (const co_profile_host_t *)ctx;
@@ -126,6 +142,7 @@ co_node_callbacks_t co_profile_host_callbacks(co_profile_host_t *h)
     cb.hb_event = cb_hb_event;
     cb.sync = cb_sync;
     cb.time = cb_time;
+    cb.emcy_mfr = cb_emcy_mfr;
     return cb;
 }
 

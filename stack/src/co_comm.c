@@ -61,6 +61,11 @@ static co_err_t check_build(const co_node_t *node)
         err = CO_ERR_DEV_INCOMPAT;
     }
 #endif
+#if !CO_ERROR_BEHAVIOUR
+    if (co_od_find(node->dev->od, node->dev->od_count, 0x1029U) != NULL) {
+        err = CO_ERR_DEV_INCOMPAT;
+    }
+#endif
 #if !CO_LIMITS
     if (node->dev->limits != NULL) {
         err = CO_ERR_DEV_INCOMPAT;
@@ -192,6 +197,14 @@ co_err_t co_comm_check_write(const co_node_t *node, uint16_t index, uint8_t sub,
             return check_hb_consumer(node, sub, co_get_u32(data));
         }
         break;
+#if CO_ERROR_BEHAVIOUR
+    case 0x1029U:
+        /* error behaviour: 0..2, 0x80..0xFF manufacturer-specific; 3..0x7F reserved */
+        if ((sub > 0U) && (len == 1U) && (data[0] >= 3U) && (data[0] <= 0x7FU)) {
+            return CO_ERR_VALUE;
+        }
+        break;
+#endif
     default:
         break;
     }

@@ -7,12 +7,17 @@
 #include "co/co_endian.h"
 #include "co_priv.h"
 
+/* 0x1001: the OR of the active errors' bits, each with the generic bit
+ * (CiA 301), or with CO_OPT_ERREG_NO_GENERIC the generic bit only for an
+ * error that names no other bit. */
 static uint8_t errreg_now(const co_node_t *node)
 {
+    bool generic = !co_opt(node, CO_OPT_ERREG_NO_GENERIC);
     uint8_t r = 0U;
 
     for (uint8_t i = 0U; i < node->n_active; i++) {
-        r |= (uint8_t)(node->active[i].reg | CO_ERREG_GENERIC);
+        uint8_t bits = node->active[i].reg;
+        r |= (uint8_t)(bits | (((bits == 0U) || generic) ? CO_ERREG_GENERIC : 0U));
     }
     return r;
 }
@@ -90,13 +95,20 @@ static void history_push(co_node_t *node, uint16_t code, const uint8_t *mfr)
     for (uint8_t i = (uint8_t)(n - 1U); i > 0U; i--) {
         node->hist[i] = node->hist[i - 1U];
     }
-    /* bits 0..15 error code, 16..31 additional information (mfr bytes 0..1) */
-    node->hist[0] = code | ((mfr != NULL) ? ((uint32_t)co_get_u16(mfr) << 16U) : 0U);
+    /* bits 0..15 error code, 16..31 additional information (mfr bytes 0..1;
+     * none with CO_OPT_HISTORY_CODE_ONLY) */
+    node->hist[0] = code;
+    if ((mfr != NULL) && !co_opt(node, CO_OPT_HISTORY_CODE_ONLY)) {
+        node->hist[0] |= (uint32_t)co_get_u16(mfr) << 16U;
+    }
     *node->hist_count = n;
 }
 
 void co_emcy_raise(co_node_t *node, uint16_t code, uint8_t reg_bits, const uint8_t *mfr)
 {
+    uint8_t filled[5];
+    const uint8_t *data = mfr;
+
     if (co_emcy_is_active(node, code) || (code == CO_EMCY_NO_ERROR)) {
         return;
     }
@@ -106,8 +118,14 @@ void co_emcy_raise(co_node_t *node, uint16_t code, uint8_t reg_bits, const uint8
         node->n_active++;
     }
     update_errreg(node);
-    history_push(node, code, mfr);
-    send_code(node, code, mfr);
+    if ((data == NULL) && (node->cb.emcy_mfr != NULL)) {
+        /* the device fills the manufacturer bytes of the core's own EMCYs */
+        (void)memset(filled, 0, sizeof filled);
+        node->cb.emcy_mfr(node->cb.ctx, node, code, filled);
+        data = filled;
+    }
+    history_push(node, code, data);
+    send_code(node, code, data);
     if (co_opt(node, CO_OPT_EMCY_STATE_PAIR)) {
         send_code(node, CO_EMCY_NO_ERROR, NULL);
     }

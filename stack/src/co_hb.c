@@ -213,6 +213,7 @@ uint32_t co_hb_process(co_node_t *node, uint32_t next)
                 c->state = (uint8_t)HBC_LOST;
                 update_error(node);
                 event(node, CO_HB_TIMEOUT, (uint8_t)((node->hb_cons[k] >> 16U) & 0x7FU), c->nmt);
+                co_nmt_error(node, CO_ERRBEH_COMM); /* 0x1029: a communication error */
             } else {
                 next = co_deadline_min(now, next, c->deadline);
             }
@@ -226,6 +227,7 @@ uint32_t co_hb_process(co_node_t *node, uint32_t next)
             node->guard_state = (uint8_t)GUARD_LOST;
             update_error(node);
             event(node, CO_GUARD_LOST, 0U, node->nmt);
+            co_nmt_error(node, CO_ERRBEH_COMM); /* 0x1029: a communication error */
         } else {
             next = co_deadline_min(now, next, node->guard_deadline);
         }

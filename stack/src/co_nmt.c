@@ -61,6 +61,41 @@ void co_nmt_boot(co_node_t *node)
     co_emcy_clear(node, CO_EMCY_RPDO_TIMEOUT);
 }
 
+/* 0x1029 Error behaviour (CiA 301): what the device does on a serious
+ * error of class @p sub (1: communication error, 2..: device-specific). 0:
+ * Pre-operational, only from Operational; 1: no change; 2: Stopped;
+ * reserved and manufacturer-specific values (3..0xFF): no change (a device
+ * acts on its own values itself). Without 0x1029 (or that sub-index) the
+ * state does not change. */
+#if CO_ERROR_BEHAVIOUR
+void co_nmt_error(co_node_t *node, uint8_t sub)
+{
+    const co_od_entry_t *e = co_od_find(node->dev->od, node->dev->od_count, 0x1029U);
+    const co_od_sub_t *s = ((e != NULL) && (sub != 0U)) ? co_od_find_sub(e, sub) : NULL;
+    const uint8_t *v = NULL;
+
+    if ((s != NULL) && (s->type == (uint8_t)CO_UNSIGNED8)) {
+        v = (const uint8_t *)co_od_loc(node, s);
+    }
+    if (v == NULL) {
+        return;
+    }
+    if ((*v == 0U) && (node->nmt == (uint8_t)CO_NMT_OPERATIONAL)) {
+        set_state(node, CO_NMT_PRE_OPERATIONAL);
+    } else if (*v == 2U) {
+        set_state(node, CO_NMT_STOPPED);
+    } else {
+        /* no change */
+    }
+}
+#endif
+
+void co_node_error_behaviour(co_node_t *node, uint8_t sub, uint32_t now_us)
+{
+    node->now = now_us;
+    co_nmt_error(node, sub);
+}
+
 static void reset(co_node_t *node, co_reset_t kind)
 {
     /* Reset communication restores the communication area, reset node all

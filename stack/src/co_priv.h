@@ -240,6 +240,17 @@ static inline const uint32_t *co_time_cob(const co_node_t *node)
 /* ---- services */
 void co_nmt_rx(co_node_t *node, const co_frame_t *f);
 void co_nmt_boot(co_node_t *node);
+/* A serious error of 0x1029 class @p sub: the NMT reaction it configures
+ * (nothing without CO_ERROR_BEHAVIOUR). */
+#if CO_ERROR_BEHAVIOUR
+void co_nmt_error(co_node_t *node, uint8_t sub);
+#else
+static inline void co_nmt_error(co_node_t *node, uint8_t sub)
+{
+    (void)node;
+    (void)sub;
+}
+#endif
 void co_sdo_rx(co_node_t *node, const co_frame_t *f);
 uint32_t co_sdo_process(co_node_t *node, uint32_t next);
 void co_sdo_reset(co_node_t *node);

@@ -285,6 +285,9 @@ CO_NOINLINE static void initiate_download(co_node_t *node, const uint8_t *d, uin
         return;
     }
     err = open_download(node, index, sub, size_ind, co_get_u32(&d[4]));
+    if ((err == CO_OK) && co_opt(node, CO_OPT_SDO_NO_SEG_DOWNLOAD)) {
+        err = CO_ERR_NO_ACCESS; /* the object's own errors come first */
+    }
     if (err != CO_OK) {
         abort_at(node, index, sub, err);
         return;

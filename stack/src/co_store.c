@@ -11,7 +11,9 @@
  *
  *   0  magic "coNV" (u32)      4  sequence number (u32)
  *   8  layout signature (u16) 10  app_end (u16)
- *  12  groups held (bit 0 communication, bit 1 application)
+ *  12  groups held (bit 0 communication, bit 1 application); bits 2, 3:
+ *      of those, the groups restored to defaults whose data is kept for a
+ *      restore of the saved set (CO_OPT_RESTORE_SAVED)
  *  13  format (1)             14  CRC-16 over bytes 0..13 and the data of
  *                                 the groups held (in address order)
  *
@@ -22,7 +24,10 @@
  * stays the newest valid one: a power cut at any byte leaves the old or the
  * new set, never a mix. Groups not saved are copied from the previous set; a
  * restore writes a set without the restored groups (persistent, effective at
- * the next reset that covers them).
+ * the next reset that covers them). With CO_OPT_RESTORE_SAVED a restore
+ * keeps the group's data, marked restored (the defaults load), and 0x1011
+ * sub 4..6 ("restore the saved set": all, communication, application) take
+ * the mark away again, so that the last saved values load at the next reset.
  */
 #include <string.h>
 
@@ -39,6 +44,7 @@
 #define GRP_COMM       0x01U
 #define GRP_APP        0x02U
 #define GRP_ALL        (GRP_COMM | GRP_APP)
+#define GRP_RESTORED   2U           /* header byte 12: restored groups << GRP_RESTORED */
 #define NO_BANK        2U
 #define AT_RAM         0xFFFFFFFFUL /* stream(): the RAM image instead of a bank */
 #define AT_NONE        0xFFFFFFFEUL /* stream(): nowhere (CRC only) */
@@ -46,8 +52,19 @@
 typedef struct store_bank {
     uint32_t seq;
     uint8_t groups; /* groups the set holds (0 without a valid set) */
+    uint8_t restored; /* of those, the groups restored to defaults (data kept) */
     uint8_t idx;    /* 0, 1 or NO_BANK */
 } store_bank_t;
+
+/* Header byte 12: groups held, and the restored ones among them. */
+static bool groups_valid(uint8_t b)
+{
+    uint8_t held = (uint8_t)(b & GRP_ALL);
+    uint8_t restored = (uint8_t)((uint8_t)(b >> GRP_RESTORED) & GRP_ALL);
+
+    return ((b & (uint8_t)~(GRP_ALL | (GRP_ALL << GRP_RESTORED))) == 0U) &&
+           ((restored & (uint8_t)~held) == 0U);
+}
 
 /* Without CO_STORAGE the node behaves as with a HAL without NV, and the
  * code below that reads and writes sets is not built. */
@@ -136,20 +153,21 @@ static bool stream(co_node_t *node, uint32_t src, uint32_t dst, uint8_t grp, uin
  * when the NV could not be read. */
 static store_bank_t newest(co_node_t *node, uint16_t sig, bool *io_err)
 {
-    store_bank_t best = {0U, 0U, NO_BANK};
+    store_bank_t best = {0U, 0U, 0U, NO_BANK};
 
     for (uint8_t i = 0U; i < 2U; i++) {
         uint32_t base = i * bank_size(node->dev);
         uint8_t h[STORE_HDR];
         bool ok = (node->hal.ops->nv_read(node->hal.ctx, base, h, STORE_HDR) == 0);
         if (ok && (co_get_u32(&h[0]) == STORE_MAGIC) && (co_get_u16(&h[8]) == sig) &&
-            (h[12] <= GRP_ALL) && (h[13] == STORE_FORMAT)) {
+            groups_valid(h[12]) && (h[13] == STORE_FORMAT)) {
             uint16_t crc = co_crc16(0xFFFFU, h, 14U);
-            ok = stream(node, base, AT_NONE, h[12], &crc);
+            ok = stream(node, base, AT_NONE, (uint8_t)(h[12] & GRP_ALL), &crc);
             if (ok && (crc == co_get_u16(&h[14])) &&
                 ((best.idx == NO_BANK) || ((int32_t)(co_get_u32(&h[4]) - best.seq) > 0))) {
                 best.seq = co_get_u32(&h[4]);
-                best.groups = h[12];
+                best.groups = (uint8_t)(h[12] & GRP_ALL);
+                best.restored = (uint8_t)((uint8_t)(h[12] >> GRP_RESTORED) & GRP_ALL);
                 best.idx = i;
             }
         }
@@ -158,17 +176,27 @@ static store_bank_t newest(co_node_t *node, uint16_t sig, bool *io_err)
     return best;
 }
 
-/* Write a new set into the other bank: the groups @p from_ram from the RAM
- * image, the groups the newest set holds (less @p drop) copied from it;
- * data in address order, the header last. */
-static co_err_t commit(co_node_t *node, uint8_t from_ram, uint8_t drop)
+/* What a command does to the stored set (commit). */
+typedef struct store_change {
+    uint8_t from_ram; /* groups saved from the RAM image */
+    uint8_t drop;     /* groups the new set no longer holds */
+    uint8_t mark;     /* held groups restored to defaults, their data kept */
+    uint8_t unmark;   /* held groups whose saved data loads again */
+} store_change_t;
+
+/* Write a new set into the other bank: the groups of @p c->from_ram from
+ * the RAM image, the other groups the newest set holds (less @p c->drop)
+ * copied from it, with their restored marks changed as @p c says; data in
+ * address order, the header last. Nothing is written when nothing changes. */
+static co_err_t commit(co_node_t *node, const store_change_t *c)
 {
     const co_dev_t *dev = node->dev;
     uint16_t sig = layout_sig(dev);
     bool io_err = false;
     store_bank_t old = newest(node, sig, &io_err);
-    uint8_t used = (uint8_t)(from_ram | drop);
-    uint8_t keep = (uint8_t)(old.groups & (uint8_t)~used);
+    uint8_t held = (uint8_t)((old.groups & (uint8_t)~c->drop) | c->from_ram);
+    uint8_t restored = (uint8_t)((old.restored | c->mark) & (uint8_t)~(c->unmark | c->from_ram) &
+                                 held);
     uint32_t base = (old.idx == 0U) ? bank_size(dev) : 0U;
     uint8_t h[STORE_HDR];
     uint16_t crc;
@@ -176,19 +204,19 @@ static co_err_t commit(co_node_t *node, uint8_t from_ram, uint8_t drop)
     if (io_err) {
         return CO_ERR_HW; /* the previous set (and which bank is free) is unknown */
     }
-    if ((from_ram == 0U) && ((old.groups & drop) == 0U)) {
-        return CO_OK; /* restore: nothing of these groups is stored */
+    if ((c->from_ram == 0U) && (held == old.groups) && (restored == old.restored)) {
+        return CO_OK; /* restore: nothing of these groups is stored (or it is done) */
     }
     co_put_u32(&h[0], STORE_MAGIC);
     co_put_u32(&h[4], old.seq + 1U);
     co_put_u16(&h[8], sig);
     co_put_u16(&h[10], dev->app_end);
-    h[12] = (uint8_t)(from_ram | keep);
+    h[12] = (uint8_t)(held | (uint8_t)(restored << GRP_RESTORED));
     h[13] = STORE_FORMAT;
     crc = co_crc16(0xFFFFU, h, 14U);
     for (uint8_t grp = GRP_COMM; grp <= GRP_APP; grp = (uint8_t)(grp << 1U)) {
-        uint32_t src = ((from_ram & grp) != 0U) ? AT_RAM : ((uint32_t)old.idx * bank_size(dev));
-        if (((h[12] & grp) != 0U) && !stream(node, src, base, grp, &crc)) {
+        uint32_t src = ((c->from_ram & grp) != 0U) ? AT_RAM : ((uint32_t)old.idx * bank_size(dev));
+        if (((held & grp) != 0U) && !stream(node, src, base, grp, &crc)) {
             return CO_ERR_HW;
         }
     }
@@ -203,17 +231,34 @@ bool co_store_is_command(const co_od_entry_t *e, const co_od_sub_t *s)
            ((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) == 0U);
 }
 
+/* The highest sub-index of 0x1010 / 0x1011 the core acts on. */
+static uint8_t last_sub(const co_node_t *node, uint16_t index)
+{
+    return ((index == 0x1011U) && co_opt(node, CO_OPT_RESTORE_SAVED)) ? 6U : 3U;
+}
+
 co_err_t co_store_command(co_node_t *node, uint16_t index, uint8_t sub, const uint8_t *data)
 {
-    static const uint8_t groups_of_sub[4] = {0U, GRP_ALL, GRP_COMM, GRP_APP};
+    static const uint8_t groups_of_sub[7] = {0U, GRP_ALL, GRP_COMM, GRP_APP,
+                                             GRP_ALL, GRP_COMM, GRP_APP};
     bool save = (index == 0x1010U);
-    uint8_t grp = (sub < 4U) ? groups_of_sub[sub] : 0U;
+    uint8_t grp = (sub <= last_sub(node, index)) ? groups_of_sub[sub] : 0U;
+    store_change_t c = {0U, 0U, 0U, 0U};
 
     if ((grp == 0U) || !has_nv(node) ||
         (co_get_u32(data) != (save ? STORE_SIG_SAVE : STORE_SIG_LOAD))) {
         return CO_ERR_STORE;
     }
-    return save ? commit(node, grp, 0U) : commit(node, 0U, grp);
+    if (save) {
+        c.from_ram = grp;
+    } else if (sub >= 4U) {
+        c.unmark = grp; /* the saved set loads again */
+    } else if (co_opt(node, CO_OPT_RESTORE_SAVED)) {
+        c.mark = grp; /* defaults, the saved data kept for sub 4..6 */
+    } else {
+        c.drop = grp;
+    }
+    return commit(node, &c);
 }
 
 void co_store_reset(co_node_t *node, co_reset_t kind)
@@ -227,7 +272,7 @@ void co_store_reset(co_node_t *node, co_reset_t kind)
     if (cap != 0U) {
         bool io_err = false; /* an unreadable bank counts as invalid */
         store_bank_t b = newest(node, layout_sig(dev), &io_err);
-        uint8_t grp = (uint8_t)(b.groups & (all ? GRP_ALL : GRP_COMM));
+        uint8_t grp = (uint8_t)(b.groups & (uint8_t)~b.restored & (all ? GRP_ALL : GRP_COMM));
         uint16_t crc = 0U;
         if ((grp != 0U) && !stream(node, (uint32_t)b.idx * bank_size(dev), AT_RAM, grp, &crc)) {
             co_od_restore(node, 0U, end);
@@ -238,7 +283,7 @@ void co_store_reset(co_node_t *node, co_reset_t kind)
         const co_od_entry_t *e = co_od_find(dev->od, dev->od_count, index);
         for (uint8_t k = 0U; (e != NULL) && (k < e->nsubs); k++) {
             if (co_store_is_command(e, &e->subs[k])) {
-                uint32_t v = (e->subs[k].sub <= 3U) ? cap : 0U;
+                uint32_t v = (e->subs[k].sub <= last_sub(node, index)) ? cap : 0U;
                 (void)memcpy(&node->ram[e->subs[k].off], (const uint8_t *)&v, 4U);
             }
         }

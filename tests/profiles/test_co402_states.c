@@ -583,6 +583,83 @@ static void abort_connection_on_heartbeat_loss(void **state)
     assert_int_equal(t402_get(&fx, 0x603F, 0), 0x8130);
 }
 
+/* CO402_OPT_LOSS_WARN_STOP (Kollmorgen n04): a heartbeat loss is a warning,
+ * statusword bits 7 and 11, not 0x6007's fault; the axis brakes on the
+ * quick-stop ramp and holds in Operation enabled; new set-points and enable
+ * commands do not move it until a fault reset (bit 7 rising edge) ends the
+ * warning, then the mode runs again. */
+static void loss_warning_stops_until_fault_reset(void **state)
+{
+    uint32_t t = 0;
+
+    (void)state;
+    t402_start(&fx, 1, CO402_OPT_LOSS_WARN_STOP, NULL);
+    t402_set(&fx, 0x6060, 0, 3, 1);
+    t402_set(&fx, 0x6083, 0, 400000, 4);
+    t402_set(&fx, 0x6085, 0, 1000000, 4);
+    t402_cw(&fx, 0x0006);
+    t402_cw(&fx, 0x000F);
+    t402_set(&fx, 0x60FF, 0, 40000, 4);
+    t402_run(&fx, 300000);
+    assert_between(co402_sim_velocity(&fx.sim), 39900, 40100);
+    expect_sw(0x0637); /* pv, target velocity reached */
+    /* consume node 0x7F's heartbeat (100 ms); it comes once, then stops */
+    tb_xfer(BUS, "601 23 16 10 01 64 00 7F 00", "581 60 16 10 01 00 00 00 00");
+    tb_send(BUS, "77F 05");
+    t402_run(&fx, 100000);
+    tb_expect(BUS, "081 30 81 11 00 00 00 00 00");
+    tb_expect_none(BUS);
+    assert_int_equal(co402_state(AX), CO402_OPERATION_ENABLED);
+    assert_true(co402_connection_lost(AX));
+    assert_int_equal(t402_sw(&fx) & 0x0880U, 0x0880U);
+    /* the quick-stop ramp: 40000 inc/s at 1000000 inc/s^2, about 40 ms */
+    while (co402_sim_velocity(&fx.sim) > 4) {
+        t402_run(&fx, 1000);
+        t += 1U;
+        assert_true(t < 1000U);
+    }
+    assert_between(t, 35, 50);
+    t402_run(&fx, 100000);
+    expect_sw(0x0EB7); /* enabled, warning, target (at rest), internal limit */
+    /* set-points and enable operation do not move it; 0x6007 is not used */
+    t402_set(&fx, 0x60FF, 0, 20000, 4);
+    sdo_cw(0x000F);
+    t402_run(&fx, 200000);
+    assert_between(co402_sim_velocity(&fx.sim), -4, 4);
+    assert_int_equal(co402_state(AX), CO402_OPERATION_ENABLED);
+    /* the master is back: the EMCY ends, the warning stays (monitoring
+     * off from here) */
+    tb_send(BUS, "77F 05");
+    tb_expect(BUS, "081 00 00 00 00 00 00 00 00");
+    tb_xfer(BUS, "601 23 16 10 01 00 00 00 00", "581 60 16 10 01 00 00 00 00");
+    t402_run(&fx, 100000);
+    assert_between(co402_sim_velocity(&fx.sim), -4, 4);
+    expect_sw(0x0EB7);
+    /* fault reset: the warning ends, pv runs to the new set-point */
+    sdo_cw(0x008F);
+    assert_false(co402_connection_lost(AX));
+    t402_run(&fx, 300000);
+    assert_between(co402_sim_velocity(&fx.sim), 19900, 20100);
+    sdo_cw(0x000F);
+    expect_sw(0x0637);
+    /* a loss outside Operation enabled: warning only; enabling later holds
+     * the axis at rest until the fault reset */
+    sdo_cw(0x0006);
+    tb_xfer(BUS, "601 23 16 10 01 64 00 7F 00", "581 60 16 10 01 00 00 00 00");
+    tb_send(BUS, "77F 05");
+    tb_flush(BUS);
+    t402_run(&fx, 101000);
+    tb_expect(BUS, "081 30 81 11 00 00 00 00 00");
+    expect_sw(0x0AB1); /* ready to switch on, warning, internal limit */
+    sdo_cw(0x0007);
+    sdo_cw(0x000F);
+    t402_run(&fx, 200000);
+    assert_between(co402_sim_velocity(&fx.sim), -4, 4);
+    sdo_cw(0x008F);
+    t402_run(&fx, 300000);
+    assert_between(co402_sim_velocity(&fx.sim), 19900, 20100);
+}
+
 static void reset_node_starts_the_axis_over(void **state)
 {
     (void)state;
@@ -783,6 +860,7 @@ int main(void)
         cmocka_unit_test_setup(plant_fault, setup),
         cmocka_unit_test_setup(abort_connection_on_nmt_stop, setup),
         cmocka_unit_test_setup(abort_connection_on_heartbeat_loss, setup),
+        cmocka_unit_test_setup(loss_warning_stops_until_fault_reset, setup),
         cmocka_unit_test_setup(reset_node_starts_the_axis_over, setup),
         cmocka_unit_test_setup(modes_are_checked, setup),
         cmocka_unit_test_setup(option_nmt_operational, setup),

@@ -78,8 +78,25 @@ static void p_errctl(void *inst, co_hb_event_t ev, uint8_t id, uint32_t now)
     note((rec_t *)inst, b, now);
 }
 
-static const co_profile_ops_t ops = {"rec", p_attach, p_process, p_sync, p_nmt, p_reset, p_errctl};
-static const co_profile_ops_t ops_min = {"min", p_attach, NULL, NULL, NULL, NULL, NULL};
+/* Recording plug-in 1 puts 0x11 into byte 3, plug-in 2 byte 3 + 1 into byte 4
+ * (so the order shows in the frame). */
+static void p_emcy_mfr(void *inst, uint16_t code, uint8_t mfr[5])
+{
+    rec_t *r = (rec_t *)inst;
+    char b[16];
+
+    snprintf(b, sizeof b, "mfr%04X", (unsigned)code);
+    note(r, b, r->node->now);
+    if (r->id == 1) {
+        mfr[0] = 0x11U;
+    } else {
+        mfr[1] = (uint8_t)(mfr[0] + 1U);
+    }
+}
+
+static const co_profile_ops_t ops = {"rec",   p_attach, p_process, p_sync, p_nmt,
+                                     p_reset, p_errctl, p_emcy_mfr};
+static const co_profile_ops_t ops_min = {"min", p_attach, NULL, NULL, NULL, NULL, NULL, NULL};
 
 static void a_sync(void *ctx, co_node_t *node, uint8_t counter)
 {
@@ -94,6 +111,15 @@ static void a_nmt(void *ctx, co_node_t *node, co_nmt_state_t st)
     (void)node;
     (void)st;
     strncat(order, "app:nmt ", sizeof order - strlen(order) - 1U);
+}
+
+static void a_emcy_mfr(void *ctx, co_node_t *node, uint16_t code, uint8_t mfr[5])
+{
+    (void)ctx;
+    (void)node;
+    (void)code;
+    mfr[4] = 0x55U;
+    strncat(order, "app:mfr ", sizeof order - strlen(order) - 1U);
 }
 
 typedef struct fx {
@@ -121,6 +147,7 @@ static void start(bool with_app)
     memset(&app, 0, sizeof app);
     app.sync = a_sync;
     app.nmt_state = a_nmt;
+    app.emcy_mfr = a_emcy_mfr;
     co_profile_host_init(&fx.host, fx.slots, 2, with_app ? &app : NULL);
     assert_int_equal(co_profile_add(&fx.host, &ops, &fx.a), CO_OK);
     assert_int_equal(co_profile_add(&fx.host, &ops, &fx.b), CO_OK);
@@ -175,7 +202,38 @@ static void attach_in_order_then_fan_out(void **state)
     memset(order, 0, sizeof order);
     tb_send(&fx.bus, "720 05");
     tb_advance(&fx.bus, 100001);
-    assert_string_equal(order, "1:hb0/32 2:hb0/32 1:hb1/32 2:hb1/32 ");
+    assert_string_equal(order,
+                        "1:hb0/32 2:hb0/32 1:mfr8130 2:mfr8130 app:mfr 1:hb1/32 2:hb1/32 ");
+}
+
+/* The EMCYs the core raises itself: the plug-ins fill the manufacturer
+ * bytes in turn, then the application; an EMCY raised with manufacturer
+ * data is not asked about. */
+static void emcy_mfr_fanned_out(void **state)
+{
+    static const uint8_t own[5] = {1, 2, 3, 4, 5};
+
+    (void)state;
+    start(true);
+    assert_int_equal(co_profile_host_attach(&fx.host, &fx.n.node, fx.bus.now), CO_OK);
+    tb_xfer(&fx.bus, "603 23 16 10 01 64 00 20 00", "583 60 16 10 01 00 00 00 00");
+    tb_send(&fx.bus, "720 05");
+    memset(order, 0, sizeof order);
+    tb_advance(&fx.bus, 100001);
+    /* 0x8130 with 11 12 00 00 55 in bytes 3..7; the error comes before the event */
+    tb_expect(&fx.bus, "083 30 81 11 11 12 00 00 55");
+    tb_expect_none(&fx.bus);
+    assert_string_equal(order, "1:mfr8130 2:mfr8130 app:mfr 1:hb1/32 2:hb1/32 ");
+    /* 0x1003 holds bytes 3..4 above the code */
+    tb_xfer(&fx.bus, "603 40 03 10 01 00 00 00 00", "583 43 03 10 01 30 81 11 12");
+    memset(order, 0, sizeof order);
+    co_emcy_raise(&fx.n.node, 0x5000U, CO_ERREG_MANUFACTURER, own);
+    tb_expect(&fx.bus, "083 00 50 91 01 02 03 04 05");
+    assert_string_equal(order, "");
+    /* the application's own error without data is filled the same way */
+    co_emcy_raise(&fx.n.node, 0x5001U, CO_ERREG_MANUFACTURER, NULL);
+    tb_expect(&fx.bus, "083 01 50 91 11 12 00 00 55");
+    tb_expect_none(&fx.bus);
 }
 
 static void earliest_deadline(void **state)
@@ -229,6 +287,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(callbacks_before_attach_go_to_the_application_only),
         cmocka_unit_test(attach_in_order_then_fan_out),
+        cmocka_unit_test(emcy_mfr_fanned_out),
         cmocka_unit_test(earliest_deadline),
         cmocka_unit_test(attach_error_stops),
     };

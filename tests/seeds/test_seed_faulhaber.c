@@ -227,10 +227,28 @@ static void store_restore(void **state)
     tb_send(&S->bus, "000 81 02");
     sr_expect(S, "702 00");
     sr_sdo(S, "40 81 60 00 00 00 00 00", "43 81 60 00 B8 0B 00 00");
-    /* subs 4..6 (the last saved set) are FAULHABER's; the core restores
-     * defaults only: they read 0 and refuse the signature */
-    sr_sdo(S, "40 11 10 04 00 00 00 00", "43 11 10 04 00 00 00 00");
-    sr_sdo(S, "23 11 10 04 6C 6F 61 64", "80 11 10 04 20 00 00 08");
+    /* subs 4..6 restore the last saved set (section 8; CO_OPT_RESTORE_SAVED):
+     * they read 1; the factory restore above kept the saved 1234, which
+     * comes back at the next reset */
+    sr_sdo(S, "40 11 10 04 00 00 00 00", "43 11 10 04 01 00 00 00");
+    sr_sdo(S, "40 11 10 05 00 00 00 00", "43 11 10 05 01 00 00 00");
+    sr_sdo(S, "40 11 10 06 00 00 00 00", "43 11 10 06 01 00 00 00");
+    sr_sdo(S, "23 11 10 04 6C 6F 61 64", "60 11 10 04 00 00 00 00");
+    sr_sdo(S, "40 81 60 00 00 00 00 00", "43 81 60 00 B8 0B 00 00");
+    tb_send(&S->bus, "000 81 02");
+    sr_expect(S, "702 00");
+    sr_sdo(S, "40 81 60 00 00 00 00 00", "43 81 60 00 D2 04 00 00");
+    /* the application group alone: factory (sub 3), then saved (sub 6) */
+    sr_sdo(S, "23 11 10 03 6C 6F 61 64", "60 11 10 03 00 00 00 00");
+    tb_send(&S->bus, "000 81 02");
+    sr_expect(S, "702 00");
+    sr_sdo(S, "40 81 60 00 00 00 00 00", "43 81 60 00 B8 0B 00 00");
+    sr_sdo(S, "23 11 10 06 6C 6F 61 64", "60 11 10 06 00 00 00 00");
+    tb_send(&S->bus, "000 81 02");
+    sr_expect(S, "702 00");
+    sr_sdo(S, "40 81 60 00 00 00 00 00", "43 81 60 00 D2 04 00 00");
+    /* a wrong signature: 0x08000020 */
+    sr_sdo(S, "23 11 10 05 73 61 76 65", "80 11 10 05 20 00 00 08");
 }
 
 /* Section 8 / 9.1 item 16: factory restore only in Switch on disabled. */
@@ -339,7 +357,8 @@ static void nmt_guarding_heartbeat(void **state)
 
 /* Sections 2.6, 2.7, 7.9: the consumer watches master 0x7F for 1500 ms
  * (0x1016.1 = 0x007F05DC); its loss sets 0x2320 bit 0x0100, 0x1001 bit 4,
- * sends EMCY 0x8130 and, by 0x1029.1 = 0, goes to Pre-operational. */
+ * sends EMCY 0x8130 and, by 0x1029.1 = 0, goes to Pre-operational (the
+ * core's error behaviour, in the same step as the EMCY). */
 static void heartbeat_consumer_and_error_behaviour(void **state)
 {
     (void)state;
@@ -351,9 +370,9 @@ static void heartbeat_consumer_and_error_behaviour(void **state)
     sr_run(S, 1499);
     tb_expect_none(&S->bus);
     sr_run(S, 1);
-    /* The FAULHABER's EMCY carries 0x2320 in bytes 3-4 (00 01); this one is
-     * the core's own, whose manufacturer bytes are zero (see the report). */
-    sr_expect(S, "082 30 81 11 00 00 00 00 00");
+    /* the core's EMCY 0x8130, with 0x2320 = 0x0100 in bytes 3-4 (the
+     * plug-in's emcy_mfr) */
+    sr_expect(S, "082 30 81 11 00 01 00 00 00");
     sr_run(S, 1);
     tb_expect_none(&S->bus);
     assert_int_equal(sr_get(S, 0x2320, 0), 0x0100);
@@ -370,9 +389,54 @@ static void heartbeat_consumer_and_error_behaviour(void **state)
     sr_sdo(S, "2F 29 10 01 01 00 00 00", "60 29 10 01 00 00 00 00");
     sr_sdo(S, "2F 29 10 01 03 00 00 00", "80 29 10 01 31 00 09 06");
     sr_run(S, 1500);
-    sr_expect(S, "082 30 81 11 00 00 00 00 00");
+    sr_expect(S, "082 30 81 11 00 01 00 00 00");
     sr_run(S, 1);
     assert_int_equal(co_node_nmt_state(S->node), CO_NMT_OPERATIONAL);
+}
+
+/* 7.7: fault mask 0x2321.02 = 0x0101 puts the drive into Fault on
+ * over-current and on a heartbeat / guarding loss. The loss is the core's
+ * EMCY 0x8130 (0x2320 = 0x0100 in bytes 3-4, emcy_mfr), the Fault the
+ * plug-in's reaction at its next step; 0x1029.1 = 1 keeps the node
+ * Operational. The master's return ends the error; then a fault reset. */
+static void heartbeat_loss_with_fault_mask(void **state)
+{
+    (void)state;
+    sr_sdo(S, "2B 21 23 02 01 01 00 00", "60 21 23 02 00 00 00 00");
+    sr_sdo(S, "2F 29 10 01 01 00 00 00", "60 29 10 01 00 00 00 00");
+    sr_sdo(S, "23 16 10 01 DC 05 7F 00", "60 16 10 01 00 00 00 00");
+    start_node(0x0040, 0);
+    sr_sdo_write(S, 0x6040, 0, 0x0006, 2);
+    sr_poll(S);
+    expect_sw_pdos(0x0021, 0, 0);
+    tb_send(&S->bus, "77F 05");
+    sr_run(S, 1499);
+    tb_expect_none(&S->bus);
+    sr_run(S, 1);
+    sr_expect(S, "082 30 81 11 00 01 00 00 00");
+    tb_expect_none(&S->bus);
+    /* the plug-in's next step: Fault (the power stage is off in Ready to
+     * switch on: no fault reaction to run); the fault is raised with
+     * 0x8130, already the core's active error: no second EMCY */
+    sr_run(S, 1);
+    expect_sw_pdos(0x0008, 0, 0);
+    tb_expect_none(&S->bus);
+    assert_int_equal(co_node_nmt_state(S->node), CO_NMT_OPERATIONAL);
+    assert_int_equal(sr_get(S, 0x2320, 0), 0x0100);
+    /* a fault reset while the master is still silent does nothing */
+    sr_sdo_write(S, 0x6040, 0, 0x0080, 2);
+    sr_run(S, 1);
+    tb_expect_none(&S->bus);
+    /* the master is back: EMCY 0x0000, 0x2320 clear, the fault reset works */
+    tb_send(&S->bus, "77F 05");
+    sr_expect(S, "082 00 00 00 00 00 00 00 00");
+    sr_run(S, 1);
+    assert_int_equal(sr_get(S, 0x2320, 0), 0x0000);
+    sr_sdo_write(S, 0x6040, 0, 0x0000, 2);
+    sr_sdo_write(S, 0x6040, 0, 0x0080, 2);
+    sr_poll(S);
+    expect_sw_pdos(0x0040, 0, 0);
+    tb_expect_none(&S->bus);
 }
 
 /* CO402_OPT_TPDO_ON_SW: every statusword change requests the TPDOs that map
@@ -700,15 +764,19 @@ static void pdo_setup_and_rtr(void **state)
     sr_poll(S);
     sr_expect(S, "482 40 00 01");
     /* RxPDO length (section 4.4): too short -> not processed, EMCY 0x8210;
-     * too long -> processed, EMCY 0x8220. The FAULHABER also puts 0x2320
-     * (0x4000 / 0x2000) into bytes 3-4; the core's PDO EMCYs carry zeros. */
+     * too long -> processed, EMCY 0x8220. The core raises both; the
+     * plug-in puts 0x2320 (0x4000 / 0x2000) into bytes 3-4 (emcy_mfr). */
     tb_send(&S->bus, "202 06");
     sr_poll(S);
-    sr_expect(S, "082 10 82 11 00 00 00 00 00");
+    sr_expect(S, "082 10 82 11 00 40 00 00 00");
+    assert_int_equal(sr_get(S, 0x2320, 0), 0x4000);
+    /* 0x1003: the code, 0x2320 above it */
+    sr_sdo(S, "40 03 10 01 00 00 00 00", "43 03 10 01 10 82 00 40");
     tb_send(&S->bus, "202 06 00 00");
     sr_poll(S);
     sr_expect(S, "082 00 00 00 00 00 00 00 00"); /* the short one has ended */
-    sr_expect(S, "082 20 82 11 00 00 00 00 00");
+    sr_expect(S, "082 20 82 11 00 20 00 00 00");
+    assert_int_equal(sr_get(S, 0x2320, 0), 0x2000);
     sr_expect(S, "182 21 00");
     sr_skip_cob(S, 0x282, 6);
     sr_skip_cob(S, 0x382, 6);
@@ -749,6 +817,7 @@ int main(void)
         cmocka_unit_test_setup(trace_velocity_mode, setup_trace),
         cmocka_unit_test_setup(nmt_guarding_heartbeat, setup),
         cmocka_unit_test_setup(heartbeat_consumer_and_error_behaviour, setup),
+        cmocka_unit_test_setup(heartbeat_loss_with_fault_mask, setup),
         cmocka_unit_test_setup(statusword_change_requests_tpdos, setup),
         cmocka_unit_test_setup(enable_by_sdo_and_rpdo, setup),
         cmocka_unit_test_setup(fault_and_emcy_example, setup),

@@ -549,27 +549,28 @@ static void d711_sync_and_emcy(void **state)
         assert_int_equal(t2[n], (n % 3U) == 0U);
     }
     /* The EMCY example (resolver unplugged): error 4310h motor temperature,
-     * category 1, then the state report with the register. The manual prints
-     * register 08h (7 bytes, node 1); this core always sets bit 0 (generic)
-     * with an error, as 1001h's own description in the manual says: 09h. */
+     * category 1, then the state report with the register 08h as the manual
+     * prints it (7 bytes, node 1; D2.8's example has the same pair with
+     * category 01): the temperature bit only, not the generic bit 0
+     * (CO_OPT_ERREG_NO_GENERIC; CiA 301 would give 09h). */
     tb_send(BUS, "000 80 03"); /* Pre-operational: no PDOs in between */
     co402_sim_set_fault(sim, 0x4310);
     tseed_run(&fx, 1000);
-    tb_expect(BUS, "083 10 43 09 01 00 00 00 00");
-    tb_expect(BUS, "083 00 00 09 00 00 00 00 00");
+    tb_expect(BUS, "083 10 43 08 01 00 00 00 00");
+    tb_expect(BUS, "083 00 00 08 00 00 00 00 00");
     tb_expect_none(BUS);
     assert_int_equal(co402_state(tseed_axis(&fx, 0)), CO402_FAULT);
     /* a further error (D2.8 transition 3): its EMCY, then the report */
     co402_sim_set_fault(sim, 0x3110);
     tseed_run(&fx, 1000);
-    tb_expect(BUS, "083 10 31 0D 02 00 00 00 00");
-    tb_expect(BUS, "083 00 00 0D 00 00 00 00 00");
-    /* 1003h: newest first; the low word is the EMCY code (the high word
-     * carries the category, CiA 301's "additional information") */
+    tb_expect(BUS, "083 10 31 0C 02 00 00 00 00");
+    tb_expect(BUS, "083 00 00 0C 00 00 00 00 00");
+    /* 1003h: newest first, the bare EMCY code (D8.1-9; the category is in
+     * the EMCY only, CO_OPT_HISTORY_CODE_ONLY) */
     tb_xfer(BUS, "603 40 03 10 00 00 00 00 00", "583 4F 03 10 00 02 00 00 00");
-    assert_int_equal(tseed_get(&fx, 0, 0x1003, 1) & 0xFFFF, 0x3110);
-    assert_int_equal(tseed_get(&fx, 0, 0x1003, 2) & 0xFFFF, 0x4310);
-    assert_int_equal(tseed_get(&fx, 0, 0x1001, 0), 0x0D);
+    tb_xfer(BUS, "603 40 03 10 01 00 00 00 00", "583 43 03 10 01 10 31 00 00");
+    tb_xfer(BUS, "603 40 03 10 02 00 00 00 00", "583 43 03 10 02 10 43 00 00");
+    tb_xfer(BUS, "603 40 01 10 00 00 00 00 00", "583 4F 01 10 00 0C 00 00 00");
     /* causes gone, fault reset (bit 7): transition 2 (one cleared, register
      * shows the rest) and 4 (all cleared) */
     co402_sim_set_fault(sim, 0);
@@ -579,7 +580,7 @@ static void d711_sync_and_emcy(void **state)
     {
         const co_frame_t *a = tseed_frame(BUS, 0x083, 8);
         const co_frame_t *b = tseed_frame(BUS, 0x083, 8);
-        TF_ASSERT_FRAME(a, "083 00 00 05 00 00 00 00 00"); /* 3110h remains */
+        TF_ASSERT_FRAME(a, "083 00 00 04 00 00 00 00 00"); /* 3110h remains */
         TF_ASSERT_FRAME(b, "083 00 00 00 00 00 00 00 00");
     }
     tb_expect_none(BUS);
@@ -715,12 +716,13 @@ static void d713_ip_two_axes(void **state)
     f = tseed_frame(BUS, 0x282, 8);
     assert_between(tseed_i32(f, 0), 995, 1005);
     tb_expect_none(BUS);
-    /* EMCY during the run: 4310h on axis 1, register 09h (see D7.11), then
-     * the state report; the fault reaction changes the statusword of TPDO1 */
+    /* EMCY during the run as printed: 4310h on axis 1, register 08h,
+     * category 01, then the state report with register 08h; the fault
+     * reaction changes the statusword of TPDO1 */
     co402_sim_set_fault(&fx.n[0].sim, 0x4310);
     tseed_run(&fx, 1000);
-    tb_expect(BUS, "081 10 43 09 01 00 00 00 00");
-    tb_expect(BUS, "081 00 00 09 00 00 00 00 00");
+    tb_expect(BUS, "081 10 43 08 01 00 00 00 00");
+    tb_expect(BUS, "081 00 00 08 00 00 00 00 00");
     /* the axis stands: the fault reaction (quick-stop ramp) ends in the
      * same tick, Fault with the power stage off */
     tseed_run(&fx, 1000);
@@ -729,6 +731,85 @@ static void d713_ip_two_axes(void **state)
     tb_expect_none(BUS);
     assert_int_equal(co402_state(tseed_axis(&fx, 0)), CO402_FAULT);
     assert_int_equal(co402_state(tseed_axis(&fx, 1)), CO402_OPERATION_ENABLED);
+}
+
+/* --------------------------------------- D2.4, D2.5: response monitoring */
+
+/* Node guarding with guard time 100 ms x life time factor 3, armed by the
+ * first request (§5.2.1.10). On expiry the drive shows warning n04 (2000h
+ * bit 3; statusword bits 7 and 11), brakes on the quick-stop ramp 6085h and
+ * blocks further motion; no NMT change (no 1029h, D8.1-22). The manual
+ * lists no EMCY code for it: the core sends CiA 301's 8130h (error register
+ * 10h, communication, no generic bit), paired with the state report.
+ * Controlword bit 7 (fault reset) clears n04 (D6.2), then the drive moves
+ * again. */
+static void guarding_loss_is_warning_n04(void **state)
+{
+    (void)state;
+    /* TPDO3 / TPDO4 (actual values on every change) off, as the examples do */
+    dl(3, "23 02 18 01 83 03 00 C0");
+    dl(3, "23 03 18 01 83 04 00 C0");
+    dl(3, "2B 0C 10 00 64 00 00 00");
+    dl(3, "2F 0D 10 00 03 00 00 00");
+    dl(3, "2F 60 60 00 03 00 00 00");
+    dl(3, "23 85 60 00 00 00 10 00"); /* 2^20 units/s^2 */
+    dl(3, "2B 40 60 00 06 00 00 00");
+    dl(3, "2B 40 60 00 07 00 00 00");
+    dl(3, "2B 40 60 00 0F 00 00 00");
+    dl(3, "23 FF 60 00 00 00 01 00"); /* 65536 units/s */
+    /* Operational: TPDO1 and TPDO2 (statusword, mode) send once */
+    tb_send(BUS, "000 01 03");
+    tb_expect(BUS, "183 37 02");
+    tb_expect(BUS, "283 37 02 03");
+    tb_expect_none(BUS);
+    /* the first guarding request arms life guarding (Operational: 05) */
+    tb_xfer(BUS, "703 R1", "703 05");
+    tseed_run(&fx, 100000);
+    assert_between(tseed_get(&fx, 0, 0x606C, 0), 65000, 66000);
+    assert_int_equal(tseed_sw(&fx, 0), 0x0637);
+    tb_flush(BUS);
+    tseed_run(&fx, 199000);
+    tb_expect_none(BUS);
+    tseed_run(&fx, 1000);
+    tb_expect(BUS, "083 30 81 10 00 00 00 00 00");
+    tb_expect(BUS, "083 00 00 10 00 00 00 00 00");
+    /* n04: warning (bit 7) and internal limit (bit 11) in the statusword */
+    tb_expect(BUS, "183 B7 0E");
+    tb_expect(BUS, "283 B7 0E 03");
+    tb_expect_none(BUS);
+    assert_int_equal(co_node_nmt_state(&kn[0].node), CO_NMT_OPERATIONAL);
+    assert_int_equal(co402_state(tseed_axis(&fx, 0)), CO402_OPERATION_ENABLED);
+    assert_int_equal(tseed_get(&fx, 0, 0x2000, 0), 0x00000008);
+    /* the quick-stop ramp: 65536 units/s at 2^20 units/s^2, 62.5 ms */
+    tseed_run(&fx, 70000);
+    assert_between(tseed_get(&fx, 0, 0x606C, 0), -1000, 1000);
+    tb_expect_none(BUS);
+    /* further motion is blocked: a new set-point, enable operation again */
+    dl(3, "23 FF 60 00 00 80 00 00"); /* 32768 units/s */
+    dl(3, "2B 40 60 00 0F 00 00 00");
+    tseed_run(&fx, 100000);
+    assert_between(tseed_get(&fx, 0, 0x606C, 0), -1000, 1000);
+    tb_expect_none(BUS);
+    /* the master guards again: the EMCY ends (error register 00h), n04 stays */
+    tb_send(BUS, "703 R1");
+    tb_expect(BUS, "703 85");
+    tb_expect(BUS, "083 00 00 00 00 00 00 00 00");
+    tb_expect_none(BUS);
+    tseed_run(&fx, 1000);
+    assert_int_equal(tseed_get(&fx, 0, 0x2000, 0), 0x00000008);
+    assert_int_equal(tseed_sw(&fx, 0), 0x0EB7);
+    /* fault reset (bit 7; 0x008F decodes as enable operation, bit 7 don't
+     * care): n04 ends, the statusword shows it, the axis takes the set-point */
+    dl(3, "2B 40 60 00 8F 00 00 00");
+    tseed_run(&fx, 1000);
+    tb_expect(BUS, "183 37 02");
+    tb_expect(BUS, "283 37 02 03");
+    assert_int_equal(tseed_get(&fx, 0, 0x2000, 0), 0);
+    tb_send(BUS, "703 R1");
+    tb_expect(BUS, "703 05");
+    tseed_run(&fx, 100000);
+    tb_flush(BUS);
+    assert_between(tseed_get(&fx, 0, 0x606C, 0), 32268, 33268);
 }
 
 /* -------------------------------------------- D8.1: further deviations */
@@ -816,6 +897,7 @@ int main(void)
         cmocka_unit_test_setup(d711_sync_and_emcy, setup),
         cmocka_unit_test_setup(d712_gearing_parameters, setup),
         cmocka_unit_test_setup(d713_ip_two_axes, setup),
+        cmocka_unit_test_setup(guarding_loss_is_warning_n04, setup),
         cmocka_unit_test_setup(quick_stop_and_bit7, setup),
         cmocka_unit_test_setup(event_timer_and_mapping, setup),
     };

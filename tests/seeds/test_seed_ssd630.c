@@ -116,6 +116,13 @@ static void boot_and_error_control(void **state)
     tb_xfer(BUS, "601 40 04 48 05 00 00 00 00", "581 4F 04 48 05 04 00 00 00");
     /* no block transfer: a block upload request is refused */
     tb_xfer(BUS, "601 A0 08 10 00 7F 00 00 00", "581 80 08 10 00 01 00 04 05");
+    /* D3.2: no segmented download (expedited and segmented upload only):
+     * its initiate is refused with 0x06010000, the drive's "not supported"
+     * (D3.3 lists no 0x0504xxxx code); the same value expedited is taken */
+    tb_xfer(BUS, "601 21 81 60 00 04 00 00 00", "581 80 81 60 00 00 00 01 06");
+    tb_xfer(BUS, "601 20 81 60 00 00 00 00 00", "581 80 81 60 00 00 00 01 06");
+    tb_xfer(BUS, "601 23 81 60 00 E8 03 00 00", "581 60 81 60 00 00 00 00 00");
+    tb_xfer(BUS, "601 40 81 60 00 00 00 00 00", "581 43 81 60 00 E8 03 00 00");
     /* PDOs do not run in Pre-operational */
     tb_send(BUS, "201 06 00");
     tseed_run(&fx, 2000);

@@ -18,6 +18,8 @@ typedef struct td_rom {
     char x1008[7];
     char x1009[3];
     char x100A[5];
+    uint8_t n1029;
+    uint8_t n1011;
 } td_rom_t;
 
 static const td_rom_t rom = {
@@ -31,6 +33,8 @@ static const td_rom_t rom = {
     .x1008 = {'6', '3', '1', '_', '4', '0', '2'},
     .x1009 = {'1', '.', '0'},
     .x100A = {'0', '.', '1', '.', '0'},
+    .n1029 = 3U,
+    .n1011 = 6U,
 };
 
 static const td_ram_t defaults = {
@@ -38,6 +42,7 @@ static const td_ram_t defaults = {
     .time_cob = 0x80000100UL,
     .node_id = 0U,
     .emcy_cob = 0x80UL,
+    .err_beh = {0U, 1U, 1U},
     .u16 = 0x1234U,
     .u32 = 0xDEADBEEFUL,
     .vstr = "hello",
@@ -75,6 +80,12 @@ static const co_od_sub_t s1006[] = {RAM(0, CO_UNSIGNED32, CO_SUB_RW, sync_period
 static const co_od_sub_t s1007[] = {RAM(0, CO_UNSIGNED32, CO_SUB_RW, sync_window)};
 static const co_od_sub_t s1012[] = {RAM(0, CO_UNSIGNED32, CO_SUB_RW, time_cob)};
 static const co_od_sub_t s1019[] = {RAM(0, CO_UNSIGNED8, CO_SUB_RW, sync_overflow)};
+static const co_od_sub_t s1029[] = {
+    ROM(0, CO_UNSIGNED8, CO_SUB_RO | CO_SUB_CONST, n1029),
+#define B(i) {(i), (uint8_t)CO_UNSIGNED8, CO_SUB_RW, 1U, (uint16_t)(F(err_beh) + (i) - 1U), 0U}
+    B(1), B(2), B(3),
+#undef B
+};
 static const co_od_sub_t s1008[] = {ROM(0, CO_VISIBLE_STRING, CO_SUB_RO | CO_SUB_CONST, x1008)};
 static const co_od_sub_t s1009[] = {ROM(0, CO_VISIBLE_STRING, CO_SUB_RO | CO_SUB_CONST, x1009)};
 static const co_od_sub_t s100A[] = {ROM(0, CO_VISIBLE_STRING, CO_SUB_RO | CO_SUB_CONST, x100A)};
@@ -88,10 +99,10 @@ static const co_od_sub_t s1010[] = {
     {3, (uint8_t)CO_UNSIGNED32, CO_SUB_RW, 4U, (uint16_t)(F(store) + 8U), 0U},
 };
 static const co_od_sub_t s1011[] = {
-    ROM(0, CO_UNSIGNED8, CO_SUB_RO | CO_SUB_CONST, n1010),
-    {1, (uint8_t)CO_UNSIGNED32, CO_SUB_RW, 4U, F(restore), 0U},
-    {2, (uint8_t)CO_UNSIGNED32, CO_SUB_RW, 4U, (uint16_t)(F(restore) + 4U), 0U},
-    {3, (uint8_t)CO_UNSIGNED32, CO_SUB_RW, 4U, (uint16_t)(F(restore) + 8U), 0U},
+    ROM(0, CO_UNSIGNED8, CO_SUB_RO | CO_SUB_CONST, n1011),
+#define R(i) {(i), (uint8_t)CO_UNSIGNED32, CO_SUB_RW, 4U, (uint16_t)(F(restore) + 4U * ((i) - 1U)), 0U}
+    R(1), R(2), R(3), R(4), R(5), R(6),
+#undef R
 };
 static const co_od_sub_t s1014[] = {RAM(0, CO_UNSIGNED32, CO_SUB_RW | CO_SUB_NODEID, emcy_cob)};
 static const co_od_sub_t s1015[] = {RAM(0, CO_UNSIGNED16, CO_SUB_RW, emcy_inhibit)};
@@ -170,7 +181,7 @@ static const co_od_entry_t od[] = {
     E(0x1014, s1014, CO_OBJ_VAR),
     E(0x1015, s1015, CO_OBJ_VAR),    E(0x1016, s1016, CO_OBJ_ARRAY),
     E(0x1017, s1017, CO_OBJ_VAR),    E(0x1018, s1018, CO_OBJ_RECORD),
-    E(0x1019, s1019, CO_OBJ_VAR),
+    E(0x1019, s1019, CO_OBJ_VAR),    E(0x1029, s1029, CO_OBJ_ARRAY),
     E(0x2000, s2000, CO_OBJ_VAR),    E(0x2001, s2001, CO_OBJ_VAR),
     E(0x2002, s2002, CO_OBJ_VAR),    E(0x2003, s2003, CO_OBJ_VAR),
     E(0x2004, s2004, CO_OBJ_VAR),    E(0x2005, s2005, CO_OBJ_VAR),

@@ -19,7 +19,8 @@ typedef struct td_ram {
     uint32_t sync_window;  /* 0x1007 */
     uint32_t time_cob;     /* 0x1012, default 0x80000100 (consumer) */
     uint8_t sync_overflow; /* 0x1019 */
-    uint8_t pad3[3];
+    uint8_t err_beh[3];    /* 0x1029 sub1..3: communication error (default 0, CiA 301),
+                              two device-specific classes (default 1) */
     uint32_t node_id;      /* 0x100B, $NODEID */
     uint16_t guard_time;   /* 0x100C */
     uint8_t life_factor;   /* 0x100D */
@@ -69,7 +70,8 @@ typedef struct td_ram {
     uint32_t mfr_status;   /* 0x1002 */
     uint32_t hist[8];      /* 0x1003 sub1..8 */
     uint32_t store[3];     /* 0x1010 sub1..3 (core: capability) */
-    uint32_t restore[3];   /* 0x1011 sub1..3 (core: capability) */
+    uint32_t restore[6];   /* 0x1011 sub1..6 (core: capability; 4..6 only with
+                              CO_OPT_RESTORE_SAVED, else 0) */
 } td_ram_t;
 
 extern const co_dev_t td_dev;

@@ -235,6 +235,125 @@ static void option_state_pair(void **state)
     tb_expect_none(BUS);
 }
 
+static void option_erreg_no_generic(void **state)
+{
+    restart_with_options(state, CO_OPT_ERREG_NO_GENERIC);
+    /* Kollmorgen: an error sets the bits it names, not the generic bit */
+    co_emcy_raise(NODE, 0x4310U, CO_ERREG_TEMPERATURE, NULL);
+    tb_expect(BUS, "081 10 43 08 00 00 00 00 00");
+    tb_xfer(BUS, "601 40 01 10 00 00 00 00 00", "581 4F 01 10 00 08 00 00 00");
+    co_emcy_raise(NODE, 0x3110U, CO_ERREG_VOLTAGE, NULL);
+    tb_expect(BUS, "081 10 31 0C 00 00 00 00 00");
+    /* an error that names no bit: the generic bit stands for it */
+    co_emcy_raise(NODE, 0x5400U, 0U, NULL);
+    tb_expect(BUS, "081 00 54 0D 00 00 00 00 00");
+    tb_expect_none(BUS);
+    co_emcy_clear(NODE, 0x5400U);
+    tb_xfer(BUS, "601 40 01 10 00 00 00 00 00", "581 4F 01 10 00 0C 00 00 00");
+    co_emcy_clear(NODE, 0x4310U);
+    tb_xfer(BUS, "601 40 01 10 00 00 00 00 00", "581 4F 01 10 00 04 00 00 00");
+    co_emcy_clear(NODE, 0x3110U);
+    tb_expect(BUS, "081 00 00 00 00 00 00 00 00");
+    tb_expect_none(BUS);
+    tb_xfer(BUS, "601 40 01 10 00 00 00 00 00", "581 4F 01 10 00 00 00 00 00");
+}
+
+static void option_erreg_no_generic_with_state_pair(void **state)
+{
+    static const uint8_t cat1[5] = {0x01, 0x00, 0x00, 0x00, 0x00};
+    static const uint8_t cat2[5] = {0x02, 0x00, 0x00, 0x00, 0x00};
+
+    /* the Kollmorgen EMCY example: 4310h with category 1, then the state
+     * report with the register (08h, not 09h) */
+    restart_with_options(state, CO_OPT_ERREG_NO_GENERIC | CO_OPT_EMCY_STATE_PAIR |
+                                    CO_OPT_EMCY_RESET_PARTIAL | CO_OPT_HISTORY_CODE_ONLY);
+    co_emcy_raise(NODE, 0x4310U, CO_ERREG_TEMPERATURE, cat1);
+    tb_expect(BUS, "081 10 43 08 01 00 00 00 00");
+    tb_expect(BUS, "081 00 00 08 00 00 00 00 00");
+    co_emcy_raise(NODE, 0x3110U, CO_ERREG_VOLTAGE, cat2);
+    tb_expect(BUS, "081 10 31 0C 02 00 00 00 00");
+    tb_expect(BUS, "081 00 00 0C 00 00 00 00 00");
+    co_emcy_clear(NODE, 0x4310U);
+    tb_expect(BUS, "081 00 00 04 00 00 00 00 00");
+    tb_expect_none(BUS);
+}
+
+static void option_history_code_only(void **state)
+{
+    static const uint8_t cat[5] = {0x01, 0x00, 0x00, 0x00, 0x00};
+
+    restart_with_options(state, CO_OPT_HISTORY_CODE_ONLY);
+    /* the manufacturer bytes still go out in the EMCY ... */
+    co_emcy_raise(NODE, 0x2310U, CO_ERREG_CURRENT, MFR);
+    tb_expect(BUS, "081 10 23 03 01 02 03 04 05");
+    co_emcy_raise(NODE, 0x4310U, CO_ERREG_TEMPERATURE, cat);
+    tb_expect(BUS, "081 10 43 0B 01 00 00 00 00");
+    tb_expect_none(BUS);
+    /* ... but 0x1003 holds the bare code (CiA 301 would give 0x00014310
+     * and 0x02012310) */
+    tb_xfer(BUS, "601 40 03 10 00 00 00 00 00", "581 4F 03 10 00 02 00 00 00");
+    tb_xfer(BUS, "601 40 03 10 01 00 00 00 00", "581 43 03 10 01 10 43 00 00");
+    tb_xfer(BUS, "601 40 03 10 02 00 00 00 00", "581 43 03 10 02 10 23 00 00");
+}
+
+/* ------------------------------------------- manufacturer bytes callback */
+
+static unsigned mfr_calls;
+
+/* A device's emcy_mfr: code high byte, a marker, and 0x1001 as it is when
+ * called (the error is already in it). */
+static void fill_mfr(void *ctx, co_node_t *node, uint16_t code, uint8_t mfr[5])
+{
+    const uint8_t *reg = (const uint8_t *)co_od_value_ptr(node, 0x1001U, 0U);
+
+    (void)ctx;
+    mfr_calls++;
+    assert_memory_equal(mfr, "\0\0\0\0\0", 5);
+    mfr[0] = (uint8_t)(code >> 8);
+    mfr[1] = 0xC0U;
+    mfr[2] = *reg;
+}
+
+static void emcy_mfr_fills_the_cores_own_emcys(void **state)
+{
+    co_node_callbacks_t cb;
+
+    memset(&cb, 0, sizeof cb);
+    cb.emcy_mfr = fill_mfr;
+    mfr_calls = 0U;
+    td_start_cb(&FX->n, BUS, 0, 1, NULL, &cb);
+    tb_expect(BUS, "701 00");
+    /* a SYNC of the wrong length: the core's EMCY 0x8240 */
+    tb_send(BUS, "080 01");
+    tb_expect(BUS, "081 40 82 11 82 C0 11 00 00");
+    tb_expect_none(BUS);
+    assert_int_equal(mfr_calls, 1U);
+    /* 0x1003: bytes 3-4 above the code */
+    tb_xfer(BUS, "601 40 03 10 01 00 00 00 00", "581 43 03 10 01 40 82 82 C0");
+    /* a heartbeat consumer (node 0x20, 100 ms) loses its producer: 0x8130 */
+    tb_xfer(BUS, "601 23 16 10 01 64 00 20 00", "581 60 16 10 01 00 00 00 00");
+    tb_send(BUS, "720 05");
+    tb_advance(BUS, 100000);
+    tb_expect(BUS, "081 30 81 11 81 C0 11 00 00");
+    tb_expect_none(BUS);
+    /* an error raised with its own data: not asked, the data as given */
+    co_emcy_raise(NODE, 0x2310U, CO_ERREG_CURRENT, MFR);
+    tb_expect(BUS, "081 10 23 13 01 02 03 04 05");
+    /* one raised without data by the application: filled the same way */
+    co_emcy_raise(NODE, 0x4210U, CO_ERREG_TEMPERATURE, NULL);
+    tb_expect(BUS, "081 10 42 1B 42 C0 1B 00 00");
+    tb_expect_none(BUS);
+    assert_int_equal(mfr_calls, 3U);
+    /* error resets (EMCY 0x0000) are not filled */
+    co_emcy_clear(NODE, 0x2310U);
+    co_emcy_clear(NODE, 0x4210U);
+    co_emcy_clear(NODE, 0x8240U);
+    tb_send(BUS, "720 05");
+    tb_expect(BUS, "081 00 00 00 00 00 00 00 00");
+    tb_expect_none(BUS);
+    assert_int_equal(mfr_calls, 3U);
+}
+
 /* ---------------------------------------------------------- COB-ID 0x1014 */
 
 static void cob_id_valid_bit(void **state)
@@ -379,6 +498,10 @@ int main(void)
         cmocka_unit_test_setup(history_write_zero_clears, setup),
         cmocka_unit_test_setup(option_reset_partial, setup),
         cmocka_unit_test_setup(option_state_pair, setup),
+        cmocka_unit_test_setup(option_erreg_no_generic, setup),
+        cmocka_unit_test_setup(option_erreg_no_generic_with_state_pair, setup),
+        cmocka_unit_test_setup(option_history_code_only, setup),
+        cmocka_unit_test_setup(emcy_mfr_fills_the_cores_own_emcys, setup),
         cmocka_unit_test_setup(cob_id_valid_bit, setup),
         cmocka_unit_test_setup(cob_id_change_only_while_invalid, setup),
         cmocka_unit_test_setup(cob_id_bad_values, setup),

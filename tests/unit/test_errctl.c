@@ -1,7 +1,8 @@
 /*
  * Error control (CiA 301 7.2.8.3.2): heartbeat producer 0x1017, heartbeat
  * consumer 0x1016, node guarding and life guarding 0x100C/0x100D, and the
- * EMCY 0x8130 the core raises for a lost producer or guarding master.
+ * EMCY 0x8130 the core raises for a lost producer or guarding master, and
+ * the NMT reaction of 0x1029 error behaviour to them and to bus-off.
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -555,6 +556,186 @@ static void heartbeat_and_guarding_errors_share_the_code(void **state)
     tb_expect_none(BUS);
 }
 
+/* ------------------------------------------------ 0x1029 error behaviour */
+
+/* Heartbeat consumer of node 0x20, 100 ms; its first heartbeat at once. */
+static void consume_node_20(void **state)
+{
+    tb_xfer(BUS, "601 23 16 10 01 64 00 20 00", "581 60 16 10 01 00 00 00 00");
+    tb_send(BUS, "720 05");
+    tb_expect_none(BUS);
+}
+
+/* The NMT state as a guarding reply shows it (toggle bit masked). */
+static uint8_t guarded_state(void **state)
+{
+    const co_frame_t *f;
+
+    tb_send(BUS, "701 R1");
+    f = tb_next(BUS);
+    assert_non_null(f);
+    assert_int_equal(f->id, 0x701U);
+    assert_int_equal(f->dlc, 1U);
+    tb_expect_none(BUS);
+    return (uint8_t)(f->data[0] & 0x7FU);
+}
+
+static void error_behaviour_object(void **state)
+{
+    /* 0x1029: sub 0 = 3; the communication error defaults to 0 (CiA 301) */
+    tb_xfer(BUS, "601 40 29 10 00 00 00 00 00", "581 4F 29 10 00 03 00 00 00");
+    tb_xfer(BUS, "601 40 29 10 01 00 00 00 00", "581 4F 29 10 01 00 00 00 00");
+    /* 0, 1, 2 and the manufacturer-specific 0x80..0xFF; 3..0x7F are reserved */
+    tb_xfer(BUS, "601 2F 29 10 01 02 00 00 00", "581 60 29 10 01 00 00 00 00");
+    tb_xfer(BUS, "601 2F 29 10 01 03 00 00 00", "581 80 29 10 01 30 00 09 06");
+    tb_xfer(BUS, "601 2F 29 10 01 7F 00 00 00", "581 80 29 10 01 30 00 09 06");
+    tb_xfer(BUS, "601 2F 29 10 02 80 00 00 00", "581 60 29 10 02 00 00 00 00");
+    tb_xfer(BUS, "601 2F 29 10 03 FF 00 00 00", "581 60 29 10 03 00 00 00 00");
+    tb_xfer(BUS, "601 40 29 10 01 00 00 00 00", "581 4F 29 10 01 02 00 00 00");
+}
+
+/* 0: a heartbeat consumer timeout in Operational -> Pre-operational, after
+ * the EMCY and the event; the callback still sees Operational. */
+static void heartbeat_timeout_enters_pre_operational(void **state)
+{
+    tb_send(BUS, "000 01 01");
+    consume_node_20(state);
+    assert_int_equal(guarded_state(state), 0x05);
+    tb_advance(BUS, 100000U);
+    tb_expect(BUS, "081 30 81 11 00 00 00 00 00");
+    tb_expect_none(BUS);
+    assert_int_equal(co_node_nmt_state(NODE), CO_NMT_PRE_OPERATIONAL);
+    assert_int_equal(guarded_state(state), 0x7F);
+    expect_event(&REC, 1, CO_HB_TIMEOUT, 0x20, CO_NMT_OPERATIONAL);
+    /* the producer is back: the error ends, the state stays */
+    tb_send(BUS, "720 05");
+    tb_expect(BUS, "081 00 00 00 00 00 00 00 00");
+    tb_expect_none(BUS);
+    assert_int_equal(guarded_state(state), 0x7F);
+    /* 0 from Pre-operational or Stopped: no change */
+    tb_advance(BUS, 100000U);
+    tb_expect(BUS, "081 30 81 11 00 00 00 00 00");
+    assert_int_equal(guarded_state(state), 0x7F);
+    tb_send(BUS, "720 05");
+    tb_expect(BUS, "081 00 00 00 00 00 00 00 00");
+    tb_send(BUS, "000 02 01");
+    tb_advance(BUS, 100000U);
+    tb_expect_none(BUS); /* no EMCY in Stopped */
+    assert_int_equal(guarded_state(state), 0x04);
+}
+
+/* 1: no change; 2: Stopped (from Operational and from Pre-operational). */
+static void heartbeat_timeout_no_change_or_stopped(void **state)
+{
+    tb_xfer(BUS, "601 2F 29 10 01 01 00 00 00", "581 60 29 10 01 00 00 00 00");
+    tb_send(BUS, "000 01 01");
+    consume_node_20(state);
+    tb_advance(BUS, 100000U);
+    tb_expect(BUS, "081 30 81 11 00 00 00 00 00");
+    tb_expect_none(BUS);
+    assert_int_equal(guarded_state(state), 0x05);
+    tb_send(BUS, "720 05");
+    tb_expect(BUS, "081 00 00 00 00 00 00 00 00");
+    tb_xfer(BUS, "601 2F 29 10 01 02 00 00 00", "581 60 29 10 01 00 00 00 00");
+    tb_advance(BUS, 100000U);
+    tb_expect(BUS, "081 30 81 11 00 00 00 00 00");
+    tb_expect_none(BUS);
+    assert_int_equal(co_node_nmt_state(NODE), CO_NMT_STOPPED);
+    assert_int_equal(guarded_state(state), 0x04);
+    /* Stopped: no SDO answer */
+    tb_send(BUS, "601 40 29 10 01 00 00 00 00");
+    tb_expect_none(BUS);
+    tb_send(BUS, "000 80 01");
+    tb_send(BUS, "720 05");
+    tb_expect(BUS, "081 00 00 00 00 00 00 00 00");
+    tb_advance(BUS, 100000U);
+    tb_expect(BUS, "081 30 81 11 00 00 00 00 00");
+    tb_expect_none(BUS);
+    assert_int_equal(guarded_state(state), 0x04);
+    /* manufacturer-specific values: the core changes nothing */
+    tb_send(BUS, "000 01 01");
+    tb_send(BUS, "720 05");
+    tb_expect(BUS, "081 00 00 00 00 00 00 00 00");
+    tb_xfer(BUS, "601 2F 29 10 01 80 00 00 00", "581 60 29 10 01 00 00 00 00");
+    tb_advance(BUS, 100000U);
+    tb_expect(BUS, "081 30 81 11 00 00 00 00 00");
+    assert_int_equal(guarded_state(state), 0x05);
+}
+
+/* Life guarding is a communication error too. */
+static void life_guarding_loss_enters_pre_operational(void **state)
+{
+    configure_life_guarding(state);
+    tb_send(BUS, "000 01 01");
+    tb_xfer(BUS, "701 R1", "701 05");
+    tb_advance(BUS, 300000U);
+    tb_expect(BUS, "081 30 81 11 00 00 00 00 00");
+    tb_expect_none(BUS);
+    expect_event(&REC, 0, CO_GUARD_LOST, 0, CO_NMT_OPERATIONAL);
+    assert_int_equal(co_node_nmt_state(NODE), CO_NMT_PRE_OPERATIONAL);
+    /* the next request: Pre-operational in the answer, the error ends */
+    tb_send(BUS, "701 R1");
+    tb_expect(BUS, "701 FF");
+    tb_expect(BUS, "081 00 00 00 00 00 00 00 00");
+    tb_expect_none(BUS);
+    /* 2: Stopped, and guarding goes on answering */
+    tb_xfer(BUS, "601 2F 29 10 01 02 00 00 00", "581 60 29 10 01 00 00 00 00");
+    tb_advance(BUS, 300000U);
+    tb_expect(BUS, "081 30 81 11 00 00 00 00 00");
+    tb_expect_none(BUS);
+    tb_xfer(BUS, "701 R1", "701 04");
+}
+
+/* Bus-off (reported by the port) and the device-specific classes go
+ * through co_node_error_behaviour. */
+static void bus_off_and_device_classes(void **state)
+{
+    tb_send(BUS, "000 01 01");
+    co_node_error_behaviour(NODE, CO_ERRBEH_COMM, BUS->now);
+    assert_int_equal(co_node_nmt_state(NODE), CO_NMT_PRE_OPERATIONAL);
+    tb_expect_none(BUS);
+    assert_int_equal(guarded_state(state), 0x7F);
+    tb_send(BUS, "000 01 01");
+    /* class 2 defaults to 1 here: no change; written 2: Stopped */
+    co_node_error_behaviour(NODE, 2U, BUS->now);
+    assert_int_equal(co_node_nmt_state(NODE), CO_NMT_OPERATIONAL);
+    tb_xfer(BUS, "601 2F 29 10 02 02 00 00 00", "581 60 29 10 02 00 00 00 00");
+    co_node_error_behaviour(NODE, 2U, BUS->now);
+    assert_int_equal(co_node_nmt_state(NODE), CO_NMT_STOPPED);
+    /* a class the device does not have, or sub-index 0: nothing */
+    tb_send(BUS, "000 01 01");
+    co_node_error_behaviour(NODE, 4U, BUS->now);
+    co_node_error_behaviour(NODE, 0U, BUS->now);
+    assert_int_equal(co_node_nmt_state(NODE), CO_NMT_OPERATIONAL);
+    tb_expect_none(BUS);
+}
+
+/* A device without 0x1029 keeps its NMT state on a communication error. */
+static void without_error_behaviour_object(void **state)
+{
+    static co_od_entry_t od[64];
+    uint16_t n = 0U;
+
+    for (uint16_t i = 0U; i < td_dev.od_count; i++) {
+        if (td_dev.od[i].index != 0x1029U) {
+            assert_true(n < 64U);
+            od[n++] = td_dev.od[i];
+        }
+    }
+    FX->dev.od = od;
+    FX->dev.od_count = n;
+    start_cb(&FX->n, &FX->r, BUS, 0, 1, &FX->dev);
+    tb_expect(BUS, "701 00");
+    tb_send(BUS, "000 01 01");
+    consume_node_20(state);
+    tb_advance(BUS, 100000U);
+    tb_expect(BUS, "081 30 81 11 00 00 00 00 00");
+    tb_expect_none(BUS);
+    assert_int_equal(co_node_nmt_state(NODE), CO_NMT_OPERATIONAL);
+    co_node_error_behaviour(NODE, CO_ERRBEH_COMM, BUS->now);
+    assert_int_equal(co_node_nmt_state(NODE), CO_NMT_OPERATIONAL);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -578,6 +759,12 @@ int main(void)
         cmocka_unit_test_setup(life_guarding_stops_when_heartbeat_starts, setup),
         cmocka_unit_test_setup(reset_communication_ends_life_guarding, setup),
         cmocka_unit_test_setup(heartbeat_and_guarding_errors_share_the_code, setup),
+        cmocka_unit_test_setup(error_behaviour_object, setup),
+        cmocka_unit_test_setup(heartbeat_timeout_enters_pre_operational, setup),
+        cmocka_unit_test_setup(heartbeat_timeout_no_change_or_stopped, setup),
+        cmocka_unit_test_setup(life_guarding_loss_enters_pre_operational, setup),
+        cmocka_unit_test_setup(bus_off_and_device_classes, setup),
+        cmocka_unit_test_setup(without_error_behaviour_object, setup),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

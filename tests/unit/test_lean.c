@@ -8,6 +8,7 @@
  */
 #include <setjmp.h>
 #include <stdarg.h>
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <string.h>
@@ -114,6 +115,34 @@ static void refuses_what_is_left_out(void **state)
     assert_int_equal(start(&dev), CO_ERR_DEV_INCOMPAT);
     tb_expect_none(BUS);
     dev.limits = NULL;
+    /* error behaviour 0x1029 (the description's entries plus one) */
+    {
+        static const co_od_sub_t s1029[] = {{1U, (uint8_t)CO_UNSIGNED8, CO_SUB_RW, 1U, 0U, 0U}};
+        static co_od_entry_t od[64];
+        uint16_t n = 0U;
+        bool added = false;
+        assert_true(lean_test_dev.od_count < 64U);
+        for (uint16_t i = 0U; i < lean_test_dev.od_count; i++) {
+            if (!added && (lean_test_dev.od[i].index > 0x1029U)) {
+                od[n] = lean_test_dev.od[i];
+                od[n].index = 0x1029U;
+                od[n].nsubs = 1U;
+                od[n].hook = 0U;
+                od[n].code = (uint8_t)CO_OBJ_ARRAY;
+                od[n].subs = s1029;
+                n++;
+                added = true;
+            }
+            od[n++] = lean_test_dev.od[i];
+        }
+        assert_true(added);
+        dev.od = od;
+        dev.od_count = n;
+        assert_int_equal(start(&dev), CO_ERR_DEV_INCOMPAT);
+        tb_expect_none(BUS);
+        dev.od = lean_test_dev.od;
+        dev.od_count = lean_test_dev.od_count;
+    }
     assert_int_equal(start(&dev), CO_OK);
     tb_expect(BUS, "701 00");
     /* the test device has TIME (0x1012) and a SYNC producer (0x1006) */

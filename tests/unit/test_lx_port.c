@@ -197,12 +197,15 @@ static void error_frames_become_emcy(void **state)
     (void)co_node_process(&fx.n.node, 5000U);
     EXPECT_OUT("085 20 81 11 00 00 00 00 00");
     assert_true(co_emcy_is_active(&fx.n.node, 0x8120U));
-    /* bus-off: EMCY 0x8140 */
+    /* bus-off in Operational: EMCY 0x8140, and 0x1029 sub 1 = 0 (the test
+     * device's default) makes it a communication error: Pre-operational */
+    co_node_nmt_command(&fx.n.node, 0x01U, 5500U);
     memset(d, 0, sizeof d);
     bus_send_raw(CAN_ERR_FLAG | CAN_ERR_BUSOFF, d, 8U);
     assert_int_equal(co_lx_port_rx(&fx.port, 6000U), 1);
     (void)co_node_process(&fx.n.node, 6000U);
     EXPECT_OUT("085 40 81 11 00 00 00 00 00");
+    assert_int_equal(co_node_nmt_state(&fx.n.node), CO_NMT_PRE_OPERATIONAL);
     /* restarted: both end; EMCY 0x0000 once the last one clears */
     bus_send_raw(CAN_ERR_FLAG | CAN_ERR_RESTARTED, d, 8U);
     assert_int_equal(co_lx_port_rx(&fx.port, 7000U), 1);

@@ -80,6 +80,39 @@ static void ssd_14_1_unknown_index_strict_and_630(void **state)
     BUS->nodes[1] = NULL;
 }
 
+/* SSD 630 (D3.2): expedited up- and download and segmented upload only; a
+ * segmented download is refused at its initiate with 0x06010000 (the
+ * drive's abort list has no 0x0504xxxx code), after the object's own
+ * errors. */
+static void ssd_no_segmented_download(void **state)
+{
+    static td_node_t ssd;
+    co_dev_t dev = td_dev;
+
+    dev.options = CO_OPT_SDO_NO_SEG_DOWNLOAD;
+    td_start(&ssd, BUS, 1, 4, &dev);
+    tb_expect(BUS, "704 00");
+    /* size indicated or not, a string or a fixed-size value */
+    tb_xfer(BUS, "604 21 12 20 00 0A 00 00 00", "584 80 12 20 00 00 00 01 06");
+    tb_xfer(BUS, "604 20 06 20 00 00 00 00 00", "584 80 06 20 00 00 00 01 06");
+    tb_xfer(BUS, "604 21 04 20 00 04 00 00 00", "584 80 04 20 00 00 00 01 06");
+    /* nothing is open: a segment afterwards has no transfer */
+    tb_xfer(BUS, "604 00 43 41 4E 6F 70 65 6E", "584 80 00 00 00 01 00 04 05");
+    assert_string_equal(ssd.ram.vstr, "hello");
+    /* the object's own errors first */
+    tb_xfer(BUS, "604 21 34 12 00 04 00 00 00", "584 80 34 12 00 00 00 02 06");
+    tb_xfer(BUS, "604 21 00 10 00 04 00 00 00", "584 80 00 10 00 02 00 01 06");
+    tb_xfer(BUS, "604 21 04 20 00 08 00 00 00", "584 80 04 20 00 10 00 07 06");
+    /* expedited download, segmented upload as before */
+    tb_xfer(BUS, "604 23 04 20 00 78 56 34 12", "584 60 04 20 00 00 00 00 00");
+    assert_int_equal(ssd.ram.u32, 0x12345678UL);
+    tb_xfer(BUS, "604 40 08 10 00 00 00 00 00", "584 41 08 10 00 07 00 00 00");
+    tb_xfer(BUS, "604 60 00 00 00 00 00 00 00", "584 01 36 33 31 5F 34 30 32");
+    /* CiA 301 (node 1, no option): the same initiate opens the transfer */
+    tb_xfer(BUS, "601 21 12 20 00 0A 00 00 00", "581 60 12 20 00 00 00 00 00");
+    BUS->nodes[1] = NULL;
+}
+
 static void ssd_derived_vectors(void **state)
 {
     /* unknown sub-index */
@@ -332,6 +365,7 @@ int main(void)
         cmocka_unit_test_setup(ssd_14_6_node_id_corrected, setup),
         cmocka_unit_test_setup(ssd_14_7_segmented_upload_device_name, setup),
         cmocka_unit_test_setup(ssd_14_1_unknown_index_strict_and_630, setup),
+        cmocka_unit_test_setup(ssd_no_segmented_download, setup),
         cmocka_unit_test_setup(ssd_derived_vectors, setup),
         cmocka_unit_test_setup(faulhaber_7_5_host_examples_node2, setup),
         cmocka_unit_test_setup(kollmorgen_7_9_expedited_only_node3, setup),

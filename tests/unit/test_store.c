@@ -3,7 +3,8 @@
  * capability reads, save and restore of all / communication / application,
  * what NMT resets and a power cycle (a new co_node_init on the same NV) load,
  * wrong signatures, a HAL without NV, NV failures, foreign and corrupt sets,
- * and a power cut at every byte of a save or restore.
+ * a power cut at every byte of a save or restore, and the restore of the
+ * saved set (0x1011 sub 4..6, CO_OPT_RESTORE_SAVED).
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -191,10 +192,15 @@ static void capability_reads_and_signature_does_not_change_them(void **state)
     tb_xfer(BUS, "601 40 10 10 01 00 00 00 00", "581 43 10 10 01 01 00 00 00");
     tb_xfer(BUS, "601 40 10 10 02 00 00 00 00", "581 43 10 10 02 01 00 00 00");
     tb_xfer(BUS, "601 40 10 10 03 00 00 00 00", "581 43 10 10 03 01 00 00 00");
-    tb_xfer(BUS, "601 40 11 10 00 00 00 00 00", "581 4F 11 10 00 03 00 00 00");
+    tb_xfer(BUS, "601 40 11 10 00 00 00 00 00", "581 4F 11 10 00 06 00 00 00");
     tb_xfer(BUS, "601 40 11 10 01 00 00 00 00", "581 43 11 10 01 01 00 00 00");
     tb_xfer(BUS, "601 40 11 10 02 00 00 00 00", "581 43 11 10 02 01 00 00 00");
     tb_xfer(BUS, "601 40 11 10 03 00 00 00 00", "581 43 11 10 03 01 00 00 00");
+    /* sub 4..6 (a manufacturer's) are not the core's without
+     * CO_OPT_RESTORE_SAVED: they read 0 and refuse the signature */
+    tb_xfer(BUS, "601 40 11 10 04 00 00 00 00", "581 43 11 10 04 00 00 00 00");
+    tb_xfer(BUS, "601 40 11 10 06 00 00 00 00", "581 43 11 10 06 00 00 00 00");
+    tb_xfer(BUS, "601 23 11 10 04 6C 6F 61 64", "581 80 11 10 04 20 00 00 08");
     /* writing the signatures (accepted ones and refused ones) changes nothing */
     tb_xfer(BUS, SAVE_ALL, SAVED_ALL);
     tb_xfer(BUS, SAVE_COMM, SAVED_COMM);
@@ -379,6 +385,146 @@ static void restore_without_stored_set_writes_nothing(void **state)
         assert_int_equal(fx.bus.nv_written, written + 16U); /* a header, no data */
         tb_xfer(BUS, LOAD_ALL, LOADED_ALL);
         assert_int_equal(fx.bus.nv_written, written + 16U);
+    }
+}
+
+/* ------------------------------------- CO_OPT_RESTORE_SAVED (sub 4..6) */
+
+#define LOAD_SAVED_ALL    "601 23 11 10 04 6C 6F 61 64"
+#define LOAD_SAVED_COMM   "601 23 11 10 05 6C 6F 61 64"
+#define LOAD_SAVED_APP    "601 23 11 10 06 6C 6F 61 64"
+#define LOADED_SAVED_ALL  "581 60 11 10 04 00 00 00 00"
+#define LOADED_SAVED_COMM "581 60 11 10 05 00 00 00 00"
+#define LOADED_SAVED_APP  "581 60 11 10 06 00 00 00 00"
+
+static void start_restore_saved(void)
+{
+    fx.dev.options = CO_OPT_RESTORE_SAVED;
+    power_cycle_dev(&fx.dev);
+}
+
+/* Sub 4..6 read 1 like 1..3; a restore of the defaults keeps the saved
+ * data; restoring the saved set brings it back at the next reset. */
+static void restore_saved_undoes_a_restore(void **state)
+{
+    (void)state;
+    start_restore_saved();
+    tb_xfer(BUS, "601 40 11 10 04 00 00 00 00", "581 43 11 10 04 01 00 00 00");
+    tb_xfer(BUS, "601 40 11 10 05 00 00 00 00", "581 43 11 10 05 01 00 00 00");
+    tb_xfer(BUS, "601 40 11 10 06 00 00 00 00", "581 43 11 10 06 01 00 00 00");
+    write_set(BUS, &SET_A);
+    tb_xfer(BUS, SAVE_ALL, SAVED_ALL);
+    /* the defaults at the next reset, as without the option */
+    tb_xfer(BUS, LOAD_ALL, LOADED_ALL);
+    expect_app(BUS, &SET_A);
+    reset_node();
+    expect_comm(BUS, &DEF);
+    expect_app(BUS, &DEF);
+    power_cycle_dev(&fx.dev);
+    expect_comm(BUS, &DEF);
+    expect_app(BUS, &DEF);
+    /* the saved set again: SET_A at the next reset (and power-on) */
+    write_set(BUS, &SET_B);
+    tb_xfer(BUS, LOAD_SAVED_ALL, LOADED_SAVED_ALL);
+    expect_comm(BUS, &SET_B);
+    expect_app(BUS, &SET_B);
+    reset_node();
+    expect_comm(BUS, &SET_A);
+    expect_app(BUS, &SET_A);
+    power_cycle_dev(&fx.dev);
+    expect_comm(BUS, &SET_A);
+    expect_app(BUS, &SET_A);
+}
+
+/* The groups one by one; a restore of the saved set where nothing was
+ * restored writes nothing; a save ends a group's restore. */
+static void restore_saved_by_group(void **state)
+{
+    uint32_t written;
+
+    (void)state;
+    start_restore_saved();
+    /* nothing stored yet: nothing to do, nothing written */
+    tb_xfer(BUS, LOAD_SAVED_ALL, LOADED_SAVED_ALL);
+    assert_true(nv_erased());
+    write_set(BUS, &SET_A);
+    tb_xfer(BUS, SAVE_ALL, SAVED_ALL);
+    written = fx.bus.nv_written;
+    tb_xfer(BUS, LOAD_SAVED_COMM, LOADED_SAVED_COMM);
+    assert_int_equal(fx.bus.nv_written, written);
+    /* both groups restored; the application's saved set back */
+    tb_xfer(BUS, LOAD_ALL, LOADED_ALL);
+    tb_xfer(BUS, LOAD_SAVED_APP, LOADED_SAVED_APP);
+    reset_node();
+    expect_comm(BUS, &DEF);
+    expect_app(BUS, &SET_A);
+    /* the communication group's too: at reset communication */
+    write_set(BUS, &SET_B);
+    tb_xfer(BUS, LOAD_SAVED_COMM, LOADED_SAVED_COMM);
+    reset_comm();
+    expect_comm(BUS, &SET_A);
+    expect_app(BUS, &SET_B);
+    /* a save of the restored group ends its restore (SET_C saved) */
+    tb_xfer(BUS, LOAD_APP, LOADED_APP);
+    write_set(BUS, &SET_C);
+    tb_xfer(BUS, SAVE_APP, SAVED_APP);
+    tb_xfer(BUS, LOAD_SAVED_APP, LOADED_SAVED_APP);
+    power_cycle_dev(&fx.dev);
+    expect_comm(BUS, &SET_A);
+    expect_app(BUS, &SET_C);
+    /* the save signature on a restore sub-index is refused */
+    tb_xfer(BUS, "601 23 11 10 05 73 61 76 65", "581 80 11 10 05 20 00 00 08");
+}
+
+/* A power cut at every byte of a restore with the saved data kept and of
+ * the restore of the saved set: the old or the new set, never a mix. */
+static void restore_saved_power_cut(void **state)
+{
+    static const char *const cmds[2][2] = {{LOAD_ALL, LOADED_ALL},
+                                           {LOAD_SAVED_ALL, LOADED_SAVED_ALL}};
+
+    (void)state;
+    for (int k = 0; k < 2; k++) {
+        td_ram_t img_old;
+        td_ram_t img_new;
+        uint32_t total;
+
+        /* prepare: SET_A saved (and for the second command restored) */
+        tb_init(BUS);
+        start_restore_saved();
+        write_set(BUS, &SET_A);
+        tb_xfer(BUS, SAVE_ALL, SAVED_ALL);
+        if (k == 1) {
+            tb_xfer(BUS, LOAD_ALL, LOADED_ALL);
+        }
+        start_restore_saved();
+        memcpy(&img_old, &fx.n.ram, sizeof img_old);
+        total = fx.bus.nv_written;
+        tb_xfer(BUS, cmds[k][0], cmds[k][1]);
+        total = fx.bus.nv_written - total;
+        start_restore_saved();
+        memcpy(&img_new, &fx.n.ram, sizeof img_new);
+        assert_memory_not_equal(&img_old, &img_new, sizeof img_old);
+        /* header and the kept data of both groups */
+        assert_int_equal(total, 16U + td_dev.app_end);
+        for (uint32_t cut = 0U; cut <= total; cut++) {
+            tb_init(BUS);
+            start_restore_saved();
+            write_set(BUS, &SET_A);
+            tb_xfer(BUS, SAVE_ALL, SAVED_ALL);
+            if (k == 1) {
+                tb_xfer(BUS, LOAD_ALL, LOADED_ALL);
+            }
+            tb_nv_cut(BUS, cut, (cut & 1U) != 0U);
+            tb_send(BUS, cmds[k][0]);
+            tb_nv_power_on(BUS);
+            start_restore_saved();
+            assert_true((memcmp(&fx.n.ram, &img_old, sizeof img_old) == 0) ||
+                        (memcmp(&fx.n.ram, &img_new, sizeof img_new) == 0));
+            if (cut == total) {
+                assert_memory_equal(&fx.n.ram, &img_new, sizeof img_new);
+            }
+        }
     }
 }
 
@@ -760,6 +906,9 @@ int main(void)
         cmocka_unit_test_setup(restore_comm_at_reset_communication, setup),
         cmocka_unit_test_setup(restore_app_at_reset_node, setup),
         cmocka_unit_test_setup(restore_without_stored_set_writes_nothing, setup),
+        cmocka_unit_test_setup(restore_saved_undoes_a_restore, setup),
+        cmocka_unit_test_setup(restore_saved_by_group, setup),
+        cmocka_unit_test_setup(restore_saved_power_cut, setup),
         cmocka_unit_test_setup(wrong_signature_aborts, setup),
         cmocka_unit_test_setup(hal_without_nv, setup),
         cmocka_unit_test_setup(nv_failure_aborts_with_hardware_error, setup),

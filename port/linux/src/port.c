@@ -95,7 +95,7 @@ void co_lx_port_attach(co_lx_port_t *p, co_node_t *node)
     p->node = node;
 }
 
-static void apply(co_lx_port_t *p, const co_lx_emcy_action_t *a, unsigned n)
+static void apply(co_lx_port_t *p, const co_lx_emcy_action_t *a, unsigned n, uint32_t now_us)
 {
     for (unsigned i = 0U; i < n; i++) {
         char msg[96];
@@ -109,6 +109,10 @@ static void apply(co_lx_port_t *p, const co_lx_emcy_action_t *a, unsigned n)
         }
         if (a[i].raise) {
             co_emcy_raise(p->node, a[i].code, CO_ERREG_COMM, NULL);
+            if (a[i].code == CO_LX_EMCY_BUSOFF) {
+                /* CiA 301: bus-off is a communication error (0x1029 sub 1) */
+                co_node_error_behaviour(p->node, CO_ERRBEH_COMM, now_us);
+            }
         } else {
             co_emcy_clear(p->node, a[i].code);
         }
@@ -129,12 +133,12 @@ int co_lx_port_rx(co_lx_port_t *p, uint32_t now_us)
     }
     if ((cf.can_id & CAN_ERR_FLAG) != 0U) {
         n = co_lx_canerr_frame(&p->err, cf.can_id, cf.data, act);
-        apply(p, act, n);
+        apply(p, act, n, now_us);
         return 1;
     }
     n = co_lx_canerr_rx(&p->err, dropped - p->dropped, act);
     p->dropped = dropped;
-    apply(p, act, n);
+    apply(p, act, n, now_us);
     p->rx_frames++;
     if (p->node != NULL) {
         co_lx_frame_from_can(&cf, &f);

@@ -59,6 +59,12 @@
  *  refused (the SYNC consumer is always in). */
 #define CO_SYNC_PRODUCER 1
 #endif
+#ifndef CO_ERROR_BEHAVIOUR
+/** Error behaviour 0x1029: the NMT reaction to communication errors and
+ *  device-specific error classes (co_node_error_behaviour). Left out: a
+ *  device with 0x1029 is refused, errors never change the NMT state. */
+#define CO_ERROR_BEHAVIOUR 1
+#endif
 #ifndef CO_LIMITS
 /** Value limits of the dictionary (CO_SUB_LIMIT, co_dev_t.limits). Left out:
  *  a device with a limit table is refused. */

@@ -39,6 +39,15 @@
 #define CO_OPT_RPDO_SHORT_OK           0x0400U /**< an RPDO shorter than its mapping writes the
                                                     entries it covers, no EMCY (AnaGate) */
 #define CO_OPT_EVENT_TIMER_100US       0x0800U /**< PDO event timer in 100 us, not ms (Kollmorgen) */
+#define CO_OPT_ERREG_NO_GENERIC        0x00100000UL /**< 0x1001: an error sets only the bits it names;
+                                                         bit 0 only for one that names none (Kollmorgen) */
+#define CO_OPT_HISTORY_CODE_ONLY       0x00200000UL /**< 0x1003 entries hold the error code only, no
+                                                         manufacturer bytes above it (Kollmorgen) */
+#define CO_OPT_SDO_NO_SEG_DOWNLOAD     0x00400000UL /**< a segmented SDO download is refused at its
+                                                         initiate with 0x06010000 (SSD 630) */
+#define CO_OPT_RESTORE_SAVED           0x00800000UL /**< 0x1011 sub 4/5/6 restore the saved set (all /
+                                                         comm. / application); sub 1..3 keep its data
+                                                         (FAULHABER) */
 
 /** Error register 0x1001 bits. */
 #define CO_ERREG_GENERIC      0x01U
@@ -122,6 +131,16 @@ typedef struct co_node_callbacks {
     /** A TIME_OF_DAY arrived (0x1012 consumer bit set): milliseconds after
      *  midnight and days since 1 January 1984. */
     void (*time)(void *ctx, struct co_node *node, uint32_t ms, uint16_t days);
+    /** An error is raised without manufacturer data (co_emcy_raise with mfr
+     *  NULL): every EMCY the core raises itself (0x8130 heartbeat / life
+     *  guarding, 0x8210 / 0x8220 RPDO length, 0x8240 SYNC length, 0x8250
+     *  RPDO timeout) and those a port raises that way (0x81xx CAN
+     *  controller). Fill the manufacturer-specific EMCY bytes 3..7 @p mfr
+     *  (zero on entry); they go out in the EMCY and bytes 0..1 into 0x1003
+     *  like any manufacturer data. Called with the error active and 0x1001
+     *  updated, before the frame. It must not raise or clear errors. NULL:
+     *  zeros (CiA 301 leaves the field to the manufacturer). */
+    void (*emcy_mfr)(void *ctx, struct co_node *node, uint16_t code, uint8_t mfr[5]);
 } co_node_callbacks_t;
 
 /** Everything co_node_init needs. */
@@ -261,6 +280,18 @@ co_nmt_state_t co_node_nmt_state(const co_node_t *node);
 /** Execute an NMT command locally (as if received for this node). */
 void co_node_nmt_command(co_node_t *node, uint8_t cs, uint32_t now_us);
 
+/** 0x1029 sub-index of the communication error class. */
+#define CO_ERRBEH_COMM 1U
+
+/** A serious error of class @p sub (0x1029 sub-index: CO_ERRBEH_COMM for a
+ *  communication error, 2.. device-specific classes) was detected: the NMT
+ *  state changes as 0x1029 sub @p sub says (0 Pre-operational, only from
+ *  Operational; 1 no change; 2 Stopped; other values no change). Without
+ *  0x1029 or that sub-index nothing changes. The core applies class 1 itself
+ *  to a heartbeat consumer timeout and to life guarding; a port calls it
+ *  with CO_ERRBEH_COMM for bus-off, a device or profile for its own classes. */
+void co_node_error_behaviour(co_node_t *node, uint8_t sub, uint32_t now_us);
+
 /** Read a whole value (up to @p cap bytes) through the dictionary path,
  *  hooks included. *len receives the length. */
 co_err_t co_od_read(co_node_t *node, uint16_t index, uint8_t sub, void *buf, uint32_t cap,
@@ -282,7 +313,9 @@ co_err_t co_od_bind_hook(co_node_t *node, uint16_t index, const co_od_hook_t *ho
 
 /** Raise an error: set it active, update 0x1001 and 0x1003 and send an EMCY
  *  with @p code, the register and @p mfr (5 bytes, NULL for zeros).
- *  @p reg_bits are the 0x1001 bits this error sets (generic is always set).
+ *  @p reg_bits are the 0x1001 bits this error sets (the generic bit is added;
+ *  with CO_OPT_ERREG_NO_GENERIC only when @p reg_bits is 0). With @p mfr
+ *  NULL the emcy_mfr callback (if any) fills the manufacturer bytes. 
  *  Raising an active code again does nothing. */
 void co_emcy_raise(co_node_t *node, uint16_t code, uint8_t reg_bits, const uint8_t *mfr);
 

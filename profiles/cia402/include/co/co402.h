@@ -149,6 +149,12 @@ typedef enum co402_state {
                                                       as fast as possible (AnaGate Motion) */
 #define CO402_OPT_FR_SLOW           0x02000000UL /**< without 0x605E: fault reaction as option
                                                       code 1 (0x6084 ramp), not 2 (FAULHABER) */
+#define CO402_OPT_LOSS_WARN_STOP    0x04000000UL /**< a heartbeat / guarding loss is a warning
+                                                      (statusword bits 7 and 11; not 0x6007's
+                                                      reaction) that stops the axis on the
+                                                      quick-stop ramp (0x6085) and holds it, in
+                                                      its state, until a fault reset (controlword
+                                                      bit 7 rising) (Kollmorgen: warning n04) */
 
 /** A homing method a device accepts in 0x6098 and how the axis runs it
  *  (co402_config_t.hm_methods; without a table the CiA 402 methods the
@@ -166,7 +172,8 @@ typedef struct co402_hm_method {
  *  manufacturer bytes). */
 typedef struct co402_error {
     uint16_t code;             /**< EMCY error code (0x603F) */
-    uint8_t reg;               /**< 0x1001 bits it sets (bit 0 is always set) */
+    uint8_t reg;               /**< 0x1001 bits it sets (the core adds bit 0, see
+                                    co_emcy_raise) */
     uint8_t mfr[5];            /**< EMCY bytes 3..7 */
 } co402_error_t;
 
@@ -260,6 +267,7 @@ typedef struct co402_axis {
     bool vtimer_on;
     bool fe_on;
     bool warning;
+    bool loss;                       /* CO402_OPT_LOSS_WARN_STOP: connection lost, not reset */
     bool attached;
 } co402_axis_t;
 
@@ -284,6 +292,10 @@ void co402_fault_event(co402_axis_t *ax, uint16_t code);
 
 /** Set or clear the warning (statusword bit 7). */
 void co402_set_warning(co402_axis_t *ax, bool on);
+
+/** CO402_OPT_LOSS_WARN_STOP: true from a heartbeat / guarding loss until the
+ *  fault reset that ends its warning. */
+bool co402_connection_lost(const co402_axis_t *ax);
 
 /** The statusword as the axis reports it. */
 uint16_t co402_statusword(const co402_axis_t *ax);

@@ -10,7 +10,8 @@
  *     PDO and application accesses all reach it through the one OD path;
  *   - keeps its read-only objects (status, actual values) up to date in
  *     process(), so TPDOs and SDO uploads read current values;
- *   - gets SYNC, NMT state changes, NMT resets and error-control events.
+ *   - gets SYNC, NMT state changes, NMT resets and error-control events,
+ *     and may fill the manufacturer bytes of the EMCYs the core raises.
  *
  * The host below fans the node's callbacks out to every instance (then to
  * the application's own callbacks) and collects the instances' deadlines.
@@ -54,6 +55,11 @@ typedef struct co_profile_ops {
     void (*reset)(void *inst, co_reset_t kind, uint32_t now_us);
     /** Heartbeat consumer / life-guarding event (a lost master, ...). */
     void (*error_control)(void *inst, co_hb_event_t ev, uint8_t id, uint32_t now_us);
+    /** An EMCY is raised without manufacturer data (the core's own EMCYs,
+     *  co_node_callbacks_t.emcy_mfr): fill or change @p mfr (EMCY bytes
+     *  3..7). The instances are asked in turn, then the application. Must
+     *  not raise or clear errors. */
+    void (*emcy_mfr)(void *inst, uint16_t code, uint8_t mfr[5]);
 } co_profile_ops_t;
 
 /** One instance: its operations and its context. */

@@ -1201,6 +1201,23 @@ static co_err_t op_attach(void *inst, co_node_t *node, uint32_t now_us)
     return CO_OK;
 }
 
+#ifndef CO402_IDLE_US
+#define CO402_IDLE_US 100000U /**< wake-up period of an axis at rest with its power stage off */
+#endif
+
+/* With the power stage off and the motor standing, nothing in the axis
+ * changes with time alone: it wakes up only every CO402_IDLE_US. Whatever
+ * could change that (a controlword by SDO or RPDO) arrives in a frame, and
+ * the node is processed after every frame: the ticks missed until then run
+ * at once, with the same results as one by one. */
+static bool at_rest(const co402_axis_t *ax)
+{
+    return ((ax->state == (uint8_t)CO402_SWITCH_ON_DISABLED) ||
+            (ax->state == (uint8_t)CO402_READY) ||
+            (ax->state == (uint8_t)CO402_SWITCHED_ON)) &&
+           (ax->fb.vel == 0) && (ax->vel == 0);
+}
+
 static uint32_t op_process(void *inst, uint32_t now_us)
 {
     co402_axis_t *ax = (co402_axis_t *)inst;
@@ -1222,6 +1239,9 @@ static uint32_t op_process(void *inst, uint32_t now_us)
             ax->next_tick = now_us + tick; /* far behind: skip, do not run for ever */
             break;
         }
+    }
+    if (at_rest(ax) && ((int32_t)((now_us + CO402_IDLE_US) - ax->next_tick) > 0)) {
+        return now_us + CO402_IDLE_US;
     }
     return ax->next_tick;
 }

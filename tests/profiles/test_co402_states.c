@@ -60,6 +60,35 @@ static void boot_is_switch_on_disabled(void **state)
     tb_xfer(BUS, "601 2B 41 60 00 00 00 00 00", "581 80 41 60 00 02 00 01 06");
 }
 
+/* An axis at rest with its power stage off asks to be woken only every
+ * 100 ms (CO402_IDLE_US); a controlword frame in between acts at once, and
+ * an enabled axis wants its 1 ms control tick again. */
+static void idle_axis_wakes_rarely(void **state)
+{
+    uint32_t next;
+
+    (void)state;
+    next = co_profile_host_process(&fx.host, fx.bus.now);
+    assert_int_equal(next - fx.bus.now, 100000U);
+    fx.bus.now += 350000U; /* nothing ran for 350 ms */
+    sdo_cw(0x0006);
+    expect_sw(0x0231);
+    next = co_profile_host_process(&fx.host, fx.bus.now);
+    assert_int_equal(next - fx.bus.now, 100000U); /* Ready to switch on: still at rest */
+    sdo_cw(0x0007);
+    sdo_cw(0x000F);
+    expect_sw(0x0237);
+    next = co_profile_host_process(&fx.host, fx.bus.now);
+    assert_true(next - fx.bus.now <= 1000U); /* Operation enabled: every tick */
+    t402_run(&fx, 11000);
+    expect_sw(0x0637); /* pp at rest: target reached after the window time */
+    sdo_cw(0x0000);    /* 9: disable voltage */
+    expect_sw(0x0250);
+    next = co_profile_host_process(&fx.host, fx.bus.now);
+    assert_int_equal(next - fx.bus.now, 100000U);
+    tb_expect_none(BUS);
+}
+
 /* ----------------------------------------------------- 2, 3, 4 by SDO */
 
 static void enable_step_by_step(void **state)
@@ -838,6 +867,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_setup(boot_is_switch_on_disabled, setup),
         cmocka_unit_test_setup(enable_step_by_step, setup),
+        cmocka_unit_test_setup(idle_axis_wakes_rarely, setup),
         cmocka_unit_test_setup(switch_on_and_enable_in_one_write, setup),
         cmocka_unit_test_setup(one_transition_per_write, setup),
         cmocka_unit_test_setup(commands_out_of_sequence_are_ignored, setup),

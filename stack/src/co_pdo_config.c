@@ -206,7 +206,8 @@ static co_err_t check_comm_write(const co_node_t *node, uint16_t i, uint8_t sub,
         if ((v & 0x3FFFF800UL) != 0U) {
             return CO_ERR_VALUE; /* 29-bit identifiers are not supported */
         }
-        if (valid && new_valid && ((v & 0x7FFUL) != (cur & 0x7FFUL))) {
+        if (valid && new_valid && ((v & 0x7FFUL) != (cur & 0x7FFUL)) &&
+            !co_opt(node, CO_OPT_PDO_COBID_WHILE_VALID)) {
             return CO_ERR_VALUE; /* the CAN-ID changes only while invalid */
         }
         if (new_valid && restricted_cob(v & 0x7FFUL)) {

@@ -659,12 +659,10 @@ static void d713_ip_two_axes(void **state)
     dl(2, "23 01 16 02 20 01 C1 60");
     dl(2, "2F 01 16 00 02 00 00 00");
     /* step 9: axis 2 listens on axis 1's COB-ID 301h. The S300 takes the new
-     * CAN-ID while RPDO2 is valid; this core follows CiA 301 and changes a
-     * CAN-ID only while the PDO is invalid (0x06090030), so the example goes
-     * on with the CiA 301 order: invalidate, then the new COB-ID. */
-    tb_xfer(BUS, "602 23 01 14 01 01 03 00 00", "582 80 01 14 01 30 00 09 06");
-    dl(2, "23 01 14 01 02 03 00 80");
-    dl(2, "23 01 14 01 01 03 00 00");
+     * CAN-ID while RPDO2 is valid (CO_OPT_PDO_COBID_WHILE_VALID; CiA 301
+     * would want it invalid first, 0x06090030) */
+    tb_xfer(BUS, "602 23 01 14 01 01 03 00 00", "582 60 01 14 01 00 00 00 00");
+    assert_int_equal(tseed_get(&fx, 1, 0x1401, 1), 0x00000301);
     /* TPDO2 of both axes: 6063h and the manufacturer status 1002h (the
      * manual's comment "dummy" is misprinted) */
     for (uint8_t id = 1U; id <= 2U; id++) {

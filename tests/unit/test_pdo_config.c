@@ -90,6 +90,39 @@ static void cob_id_rules(void **state)
     tb_xfer(BUS, "601 40 00 18 01 00 00 00 00", "581 43 00 18 01 A1 01 00 40");
 }
 
+/* CO_OPT_PDO_COBID_WHILE_VALID (Kollmorgen, digest D7.13 step 9): the CAN-ID
+ * of a valid PDO changes without invalidating it first; the PDO runs on the
+ * new identifier at once. The other COB-ID rules stay. */
+static void cob_id_while_valid_option(void **state)
+{
+    (void)state;
+    /* strict CiA 301: refused (0x06090030) */
+    pfx_start(&fx, 1, 0U);
+    tb_xfer(BUS, "601 23 00 14 01 10 02 00 00", "581 80 00 14 01 30 00 09 06");
+    tb_xfer(BUS, "601 23 00 18 01 90 01 00 00", "581 80 00 18 01 30 00 09 06");
+    /* with the option: taken */
+    pfx_start(&fx, 1, CO_OPT_PDO_COBID_WHILE_VALID);
+    tb_xfer(BUS, "601 23 00 14 01 10 02 00 00", "581 60 00 14 01 00 00 00 00");
+    tb_xfer(BUS, "601 40 00 14 01 00 00 00 00", "581 43 00 14 01 10 02 00 00");
+    tb_xfer(BUS, "601 23 00 18 01 90 01 00 00", "581 60 00 18 01 00 00 00 00");
+    /* still refused: a restricted identifier, a 29-bit one */
+    tb_xfer(BUS, "601 23 00 18 01 01 06 00 00", "581 80 00 18 01 30 00 09 06");
+    tb_xfer(BUS, "601 23 00 18 01 90 01 00 20", "581 80 00 18 01 30 00 09 06");
+    pfx_set(&fx, 0x6041, 0, 0x0237, 2);
+    tb_send(BUS, "000 01 01");
+    tb_expect(BUS, "190 37 02"); /* TPDO1 on its new identifier */
+    tb_expect_none(BUS);
+    tb_send(BUS, "201 0F 00"); /* the old RPDO1 identifier: nobody's */
+    assert_int_equal(pfx_get(&fx, 0x6040, 0), 0);
+    tb_send(BUS, "210 0F 00");
+    assert_int_equal(pfx_get(&fx, 0x6040, 0), 0x000F);
+    /* in Operational too: the valid TPDO moves, and sends its data there */
+    tb_xfer(BUS, "601 23 00 18 01 91 01 00 00", "581 60 00 18 01 00 00 00 00");
+    tb_advance(BUS, 0);
+    tb_expect(BUS, "191 37 02");
+    tb_expect_none(BUS);
+}
+
 static void comm_parameter_rules(void **state)
 {
     (void)state;
@@ -193,6 +226,7 @@ int main(void)
         cmocka_unit_test(mapping_needs_invalid_pdo),
         cmocka_unit_test(rpdo_mapping_rules),
         cmocka_unit_test(cob_id_rules),
+        cmocka_unit_test(cob_id_while_valid_option),
         cmocka_unit_test(comm_parameter_rules),
         cmocka_unit_test(mapping_locked_in_operational),
         cmocka_unit_test(ssd_630_sync_pdo_setup),

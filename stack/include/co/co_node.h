@@ -39,6 +39,9 @@
 #define CO_OPT_RPDO_SHORT_OK           0x0400U /**< an RPDO shorter than its mapping writes the
                                                     entries it covers, no EMCY (AnaGate) */
 #define CO_OPT_EVENT_TIMER_100US       0x0800U /**< PDO event timer in 100 us, not ms (Kollmorgen) */
+/* PDO options from bit 16 */
+#define CO_OPT_PDO_COBID_WHILE_VALID   0x00010000UL /**< a PDO's CAN-ID may change while the PDO is
+                                                    valid (Kollmorgen) */
 
 /** Error register 0x1001 bits. */
 #define CO_ERREG_GENERIC      0x01U

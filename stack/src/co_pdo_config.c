@@ -242,6 +242,10 @@ co_err_t co_pdo_check_write(const co_node_t *node, uint16_t index, uint8_t sub,
     if (!pdo_of(node, index, &i, &is_map)) {
         return CO_OK;
     }
+    if (co_opt(node, CO_OPT_PDO_CONFIG_PREOP_ONLY) &&
+        (node->nmt != (uint8_t)CO_NMT_PRE_OPERATIONAL)) {
+        return CO_ERR_STORE_STATE; /* the device configures PDOs in Pre-operational only */
+    }
     if (is_map) {
         if (((sub == 0U) && (len != 1U)) || ((sub != 0U) && (len != 4U))) {
             return CO_OK; /* the size check of the dictionary answers */

@@ -431,10 +431,20 @@ static void derived_vectors(void **state)
     }
     tb_xfer(BUS, "601 2F 00 16 00 05 00 00 00", "581 80 00 16 00 42 00 04 06");
     dl("2F 00 16 00 02 00 00 00");
-    /* PDO configuration only in Pre-operational */
+    /* PDO configuration only in Pre-operational (§7): mapping and
+     * communication parameters alike (CO_OPT_PDO_CONFIG_PREOP_ONLY) */
     tb_send(BUS, "000 01 01");
     tb_flush(BUS);
     tb_xfer(BUS, "601 2F 00 16 00 00 00 00 00", "581 80 00 16 00 22 00 00 08");
+    tb_xfer(BUS, "601 2F 00 18 02 01 00 00 00", "581 80 00 18 02 22 00 00 08");
+    tb_xfer(BUS, "601 2B 00 18 05 0A 00 00 00", "581 80 00 18 05 22 00 00 08");
+    tb_xfer(BUS, "601 23 00 18 01 81 01 00 80", "581 80 00 18 01 22 00 00 08");
+    tb_xfer(BUS, "601 23 00 14 01 01 02 00 00", "581 80 00 14 01 22 00 00 08");
+    tb_xfer(BUS, "601 40 00 18 02 00 00 00 00", "581 4F 00 18 02 FF 00 00 00");
+    /* back in Pre-operational: taken */
+    tb_send(BUS, "000 80 01");
+    dl("2F 00 18 02 01 00 00 00");
+    dl("23 00 18 01 81 01 00 80");
 }
 
 /* --------------------------------------------------- EMCY (D§2.6) */

@@ -164,6 +164,49 @@ static void mapping_locked_in_operational(void **state)
     tb_xfer(BUS, "601 2F 00 16 00 00 00 00 00", "581 60 00 16 00 00 00 00 00");
 }
 
+/* CO_OPT_PDO_CONFIG_PREOP_ONLY (SSD 630 §7, digest D§2.3 and D§8.4): PDO
+ * communication and mapping parameters are written in Pre-operational only;
+ * in Operational (and Stopped) every write answers 0x08000022, reads work. */
+static void pdo_config_preop_only_option(void **state)
+{
+    uint8_t t = 1U;
+
+    (void)state;
+    /* CiA 301: communication parameters may change in Operational */
+    pfx_start(&fx, 1, 0U);
+    tb_send(BUS, "000 01 01");
+    tb_flush(BUS);
+    tb_xfer(BUS, "601 2F 00 18 02 01 00 00 00", "581 60 00 18 02 00 00 00 00");
+    tb_xfer(BUS, "601 2B 00 18 05 64 00 00 00", "581 60 00 18 05 00 00 00 00");
+    tb_xfer(BUS, "601 23 00 14 01 01 02 00 80", "581 60 00 14 01 00 00 00 00");
+    tb_xfer(BUS, "601 2F 02 16 00 00 00 00 00", "581 60 02 16 00 00 00 00 00"); /* invalid RPDO3 */
+    /* the device's option: none of these in Operational */
+    pfx_start(&fx, 1, CO_OPT_PDO_CONFIG_PREOP_ONLY | CO_OPT_PDO_MAP_WHILE_VALID);
+    tb_send(BUS, "000 01 01");
+    tb_flush(BUS);
+    tb_xfer(BUS, "601 2F 00 18 02 01 00 00 00", "581 80 00 18 02 22 00 00 08");
+    tb_xfer(BUS, "601 2B 00 18 05 64 00 00 00", "581 80 00 18 05 22 00 00 08");
+    tb_xfer(BUS, "601 23 00 14 01 01 02 00 80", "581 80 00 14 01 22 00 00 08");
+    tb_xfer(BUS, "601 23 00 14 01 01 02 00 00", "581 80 00 14 01 22 00 00 08"); /* unchanged */
+    tb_xfer(BUS, "601 2F 02 16 00 00 00 00 00", "581 80 02 16 00 22 00 00 08");
+    tb_xfer(BUS, "601 2F 00 16 00 00 00 00 00", "581 80 00 16 00 22 00 00 08");
+    /* the size is checked first; reads and other objects are not affected */
+    tb_xfer(BUS, "601 2B 00 18 02 01 00 00 00", "581 80 00 18 02 10 00 07 06");
+    tb_xfer(BUS, "601 40 00 18 02 00 00 00 00", "581 4F 00 18 02 FF 00 00 00");
+    tb_xfer(BUS, "601 23 7A 60 00 A0 86 01 00", "581 60 7A 60 00 00 00 00 00");
+    /* Stopped: the application is refused too */
+    tb_send(BUS, "000 02 01");
+    assert_int_equal(co_od_write(&fx.n.node, 0x1800, 2, &t, 1, true), CO_ERR_STORE_STATE);
+    /* Pre-operational: all of it */
+    tb_send(BUS, "000 80 01");
+    tb_flush(BUS);
+    assert_int_equal(co_od_write(&fx.n.node, 0x1800, 2, &t, 1, true), CO_OK);
+    tb_xfer(BUS, "601 2B 00 18 05 64 00 00 00", "581 60 00 18 05 00 00 00 00");
+    tb_xfer(BUS, "601 2F 00 16 00 00 00 00 00", "581 60 00 16 00 00 00 00 00");
+    tb_xfer(BUS, "601 2F 00 16 00 01 00 00 00", "581 60 00 16 00 00 00 00 00");
+    tb_xfer(BUS, "601 23 00 14 01 01 02 00 80", "581 60 00 14 01 00 00 00 00");
+}
+
 /* SSD 630 14.12/14.13 (corrected frames, digest 7.12): remapping valid PDOs in
  * Pre-operational, the device's documented deviation. */
 static void ssd_630_sync_pdo_setup(void **state)
@@ -229,6 +272,7 @@ int main(void)
         cmocka_unit_test(cob_id_while_valid_option),
         cmocka_unit_test(comm_parameter_rules),
         cmocka_unit_test(mapping_locked_in_operational),
+        cmocka_unit_test(pdo_config_preop_only_option),
         cmocka_unit_test(ssd_630_sync_pdo_setup),
         cmocka_unit_test(kollmorgen_free_mapping),
         cmocka_unit_test(ssd_630_profile_velocity),

@@ -42,6 +42,8 @@
 /* PDO options from bit 16 */
 #define CO_OPT_PDO_COBID_WHILE_VALID   0x00010000UL /**< a PDO's CAN-ID may change while the PDO is
                                                     valid (Kollmorgen) */
+#define CO_OPT_PDO_CONFIG_PREOP_ONLY   0x00020000UL /**< PDO parameters (0x1400..0x1BFF) are written
+                                                    in Pre-operational only, else 0x08000022 (SSD 630) */
 
 /** Error register 0x1001 bits. */
 #define CO_ERREG_GENERIC      0x01U

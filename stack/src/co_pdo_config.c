@@ -89,6 +89,9 @@ static co_err_t check_entry(const co_node_t *node, bool tx, uint32_t v, uint8_t 
     if ((*bits == 0U) || (*bits > (uint8_t)(size * 8U))) {
         return CO_ERR_PARAM_INCOMPAT;
     }
+    if (((*bits & 7U) != 0U) && co_opt(node, CO_OPT_PDO_MAP_BYTES)) {
+        return CO_ERR_NO_MAP; /* granularity 8: whole bytes only */
+    }
     return CO_OK;
 }
 

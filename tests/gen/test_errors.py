@@ -240,6 +240,43 @@ def test_unknown_option(tmp_path):
     assert "unknown option 'NO_SUCH'" in r.stderr and "SDO_NO_BLOCK" in r.stderr
 
 
+def with_options(text: str, *opts: str) -> str:
+    names = ", ".join(f'"{o}"' for o in opts)
+    return BASE.replace('device_type = 0', f'device_type = 0\noptions = [{names}]') + \
+        textwrap.dedent(text)
+
+
+def test_map_bytes_needs_granularity_8(tmp_path):
+    src = tmp_path / "bad.toml"
+    src.write_text(with_options("[eds]\ngranularity = 1\n", "PDO_MAP_BYTES"))
+    r = run_odgen(src, tmp_path / "out")
+    assert r.returncode == 1
+    assert "granularity: option PDO_MAP_BYTES maps whole bytes only" in r.stderr
+    src.write_text(with_options("[eds]\ngranularity = 8\n", "PDO_MAP_BYTES"))
+    assert run_odgen(src, tmp_path / "out").returncode == 0
+
+
+def test_map_bytes_refuses_a_bit_dummy(tmp_path):
+    rpdo = """
+        [[object]]
+        index = 0x1400
+        name = "RPDO1 communication parameter"
+        subs = [
+          { sub = 1, name = "COB-ID", type = "UNSIGNED32", default = "$NODEID+0x200" },
+          { sub = 2, name = "Transmission type", type = "UNSIGNED8", default = 255 },
+        ]
+        [eds]
+        dummy_usage = [1]
+        """ + tpdo_map(0x00010001, index=0x1600)
+    src = tmp_path / "bad.toml"
+    src.write_text(with_options(rpdo))
+    assert run_odgen(src, tmp_path / "out").returncode == 0
+    src.write_text(with_options(rpdo, "PDO_MAP_BYTES"))
+    r = run_odgen(src, tmp_path / "out2")
+    assert r.returncode == 1
+    assert "object 0x1600 sub 1" in r.stderr and "PDO_MAP_BYTES" in r.stderr
+
+
 def test_options_come_from_the_core_header():
     from model import core_options
     opts = core_options()

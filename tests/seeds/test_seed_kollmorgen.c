@@ -795,6 +795,17 @@ static void event_timer_and_mapping(void **state)
     tb_send(BUS, "000 80 03");
     dl(3, "2F 00 1A 00 00 00 00 00");
     tb_xfer(BUS, "603 23 00 1A 01 20 00 10 10", "583 80 00 1A 01 41 00 04 06");
+    /* mappings are taken over byte-wise only (D4.1, CO_OPT_PDO_MAP_BYTES):
+     * 4 or 12 bits of the statusword are refused (the manual names no code
+     * for it; 0604 0041h, "cannot be mapped", is in its list), whole bytes
+     * of it are taken */
+    tb_xfer(BUS, "603 23 00 1A 01 04 00 41 60", "583 80 00 1A 01 41 00 04 06");
+    tb_xfer(BUS, "603 23 00 1A 01 0C 00 41 60", "583 80 00 1A 01 41 00 04 06");
+    dl(3, "23 00 1A 01 08 00 41 60");
+    dl(3, "2F 00 1A 00 01 00 00 00");
+    tb_send(BUS, "000 01 03");
+    tb_expect(BUS, "183 40");
+    tb_flush(BUS);
 }
 
 int main(void)

@@ -207,6 +207,41 @@ static void pdo_config_preop_only_option(void **state)
     tb_xfer(BUS, "601 23 00 14 01 01 02 00 80", "581 60 00 14 01 00 00 00 00");
 }
 
+/* CO_OPT_PDO_MAP_BYTES (Kollmorgen §5.3.1.2/§5.3.2.2, digest D4.1: "mappings
+ * are only taken over byte-wise"): an entry's length must be whole bytes
+ * (0x06040041 otherwise); a whole-byte part of an object is still allowed. */
+static void byte_granularity_option(void **state)
+{
+    (void)state;
+    /* CiA 301 bit granularity: one bit of a BOOLEAN is an entry */
+    pfx_start(&fx, 1, 0U);
+    tb_xfer(BUS, "601 2F 02 16 00 00 00 00 00", "581 60 02 16 00 00 00 00 00");
+    tb_xfer(BUS, "601 23 02 16 01 01 00 00 20", "581 60 02 16 01 00 00 00 00");
+    /* granularity 8 */
+    pfx_start(&fx, 1, CO_OPT_PDO_MAP_BYTES);
+    tb_xfer(BUS, "601 2F 02 16 00 00 00 00 00", "581 60 02 16 00 00 00 00 00");
+    tb_xfer(BUS, "601 23 02 16 01 01 00 00 20", "581 80 02 16 01 41 00 04 06"); /* 1 bit */
+    tb_xfer(BUS, "601 23 02 16 01 04 00 01 20", "581 80 02 16 01 41 00 04 06"); /* 4 of 8 */
+    tb_xfer(BUS, "601 23 02 16 01 0C 00 02 20", "581 80 02 16 01 41 00 04 06"); /* 12 of 16 */
+    tb_xfer(BUS, "601 23 02 16 01 01 00 01 00", "581 80 02 16 01 41 00 04 06"); /* dummy bit */
+    /* a length the object cannot have stays 0x06040043 */
+    tb_xfer(BUS, "601 23 02 16 01 00 00 02 20", "581 80 02 16 01 43 00 04 06");
+    tb_xfer(BUS, "601 23 02 16 01 11 00 02 20", "581 80 02 16 01 43 00 04 06");
+    /* whole bytes: a BOOLEAN, the low byte of an INTEGER16, 3 of 4 bytes, a dummy byte */
+    tb_xfer(BUS, "601 23 02 16 01 08 00 00 20", "581 60 02 16 01 00 00 00 00");
+    tb_xfer(BUS, "601 23 02 16 02 08 00 02 20", "581 60 02 16 02 00 00 00 00");
+    tb_xfer(BUS, "601 23 02 16 03 18 00 09 20", "581 60 02 16 03 00 00 00 00");
+    tb_xfer(BUS, "601 23 02 16 04 08 00 05 00", "581 60 02 16 04 00 00 00 00");
+    tb_xfer(BUS, "601 2F 02 16 00 04 00 00 00", "581 60 02 16 00 00 00 00 00");
+    tb_xfer(BUS, "601 23 02 14 01 01 04 00 00", "581 60 02 14 01 00 00 00 00");
+    tb_send(BUS, "000 01 01");
+    tb_flush(BUS);
+    tb_send(BUS, "401 01 B4 56 78 9A FF");
+    assert_int_equal(pfx_get(&fx, 0x2000, 0), 1);
+    assert_int_equal(pfx_get(&fx, 0x2002, 0) & 0xFFFF, 0xFFB4); /* signed: extended */
+    assert_int_equal(pfx_get(&fx, 0x2009, 0), 0x009A7856UL);
+}
+
 /* SSD 630 14.12/14.13 (corrected frames, digest 7.12): remapping valid PDOs in
  * Pre-operational, the device's documented deviation. */
 static void ssd_630_sync_pdo_setup(void **state)
@@ -273,6 +308,7 @@ int main(void)
         cmocka_unit_test(comm_parameter_rules),
         cmocka_unit_test(mapping_locked_in_operational),
         cmocka_unit_test(pdo_config_preop_only_option),
+        cmocka_unit_test(byte_granularity_option),
         cmocka_unit_test(ssd_630_sync_pdo_setup),
         cmocka_unit_test(kollmorgen_free_mapping),
         cmocka_unit_test(ssd_630_profile_velocity),

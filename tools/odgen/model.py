@@ -1028,6 +1028,9 @@ def loads(text: str, path: str | Path = "<description>", base: str | None = None
     if not isinstance(eds, dict):
         raise DescError("[eds] must be a table")
     eds_info = _eds_table(eds, info, name)
+    if "PDO_MAP_BYTES" in opts and eds_info.get("granularity") not in (None, 8):
+        raise DescError("[eds] granularity: option PDO_MAP_BYTES maps whole bytes only "
+                        "(granularity 8)")
     dcf = _dcf_table(data.get("dcf"))
 
     objects = _device_objects(dev, "[device]")
@@ -1123,6 +1126,9 @@ def _check_pdo_mappings(dev: Device) -> None:
                 dsize = {1: (1, 8), 2: (8,), 3: (16,), 4: (32,), 5: (8,), 6: (16,), 7: (32,)}[idx]
                 if bits not in dsize:
                     raise DescError(f"{what} with {bits} bits; the dummy has {dsize[-1]}")
+                if bits % 8 and "PDO_MAP_BYTES" in dev.options:
+                    raise DescError(f"{what} with {bits} bits; option PDO_MAP_BYTES maps "
+                                    "whole bytes only")
                 if s.sub <= count:
                     total += bits
                 continue

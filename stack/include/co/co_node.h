@@ -44,6 +44,8 @@
                                                     valid (Kollmorgen) */
 #define CO_OPT_PDO_CONFIG_PREOP_ONLY   0x00020000UL /**< PDO parameters (0x1400..0x1BFF) are written
                                                     in Pre-operational only, else 0x08000022 (SSD 630) */
+#define CO_OPT_PDO_MAP_BYTES           0x00040000UL /**< mapping granularity 8: an entry of a length
+                                                    that is not whole bytes answers 0x06040041 (Kollmorgen) */
 
 /** Error register 0x1001 bits. */
 #define CO_ERREG_GENERIC      0x01U

@@ -185,6 +185,33 @@ void co_tpdo_rtr(co_node_t *node, uint16_t i)
     }
 }
 
+/* The event timer and the inhibit time of an event-driven TPDO, at now. */
+CO_INLINE void event_timers(const co_node_t *node, co_pdo_t *p)
+{
+    if (((p->flags & CO_PDO_F_TIMER) != 0U) && co_time_reached(node->now, p->timer)) {
+        p->flags |= CO_PDO_F_EVENT;
+    }
+    if (((p->flags & CO_PDO_F_INHIBIT) != 0U) && co_time_reached(node->now, p->inhibit)) {
+        p->flags &= (uint16_t)~CO_PDO_F_INHIBIT;
+    }
+}
+
+/* A due event-driven TPDO (CO_PDO_F_EVENT): sent with @p now unless the
+ * inhibit time holds it back; then the next deadline. */
+CO_INLINE uint32_t event_due(co_node_t *node, uint16_t i, uint32_t next, const uint8_t *now)
+{
+    co_pdo_t *p = &node->pdo[i];
+
+    if ((p->flags & CO_PDO_F_INHIBIT) != 0U) {
+        next = co_deadline_min(node->now, next, p->inhibit);
+    } else if (!send_event(node, i, now)) {
+        next = co_deadline_min(node->now, next, node->now + RETRY_US);
+    } else {
+        /* sent */
+    }
+    return next;
+}
+
 /* Event-driven (254/255): change of the data, a request, or the event timer,
  * no sooner than the inhibit time allows. Returns the next deadline. */
 static uint32_t event_driven(co_node_t *node, uint16_t i, uint32_t next)
@@ -192,12 +219,7 @@ static uint32_t event_driven(co_node_t *node, uint16_t i, uint32_t next)
     co_pdo_t *p = &node->pdo[i];
     uint8_t now[8];
 
-    if (((p->flags & CO_PDO_F_TIMER) != 0U) && co_time_reached(node->now, p->timer)) {
-        p->flags |= CO_PDO_F_EVENT;
-    }
-    if (((p->flags & CO_PDO_F_INHIBIT) != 0U) && co_time_reached(node->now, p->inhibit)) {
-        p->flags &= (uint16_t)~CO_PDO_F_INHIBIT;
-    }
+    event_timers(node, p);
     if ((p->flags & (CO_PDO_F_EVENT | CO_PDO_F_INHIBIT)) !=
         (CO_PDO_F_EVENT | CO_PDO_F_INHIBIT)) {
         /* sample unless already due and waiting for the inhibit time anyway */
@@ -207,13 +229,7 @@ static uint32_t event_driven(co_node_t *node, uint16_t i, uint32_t next)
         }
     }
     if ((p->flags & CO_PDO_F_EVENT) != 0U) {
-        if ((p->flags & CO_PDO_F_INHIBIT) != 0U) {
-            next = co_deadline_min(node->now, next, p->inhibit);
-        } else if (!send_event(node, i, now)) {
-            next = co_deadline_min(node->now, next, node->now + RETRY_US);
-        } else {
-            /* sent */
-        }
+        next = event_due(node, i, next, now);
     }
     if ((p->flags & CO_PDO_F_TIMER) != 0U) {
         next = co_deadline_min(node->now, next, p->timer);
@@ -221,13 +237,42 @@ static uint32_t event_driven(co_node_t *node, uint16_t i, uint32_t next)
     return next;
 }
 
-uint32_t co_tpdo_process(co_node_t *node, uint32_t next)
+/* CO_OPT_TPDO_NO_CHANGE_DETECT: event-driven (254/255) without change
+ * detection: a request or the event timer (which runs from the start of
+ * Operational, when nothing has been sent), sampled when it goes out. */
+static uint32_t event_requested(co_node_t *node, uint16_t i, uint32_t next)
+{
+    co_pdo_t *p = &node->pdo[i];
+    uint8_t now[8];
+
+    event_timers(node, p);
+    if ((p->flags & CO_PDO_F_TIMER) == 0U) {
+        uint32_t ev = co_pdo_event_us(node, i);
+        if (ev != 0U) {
+            p->timer = node->now + ev;
+            p->flags |= CO_PDO_F_TIMER;
+        }
+    }
+    if ((p->flags & CO_PDO_F_EVENT) != 0U) {
+        if ((p->flags & CO_PDO_F_INHIBIT) == 0U) {
+            build(node, i, now);
+        }
+        next = event_due(node, i, next, now);
+    }
+    if ((p->flags & CO_PDO_F_TIMER) != 0U) {
+        next = co_deadline_min(node->now, next, p->timer);
+    }
+    return next;
+}
+
+/* One pass over the TPDOs: RTR answers and synchronous transmissions held
+ * back, event-driven TPDOs with (@p detect) or without change detection.
+ * Inlined twice with a constant @p detect, so the usual pass pays nothing
+ * for the option. */
+CO_INLINE uint32_t tpdo_pass(co_node_t *node, uint32_t next, bool detect)
 {
     uint16_t n = (uint16_t)(node->dev->n_rpdo + node->dev->n_tpdo);
 
-    if (node->nmt != (uint8_t)CO_NMT_OPERATIONAL) {
-        return next;
-    }
     for (uint16_t i = node->dev->n_rpdo; i < n; i++) {
         co_pdo_t *p = &node->pdo[i];
         uint8_t type;
@@ -251,8 +296,25 @@ uint32_t co_tpdo_process(co_node_t *node, uint32_t next)
             }
         }
         if (type >= 254U) {
-            next = event_driven(node, i, next);
+            next = detect ? event_driven(node, i, next) : event_requested(node, i, next);
         }
     }
     return next;
+}
+
+/* The pass of a device with CO_OPT_TPDO_NO_CHANGE_DETECT. */
+static CO_NOINLINE uint32_t tpdo_pass_requested(co_node_t *node, uint32_t next)
+{
+    return tpdo_pass(node, next, false);
+}
+
+uint32_t co_tpdo_process(co_node_t *node, uint32_t next)
+{
+    if (node->nmt != (uint8_t)CO_NMT_OPERATIONAL) {
+        return next;
+    }
+    if (co_opt(node, CO_OPT_TPDO_NO_CHANGE_DETECT)) {
+        return tpdo_pass_requested(node, next);
+    }
+    return tpdo_pass(node, next, true);
 }

@@ -321,6 +321,75 @@ static void event_timer_unit_option(void **state)
     tb_expect(BUS, "181 00 00");
 }
 
+/* CO_OPT_TPDO_NO_CHANGE_DETECT (FAULHABER §3.2, digest 4.3: "the only event
+ * is a change of the statusword", which its profile requests): TPDOs of
+ * type 254/255 go out on co_tpdo_request, the event timer or an RTR, never
+ * because their data changed, and not on entering Operational. */
+static void no_change_detect_option(void **state)
+{
+    (void)state;
+    /* CiA 301: the data once on start, then every change */
+    start_operational(1, 0U);
+    tb_expect(BUS, "181 00 00");
+    pfx_set(&fx, 0x6041, 0, 0x0021, 2);
+    tb_advance(BUS, 0);
+    tb_expect(BUS, "181 21 00");
+    tb_expect_none(BUS);
+    /* the option: silent until asked */
+    start_operational(1, CO_OPT_TPDO_NO_CHANGE_DETECT);
+    tb_advance(BUS, 0);
+    tb_expect_none(BUS);
+    pfx_set(&fx, 0x6041, 0, 0x0021, 2);
+    tb_advance(BUS, 100000);
+    tb_expect_none(BUS);
+    assert_int_equal(co_tpdo_request(&fx.n.node, 0U), CO_OK);
+    tb_advance(BUS, 0);
+    tb_expect(BUS, "181 21 00"); /* the data of the moment it goes out */
+    tb_expect_none(BUS);
+    /* a request is one transmission, also with unchanged data */
+    assert_int_equal(co_tpdo_request(&fx.n.node, 0U), CO_OK);
+    tb_advance(BUS, 0);
+    tb_expect(BUS, "181 21 00");
+    tb_advance(BUS, 1000);
+    tb_expect_none(BUS);
+    /* an RTR is answered with the present data */
+    pfx_set(&fx, 0x6041, 0, 0x0023, 2);
+    tb_send(BUS, "181 R2");
+    tb_expect(BUS, "181 23 00");
+    tb_expect_none(BUS);
+    /* the inhibit time holds a request back; the data are sampled when it ends */
+    tb_send(BUS, "000 80 01");
+    tb_xfer(BUS, "601 23 00 18 01 81 01 00 80", "581 60 00 18 01 00 00 00 00");
+    tb_xfer(BUS, "601 2B 00 18 03 64 00 00 00", "581 60 00 18 03 00 00 00 00"); /* 10 ms */
+    tb_xfer(BUS, "601 23 00 18 01 81 01 00 00", "581 60 00 18 01 00 00 00 00");
+    tb_send(BUS, "000 01 01");
+    tb_advance(BUS, 0);
+    tb_expect_none(BUS);
+    assert_int_equal(co_tpdo_request(&fx.n.node, 0U), CO_OK);
+    tb_advance(BUS, 0);
+    tb_expect(BUS, "181 23 00");
+    assert_int_equal(co_tpdo_request(&fx.n.node, 0U), CO_OK);
+    pfx_set(&fx, 0x6041, 0, 0x0027, 2);
+    tb_advance(BUS, 9999);
+    tb_expect_none(BUS);
+    tb_advance(BUS, 1);
+    tb_expect(BUS, "181 27 00");
+    tb_expect_none(BUS);
+    /* the event timer sends without a change */
+    tb_xfer(BUS, "601 2B 00 18 05 14 00 00 00", "581 60 00 18 05 00 00 00 00"); /* 20 ms */
+    tb_advance(BUS, 19999);
+    tb_expect_none(BUS);
+    tb_advance(BUS, 1);
+    tb_expect(BUS, "181 27 00");
+    tb_advance(BUS, 20000);
+    tb_expect(BUS, "181 27 00");
+    tb_expect_none(BUS);
+    /* synchronous TPDOs are not affected: TPDO2 (type 1) at every SYNC */
+    tb_send(BUS, "080");
+    tb_expect(BUS, "281 00 00 00");
+    tb_expect_none(BUS);
+}
+
 static void sync_window(void **state)
 {
     (void)state;
@@ -610,6 +679,7 @@ int main(void)
         cmocka_unit_test(rtr_types),
         cmocka_unit_test(inhibit_and_event_timer),
         cmocka_unit_test(event_timer_unit_option),
+        cmocka_unit_test(no_change_detect_option),
         cmocka_unit_test(sync_window),
         cmocka_unit_test(rpdo_length_emcy),
         cmocka_unit_test(rpdo_short_option),

@@ -46,6 +46,10 @@
                                                     in Pre-operational only, else 0x08000022 (SSD 630) */
 #define CO_OPT_PDO_MAP_BYTES           0x00040000UL /**< mapping granularity 8: an entry of a length
                                                     that is not whole bytes answers 0x06040041 (Kollmorgen) */
+#define CO_OPT_TPDO_NO_CHANGE_DETECT   0x00080000UL /**< event-driven TPDOs (254/255) go out on
+                                                    co_tpdo_request, the event timer or an RTR only:
+                                                    no change detection, none on entering
+                                                    Operational (FAULHABER) */
 
 /** Error register 0x1001 bits. */
 #define CO_ERREG_GENERIC      0x01U
@@ -307,7 +311,9 @@ bool co_sync_window_open(const co_node_t *node);
 /** Ask for a transmission of TPDO @p n (0-based) with transmission type 0
  *  (at the next SYNC) or 254/255 (as soon as the inhibit time allows).
  *  Changes of mapped data are also found without this call: event-driven
- *  TPDOs compare their data at every co_node_process. */
+ *  TPDOs compare their data at every co_node_process (not on a device with
+ *  CO_OPT_TPDO_NO_CHANGE_DETECT, whose application calls this for its
+ *  events). */
 co_err_t co_tpdo_request(co_node_t *node, uint16_t n);
 
 /** True while @p code is active. */

@@ -212,9 +212,35 @@ CO_INLINE uint32_t event_due(co_node_t *node, uint16_t i, uint32_t next, const u
     return next;
 }
 
-/* Event-driven (254/255): change of the data, a request, or the event timer,
- * no sooner than the inhibit time allows. Returns the next deadline. */
-static uint32_t event_driven(co_node_t *node, uint16_t i, uint32_t next)
+/* CO_OPT_TPDO_MASK_254/255: does the change from the data last sent to
+ * @p now touch a bit of TPDO i's change mask (co_dev_t.tpdo_mask)? True
+ * when no mask applies to its transmission type. */
+static bool masked_change(const co_node_t *node, uint16_t i, const uint8_t *now)
+{
+    const co_pdo_t *p = &node->pdo[i];
+    uint32_t opt = (co_pdo_type(node, i) == 254U) ? CO_OPT_TPDO_MASK_254 : CO_OPT_TPDO_MASK_255;
+    uint16_t off;
+    uint32_t mask = 0U;
+
+    if (!co_opt(node, opt) || (node->dev->tpdo_mask == NULL)) {
+        return true;
+    }
+    off = node->dev->tpdo_mask[i - node->dev->n_rpdo];
+    for (uint8_t b = 0U; b < 8U; b++) {
+        if ((b & 3U) == 0U) {
+            mask = co_ram_u32(node, (uint16_t)(off + b)); /* sub 1: bytes 0..3, sub 2: 4..7 */
+        }
+        if (((uint32_t)(now[b] ^ p->data[b]) & (mask >> (8U * (b & 3U))) & 0xFFU) != 0U) {
+            return true;
+        }
+    }
+    return false;
+}
+
+/* Event-driven (254/255): change of the data (with @p masked, only of the
+ * bits of its change mask), a request, or the event timer, no sooner than
+ * the inhibit time allows. Returns the next deadline. */
+CO_INLINE uint32_t event_driven(co_node_t *node, uint16_t i, uint32_t next, bool masked)
 {
     co_pdo_t *p = &node->pdo[i];
     uint8_t now[8];
@@ -224,7 +250,8 @@ static uint32_t event_driven(co_node_t *node, uint16_t i, uint32_t next)
         (CO_PDO_F_EVENT | CO_PDO_F_INHIBIT)) {
         /* sample unless already due and waiting for the inhibit time anyway */
         build(node, i, now);
-        if (((p->flags & CO_PDO_F_SENT) == 0U) || (memcmp(now, p->data, 8U) != 0)) {
+        if (((p->flags & CO_PDO_F_SENT) == 0U) ||
+            ((memcmp(now, p->data, 8U) != 0) && (!masked || masked_change(node, i, now)))) {
             p->flags |= CO_PDO_F_EVENT;
         }
     }
@@ -265,11 +292,23 @@ static uint32_t event_requested(co_node_t *node, uint16_t i, uint32_t next)
     return next;
 }
 
+/* Event-driven TPDO i of a device with one of the options below. */
+static uint32_t event_option(co_node_t *node, uint16_t i, uint32_t next)
+{
+    if (co_opt(node, CO_OPT_TPDO_NO_CHANGE_DETECT)) {
+        return event_requested(node, i, next);
+    }
+    return event_driven(node, i, next, true);
+}
+
+#define EVENT_OPTIONS \
+    (CO_OPT_TPDO_NO_CHANGE_DETECT | CO_OPT_TPDO_MASK_254 | CO_OPT_TPDO_MASK_255)
+
 /* One pass over the TPDOs: RTR answers and synchronous transmissions held
- * back, event-driven TPDOs with (@p detect) or without change detection.
- * Inlined twice with a constant @p detect, so the usual pass pays nothing
- * for the option. */
-CO_INLINE uint32_t tpdo_pass(co_node_t *node, uint32_t next, bool detect)
+ * back, event-driven TPDOs as CiA 301 has them (@p plain) or as one of
+ * EVENT_OPTIONS changes them. Inlined twice with a constant @p plain, so the
+ * usual pass pays nothing for the options. */
+CO_INLINE uint32_t tpdo_pass(co_node_t *node, uint32_t next, bool plain)
 {
     uint16_t n = (uint16_t)(node->dev->n_rpdo + node->dev->n_tpdo);
 
@@ -296,14 +335,14 @@ CO_INLINE uint32_t tpdo_pass(co_node_t *node, uint32_t next, bool detect)
             }
         }
         if (type >= 254U) {
-            next = detect ? event_driven(node, i, next) : event_requested(node, i, next);
+            next = plain ? event_driven(node, i, next, false) : event_option(node, i, next);
         }
     }
     return next;
 }
 
-/* The pass of a device with CO_OPT_TPDO_NO_CHANGE_DETECT. */
-static CO_NOINLINE uint32_t tpdo_pass_requested(co_node_t *node, uint32_t next)
+/* The pass of a device with one of EVENT_OPTIONS. */
+static CO_NOINLINE uint32_t tpdo_pass_option(co_node_t *node, uint32_t next)
 {
     return tpdo_pass(node, next, false);
 }
@@ -313,8 +352,8 @@ uint32_t co_tpdo_process(co_node_t *node, uint32_t next)
     if (node->nmt != (uint8_t)CO_NMT_OPERATIONAL) {
         return next;
     }
-    if (co_opt(node, CO_OPT_TPDO_NO_CHANGE_DETECT)) {
-        return tpdo_pass_requested(node, next);
+    if (co_opt(node, EVENT_OPTIONS)) {
+        return tpdo_pass_option(node, next);
     }
     return tpdo_pass(node, next, true);
 }

@@ -808,6 +808,62 @@ static void event_timer_and_mapping(void **state)
     tb_flush(BUS);
 }
 
+/* D4.5: the TPDO change masks 2014h..2017h (CO_OPT_TPDO_MASK_255). The
+ * manual's purpose: report a position only once per revolution by masking
+ * its low bits. TPDO3 (statusword + position, type FFh) with 2016h sub 1 =
+ * 0000FFFFh (bytes 0..3: the statusword, not the position's low word) and
+ * sub 2 = 0000FFF0h (bytes 4..5: position bits 20..31, whole revolutions of
+ * 2^20 increments). */
+static void d45_tpdo_masks(void **state)
+{
+    const co_frame_t *f;
+    int32_t last_rev = 0;
+    uint16_t last_sw = 0x0240;
+    unsigned revs = 0U;
+
+    (void)state;
+    dl(3, "23 01 18 01 83 02 00 C0"); /* TPDO2 and TPDO4 off (D7.5) */
+    dl(3, "23 03 18 01 83 04 00 C0");
+    tb_xfer(BUS, "603 40 16 20 01 00 00 00 00", "583 43 16 20 01 FF FF FF FF"); /* default */
+    dl(3, "23 16 20 01 FF FF 00 00");
+    dl(3, "23 16 20 02 F0 FF 00 00");
+    dl(3, "2F 60 60 00 03 00 00 00");
+    tb_send(BUS, "000 01 03");
+    tb_expect(BUS, "183 40 02");
+    tb_expect(BUS, "383 40 02 00 00 00 00"); /* the first one is always sent */
+    tb_expect_none(BUS);
+    enable_by_sdo();
+    dl(3, "23 FF 60 00 00 00 10 00"); /* 2^20 units/s: one revolution per second */
+    tseed_run(&fx, 3500000);
+    /* every TPDO3 is a statusword change (with TPDO1) or a new revolution */
+    while ((f = tb_next(BUS)) != NULL) {
+        uint16_t sw = (uint16_t)tseed_i16(f, 0);
+        if (f->id == 0x183U) {
+            assert_int_equal(f->dlc, 2); /* TPDO1: each statusword change */
+            assert_int_not_equal(sw, last_sw);
+            f = tseed_frame(BUS, 0x383, 6); /* TPDO3 with it */
+            assert_int_equal(tseed_i16(f, 0), (int16_t)sw);
+        } else {
+            /* TPDO3 alone: not the statusword, a new revolution just begun */
+            assert_int_equal(f->id, 0x383U);
+            assert_int_equal(f->dlc, 6);
+            assert_int_equal(sw, last_sw);
+            assert_int_equal(tseed_i32(f, 2) >> 20, last_rev + 1);
+            assert_between(tseed_i32(f, 2) & 0xFFFFF, 0, 2000);
+            revs++;
+        }
+        last_sw = sw;
+        last_rev = tseed_i32(f, 2) >> 20;
+    }
+    /* 3.5 s at 1 rev/s after the acceleration: revolutions 1, 2, 3 */
+    assert_int_equal(tseed_get(&fx, 0, 0x6064, 0) >> 20, 3);
+    assert_int_equal(revs, 3U);
+    /* the masks are plain rw values: 0 silences position changes entirely */
+    dl(3, "23 16 20 02 00 00 00 00");
+    tseed_run(&fx, 1500000);
+    tb_expect_none(BUS);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -827,6 +883,7 @@ int main(void)
         cmocka_unit_test_setup(d713_ip_two_axes, setup),
         cmocka_unit_test_setup(quick_stop_and_bit7, setup),
         cmocka_unit_test_setup(event_timer_and_mapping, setup),
+        cmocka_unit_test_setup(d45_tpdo_masks, setup),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

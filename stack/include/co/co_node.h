@@ -50,6 +50,10 @@
                                                     co_tpdo_request, the event timer or an RTR only:
                                                     no change detection, none on entering
                                                     Operational (FAULHABER) */
+#define CO_OPT_TPDO_MASK_254           0x00100000UL /**< the change masks (co_dev_t.tpdo_mask)
+                                                    filter the change detection of type-254
+                                                    TPDOs (SSD 630) */
+#define CO_OPT_TPDO_MASK_255           0x00200000UL /**< ... of type-255 TPDOs (Kollmorgen) */
 
 /** Error register 0x1001 bits. */
 #define CO_ERREG_GENERIC      0x01U
@@ -111,6 +115,12 @@ typedef struct co_dev {
     const co_pdo_desc_t *pdo;   /**< n_rpdo RPDOs, then n_tpdo TPDOs */
     uint16_t n_rpdo;
     uint16_t n_tpdo;
+    /** With CO_OPT_TPDO_MASK_254/255: per TPDO (n_tpdo entries) the RAM offset
+     *  of its change mask, two UNSIGNED32 values (the manufacturer object the
+     *  description names, sub 1 and 2): bit k of the first is bit k of PDO
+     *  bytes 0..3, of the second of bytes 4..7; a change of the mapped data
+     *  sends the TPDO only if it touches a set bit. NULL: no masks. */
+    const uint16_t *tpdo_mask;
 } co_dev_t;
 
 struct co_node;

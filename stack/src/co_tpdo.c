@@ -200,16 +200,17 @@ CO_INLINE void event_timers(const co_node_t *node, co_pdo_t *p)
  * inhibit time holds it back; then the next deadline. */
 CO_INLINE uint32_t event_due(co_node_t *node, uint16_t i, uint32_t next, const uint8_t *now)
 {
-    co_pdo_t *p = &node->pdo[i];
+    const co_pdo_t *p = &node->pdo[i];
+    uint32_t at = next;
 
     if ((p->flags & CO_PDO_F_INHIBIT) != 0U) {
-        next = co_deadline_min(node->now, next, p->inhibit);
+        at = co_deadline_min(node->now, next, p->inhibit);
     } else if (!send_event(node, i, now)) {
-        next = co_deadline_min(node->now, next, node->now + RETRY_US);
+        at = co_deadline_min(node->now, next, node->now + RETRY_US);
     } else {
         /* sent */
     }
-    return next;
+    return at;
 }
 
 /* CO_OPT_TPDO_MASK_254/255: does the change from the data last sent to
@@ -230,7 +231,8 @@ static bool masked_change(const co_node_t *node, uint16_t i, const uint8_t *now)
         if ((b & 3U) == 0U) {
             mask = co_ram_u32(node, (uint16_t)(off + b)); /* sub 1: bytes 0..3, sub 2: 4..7 */
         }
-        if (((uint32_t)(now[b] ^ p->data[b]) & (mask >> (8U * (b & 3U))) & 0xFFU) != 0U) {
+        uint8_t bits = (uint8_t)(mask >> (8U * (b & 3U)));
+        if (((uint8_t)(now[b] ^ p->data[b]) & bits) != 0U) {
             return true;
         }
     }
@@ -270,7 +272,7 @@ CO_INLINE uint32_t event_driven(co_node_t *node, uint16_t i, uint32_t next, bool
 static uint32_t event_requested(co_node_t *node, uint16_t i, uint32_t next)
 {
     co_pdo_t *p = &node->pdo[i];
-    uint8_t now[8];
+    uint32_t at = next;
 
     event_timers(node, p);
     if ((p->flags & CO_PDO_F_TIMER) == 0U) {
@@ -281,15 +283,18 @@ static uint32_t event_requested(co_node_t *node, uint16_t i, uint32_t next)
         }
     }
     if ((p->flags & CO_PDO_F_EVENT) != 0U) {
-        if ((p->flags & CO_PDO_F_INHIBIT) == 0U) {
-            build(node, i, now);
+        if ((p->flags & CO_PDO_F_INHIBIT) != 0U) {
+            at = co_deadline_min(node->now, at, p->inhibit);
+        } else {
+            uint8_t now[8];
+            build(node, i, now); /* sampled when it goes out */
+            at = event_due(node, i, at, now);
         }
-        next = event_due(node, i, next, now);
     }
     if ((p->flags & CO_PDO_F_TIMER) != 0U) {
-        next = co_deadline_min(node->now, next, p->timer);
+        at = co_deadline_min(node->now, at, p->timer);
     }
-    return next;
+    return at;
 }
 
 /* Event-driven TPDO i of a device with one of the options below. */

@@ -40,20 +40,21 @@
                                                     entries it covers, no EMCY (AnaGate) */
 #define CO_OPT_EVENT_TIMER_100US       0x0800U /**< PDO event timer in 100 us, not ms (Kollmorgen) */
 /* PDO options from bit 16 */
-#define CO_OPT_PDO_COBID_WHILE_VALID   0x00010000UL /**< a PDO's CAN-ID may change while the PDO is
-                                                    valid (Kollmorgen) */
-#define CO_OPT_PDO_CONFIG_PREOP_ONLY   0x00020000UL /**< PDO parameters (0x1400..0x1BFF) are written
-                                                    in Pre-operational only, else 0x08000022 (SSD 630) */
-#define CO_OPT_PDO_MAP_BYTES           0x00040000UL /**< mapping granularity 8: an entry of a length
-                                                    that is not whole bytes answers 0x06040041 (Kollmorgen) */
-#define CO_OPT_TPDO_NO_CHANGE_DETECT   0x00080000UL /**< event-driven TPDOs (254/255) go out on
-                                                    co_tpdo_request, the event timer or an RTR only:
-                                                    no change detection, none on entering
-                                                    Operational (FAULHABER) */
-#define CO_OPT_TPDO_MASK_254           0x00100000UL /**< the change masks (co_dev_t.tpdo_mask)
-                                                    filter the change detection of type-254
-                                                    TPDOs (SSD 630) */
-#define CO_OPT_TPDO_MASK_255           0x00200000UL /**< ... of type-255 TPDOs (Kollmorgen) */
+#define CO_OPT_PDO_COBID_WHILE_VALID   0x00010000U /**< a PDO's CAN-ID may change while the
+                                                        PDO is valid (Kollmorgen) */
+#define CO_OPT_PDO_CONFIG_PREOP_ONLY   0x00020000U /**< PDO parameters (0x1400..0x1BFF) are
+                                                        written in Pre-operational only, else
+                                                        0x08000022 (SSD 630) */
+#define CO_OPT_PDO_MAP_BYTES           0x00040000U /**< mapping granularity 8: an entry not of
+                                                        whole bytes: 0x06040041 (Kollmorgen) */
+#define CO_OPT_TPDO_NO_CHANGE_DETECT   0x00080000U /**< event-driven TPDOs (254/255) go out on
+                                                        co_tpdo_request, the event timer or an RTR
+                                                        only: no change detection, none on entering
+                                                        Operational (FAULHABER) */
+#define CO_OPT_TPDO_MASK_254           0x00100000U /**< the change masks (co_dev_t.tpdo_mask)
+                                                        filter the change detection of type-254
+                                                        TPDOs (SSD 630) */
+#define CO_OPT_TPDO_MASK_255           0x00200000U /**< ... of type-255 TPDOs (Kollmorgen) */
 
 /** Error register 0x1001 bits. */
 #define CO_ERREG_GENERIC      0x01U

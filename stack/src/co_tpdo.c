@@ -239,10 +239,11 @@ static bool masked_change(const co_node_t *node, uint16_t i, const uint8_t *now)
     return false;
 }
 
-/* Event-driven (254/255): change of the data (with @p masked, only of the
- * bits of its change mask), a request, or the event timer, no sooner than
- * the inhibit time allows. Returns the next deadline. */
-CO_INLINE uint32_t event_driven(co_node_t *node, uint16_t i, uint32_t next, bool masked)
+/* Event-driven (254/255): change of the data (with CO_OPT_TPDO_MASK_*, of
+ * the bits of its change mask; looked at only when the data changed), a
+ * request, or the event timer, no sooner than the inhibit time allows.
+ * Returns the next deadline. */
+static uint32_t event_driven(co_node_t *node, uint16_t i, uint32_t next)
 {
     co_pdo_t *p = &node->pdo[i];
     uint8_t now[8];
@@ -253,7 +254,9 @@ CO_INLINE uint32_t event_driven(co_node_t *node, uint16_t i, uint32_t next, bool
         /* sample unless already due and waiting for the inhibit time anyway */
         build(node, i, now);
         if (((p->flags & CO_PDO_F_SENT) == 0U) ||
-            ((memcmp(now, p->data, 8U) != 0) && (!masked || masked_change(node, i, now)))) {
+            ((memcmp(now, p->data, 8U) != 0) &&
+             (!co_opt(node, CO_OPT_TPDO_MASK_254 | CO_OPT_TPDO_MASK_255) ||
+              masked_change(node, i, now)))) {
             p->flags |= CO_PDO_F_EVENT;
         }
     }
@@ -297,23 +300,11 @@ static uint32_t event_requested(co_node_t *node, uint16_t i, uint32_t next)
     return at;
 }
 
-/* Event-driven TPDO i of a device with one of the options below. */
-static uint32_t event_option(co_node_t *node, uint16_t i, uint32_t next)
-{
-    if (co_opt(node, CO_OPT_TPDO_NO_CHANGE_DETECT)) {
-        return event_requested(node, i, next);
-    }
-    return event_driven(node, i, next, true);
-}
-
-#define EVENT_OPTIONS \
-    (CO_OPT_TPDO_NO_CHANGE_DETECT | CO_OPT_TPDO_MASK_254 | CO_OPT_TPDO_MASK_255)
-
 /* One pass over the TPDOs: RTR answers and synchronous transmissions held
- * back, event-driven TPDOs as CiA 301 has them (@p plain) or as one of
- * EVENT_OPTIONS changes them. Inlined twice with a constant @p plain, so the
- * usual pass pays nothing for the options. */
-CO_INLINE uint32_t tpdo_pass(co_node_t *node, uint32_t next, bool plain)
+ * back, event-driven TPDOs with (@p detect) or without change detection
+ * (CO_OPT_TPDO_NO_CHANGE_DETECT). Inlined twice with a constant @p detect,
+ * so the usual pass pays nothing for the option. */
+CO_INLINE uint32_t tpdo_pass(co_node_t *node, uint32_t next, bool detect)
 {
     uint16_t n = (uint16_t)(node->dev->n_rpdo + node->dev->n_tpdo);
 
@@ -340,14 +331,14 @@ CO_INLINE uint32_t tpdo_pass(co_node_t *node, uint32_t next, bool plain)
             }
         }
         if (type >= 254U) {
-            next = plain ? event_driven(node, i, next, false) : event_option(node, i, next);
+            next = detect ? event_driven(node, i, next) : event_requested(node, i, next);
         }
     }
     return next;
 }
 
-/* The pass of a device with one of EVENT_OPTIONS. */
-static CO_NOINLINE uint32_t tpdo_pass_option(co_node_t *node, uint32_t next)
+/* The pass of a device with CO_OPT_TPDO_NO_CHANGE_DETECT. */
+static CO_NOINLINE uint32_t tpdo_pass_requested(co_node_t *node, uint32_t next)
 {
     return tpdo_pass(node, next, false);
 }
@@ -357,8 +348,8 @@ uint32_t co_tpdo_process(co_node_t *node, uint32_t next)
     if (node->nmt != (uint8_t)CO_NMT_OPERATIONAL) {
         return next;
     }
-    if (co_opt(node, EVENT_OPTIONS)) {
-        return tpdo_pass_option(node, next);
+    if (co_opt(node, CO_OPT_TPDO_NO_CHANGE_DETECT)) {
+        return tpdo_pass_requested(node, next);
     }
     return tpdo_pass(node, next, true);
 }

@@ -216,7 +216,7 @@ CO_INLINE uint32_t event_due(co_node_t *node, uint16_t i, uint32_t next, const u
 /* CO_OPT_TPDO_MASK_254/255: does the change from the data last sent to
  * @p now touch a bit of TPDO i's change mask (co_dev_t.tpdo_mask)? True
  * when no mask applies to its transmission type. */
-static bool masked_change(const co_node_t *node, uint16_t i, const uint8_t *now)
+static CO_NOINLINE bool masked_change(const co_node_t *node, uint16_t i, const uint8_t *now)
 {
     const co_pdo_t *p = &node->pdo[i];
     uint32_t opt = (co_pdo_type(node, i) == 254U) ? CO_OPT_TPDO_MASK_254 : CO_OPT_TPDO_MASK_255;

@@ -89,6 +89,9 @@ static co_err_t check_entry(const co_node_t *node, bool tx, uint32_t v, uint8_t 
     if ((*bits == 0U) || (*bits > (uint8_t)(size * 8U))) {
         return CO_ERR_PARAM_INCOMPAT;
     }
+    if (((*bits & 7U) != 0U) && co_opt(node, CO_OPT_PDO_MAP_BYTES)) {
+        return CO_ERR_NO_MAP; /* granularity 8: whole bytes only */
+    }
     return CO_OK;
 }
 
@@ -206,7 +209,8 @@ static co_err_t check_comm_write(const co_node_t *node, uint16_t i, uint8_t sub,
         if ((v & 0x3FFFF800UL) != 0U) {
             return CO_ERR_VALUE; /* 29-bit identifiers are not supported */
         }
-        if (valid && new_valid && ((v & 0x7FFUL) != (cur & 0x7FFUL))) {
+        if (valid && new_valid && ((v & 0x7FFUL) != (cur & 0x7FFUL)) &&
+            !co_opt(node, CO_OPT_PDO_COBID_WHILE_VALID)) {
             return CO_ERR_VALUE; /* the CAN-ID changes only while invalid */
         }
         if (new_valid && restricted_cob(v & 0x7FFUL)) {
@@ -240,6 +244,10 @@ co_err_t co_pdo_check_write(const co_node_t *node, uint16_t index, uint8_t sub,
 
     if (!pdo_of(node, index, &i, &is_map)) {
         return CO_OK;
+    }
+    if (co_opt(node, CO_OPT_PDO_CONFIG_PREOP_ONLY) &&
+        (node->nmt != (uint8_t)CO_NMT_PRE_OPERATIONAL)) {
+        return CO_ERR_STORE_STATE; /* the device configures PDOs in Pre-operational only */
     }
     if (is_map) {
         if (((sub == 0U) && (len != 1U)) || ((sub != 0U) && (len != 4U))) {

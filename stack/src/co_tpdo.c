@@ -185,35 +185,83 @@ void co_tpdo_rtr(co_node_t *node, uint16_t i)
     }
 }
 
-/* Event-driven (254/255): change of the data, a request, or the event timer,
- * no sooner than the inhibit time allows. Returns the next deadline. */
-static uint32_t event_driven(co_node_t *node, uint16_t i, uint32_t next)
+/* The event timer and the inhibit time of an event-driven TPDO, at now. */
+CO_INLINE void event_timers(const co_node_t *node, co_pdo_t *p)
 {
-    co_pdo_t *p = &node->pdo[i];
-    uint8_t now[8];
-
     if (((p->flags & CO_PDO_F_TIMER) != 0U) && co_time_reached(node->now, p->timer)) {
         p->flags |= CO_PDO_F_EVENT;
     }
     if (((p->flags & CO_PDO_F_INHIBIT) != 0U) && co_time_reached(node->now, p->inhibit)) {
         p->flags &= (uint16_t)~CO_PDO_F_INHIBIT;
     }
+}
+
+/* A due event-driven TPDO (CO_PDO_F_EVENT): sent with @p now unless the
+ * inhibit time holds it back; then the next deadline. */
+CO_INLINE uint32_t event_due(co_node_t *node, uint16_t i, uint32_t next, const uint8_t *now)
+{
+    const co_pdo_t *p = &node->pdo[i];
+    uint32_t at = next;
+
+    if ((p->flags & CO_PDO_F_INHIBIT) != 0U) {
+        at = co_deadline_min(node->now, next, p->inhibit);
+    } else if (!send_event(node, i, now)) {
+        at = co_deadline_min(node->now, next, node->now + RETRY_US);
+    } else {
+        /* sent */
+    }
+    return at;
+}
+
+/* CO_OPT_TPDO_MASK_254/255: does the change from the data last sent to
+ * @p now touch a bit of TPDO i's change mask (co_dev_t.tpdo_mask)? True
+ * when no mask applies to its transmission type. */
+static CO_NOINLINE bool masked_change(const co_node_t *node, uint16_t i, const uint8_t *now)
+{
+    const co_pdo_t *p = &node->pdo[i];
+    uint32_t opt = (co_pdo_type(node, i) == 254U) ? CO_OPT_TPDO_MASK_254 : CO_OPT_TPDO_MASK_255;
+    uint16_t off;
+    uint32_t mask = 0U;
+
+    if (!co_opt(node, opt) || (node->dev->tpdo_mask == NULL)) {
+        return true;
+    }
+    off = node->dev->tpdo_mask[i - node->dev->n_rpdo];
+    for (uint8_t b = 0U; b < 8U; b++) {
+        if ((b & 3U) == 0U) {
+            mask = co_ram_u32(node, (uint16_t)(off + b)); /* sub 1: bytes 0..3, sub 2: 4..7 */
+        }
+        uint8_t bits = (uint8_t)(mask >> (8U * (b & 3U)));
+        if (((uint8_t)(now[b] ^ p->data[b]) & bits) != 0U) {
+            return true;
+        }
+    }
+    return false;
+}
+
+/* Event-driven (254/255): change of the data (with CO_OPT_TPDO_MASK_*, of
+ * the bits of its change mask; looked at only when the data changed), a
+ * request, or the event timer, no sooner than the inhibit time allows.
+ * Returns the next deadline. */
+static uint32_t event_driven(co_node_t *node, uint16_t i, uint32_t next)
+{
+    co_pdo_t *p = &node->pdo[i];
+    uint8_t now[8];
+
+    event_timers(node, p);
     if ((p->flags & (CO_PDO_F_EVENT | CO_PDO_F_INHIBIT)) !=
         (CO_PDO_F_EVENT | CO_PDO_F_INHIBIT)) {
         /* sample unless already due and waiting for the inhibit time anyway */
         build(node, i, now);
-        if (((p->flags & CO_PDO_F_SENT) == 0U) || (memcmp(now, p->data, 8U) != 0)) {
+        if (((p->flags & CO_PDO_F_SENT) == 0U) ||
+            ((memcmp(now, p->data, 8U) != 0) &&
+             (!co_opt(node, CO_OPT_TPDO_MASK_254 | CO_OPT_TPDO_MASK_255) ||
+              masked_change(node, i, now)))) {
             p->flags |= CO_PDO_F_EVENT;
         }
     }
     if ((p->flags & CO_PDO_F_EVENT) != 0U) {
-        if ((p->flags & CO_PDO_F_INHIBIT) != 0U) {
-            next = co_deadline_min(node->now, next, p->inhibit);
-        } else if (!send_event(node, i, now)) {
-            next = co_deadline_min(node->now, next, node->now + RETRY_US);
-        } else {
-            /* sent */
-        }
+        next = event_due(node, i, next, now);
     }
     if ((p->flags & CO_PDO_F_TIMER) != 0U) {
         next = co_deadline_min(node->now, next, p->timer);
@@ -221,13 +269,45 @@ static uint32_t event_driven(co_node_t *node, uint16_t i, uint32_t next)
     return next;
 }
 
-uint32_t co_tpdo_process(co_node_t *node, uint32_t next)
+/* CO_OPT_TPDO_NO_CHANGE_DETECT: event-driven (254/255) without change
+ * detection: a request or the event timer (which runs from the start of
+ * Operational, when nothing has been sent), sampled when it goes out. */
+static uint32_t event_requested(co_node_t *node, uint16_t i, uint32_t next)
+{
+    co_pdo_t *p = &node->pdo[i];
+    uint32_t at = next;
+
+    event_timers(node, p);
+    if ((p->flags & CO_PDO_F_TIMER) == 0U) {
+        uint32_t ev = co_pdo_event_us(node, i);
+        if (ev != 0U) {
+            p->timer = node->now + ev;
+            p->flags |= CO_PDO_F_TIMER;
+        }
+    }
+    if ((p->flags & CO_PDO_F_EVENT) != 0U) {
+        if ((p->flags & CO_PDO_F_INHIBIT) != 0U) {
+            at = co_deadline_min(node->now, at, p->inhibit);
+        } else {
+            uint8_t now[8];
+            build(node, i, now); /* sampled when it goes out */
+            at = event_due(node, i, at, now);
+        }
+    }
+    if ((p->flags & CO_PDO_F_TIMER) != 0U) {
+        at = co_deadline_min(node->now, at, p->timer);
+    }
+    return at;
+}
+
+/* One pass over the TPDOs: RTR answers and synchronous transmissions held
+ * back, event-driven TPDOs with (@p detect) or without change detection
+ * (CO_OPT_TPDO_NO_CHANGE_DETECT). Inlined twice with a constant @p detect,
+ * so the usual pass pays nothing for the option. */
+CO_INLINE uint32_t tpdo_pass(co_node_t *node, uint32_t next, bool detect)
 {
     uint16_t n = (uint16_t)(node->dev->n_rpdo + node->dev->n_tpdo);
 
-    if (node->nmt != (uint8_t)CO_NMT_OPERATIONAL) {
-        return next;
-    }
     for (uint16_t i = node->dev->n_rpdo; i < n; i++) {
         co_pdo_t *p = &node->pdo[i];
         uint8_t type;
@@ -251,8 +331,25 @@ uint32_t co_tpdo_process(co_node_t *node, uint32_t next)
             }
         }
         if (type >= 254U) {
-            next = event_driven(node, i, next);
+            next = detect ? event_driven(node, i, next) : event_requested(node, i, next);
         }
     }
     return next;
+}
+
+/* The pass of a device with CO_OPT_TPDO_NO_CHANGE_DETECT. */
+static CO_NOINLINE uint32_t tpdo_pass_requested(co_node_t *node, uint32_t next)
+{
+    return tpdo_pass(node, next, false);
+}
+
+uint32_t co_tpdo_process(co_node_t *node, uint32_t next)
+{
+    if (node->nmt != (uint8_t)CO_NMT_OPERATIONAL) {
+        return next;
+    }
+    if (co_opt(node, CO_OPT_TPDO_NO_CHANGE_DETECT)) {
+        return tpdo_pass_requested(node, next);
+    }
+    return tpdo_pass(node, next, true);
 }

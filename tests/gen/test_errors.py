@@ -240,6 +240,43 @@ def test_unknown_option(tmp_path):
     assert "unknown option 'NO_SUCH'" in r.stderr and "SDO_NO_BLOCK" in r.stderr
 
 
+def with_options(text: str, *opts: str) -> str:
+    names = ", ".join(f'"{o}"' for o in opts)
+    return BASE.replace('device_type = 0', f'device_type = 0\noptions = [{names}]') + \
+        textwrap.dedent(text)
+
+
+def test_map_bytes_needs_granularity_8(tmp_path):
+    src = tmp_path / "bad.toml"
+    src.write_text(with_options("[eds]\ngranularity = 1\n", "PDO_MAP_BYTES"))
+    r = run_odgen(src, tmp_path / "out")
+    assert r.returncode == 1
+    assert "granularity: option PDO_MAP_BYTES maps whole bytes only" in r.stderr
+    src.write_text(with_options("[eds]\ngranularity = 8\n", "PDO_MAP_BYTES"))
+    assert run_odgen(src, tmp_path / "out").returncode == 0
+
+
+def test_map_bytes_refuses_a_bit_dummy(tmp_path):
+    rpdo = """
+        [[object]]
+        index = 0x1400
+        name = "RPDO1 communication parameter"
+        subs = [
+          { sub = 1, name = "COB-ID", type = "UNSIGNED32", default = "$NODEID+0x200" },
+          { sub = 2, name = "Transmission type", type = "UNSIGNED8", default = 255 },
+        ]
+        [eds]
+        dummy_usage = [1]
+        """ + tpdo_map(0x00010001, index=0x1600)
+    src = tmp_path / "bad.toml"
+    src.write_text(with_options(rpdo))
+    assert run_odgen(src, tmp_path / "out").returncode == 0
+    src.write_text(with_options(rpdo, "PDO_MAP_BYTES"))
+    r = run_odgen(src, tmp_path / "out2")
+    assert r.returncode == 1
+    assert "object 0x1600 sub 1" in r.stderr and "PDO_MAP_BYTES" in r.stderr
+
+
 def test_options_come_from_the_core_header():
     from model import core_options
     opts = core_options()
@@ -312,6 +349,66 @@ def test_pdo_table_is_generated(tmp_path):
     c = (tmp_path / "out" / "bad.c").read_text()
     assert "static const co_pdo_desc_t pdo[]" in c
     assert ".n_rpdo = 0U," in c and ".n_tpdo = 1U," in c
+
+
+def mask_obj(index: int, hook: bool = False, subs: str | None = None) -> str:
+    body = subs or ('array = 2\nelement = { type = "UNSIGNED32", access = "rw", '
+                    'default = 0xFFFFFFFF }')
+    return f"""
+[[object]]
+index = 0x{index:04X}
+name = "TPDO change mask"
+{body}
+{'hook = true' if hook else ''}
+"""
+
+
+def test_tpdo_mask_table_is_generated(tmp_path):
+    """[device] tpdo_mask names TPDO1's change mask (TPDO n's at + n); the C
+    table holds where sub 1 of each lives."""
+    src = tmp_path / "bad.toml"
+    src.write_text(with_options(tpdo_comm() + tpdo_comm(0x1801, cob=0x80000280)
+                                + tpdo_map(0x10010008) + tpdo_map(0x10010008, index=0x1A01)
+                                + mask_obj(0x2100) + mask_obj(0x2101), "TPDO_MASK_255")
+                   .replace('options = [', 'tpdo_mask = 0x2100\noptions = ['))
+    r = run_odgen(src, tmp_path / "out")
+    assert r.returncode == 0, r.stderr
+    c = (tmp_path / "out" / "bad.c").read_text()
+    assert "static const uint16_t tpdo_mask[] = {" in c
+    assert "/* 0x2100 */" in c and "/* 0x2101 */" in c
+    assert ".tpdo_mask = tpdo_mask," in c
+    # without masks the field is NULL
+    plain = tmp_path / "plain"
+    plain.mkdir()
+    _, r = generate(plain, tpdo_comm() + tpdo_map(0x10010008))
+    assert r.returncode == 0, r.stderr
+    assert ".tpdo_mask = NULL," in (plain / "out" / "bad.c").read_text()
+
+
+@pytest.mark.parametrize("opts, mask, objs, needle", [
+    (["TPDO_MASK_255"], None, "", "option TPDO_MASK_255 needs tpdo_mask"),
+    ([], 0x2100, mask_obj(0x2100), "tpdo_mask is only used with option TPDO_MASK_254"),
+    (["TPDO_MASK_254"], 0x1000, "", "tpdo_mask must be a manufacturer object"),
+    (["TPDO_MASK_254"], 0x2100, "", "object 0x2100 ([device] tpdo_mask, TPDO1): missing"),
+    (["TPDO_MASK_254"], 0x2100, mask_obj(0x2100, hook=True), "without a hook"),
+    (["TPDO_MASK_254"], 0x2100,
+     mask_obj(0x2100, subs='array = 2\nelement = { type = "UNSIGNED16" }'),
+     "sub 1 and 2, UNSIGNED32"),
+    (["TPDO_MASK_254"], 0x2100,
+     mask_obj(0x2100, subs='subs = [{ sub = 1, name = "A", type = "UNSIGNED32" },\n'
+                           '{ sub = 2, name = "B", type = "UNSIGNED32", storage = "none" }]'),
+     "back to back"),
+], ids=["option-without-index", "index-without-option", "not-manufacturer", "missing",
+        "hooked", "not-u32", "not-adjacent"])
+def test_tpdo_mask_mistakes(tmp_path, opts, mask, objs, needle):
+    text = with_options(tpdo_comm() + tpdo_map(0x10010008) + objs, *opts)
+    if mask is not None:
+        text = text.replace("device_type = 0", f"device_type = 0\ntpdo_mask = {mask:#x}")
+    src = tmp_path / "bad.toml"
+    src.write_text(text)
+    r = run_odgen(src, tmp_path / "out")
+    assert r.returncode == 1, r.stderr
+    assert needle in r.stderr, r.stderr
 
 
 # ------------------------------------------- include and identity layout

@@ -134,18 +134,6 @@ void sr_expect_at(seedrun_t *s, const char *text, const char *file, int line)
     }
 }
 
-unsigned sr_skip_cob(seedrun_t *s, uint16_t cob, uint8_t dlc)
-{
-    unsigned n = 0;
-
-    while ((s->bus.read_pos < s->bus.n_log) && (s->bus.log[s->bus.read_pos].id == cob)) {
-        assert_int_equal(s->bus.log[s->bus.read_pos].dlc, dlc);
-        s->bus.read_pos++;
-        n++;
-    }
-    return n;
-}
-
 int64_t sr_get(seedrun_t *s, uint16_t index, uint8_t sub)
 {
     uint8_t b[8] = {0};

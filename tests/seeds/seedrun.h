@@ -54,10 +54,6 @@ void sr_sdo(seedrun_t *s, const char *req, const char *resp);
 void sr_expect_at(seedrun_t *s, const char *text, const char *file, int line);
 #define sr_expect(s, text) sr_expect_at((s), (text), __FILE__, __LINE__)
 
-/** Skip every frame on @p cob (a data change sent by the present core, see
- *  the test), asserting their length; the number skipped. */
-unsigned sr_skip_cob(seedrun_t *s, uint16_t cob, uint8_t dlc);
-
 /** Read a value through the dictionary (as the application). */
 int64_t sr_get(seedrun_t *s, uint16_t index, uint8_t sub);
 

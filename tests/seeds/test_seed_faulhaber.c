@@ -10,11 +10,12 @@
  * drift, its -1 rpm at rest), the frame layout is asserted with the
  * simulation's value, and a comment says so.
  *
- * Known gap of the present core (see the seed report): FAULHABER's only
- * TPDO event is a statusword change; the core also sends an event-driven
- * TPDO when its mapped data change and once on entering Operational. The
- * tests assert the statusword-change TPDOs exactly and name every frame
- * that comes from the core's change detection.
+ * TPDOs (digest 4.3, 9.1 item 1): the only event of a type-255 TPDO is a
+ * statusword change. The profile requests the TPDOs that map the statusword
+ * on every change (CO402_OPT_TPDO_ON_SW); the core's own change detection is
+ * off for this device (CO_OPT_TPDO_NO_CHANGE_DETECT), so nothing goes out on
+ * NMT start or because a position or velocity changed, and TxPDO4 (no
+ * statusword) only on RTR or SYNC. The tests assert every frame.
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -69,26 +70,12 @@ static int setup_trace(void **state)
     return 0;
 }
 
-/* NMT start of node 2. The present core sends every event-driven TPDO once
- * on entering Operational (CiA 301); the FAULHABER sends none (its only TPDO
- * event is a statusword change): these four frames are the core's. */
-static void start_node(uint16_t sw, int32_t pos)
+/* NMT start of node 2: no TPDO goes out (the trace, 7.1 step 1, shows none;
+ * a statusword change is the only event). */
+static void start_node(void)
 {
-    char f[64];
-
     tb_send(&S->bus, "000 01 02");
     sr_poll(S);
-    snprintf(f, sizeof f, "182 %02X %02X", sw & 0xFFU, sw >> 8);
-    sr_expect(S, f);
-    snprintf(f, sizeof f, "282 %02X %02X %02X %02X %02X %02X", sw & 0xFFU, sw >> 8,
-             (unsigned)pos & 0xFFU, ((unsigned)pos >> 8) & 0xFFU, ((unsigned)pos >> 16) & 0xFFU,
-             (unsigned)pos >> 24);
-    sr_expect(S, f);
-    snprintf(f, sizeof f, "382 %02X %02X 00 00 00 00", sw & 0xFFU, sw >> 8);
-    sr_expect(S, f);
-    snprintf(f, sizeof f, "482 %02X %02X %02X %02X 00 00 00 00", (unsigned)pos & 0xFFU,
-             ((unsigned)pos >> 8) & 0xFFU, ((unsigned)pos >> 16) & 0xFFU, (unsigned)pos >> 24);
-    sr_expect(S, f);
     tb_expect_none(&S->bus);
 }
 
@@ -124,44 +111,13 @@ static void expect_sw_pdos_moving(uint16_t sw)
     }
 }
 
-/* While the motor turns, the present core also sends TPDO2/3/4 whenever
- * position or velocity change (not a FAULHABER event). Skip those frames
- * up to the next TPDO1: they carry the statusword @p sw of the last change. */
-static void skip_data_change_pdos(uint16_t sw)
+/* Run until the TPDOs of the next statusword change come: statusword @p sw
+ * (nothing else is sent in between). */
+static void run_until_sw(uint16_t sw, uint32_t max_ms)
 {
-    for (;;) {
-        const co_frame_t *f;
-        if (S->bus.read_pos >= S->bus.n_log) {
-            return;
-        }
-        f = &S->bus.log[S->bus.read_pos];
-        if (f->id == 0x182U) {
-            return;
-        }
-        if (f->id == 0x482U) {
-            assert_int_equal(f->dlc, 8U);
-        } else {
-            assert_true((f->id == 0x282U) || (f->id == 0x382U));
-            assert_int_equal(f->dlc, 6U);
-            assert_int_equal(f->data[0] | (f->data[1] << 8), sw);
-        }
-        S->bus.read_pos++;
-    }
-}
-
-/* Run until TPDO1 (statusword @p sw) comes, skipping data-change TPDOs. */
-static void run_until_sw(uint16_t from_sw, uint16_t sw, uint32_t max_ms)
-{
-    for (uint32_t t = 0; t < max_ms; t++) {
-        skip_data_change_pdos(from_sw);
-        if ((S->bus.read_pos < S->bus.n_log) && (S->bus.log[S->bus.read_pos].id == 0x182U)) {
-            expect_sw_pdos_moving(sw);
-            return;
-        }
-        sr_run(S, 1);
-    }
-    print_error("statusword 0x%04X not sent within %u ms\n", sw, (unsigned)max_ms);
-    fail();
+    (void)sr_run_until_frame(S, max_ms);
+    expect_sw_pdos_moving(sw);
+    tb_expect_none(&S->bus);
 }
 
 /* ------------------------------------------------------ identity, SDO */
@@ -255,7 +211,7 @@ static void store_restore(void **state)
 static void factory_restore_only_when_disabled(void **state)
 {
     (void)state;
-    start_node(0x0040, 0);
+    start_node();
     sr_sdo_write(S, 0x6040, 0, 0x0006, 2);
     sr_poll(S);
     expect_sw_pdos(0x0021, 0, 0);
@@ -270,8 +226,8 @@ static void factory_restore_only_when_disabled(void **state)
 static void trace_velocity_mode(void **state)
 {
     (void)state;
-    /* 1: NMT start (the core's start-up TPDOs, see start_node) */
-    start_node(0x0040, 13011);
+    /* 1: NMT start: no TPDO */
+    start_node();
     /* 2-6: shutdown 0x000E -> Ready to switch on. The real drive sent
      * velocity -1 rpm (FF FF FF FF) at rest; the simulated motor stands: 0. */
     sr_sdo(S, "2B 40 60 00 0E 00 00 00", "60 40 60 00 00 00 00 00");
@@ -303,8 +259,8 @@ static void trace_velocity_mode(void **state)
     expect_sw_pdos(0x1027, 13011, 0);
     /* 27-29: moving; 30-32: target velocity reached (within 20 rpm for
      * 200 ms); positions and speeds are the simulation's */
-    run_until_sw(0x1027, 0x0027, 50);
-    run_until_sw(0x0027, 0x0427, 400);
+    run_until_sw(0x0027, 50);
+    run_until_sw(0x0427, 400);
     sr_between(sr_get(S, 0x606C, 0), 80, 120);
     sr_between(sr_get(S, 0x6064, 0), 13011 + 500, 13011 + 2000);
     /* TPDO4 (no statusword) is never a statusword-change frame */
@@ -321,7 +277,7 @@ static void nmt_guarding_heartbeat(void **state)
     sr_expect(S, "702 7F");
     tb_send(&S->bus, "702 R");
     sr_expect(S, "702 FF");
-    start_node(0x0040, 0);
+    start_node();
     tb_send(&S->bus, "702 R");
     sr_expect(S, "702 05");
     tb_send(&S->bus, "702 R");
@@ -363,7 +319,7 @@ static void heartbeat_consumer_and_error_behaviour(void **state)
 {
     (void)state;
     sr_sdo(S, "23 16 10 01 DC 05 7F 00", "60 16 10 01 00 00 00 00");
-    start_node(0x0040, 0);
+    start_node();
     tb_send(&S->bus, "77F 05");
     sr_run(S, 1000);
     tb_send(&S->bus, "77F 05");
@@ -385,7 +341,7 @@ static void heartbeat_consumer_and_error_behaviour(void **state)
     /* 0x1029.1 = 1: no state change */
     tb_send(&S->bus, "000 01 02");
     sr_poll(S);
-    tb_flush(&S->bus);
+    tb_expect_none(&S->bus);
     sr_sdo(S, "2F 29 10 01 01 00 00 00", "60 29 10 01 00 00 00 00");
     sr_sdo(S, "2F 29 10 01 03 00 00 00", "80 29 10 01 31 00 09 06");
     sr_run(S, 1500);
@@ -405,7 +361,7 @@ static void heartbeat_loss_with_fault_mask(void **state)
     sr_sdo(S, "2B 21 23 02 01 01 00 00", "60 21 23 02 00 00 00 00");
     sr_sdo(S, "2F 29 10 01 01 00 00 00", "60 29 10 01 00 00 00 00");
     sr_sdo(S, "23 16 10 01 DC 05 7F 00", "60 16 10 01 00 00 00 00");
-    start_node(0x0040, 0);
+    start_node();
     sr_sdo_write(S, 0x6040, 0, 0x0006, 2);
     sr_poll(S);
     expect_sw_pdos(0x0021, 0, 0);
@@ -442,12 +398,13 @@ static void heartbeat_loss_with_fault_mask(void **state)
 /* CO402_OPT_TPDO_ON_SW: every statusword change requests the TPDOs that map
  * the statusword (1, 2, 3; not TxPDO4), even when the statusword is back at
  * the value last sent before the node runs (0x23 -> 0x21 -> 0x23 between
- * two polls): they go out once, with the present data. Without the request
- * the core's change detection would send nothing here. */
+ * two polls): they go out once, with the present data. The core's own
+ * change detection is off (CO_OPT_TPDO_NO_CHANGE_DETECT): the request is
+ * what sends them. */
 static void statusword_change_requests_tpdos(void **state)
 {
     (void)state;
-    start_node(0x0040, 0);
+    start_node();
     sr_sdo_write(S, 0x6040, 0, 0x0006, 2);
     sr_sdo_write(S, 0x6040, 0, 0x0007, 2);
     sr_poll(S);
@@ -475,7 +432,7 @@ static void enable_by_sdo_and_rpdo(void **state)
     sr_sdo(S, "2B 40 60 00 06 00 00 00", "60 40 60 00 00 00 00 00");
     sr_sdo(S, "40 41 60 00 00 00 00 00", "4B 41 60 00 40 00 00 00");
     sr_sdo(S, "40 40 60 00 00 00 00 00", "4B 40 60 00 06 00 00 00");
-    start_node(0x0040, 0);
+    start_node();
     sr_sdo(S, "2B 40 60 00 06 00 00 00", "60 40 60 00 00 00 00 00");
     sr_poll(S);
     expect_sw_pdos(0x0021, 0, 0);
@@ -505,9 +462,7 @@ static void enable_by_sdo_and_rpdo(void **state)
     sr_poll(S);
     expect_sw_pdos(0x0007, 0, 0);
     sr_run(S, 50);
-    sr_expect(S, "182 07 04"); /* at rest: bit 10 */
-    sr_skip_cob(S, 0x282, 6);
-    sr_skip_cob(S, 0x382, 6);
+    expect_sw_pdos(0x0407, 0, 0); /* at rest: bit 10 */
     tb_send(&S->bus, "202 0F 00");
     sr_poll(S);
     expect_sw_pdos(0x0027, 0, 0);
@@ -525,7 +480,7 @@ static void enable_by_sdo_and_rpdo(void **state)
 static void fault_and_emcy_example(void **state)
 {
     (void)state;
-    start_node(0x0040, 0);
+    start_node();
     /* 7.7: 0x2321.02 = 0x0001: over-current -> Fault; it also sets the bit
      * in the emergency mask (already set by default: 0xFFFF) */
     sr_sdo_write(S, 0x2321, 1, 0x0000, 2);
@@ -590,7 +545,7 @@ static void fault_and_emcy_example(void **state)
 static void errors_do_not_fault_by_default(void **state)
 {
     (void)state;
-    start_node(0x0040, 0);
+    start_node();
     faulhaber_mc_error(&S->drv, FAULHABER_ERR_TEMPERATURE, true);
     sr_poll(S);
     sr_expect(S, "082 10 43 09 08 00 00 00 00");
@@ -622,10 +577,11 @@ static void enable(void)
 static void relative_move(void **state)
 {
     (void)state;
-    start_node(0x0040, 0);
+    start_node();
     enable();
     sr_poll(S);
-    tb_flush(&S->bus); /* the enable sequence's TPDOs */
+    expect_sw_pdos(0x0027, 0, 0); /* three writes, one poll: the last statusword */
+    tb_expect_none(&S->bus);
     sr_sdo(S, "2F 60 60 00 01 00 00 00", "60 60 60 00 00 00 00 00");
     sr_sdo(S, "23 7A 60 00 10 27 00 00", "60 7A 60 00 00 00 00 00");
     sr_sdo(S, "2B 40 60 00 7F 00 00 00", "60 40 60 00 00 00 00 00");
@@ -634,7 +590,7 @@ static void relative_move(void **state)
     sr_sdo(S, "2B 40 60 00 6F 00 00 00", "60 40 60 00 00 00 00 00");
     sr_poll(S);
     expect_sw_pdos_moving(0x0027); /* bit 4 cleared: bit 12 follows */
-    run_until_sw(0x0027, 0x0427, 2000);
+    run_until_sw(0x0427, 2000);
     sr_between(sr_get(S, 0x6064, 0), 10000 - 20, 10000 + 20);
     /* a second 0x007F after the rising edge: +10000 from the last target */
     sr_sdo(S, "2B 40 60 00 7F 00 00 00", "60 40 60 00 00 00 00 00");
@@ -643,7 +599,7 @@ static void relative_move(void **state)
     sr_sdo(S, "2B 40 60 00 0F 00 00 00", "60 40 60 00 00 00 00 00");
     sr_poll(S);
     expect_sw_pdos_moving(0x0027);
-    run_until_sw(0x0027, 0x0427, 2000);
+    run_until_sw(0x0427, 2000);
     sr_between(sr_get(S, 0x6064, 0), 20000 - 20, 20000 + 20);
     /* the same through RxPDO2 (controlword + target): 0F then 7F */
     tb_send(&S->bus, "302 0F 00 10 27 00 00");
@@ -653,7 +609,7 @@ static void relative_move(void **state)
     tb_send(&S->bus, "302 0F 00 10 27 00 00");
     sr_poll(S);
     expect_sw_pdos_moving(0x0027);
-    run_until_sw(0x0027, 0x0427, 2000);
+    run_until_sw(0x0427, 2000);
     sr_between(sr_get(S, 0x6064, 0), 30000 - 20, 30000 + 20);
 }
 
@@ -662,33 +618,36 @@ static void relative_move(void **state)
 static void velocity_host_example(void **state)
 {
     (void)state;
-    start_node(0x0040, 0);
+    start_node();
     enable();
     sr_poll(S);
-    tb_flush(&S->bus);
-    /* (the TPDOs sent while the motor turns are flushed before each SDO) */
+    expect_sw_pdos(0x0027, 0, 0);
+    /* pv and 500 rpm before the speed-0 window (200 ms) ends: the next
+     * statusword change is target velocity reached */
     sr_sdo(S, "2F 60 60 00 03 00 00 00", "60 60 60 00 00 00 00 00");
     sr_sdo(S, "23 FF 60 00 F4 01 00 00", "60 FF 60 00 00 00 00 00");
-    sr_run(S, 500);
-    tb_flush(&S->bus);
+    run_until_sw(0x0427, 500);
+    sr_run(S, 200);
+    tb_expect_none(&S->bus); /* turning at 500 rpm: no statusword change, no TPDO */
     sr_between(sr_get(S, 0x606C, 0), 490, 510);
-    assert_int_equal(sr_get(S, 0x6041, 0), 0x0427);
-    /* stop: 0x60FF = 0 -> speed 0 (bit 12) and target reached */
+    /* stop: 0x60FF = 0 -> the set-point clears target reached, then target
+     * (0 rpm) reached, then speed 0 (bit 12) */
     sr_sdo(S, "23 FF 60 00 00 00 00 00", "60 FF 60 00 00 00 00 00");
-    sr_run(S, 500);
-    tb_flush(&S->bus);
-    assert_int_equal(sr_get(S, 0x6041, 0), 0x1427);
+    run_until_sw(0x0027, 10);
+    run_until_sw(0x0427, 500);
+    run_until_sw(0x1427, 500);
     /* RxPDO3: controlword + target velocity */
     tb_send(&S->bus, "402 0F 00 F4 01 00 00");
-    sr_run(S, 500);
-    tb_flush(&S->bus);
+    run_until_sw(0x1027, 10);
+    run_until_sw(0x0027, 100);
+    run_until_sw(0x0427, 500);
     sr_between(sr_get(S, 0x606C, 0), 490, 510);
     /* stop by disable operation: Switched on after the ramp */
     sr_sdo(S, "2B 40 60 00 07 00 00 00", "60 40 60 00 00 00 00 00");
+    run_until_sw(0x0023, 100);
     sr_run(S, 100);
-    assert_int_equal(sr_get(S, 0x6041, 0), 0x0023);
+    tb_expect_none(&S->bus);
     sr_between(sr_get(S, 0x606C, 0), -10, 10); /* stopped below 0x606F, then off */
-    tb_flush(&S->bus);
 }
 
 /* Section 6.6: homing with method 20 (default) on the positive home
@@ -697,11 +656,12 @@ static void velocity_host_example(void **state)
 static void homing(void **state)
 {
     (void)state;
-    start_node(0x0040, 0);
+    start_node();
     enable();
     sr_sdo(S, "2F 60 60 00 06 00 00 00", "60 60 60 00 00 00 00 00");
     sr_poll(S);
-    tb_flush(&S->bus);
+    expect_sw_pdos(0x0427, 0, 0); /* enabled, homing mode at rest: bit 10 */
+    tb_expect_none(&S->bus);
     /* 0x2310 cannot change in homing mode (0x08000022, an assumption) */
     sr_sdo(S, "2F 10 23 03 01 00 00 00", "80 10 23 03 22 00 00 08");
     sr_sdo(S, "2B 40 60 00 1F 00 00 00", "60 40 60 00 00 00 00 00");
@@ -709,12 +669,12 @@ static void homing(void **state)
     expect_sw_pdos_moving(0x0027); /* started: bits 12 and 10 = 0 */
     /* home found: attained while the axis stops (0x1027), then target
      * reached at rest (0x1427) */
-    run_until_sw(0x0027, 0x1027, 5000);
-    run_until_sw(0x1027, 0x1427, 1000);
+    run_until_sw(0x1027, 5000);
+    run_until_sw(0x1427, 1000);
     /* the home switch edge (30000 in the plant) is 0; the axis stopped
      * behind it with 0x609A */
     sr_between(sr_get(S, 0x6064, 0), 1, 3000);
-    tb_flush(&S->bus); /* the core's data-change TPDO4 frames */
+    tb_expect_none(&S->bus); /* TxPDO4 (no statusword) stays silent */
     sr_sdo(S, "2B 40 60 00 0F 00 00 00", "60 40 60 00 00 00 00 00");
     sr_poll(S);
     expect_sw_pdos(0x0427, (int32_t)sr_get(S, 0x6064, 0), 0);
@@ -723,9 +683,9 @@ static void homing(void **state)
     sr_poll(S);
     expect_sw_pdos_moving(0x0027);
     sr_run(S, 100);
-    tb_flush(&S->bus);
+    tb_expect_none(&S->bus); /* searching: the statusword does not change */
     sr_sdo(S, "2B 40 60 00 0F 00 00 00", "60 40 60 00 00 00 00 00");
-    run_until_sw(0x0027, 0x0427, 2000);
+    run_until_sw(0x0427, 2000);
 }
 
 /* ------------------------------------------------- PDO set-up (4.4) */
@@ -733,7 +693,7 @@ static void homing(void **state)
 static void pdo_setup_and_rtr(void **state)
 {
     (void)state;
-    start_node(0x0040, 0);
+    start_node();
     /* TxPDO4 (position, velocity) has no statusword: fetched by RTR */
     tb_send(&S->bus, "482 R8");
     sr_poll(S);
@@ -759,7 +719,7 @@ static void pdo_setup_and_rtr(void **state)
     sr_sdo(S, "23 03 18 01 82 04 00 00", "60 03 18 01 00 00 00 00");
     tb_send(&S->bus, "000 01 02");
     sr_poll(S);
-    tb_flush(&S->bus);
+    tb_expect_none(&S->bus);
     tb_send(&S->bus, "080");
     sr_poll(S);
     sr_expect(S, "482 40 00 01");
@@ -777,9 +737,14 @@ static void pdo_setup_and_rtr(void **state)
     sr_expect(S, "082 00 00 00 00 00 00 00 00"); /* the short one has ended */
     sr_expect(S, "082 20 82 11 00 20 00 00 00");
     assert_int_equal(sr_get(S, 0x2320, 0), 0x2000);
-    sr_expect(S, "182 21 00");
-    sr_skip_cob(S, 0x282, 6);
-    sr_skip_cob(S, 0x382, 6);
+    /* the controlword 0x0006 of the long frame: Ready to switch on; TxPDO4
+     * (now with the statusword, synchronous) waits for the SYNC */
+    expect_sw_pdos(0x0021, 0, 0);
+    tb_expect_none(&S->bus);
+    tb_send(&S->bus, "080");
+    sr_poll(S);
+    sr_expect(S, "482 21 00 01");
+    tb_expect_none(&S->bus);
 }
 
 /* ------------------------------------------------- factor group (4.2) */
@@ -798,14 +763,18 @@ static void factor_group(void **state)
     sr_sdo(S, "23 7A 25 00 B8 0B 00 00", "60 7A 25 00 00 00 00 00");
     sr_sdo(S, "40 7A 60 00 00 00 00 00", "43 7A 60 00 68 01 00 00");
     /* a move of 90 degrees is 750 increments */
-    start_node(0x0040, 0);
+    start_node();
     enable();
     sr_sdo_write(S, 0x607A, 0, 90, 4);
     sr_sdo_write(S, 0x6040, 0, 0x001F, 2);
     sr_run(S, 1000);
     sr_between(sr_get(S, 0x6063, 0), 750 - 20, 750 + 20);
     sr_between(sr_get(S, 0x6064, 0), 88, 92);
-    tb_flush(&S->bus);
+    /* the first TPDOs carry the acknowledged set-point (the enable
+     * sequence had no poll of its own), then target reached */
+    expect_sw_pdos_moving(0x1027);
+    expect_sw_pdos_moving(0x1427);
+    tb_expect_none(&S->bus);
 }
 
 int main(void)

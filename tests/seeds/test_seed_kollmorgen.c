@@ -660,12 +660,10 @@ static void d713_ip_two_axes(void **state)
     dl(2, "23 01 16 02 20 01 C1 60");
     dl(2, "2F 01 16 00 02 00 00 00");
     /* step 9: axis 2 listens on axis 1's COB-ID 301h. The S300 takes the new
-     * CAN-ID while RPDO2 is valid; this core follows CiA 301 and changes a
-     * CAN-ID only while the PDO is invalid (0x06090030), so the example goes
-     * on with the CiA 301 order: invalidate, then the new COB-ID. */
-    tb_xfer(BUS, "602 23 01 14 01 01 03 00 00", "582 80 01 14 01 30 00 09 06");
-    dl(2, "23 01 14 01 02 03 00 80");
-    dl(2, "23 01 14 01 01 03 00 00");
+     * CAN-ID while RPDO2 is valid (CO_OPT_PDO_COBID_WHILE_VALID; CiA 301
+     * would want it invalid first, 0x06090030) */
+    tb_xfer(BUS, "602 23 01 14 01 01 03 00 00", "582 60 01 14 01 00 00 00 00");
+    assert_int_equal(tseed_get(&fx, 1, 0x1401, 1), 0x00000301);
     /* TPDO2 of both axes: 6063h and the manufacturer status 1002h (the
      * manual's comment "dummy" is misprinted) */
     for (uint8_t id = 1U; id <= 2U; id++) {
@@ -878,6 +876,73 @@ static void event_timer_and_mapping(void **state)
     tb_send(BUS, "000 80 03");
     dl(3, "2F 00 1A 00 00 00 00 00");
     tb_xfer(BUS, "603 23 00 1A 01 20 00 10 10", "583 80 00 1A 01 41 00 04 06");
+    /* mappings are taken over byte-wise only (D4.1, CO_OPT_PDO_MAP_BYTES):
+     * 4 or 12 bits of the statusword are refused (the manual names no code
+     * for it; 0604 0041h, "cannot be mapped", is in its list), whole bytes
+     * of it are taken */
+    tb_xfer(BUS, "603 23 00 1A 01 04 00 41 60", "583 80 00 1A 01 41 00 04 06");
+    tb_xfer(BUS, "603 23 00 1A 01 0C 00 41 60", "583 80 00 1A 01 41 00 04 06");
+    dl(3, "23 00 1A 01 08 00 41 60");
+    dl(3, "2F 00 1A 00 01 00 00 00");
+    tb_send(BUS, "000 01 03");
+    tb_expect(BUS, "183 40");
+    tb_flush(BUS);
+}
+
+/* D4.5: the TPDO change masks 2014h..2017h (CO_OPT_TPDO_MASK_255). The
+ * manual's purpose: report a position only once per revolution by masking
+ * its low bits. TPDO3 (statusword + position, type FFh) with 2016h sub 1 =
+ * 0000FFFFh (bytes 0..3: the statusword, not the position's low word) and
+ * sub 2 = 0000FFF0h (bytes 4..5: position bits 20..31, whole revolutions of
+ * 2^20 increments). */
+static void d45_tpdo_masks(void **state)
+{
+    const co_frame_t *f;
+    int32_t last_rev = 0;
+    uint16_t last_sw = 0x0240;
+    unsigned revs = 0U;
+
+    (void)state;
+    dl(3, "23 01 18 01 83 02 00 C0"); /* TPDO2 and TPDO4 off (D7.5) */
+    dl(3, "23 03 18 01 83 04 00 C0");
+    tb_xfer(BUS, "603 40 16 20 01 00 00 00 00", "583 43 16 20 01 FF FF FF FF"); /* default */
+    dl(3, "23 16 20 01 FF FF 00 00");
+    dl(3, "23 16 20 02 F0 FF 00 00");
+    dl(3, "2F 60 60 00 03 00 00 00");
+    tb_send(BUS, "000 01 03");
+    tb_expect(BUS, "183 40 02");
+    tb_expect(BUS, "383 40 02 00 00 00 00"); /* the first one is always sent */
+    tb_expect_none(BUS);
+    enable_by_sdo();
+    dl(3, "23 FF 60 00 00 00 10 00"); /* 2^20 units/s: one revolution per second */
+    tseed_run(&fx, 3500000);
+    /* every TPDO3 is a statusword change (with TPDO1) or a new revolution */
+    while ((f = tb_next(BUS)) != NULL) {
+        uint16_t sw = (uint16_t)tseed_i16(f, 0);
+        if (f->id == 0x183U) {
+            assert_int_equal(f->dlc, 2); /* TPDO1: each statusword change */
+            assert_int_not_equal(sw, last_sw);
+            f = tseed_frame(BUS, 0x383, 6); /* TPDO3 with it */
+            assert_int_equal(tseed_i16(f, 0), (int16_t)sw);
+        } else {
+            /* TPDO3 alone: not the statusword, a new revolution just begun */
+            assert_int_equal(f->id, 0x383U);
+            assert_int_equal(f->dlc, 6);
+            assert_int_equal(sw, last_sw);
+            assert_int_equal(tseed_i32(f, 2) >> 20, last_rev + 1);
+            assert_between(tseed_i32(f, 2) & 0xFFFFF, 0, 2000);
+            revs++;
+        }
+        last_sw = sw;
+        last_rev = tseed_i32(f, 2) >> 20;
+    }
+    /* 3.5 s at 1 rev/s after the acceleration: revolutions 1, 2, 3 */
+    assert_int_equal(tseed_get(&fx, 0, 0x6064, 0) >> 20, 3);
+    assert_int_equal(revs, 3U);
+    /* the masks are plain rw values: 0 silences position changes entirely */
+    dl(3, "23 16 20 02 00 00 00 00");
+    tseed_run(&fx, 1500000);
+    tb_expect_none(BUS);
 }
 
 int main(void)
@@ -900,6 +965,7 @@ int main(void)
         cmocka_unit_test_setup(guarding_loss_is_warning_n04, setup),
         cmocka_unit_test_setup(quick_stop_and_bit7, setup),
         cmocka_unit_test_setup(event_timer_and_mapping, setup),
+        cmocka_unit_test_setup(d45_tpdo_masks, setup),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -298,6 +298,47 @@ static void ex1411_pp_by_pdo(void **state)
     assert_between(tseed_get(&fx, 0, 0x6064, 0), -100, 100);
 }
 
+/* §11 (D§4.4): the transmit masks 2014h..2017h apply to transmission type
+ * 254 (CO_OPT_TPDO_MASK_254). 14.11 again with TPDO1 of type 254 and 2014h
+ * sub 1 = 0000006Fh, the state bits of the statusword: the set-point
+ * handshake (bits 10, 12, 15) sends nothing, a state change does. TPDO2
+ * (type 255) sends every change, as before. */
+static void tpdo_masks_type_254(void **state)
+{
+    (void)state;
+    steps_1_to_4();
+    dl("23 00 14 01 01 02 00 00");
+    dl("23 00 18 01 81 01 00 00");
+    dl("2F 00 18 02 FE 00 00 00");
+    tb_xfer(BUS, "601 40 14 20 01 00 00 00 00", "581 43 14 20 01 FF FF FF FF"); /* default */
+    dl("23 14 20 01 6F 00 00 00");
+    dl("23 81 60 00 E8 03 00 00");
+    dl("23 7A 60 00 A0 86 01 00");
+    tb_send(BUS, "000 01 01");
+    tb_expect(BUS, "181 27 06"); /* the first transmission is not filtered */
+    tb_expect(BUS, "281 27 06 01");
+    tb_expect_none(BUS);
+    tb_send(BUS, "201 5F 00");
+    tseed_run(&fx, 1000);
+    tb_expect(BUS, "281 27 96 01"); /* set-point acknowledged: TPDO2 only */
+    tseed_run(&fx, 1000);
+    tb_expect(BUS, "281 27 92 01");
+    tb_expect_none(BUS);
+    (void)tseed_run_until(&fx, 0, 0x0400, 0x0400, 3000000);
+    tseed_run(&fx, 1000);
+    tb_expect(BUS, "281 27 96 01");
+    tb_send(BUS, "201 4F 00");
+    tseed_run(&fx, 1000);
+    tb_expect(BUS, "281 27 06 01");
+    tb_expect_none(BUS);
+    /* a state change: Shutdown -> Ready to switch on */
+    tb_send(BUS, "201 06 00");
+    tseed_run(&fx, 1000);
+    tb_expect(BUS, "181 21 02");
+    tb_expect(BUS, "281 21 02 01");
+    tb_expect_none(BUS);
+}
+
 /* ------------------------------ D§7.12: sync PDOs, interpolated position */
 
 static void ex1412_to_1414_ip(void **state)
@@ -438,10 +479,20 @@ static void derived_vectors(void **state)
     }
     tb_xfer(BUS, "601 2F 00 16 00 05 00 00 00", "581 80 00 16 00 42 00 04 06");
     dl("2F 00 16 00 02 00 00 00");
-    /* PDO configuration only in Pre-operational */
+    /* PDO configuration only in Pre-operational (§7): mapping and
+     * communication parameters alike (CO_OPT_PDO_CONFIG_PREOP_ONLY) */
     tb_send(BUS, "000 01 01");
     tb_flush(BUS);
     tb_xfer(BUS, "601 2F 00 16 00 00 00 00 00", "581 80 00 16 00 22 00 00 08");
+    tb_xfer(BUS, "601 2F 00 18 02 01 00 00 00", "581 80 00 18 02 22 00 00 08");
+    tb_xfer(BUS, "601 2B 00 18 05 0A 00 00 00", "581 80 00 18 05 22 00 00 08");
+    tb_xfer(BUS, "601 23 00 18 01 81 01 00 80", "581 80 00 18 01 22 00 00 08");
+    tb_xfer(BUS, "601 23 00 14 01 01 02 00 00", "581 80 00 14 01 22 00 00 08");
+    tb_xfer(BUS, "601 40 00 18 02 00 00 00 00", "581 4F 00 18 02 FF 00 00 00");
+    /* back in Pre-operational: taken */
+    tb_send(BUS, "000 80 01");
+    dl("2F 00 18 02 01 00 00 00");
+    dl("23 00 18 01 81 01 00 80");
 }
 
 /* --------------------------------------------------- EMCY (D§2.6) */
@@ -541,6 +592,7 @@ int main(void)
         cmocka_unit_test_setup(ex149_pp_by_sdo, setup),
         cmocka_unit_test_setup(ex1410_homing_by_sdo, setup),
         cmocka_unit_test_setup(ex1411_pp_by_pdo, setup),
+        cmocka_unit_test_setup(tpdo_masks_type_254, setup),
         cmocka_unit_test_setup(ex1412_to_1414_ip, setup),
         cmocka_unit_test_setup(ex1415_pv, setup),
         cmocka_unit_test_setup(vl_mode, setup),

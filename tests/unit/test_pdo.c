@@ -321,6 +321,182 @@ static void event_timer_unit_option(void **state)
     tb_expect(BUS, "181 00 00");
 }
 
+/* CO_OPT_TPDO_NO_CHANGE_DETECT (FAULHABER §3.2, digest 4.3: "the only event
+ * is a change of the statusword", which its profile requests): TPDOs of
+ * type 254/255 go out on co_tpdo_request, the event timer or an RTR, never
+ * because their data changed, and not on entering Operational. */
+static void no_change_detect_option(void **state)
+{
+    (void)state;
+    /* CiA 301: the data once on start, then every change */
+    start_operational(1, 0U);
+    tb_expect(BUS, "181 00 00");
+    pfx_set(&fx, 0x6041, 0, 0x0021, 2);
+    tb_advance(BUS, 0);
+    tb_expect(BUS, "181 21 00");
+    tb_expect_none(BUS);
+    /* the option: silent until asked */
+    start_operational(1, CO_OPT_TPDO_NO_CHANGE_DETECT);
+    tb_advance(BUS, 0);
+    tb_expect_none(BUS);
+    pfx_set(&fx, 0x6041, 0, 0x0021, 2);
+    tb_advance(BUS, 100000);
+    tb_expect_none(BUS);
+    assert_int_equal(co_tpdo_request(&fx.n.node, 0U), CO_OK);
+    tb_advance(BUS, 0);
+    tb_expect(BUS, "181 21 00"); /* the data of the moment it goes out */
+    tb_expect_none(BUS);
+    /* a request is one transmission, also with unchanged data */
+    assert_int_equal(co_tpdo_request(&fx.n.node, 0U), CO_OK);
+    tb_advance(BUS, 0);
+    tb_expect(BUS, "181 21 00");
+    tb_advance(BUS, 1000);
+    tb_expect_none(BUS);
+    /* an RTR is answered with the present data */
+    pfx_set(&fx, 0x6041, 0, 0x0023, 2);
+    tb_send(BUS, "181 R2");
+    tb_expect(BUS, "181 23 00");
+    tb_expect_none(BUS);
+    /* the inhibit time holds a request back; the data are sampled when it ends */
+    tb_send(BUS, "000 80 01");
+    tb_xfer(BUS, "601 23 00 18 01 81 01 00 80", "581 60 00 18 01 00 00 00 00");
+    tb_xfer(BUS, "601 2B 00 18 03 64 00 00 00", "581 60 00 18 03 00 00 00 00"); /* 10 ms */
+    tb_xfer(BUS, "601 23 00 18 01 81 01 00 00", "581 60 00 18 01 00 00 00 00");
+    tb_send(BUS, "000 01 01");
+    tb_advance(BUS, 0);
+    tb_expect_none(BUS);
+    assert_int_equal(co_tpdo_request(&fx.n.node, 0U), CO_OK);
+    tb_advance(BUS, 0);
+    tb_expect(BUS, "181 23 00");
+    assert_int_equal(co_tpdo_request(&fx.n.node, 0U), CO_OK);
+    pfx_set(&fx, 0x6041, 0, 0x0027, 2);
+    tb_advance(BUS, 9999);
+    tb_expect_none(BUS);
+    tb_advance(BUS, 1);
+    tb_expect(BUS, "181 27 00");
+    tb_expect_none(BUS);
+    /* the event timer sends without a change */
+    tb_xfer(BUS, "601 2B 00 18 05 14 00 00 00", "581 60 00 18 05 00 00 00 00"); /* 20 ms */
+    tb_advance(BUS, 19999);
+    tb_expect_none(BUS);
+    tb_advance(BUS, 1);
+    tb_expect(BUS, "181 27 00");
+    tb_advance(BUS, 20000);
+    tb_expect(BUS, "181 27 00");
+    tb_expect_none(BUS);
+    /* synchronous TPDOs are not affected: TPDO2 (type 1) at every SYNC */
+    tb_send(BUS, "080");
+    tb_expect(BUS, "281 00 00 00");
+    tb_expect_none(BUS);
+}
+
+/* CO_OPT_TPDO_MASK_254/255 (Kollmorgen D4.5 for 255, SSD 630 D§4.4 for 254):
+ * the change masks (here 0x2030.. for TPDO1..; sub 1 PDO bytes 0..3, sub 2
+ * bytes 4..7) decide which changed bits send an event-driven TPDO. The
+ * first transmission, requests, RTRs and the event timer are not filtered. */
+static void tpdo_change_masks(void **state)
+{
+    (void)state;
+    /* CiA 301: the masks mean nothing, every change is sent */
+    pfx_start(&fx, 1, 0U);
+    tb_xfer(BUS, "601 23 30 20 01 00 FF 00 00", "581 60 30 20 01 00 00 00 00");
+    tb_send(BUS, "000 01 01");
+    tb_expect(BUS, "181 00 00");
+    pfx_set(&fx, 0x6041, 0, 0x0021, 2);
+    tb_advance(BUS, 0);
+    tb_expect(BUS, "181 21 00");
+    /* type 255 filtered: only the statusword's high byte counts */
+    pfx_start(&fx, 1, CO_OPT_TPDO_MASK_255);
+    tb_xfer(BUS, "601 23 30 20 01 00 FF 00 00", "581 60 30 20 01 00 00 00 00");
+    tb_send(BUS, "000 01 01");
+    tb_expect(BUS, "181 00 00"); /* the first one is not a change: always sent */
+    pfx_set(&fx, 0x6041, 0, 0x0021, 2);
+    tb_advance(BUS, 1000);
+    tb_expect_none(BUS);
+    pfx_set(&fx, 0x6041, 0, 0x0121, 2);
+    tb_advance(BUS, 0);
+    tb_expect(BUS, "181 21 01"); /* all the data of now */
+    pfx_set(&fx, 0x6041, 0, 0x0127, 2);
+    tb_advance(BUS, 1000);
+    tb_expect_none(BUS);
+    /* compared with what was sent last, not with the last sample */
+    pfx_set(&fx, 0x6041, 0, 0x0227, 2);
+    tb_advance(BUS, 0);
+    tb_expect(BUS, "181 27 02");
+    /* a request and an RTR are not filtered */
+    pfx_set(&fx, 0x6041, 0, 0x0237, 2);
+    assert_int_equal(co_tpdo_request(&fx.n.node, 0U), CO_OK);
+    tb_advance(BUS, 0);
+    tb_expect(BUS, "181 37 02");
+    pfx_set(&fx, 0x6041, 0, 0x0233, 2);
+    tb_send(BUS, "181 R2");
+    tb_expect(BUS, "181 33 02");
+    tb_expect_none(BUS);
+    /* a mask of 0: only requests, RTRs and the event timer */
+    tb_xfer(BUS, "601 23 30 20 01 00 00 00 00", "581 60 30 20 01 00 00 00 00");
+    pfx_set(&fx, 0x6041, 0, 0xFFFF, 2);
+    tb_advance(BUS, 1000);
+    tb_expect_none(BUS);
+    /* type 254 is not filtered by TPDO_MASK_255 ... */
+    tb_xfer(BUS, "601 2F 00 18 02 FE 00 00 00", "581 60 00 18 02 00 00 00 00");
+    tb_advance(BUS, 0);
+    tb_expect(BUS, "181 FF FF"); /* a new type: sent once */
+    pfx_set(&fx, 0x6041, 0, 0x0001, 2);
+    tb_advance(BUS, 0);
+    tb_expect(BUS, "181 01 00");
+    tb_expect_none(BUS);
+    /* ... but by TPDO_MASK_254 (SSD 630), and 255 then is not */
+    pfx_start(&fx, 1, CO_OPT_TPDO_MASK_254);
+    tb_xfer(BUS, "601 23 30 20 01 00 FF 00 00", "581 60 30 20 01 00 00 00 00");
+    tb_send(BUS, "000 01 01");
+    tb_expect(BUS, "181 00 00");
+    pfx_set(&fx, 0x6041, 0, 0x0021, 2);
+    tb_advance(BUS, 0);
+    tb_expect(BUS, "181 21 00");
+    tb_xfer(BUS, "601 2F 00 18 02 FE 00 00 00", "581 60 00 18 02 00 00 00 00");
+    tb_advance(BUS, 0);
+    tb_expect(BUS, "181 21 00");
+    pfx_set(&fx, 0x6041, 0, 0x0027, 2);
+    tb_advance(BUS, 1000);
+    tb_expect_none(BUS);
+    pfx_set(&fx, 0x6041, 0, 0x0127, 2);
+    tb_advance(BUS, 0);
+    tb_expect(BUS, "181 27 01");
+    tb_expect_none(BUS);
+}
+
+/* Kollmorgen D4.5's use: a position reported once per 2^16 increments. TPDO3
+ * (statusword, position) with mask sub 1 = 0 (bytes 0..3: the statusword and
+ * the position's low word) and sub 2 = 1 (byte 4 bit 0: position bit 16). */
+static void tpdo_mask_high_bytes(void **state)
+{
+    (void)state;
+    pfx_start(&fx, 1, CO_OPT_TPDO_MASK_255);
+    tb_xfer(BUS, "601 23 32 20 01 00 00 00 00", "581 60 32 20 01 00 00 00 00");
+    tb_xfer(BUS, "601 23 32 20 02 01 00 00 00", "581 60 32 20 02 00 00 00 00");
+    tb_xfer(BUS, "601 23 02 18 01 81 03 00 00", "581 60 02 18 01 00 00 00 00");
+    pfx_set(&fx, 0x6041, 0, 0x00E8, 2);
+    tb_send(BUS, "000 01 01");
+    tb_expect(BUS, "181 E8 00");
+    tb_expect(BUS, "381 E8 00 00 00 00 00");
+    tb_expect_none(BUS);
+    for (int32_t pos = 1000; pos < 65536; pos += 1000) {
+        pfx_set(&fx, 0x6064, 0, (uint32_t)pos, 4);
+        tb_advance(BUS, 1000);
+        tb_expect_none(BUS);
+    }
+    pfx_set(&fx, 0x6064, 0, 66000, 4);
+    tb_advance(BUS, 0);
+    tb_expect(BUS, "381 E8 00 D0 01 01 00"); /* 66000 = 0x000101D0 */
+    pfx_set(&fx, 0x6064, 0, 130000, 4); /* 0x0001FBD0: bit 16 unchanged */
+    tb_advance(BUS, 1000);
+    tb_expect_none(BUS);
+    pfx_set(&fx, 0x6064, 0, 140000, 4); /* 0x000222E0: bit 16 now clear */
+    tb_advance(BUS, 0);
+    tb_expect(BUS, "381 E8 00 E0 22 02 00");
+    tb_expect_none(BUS);
+}
+
 static void sync_window(void **state)
 {
     (void)state;
@@ -610,6 +786,9 @@ int main(void)
         cmocka_unit_test(rtr_types),
         cmocka_unit_test(inhibit_and_event_timer),
         cmocka_unit_test(event_timer_unit_option),
+        cmocka_unit_test(no_change_detect_option),
+        cmocka_unit_test(tpdo_change_masks),
+        cmocka_unit_test(tpdo_mask_high_bytes),
         cmocka_unit_test(sync_window),
         cmocka_unit_test(rpdo_length_emcy),
         cmocka_unit_test(rpdo_short_option),

@@ -90,6 +90,39 @@ static void cob_id_rules(void **state)
     tb_xfer(BUS, "601 40 00 18 01 00 00 00 00", "581 43 00 18 01 A1 01 00 40");
 }
 
+/* CO_OPT_PDO_COBID_WHILE_VALID (Kollmorgen, digest D7.13 step 9): the CAN-ID
+ * of a valid PDO changes without invalidating it first; the PDO runs on the
+ * new identifier at once. The other COB-ID rules stay. */
+static void cob_id_while_valid_option(void **state)
+{
+    (void)state;
+    /* strict CiA 301: refused (0x06090030) */
+    pfx_start(&fx, 1, 0U);
+    tb_xfer(BUS, "601 23 00 14 01 10 02 00 00", "581 80 00 14 01 30 00 09 06");
+    tb_xfer(BUS, "601 23 00 18 01 90 01 00 00", "581 80 00 18 01 30 00 09 06");
+    /* with the option: taken */
+    pfx_start(&fx, 1, CO_OPT_PDO_COBID_WHILE_VALID);
+    tb_xfer(BUS, "601 23 00 14 01 10 02 00 00", "581 60 00 14 01 00 00 00 00");
+    tb_xfer(BUS, "601 40 00 14 01 00 00 00 00", "581 43 00 14 01 10 02 00 00");
+    tb_xfer(BUS, "601 23 00 18 01 90 01 00 00", "581 60 00 18 01 00 00 00 00");
+    /* still refused: a restricted identifier, a 29-bit one */
+    tb_xfer(BUS, "601 23 00 18 01 01 06 00 00", "581 80 00 18 01 30 00 09 06");
+    tb_xfer(BUS, "601 23 00 18 01 90 01 00 20", "581 80 00 18 01 30 00 09 06");
+    pfx_set(&fx, 0x6041, 0, 0x0237, 2);
+    tb_send(BUS, "000 01 01");
+    tb_expect(BUS, "190 37 02"); /* TPDO1 on its new identifier */
+    tb_expect_none(BUS);
+    tb_send(BUS, "201 0F 00"); /* the old RPDO1 identifier: nobody's */
+    assert_int_equal(pfx_get(&fx, 0x6040, 0), 0);
+    tb_send(BUS, "210 0F 00");
+    assert_int_equal(pfx_get(&fx, 0x6040, 0), 0x000F);
+    /* in Operational too: the valid TPDO moves, and sends its data there */
+    tb_xfer(BUS, "601 23 00 18 01 91 01 00 00", "581 60 00 18 01 00 00 00 00");
+    tb_advance(BUS, 0);
+    tb_expect(BUS, "191 37 02");
+    tb_expect_none(BUS);
+}
+
 static void comm_parameter_rules(void **state)
 {
     (void)state;
@@ -129,6 +162,84 @@ static void mapping_locked_in_operational(void **state)
     /* an invalid one may be remapped in Operational (CiA 301) */
     tb_xfer(BUS, "601 23 00 14 01 01 02 00 80", "581 60 00 14 01 00 00 00 00");
     tb_xfer(BUS, "601 2F 00 16 00 00 00 00 00", "581 60 00 16 00 00 00 00 00");
+}
+
+/* CO_OPT_PDO_CONFIG_PREOP_ONLY (SSD 630 §7, digest D§2.3 and D§8.4): PDO
+ * communication and mapping parameters are written in Pre-operational only;
+ * in Operational (and Stopped) every write answers 0x08000022, reads work. */
+static void pdo_config_preop_only_option(void **state)
+{
+    uint8_t t = 1U;
+
+    (void)state;
+    /* CiA 301: communication parameters may change in Operational */
+    pfx_start(&fx, 1, 0U);
+    tb_send(BUS, "000 01 01");
+    tb_flush(BUS);
+    tb_xfer(BUS, "601 2F 00 18 02 01 00 00 00", "581 60 00 18 02 00 00 00 00");
+    tb_xfer(BUS, "601 2B 00 18 05 64 00 00 00", "581 60 00 18 05 00 00 00 00");
+    tb_xfer(BUS, "601 23 00 14 01 01 02 00 80", "581 60 00 14 01 00 00 00 00");
+    tb_xfer(BUS, "601 2F 02 16 00 00 00 00 00", "581 60 02 16 00 00 00 00 00"); /* invalid RPDO3 */
+    /* the device's option: none of these in Operational */
+    pfx_start(&fx, 1, CO_OPT_PDO_CONFIG_PREOP_ONLY | CO_OPT_PDO_MAP_WHILE_VALID);
+    tb_send(BUS, "000 01 01");
+    tb_flush(BUS);
+    tb_xfer(BUS, "601 2F 00 18 02 01 00 00 00", "581 80 00 18 02 22 00 00 08");
+    tb_xfer(BUS, "601 2B 00 18 05 64 00 00 00", "581 80 00 18 05 22 00 00 08");
+    tb_xfer(BUS, "601 23 00 14 01 01 02 00 80", "581 80 00 14 01 22 00 00 08");
+    tb_xfer(BUS, "601 23 00 14 01 01 02 00 00", "581 80 00 14 01 22 00 00 08"); /* unchanged */
+    tb_xfer(BUS, "601 2F 02 16 00 00 00 00 00", "581 80 02 16 00 22 00 00 08");
+    tb_xfer(BUS, "601 2F 00 16 00 00 00 00 00", "581 80 00 16 00 22 00 00 08");
+    /* the size is checked first; reads and other objects are not affected */
+    tb_xfer(BUS, "601 2B 00 18 02 01 00 00 00", "581 80 00 18 02 10 00 07 06");
+    tb_xfer(BUS, "601 40 00 18 02 00 00 00 00", "581 4F 00 18 02 FF 00 00 00");
+    tb_xfer(BUS, "601 23 7A 60 00 A0 86 01 00", "581 60 7A 60 00 00 00 00 00");
+    /* Stopped: the application is refused too */
+    tb_send(BUS, "000 02 01");
+    assert_int_equal(co_od_write(&fx.n.node, 0x1800, 2, &t, 1, true), CO_ERR_STORE_STATE);
+    /* Pre-operational: all of it */
+    tb_send(BUS, "000 80 01");
+    tb_flush(BUS);
+    assert_int_equal(co_od_write(&fx.n.node, 0x1800, 2, &t, 1, true), CO_OK);
+    tb_xfer(BUS, "601 2B 00 18 05 64 00 00 00", "581 60 00 18 05 00 00 00 00");
+    tb_xfer(BUS, "601 2F 00 16 00 00 00 00 00", "581 60 00 16 00 00 00 00 00");
+    tb_xfer(BUS, "601 2F 00 16 00 01 00 00 00", "581 60 00 16 00 00 00 00 00");
+    tb_xfer(BUS, "601 23 00 14 01 01 02 00 80", "581 60 00 14 01 00 00 00 00");
+}
+
+/* CO_OPT_PDO_MAP_BYTES (Kollmorgen §5.3.1.2/§5.3.2.2, digest D4.1: "mappings
+ * are only taken over byte-wise"): an entry's length must be whole bytes
+ * (0x06040041 otherwise); a whole-byte part of an object is still allowed. */
+static void byte_granularity_option(void **state)
+{
+    (void)state;
+    /* CiA 301 bit granularity: one bit of a BOOLEAN is an entry */
+    pfx_start(&fx, 1, 0U);
+    tb_xfer(BUS, "601 2F 02 16 00 00 00 00 00", "581 60 02 16 00 00 00 00 00");
+    tb_xfer(BUS, "601 23 02 16 01 01 00 00 20", "581 60 02 16 01 00 00 00 00");
+    /* granularity 8 */
+    pfx_start(&fx, 1, CO_OPT_PDO_MAP_BYTES);
+    tb_xfer(BUS, "601 2F 02 16 00 00 00 00 00", "581 60 02 16 00 00 00 00 00");
+    tb_xfer(BUS, "601 23 02 16 01 01 00 00 20", "581 80 02 16 01 41 00 04 06"); /* 1 bit */
+    tb_xfer(BUS, "601 23 02 16 01 04 00 01 20", "581 80 02 16 01 41 00 04 06"); /* 4 of 8 */
+    tb_xfer(BUS, "601 23 02 16 01 0C 00 02 20", "581 80 02 16 01 41 00 04 06"); /* 12 of 16 */
+    tb_xfer(BUS, "601 23 02 16 01 01 00 01 00", "581 80 02 16 01 41 00 04 06"); /* dummy bit */
+    /* a length the object cannot have stays 0x06040043 */
+    tb_xfer(BUS, "601 23 02 16 01 00 00 02 20", "581 80 02 16 01 43 00 04 06");
+    tb_xfer(BUS, "601 23 02 16 01 11 00 02 20", "581 80 02 16 01 43 00 04 06");
+    /* whole bytes: a BOOLEAN, the low byte of an INTEGER16, 3 of 4 bytes, a dummy byte */
+    tb_xfer(BUS, "601 23 02 16 01 08 00 00 20", "581 60 02 16 01 00 00 00 00");
+    tb_xfer(BUS, "601 23 02 16 02 08 00 02 20", "581 60 02 16 02 00 00 00 00");
+    tb_xfer(BUS, "601 23 02 16 03 18 00 09 20", "581 60 02 16 03 00 00 00 00");
+    tb_xfer(BUS, "601 23 02 16 04 08 00 05 00", "581 60 02 16 04 00 00 00 00");
+    tb_xfer(BUS, "601 2F 02 16 00 04 00 00 00", "581 60 02 16 00 00 00 00 00");
+    tb_xfer(BUS, "601 23 02 14 01 01 04 00 00", "581 60 02 14 01 00 00 00 00");
+    tb_send(BUS, "000 01 01");
+    tb_flush(BUS);
+    tb_send(BUS, "401 01 B4 56 78 9A FF");
+    assert_int_equal(pfx_get(&fx, 0x2000, 0), 1);
+    assert_int_equal(pfx_get(&fx, 0x2002, 0) & 0xFFFF, 0xFFB4); /* signed: extended */
+    assert_int_equal(pfx_get(&fx, 0x2009, 0), 0x009A7856UL);
 }
 
 /* SSD 630 14.12/14.13 (corrected frames, digest 7.12): remapping valid PDOs in
@@ -193,8 +304,11 @@ int main(void)
         cmocka_unit_test(mapping_needs_invalid_pdo),
         cmocka_unit_test(rpdo_mapping_rules),
         cmocka_unit_test(cob_id_rules),
+        cmocka_unit_test(cob_id_while_valid_option),
         cmocka_unit_test(comm_parameter_rules),
         cmocka_unit_test(mapping_locked_in_operational),
+        cmocka_unit_test(pdo_config_preop_only_option),
+        cmocka_unit_test(byte_granularity_option),
         cmocka_unit_test(ssd_630_sync_pdo_setup),
         cmocka_unit_test(kollmorgen_free_mapping),
         cmocka_unit_test(ssd_630_profile_velocity),

@@ -310,6 +310,13 @@ def generate(dev: Device, toml_name: str, warn=None) -> tuple[str, str]:
                      f"{at(1, ms)}, {len(mapping.subs) - 1}U}}, /* 0x{comm.index:04X} */")
         c += ["};", ""]
 
+    masks = mask_table(dev, len(pdos[1]))
+    if masks:
+        c += ["/* Change masks of the TPDOs (CO_OPT_TPDO_MASK_*): where sub 1 of each lives. */",
+              "static const uint16_t tpdo_mask[] = {"]
+        c += [f"    {off_expr(m)}, /* 0x{m.index:04X} */" for m in masks]
+        c += ["};", ""]
+
     def first(region_names):
         for r in region_names:
             sel = [f for f in ram if f.region == r and f.subs]
@@ -334,6 +341,7 @@ def generate(dev: Device, toml_name: str, warn=None) -> tuple[str, str]:
           f"    .pdo = {'pdo' if n_pdo else 'NULL'},",
           f"    .n_rpdo = {len(pdos[0])}U,",
           f"    .n_tpdo = {len(pdos[1])}U,",
+          f"    .tpdo_mask = {'tpdo_mask' if masks else 'NULL'},",
           "};", "",
           f"void {cn}_config({cn}_node_t *n, co_node_config_t *cfg)",
           "{",
@@ -345,6 +353,32 @@ def generate(dev: Device, toml_name: str, warn=None) -> tuple[str, str]:
           "    cfg->pdo_rx = n->pdo_rx;",
           "}", ""]
     return "\n".join(h), "\n".join(c)
+
+
+def mask_table(dev: Device, n_tpdo: int) -> list:
+    """Sub 1 of the change mask of each TPDO ([device] tpdo_mask + n), checked:
+    two UNSIGNED32 RAM values back to back, no hook (the core reads them from
+    the RAM image)."""
+    if dev.tpdo_mask is None:
+        return []
+    out = []
+    for n in range(n_tpdo):
+        index = dev.tpdo_mask + n
+        obj = next((o for o in dev.objects if o.index == index), None)
+        what = f"object 0x{index:04X} ([device] tpdo_mask, TPDO{n + 1})"
+        if obj is None:
+            raise DescError(f"{what}: missing; each TPDO needs its change mask")
+        s1, s2 = dev.find(index, 1), dev.find(index, 2)
+        if s1 is None or s2 is None or s1.type != "UNSIGNED32" or s2.type != "UNSIGNED32":
+            raise DescError(f"{what}: a change mask is sub 1 and 2, UNSIGNED32")
+        if obj.hook or s1.rom or s1.hookio or s2.rom or s2.hookio:
+            raise DescError(f"{what}: a change mask must be a RAM value without a hook "
+                            "(the core reads it from the RAM image)")
+        if not (s2.field == s1.field and s2.elem == s1.elem + 1 and s1.elem >= 0):
+            raise DescError(f"{what}: sub 1 and 2 must be stored back to back (an array "
+                            "of two UNSIGNED32)")
+        out.append(s1)
+    return out
 
 
 def off_expr(s) -> str:

@@ -194,6 +194,7 @@ class Device:
     n_hooks: int
     eds_only: list[RawObj] = field(default_factory=list)
     dcf: dict | None = None       # [DeviceComissioning] of a DCF
+    tpdo_mask: int | None = None  # index of TPDO1's change mask (options TPDO_MASK_254/255)
 
     def find(self, index: int, sub: int) -> Sub | None:
         for o in self.objects:
@@ -746,7 +747,7 @@ DEVICE_KEYS = {"name", "vendor_name", "product_name", "order_code", "vendor_id",
                "revision", "serial", "device_type", "device_name", "hw_version", "sw_version",
                "options", "boot_emcy_data", "baudrates", "description", "lss",
                "vendor_number", "product_number", "revision_number", "mandatory_objects",
-               "identity_layout"}
+               "identity_layout", "tpdo_mask"}
 EDS_KEYS = {"file_version", "file_revision", "date", "time", "author", "description",
             "file_name", "eds_version", "modified_date", "modified_time", "modified_by",
             "comments", "dummy_usage", "sections", "simple_boot_up_master",
@@ -1005,6 +1006,18 @@ def loads(text: str, path: str | Path = "<description>", base: str | None = None
             raise DescError("[device] boot_emcy_data is only sent with option BOOT_EMCY")
     elif "BOOT_EMCY" in opts:
         raise DescError("[device] option BOOT_EMCY needs boot_emcy_data (5 bytes)")
+    mask = dev.get("tpdo_mask")
+    if mask is not None:
+        mask = _uint(mask, "[device] tpdo_mask", 0xFFFF)
+        if not 0x2000 <= mask <= 0x5FFF:
+            raise DescError("[device] tpdo_mask must be a manufacturer object (0x2000..0x5FFF)")
+    mask_opts = [o for o in opts if o in ("TPDO_MASK_254", "TPDO_MASK_255")]
+    if mask_opts and mask is None:
+        raise DescError(f"[device] option {mask_opts[0]} needs tpdo_mask (the index of "
+                        "TPDO1's change mask)")
+    if mask is not None and not mask_opts:
+        raise DescError("[device] tpdo_mask is only used with option TPDO_MASK_254 or "
+                        "TPDO_MASK_255")
     rates = dev.get("baudrates", list(BAUDRATES))
     if not isinstance(rates, list) or any(r not in BAUDRATES for r in rates):
         raise DescError(f"[device] baudrates must list kbit/s out of {BAUDRATES}")
@@ -1028,6 +1041,9 @@ def loads(text: str, path: str | Path = "<description>", base: str | None = None
     if not isinstance(eds, dict):
         raise DescError("[eds] must be a table")
     eds_info = _eds_table(eds, info, name)
+    if "PDO_MAP_BYTES" in opts and eds_info.get("granularity") not in (None, 8):
+        raise DescError("[eds] granularity: option PDO_MAP_BYTES maps whole bytes only "
+                        "(granularity 8)")
     dcf = _dcf_table(data.get("dcf"))
 
     objects = _device_objects(dev, "[device]")
@@ -1085,7 +1101,7 @@ def loads(text: str, path: str | Path = "<description>", base: str | None = None
     device = Device(name=name, base=base, cname=cname, source=str(path), objects=objects,
                     info=info, eds=eds_info, options=list(opts), option_bits=bits,
                     boot_emcy_data=bed, limits=limits, n_hooks=slot, eds_only=eds_only,
-                    dcf=dcf)
+                    dcf=dcf, tpdo_mask=mask)
     _check_pdo_mappings(device)
     return device
 
@@ -1123,6 +1139,9 @@ def _check_pdo_mappings(dev: Device) -> None:
                 dsize = {1: (1, 8), 2: (8,), 3: (16,), 4: (32,), 5: (8,), 6: (16,), 7: (32,)}[idx]
                 if bits not in dsize:
                     raise DescError(f"{what} with {bits} bits; the dummy has {dsize[-1]}")
+                if bits % 8 and "PDO_MAP_BYTES" in dev.options:
+                    raise DescError(f"{what} with {bits} bits; option PDO_MAP_BYTES maps "
+                                    "whole bytes only")
                 if s.sub <= count:
                     total += bits
                 continue

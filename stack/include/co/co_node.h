@@ -39,13 +39,30 @@
 #define CO_OPT_RPDO_SHORT_OK           0x0400U /**< an RPDO shorter than its mapping writes the
                                                     entries it covers, no EMCY (AnaGate) */
 #define CO_OPT_EVENT_TIMER_100US       0x0800U /**< PDO event timer in 100 us, not ms (Kollmorgen) */
-#define CO_OPT_ERREG_NO_GENERIC        0x00100000UL /**< 0x1001: an error sets only the bits it names;
+/* PDO options from bit 16 */
+#define CO_OPT_PDO_COBID_WHILE_VALID   0x00010000U /**< a PDO's CAN-ID may change while the
+                                                        PDO is valid (Kollmorgen) */
+#define CO_OPT_PDO_CONFIG_PREOP_ONLY   0x00020000U /**< PDO parameters (0x1400..0x1BFF) are
+                                                        written in Pre-operational only, else
+                                                        0x08000022 (SSD 630) */
+#define CO_OPT_PDO_MAP_BYTES           0x00040000U /**< mapping granularity 8: an entry not of
+                                                        whole bytes: 0x06040041 (Kollmorgen) */
+#define CO_OPT_TPDO_NO_CHANGE_DETECT   0x00080000U /**< event-driven TPDOs (254/255) go out on
+                                                        co_tpdo_request, the event timer or an RTR
+                                                        only: no change detection, none on entering
+                                                        Operational (FAULHABER) */
+#define CO_OPT_TPDO_MASK_254           0x00100000U /**< the change masks (co_dev_t.tpdo_mask)
+                                                        filter the change detection of type-254
+                                                        TPDOs (SSD 630) */
+#define CO_OPT_TPDO_MASK_255           0x00200000U /**< ... of type-255 TPDOs (Kollmorgen) */
+/* EMCY, SDO and storage options from bit 24 */
+#define CO_OPT_ERREG_NO_GENERIC        0x01000000UL /**< 0x1001: an error sets only the bits it names;
                                                          bit 0 only for one that names none (Kollmorgen) */
-#define CO_OPT_HISTORY_CODE_ONLY       0x00200000UL /**< 0x1003 entries hold the error code only, no
+#define CO_OPT_HISTORY_CODE_ONLY       0x02000000UL /**< 0x1003 entries hold the error code only, no
                                                          manufacturer bytes above it (Kollmorgen) */
-#define CO_OPT_SDO_NO_SEG_DOWNLOAD     0x00400000UL /**< a segmented SDO download is refused at its
+#define CO_OPT_SDO_NO_SEG_DOWNLOAD     0x04000000UL /**< a segmented SDO download is refused at its
                                                          initiate with 0x06010000 (SSD 630) */
-#define CO_OPT_RESTORE_SAVED           0x00800000UL /**< 0x1011 sub 4/5/6 restore the saved set (all /
+#define CO_OPT_RESTORE_SAVED           0x08000000UL /**< 0x1011 sub 4/5/6 restore the saved set (all /
                                                          comm. / application); sub 1..3 keep its data
                                                          (FAULHABER) */
 
@@ -109,6 +126,12 @@ typedef struct co_dev {
     const co_pdo_desc_t *pdo;   /**< n_rpdo RPDOs, then n_tpdo TPDOs */
     uint16_t n_rpdo;
     uint16_t n_tpdo;
+    /** With CO_OPT_TPDO_MASK_254/255: per TPDO (n_tpdo entries) the RAM offset
+     *  of its change mask, two UNSIGNED32 values (the manufacturer object the
+     *  description names, sub 1 and 2): bit k of the first is bit k of PDO
+     *  bytes 0..3, of the second of bytes 4..7; a change of the mapped data
+     *  sends the TPDO only if it touches a set bit. NULL: no masks. */
+    const uint16_t *tpdo_mask;
 } co_dev_t;
 
 struct co_node;
@@ -333,7 +356,9 @@ bool co_sync_window_open(const co_node_t *node);
 /** Ask for a transmission of TPDO @p n (0-based) with transmission type 0
  *  (at the next SYNC) or 254/255 (as soon as the inhibit time allows).
  *  Changes of mapped data are also found without this call: event-driven
- *  TPDOs compare their data at every co_node_process. */
+ *  TPDOs compare their data at every co_node_process (not on a device with
+ *  CO_OPT_TPDO_NO_CHANGE_DETECT, whose application calls this for its
+ *  events). */
 co_err_t co_tpdo_request(co_node_t *node, uint16_t n);
 
 /** True while @p code is active. */

@@ -1215,7 +1215,7 @@ static bool at_rest(const co402_axis_t *ax)
     return ((ax->state == (uint8_t)CO402_SWITCH_ON_DISABLED) ||
             (ax->state == (uint8_t)CO402_READY) ||
             (ax->state == (uint8_t)CO402_SWITCHED_ON)) &&
-           (ax->fb.vel == 0) && (ax->vel == 0);
+           (ax->vel == 0);
 }
 
 static uint32_t op_process(void *inst, uint32_t now_us)

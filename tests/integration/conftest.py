@@ -208,6 +208,26 @@ def network():
 
 NODE_ID = 5
 
+# Axes the CiA 402 devices run (devices/co402_devices.c; 1 when not listed).
+# A dictionary may hold more: anagate-motion-bt2 is the 4-axis module with 2
+# motors fitted.
+AXES = {"anagate-motion": 4, "anagate-motion-bt2": 2, "anagate-motion-bl": 2,
+        "anagate-motion-400vac": 2}
+
+
+def start_device(device: str, node_id: int, network, daemons, sniffer, tmp_path,
+                 *extra: str):
+    """Export `device`'s EDS, start it as `node_id` (with the daemon options
+    `extra`) and wait for its boot-up; its python-canopen RemoteNode."""
+    eds = tmp_path / f"{device}.eds"
+    subprocess.run([str(DAEMON), "--device", device, "--export-eds", str(eds)], check=True)
+    node = network.add_node(node_id, canopen.import_od(str(eds), node_id=node_id))
+    node.sdo.RESPONSE_TIMEOUT = SDO_TIMEOUT
+    m = sniffer.mark()
+    daemons.start("--node-id", str(node_id), "--device", device, *extra)
+    assert sniffer.wait_cob(0x700 + node_id, BOOT_TIMEOUT, m, b"\x00") is not None, "no boot-up"
+    return node
+
 
 @pytest.fixture
 def node(network, eds_path, daemons, sniffer):

@@ -11,16 +11,14 @@ enabled and ramps to a speed until target reached, then back to rest.
 """
 from __future__ import annotations
 
-import subprocess
 import sys
 import time
 from dataclasses import dataclass
 from pathlib import Path
 
-import canopen
 import pytest
 
-from conftest import BOOT_TIMEOUT, SDO_TIMEOUT, DAEMON
+from conftest import AXES, start_device
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "tools" / "demo"))
 from cia402_master import Drive, state_of  # noqa: E402
@@ -61,25 +59,13 @@ DRIVES = {
     "faulhaber-mc": Move(30000, 300, 20, 10, 20, (600, 60), start=True, home_window=3100),
 }
 
-ANAGATE = {"anagate-motion": 4, "anagate-motion-bt2": 2, "anagate-motion-bl": 2,
-           "anagate-motion-400vac": 2}
-
-
-def start(device, network, daemons, sniffer, tmp_path) -> canopen.RemoteNode:
-    eds = tmp_path / f"{device}.eds"
-    subprocess.run([str(DAEMON), "--device", device, "--export-eds", str(eds)], check=True)
-    node = network.add_node(NODE, str(eds))
-    node.sdo.RESPONSE_TIMEOUT = SDO_TIMEOUT
-    m = sniffer.mark()
-    daemons.start("--node-id", str(NODE), "--device", device)
-    assert sniffer.wait_cob(0x700 + NODE, BOOT_TIMEOUT, m, b"\x00") is not None, "no boot-up"
-    return node
+ANAGATE = sorted(d for d in AXES if d.startswith("anagate-motion"))
 
 
 @pytest.mark.parametrize("device", sorted(DRIVES))
 def test_enable_move_and_home(device, network, daemons, sniffer, tmp_path):
     mv = DRIVES[device]
-    node = start(device, network, daemons, sniffer, tmp_path)
+    node = start_device(device, NODE, network, daemons, sniffer, tmp_path)
     if mv.start:
         node.nmt.state = "OPERATIONAL"
     log: list[str] = []
@@ -107,10 +93,10 @@ def test_enable_move_and_home(device, network, daemons, sniffer, tmp_path):
     assert abs(home - mv.target // 4) > mv.home_window, log
 
 
-@pytest.mark.parametrize("device", sorted(ANAGATE))
+@pytest.mark.parametrize("device", ANAGATE)
 def test_anagate_axes_enable_and_ramp(device, network, daemons, sniffer, tmp_path):
-    node = start(device, network, daemons, sniffer, tmp_path)
-    for axis in range(ANAGATE[device]):
+    node = start_device(device, NODE, network, daemons, sniffer, tmp_path)
+    for axis in range(AXES[device]):
         log: list[str] = []
         d = Drive(node, axis, log.append)
         assert state_of(d.enable()) == "Operation enabled", log

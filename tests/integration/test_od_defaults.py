@@ -23,7 +23,7 @@ from pathlib import Path
 import canopen
 import pytest
 
-from conftest import BOOT_TIMEOUT, SDO_TIMEOUT, DAEMON
+from conftest import AXES, DAEMON, start_device
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "gen"))
 from compare import decode, eds_vars, expected  # noqa: E402  (tests/gen/compare.py)
@@ -42,12 +42,6 @@ def readable(var) -> bool:
     return var.access_type in ("ro", "rw", "rwr", "rww", "const")
 
 
-# axes the device runs (devices/co402_devices.h); a dictionary may have more
-# (anagate-motion-bt2 is the 4-axis module with 2 motors fitted)
-AXES = {"anagate-motion": 4, "anagate-motion-bt2": 2, "anagate-motion-bl": 2,
-        "anagate-motion-400vac": 2}
-
-
 def is_statusword(device: str, od, index: int) -> bool:
     """0x6041 of a running axis (0x6041 + 0x800 n) of a CiA 402 device."""
     n, rest = divmod(index - 0x6041, 0x800)
@@ -57,16 +51,10 @@ def is_statusword(device: str, od, index: int) -> bool:
 @pytest.mark.parametrize("device", devices())
 def test_every_readable_object_holds_its_eds_default(device, network, daemons, sniffer,
                                                      tmp_path):
-    eds = tmp_path / f"{device}.eds"
-    subprocess.run([str(DAEMON), "--device", device, "--export-eds", str(eds)], check=True)
-    od = canopen.import_od(str(eds), node_id=NODE)
-    node = network.add_node(NODE, od)
-    node.sdo.RESPONSE_TIMEOUT = SDO_TIMEOUT
-    m = sniffer.mark()
     started = time.monotonic()
-    daemons.start("--node-id", str(NODE), "--device", device,
-                  "--storage", str(tmp_path / "params"))
-    assert sniffer.wait_cob(0x700 + NODE, BOOT_TIMEOUT, m, b"\x00") is not None, "no boot-up"
+    node = start_device(device, NODE, network, daemons, sniffer, tmp_path,
+                        "--storage", str(tmp_path / "params"))
+    od = node.object_dictionary
     checked = 0
     for (index, sub), var in sorted(eds_vars(od).items()):
         where = f"{device} 0x{index:04X} sub {sub} ({var.name})"

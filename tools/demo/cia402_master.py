@@ -38,25 +38,16 @@ class DriveError(AssertionError):
     pass
 
 
+# (mask, value, state) of the statusword, CiA 402 table "state coding"
+STATES = ((0x4F, 0x00, "Not ready to switch on"), (0x4F, 0x40, "Switch on disabled"),
+          (0x6F, 0x21, "Ready to switch on"), (0x6F, 0x23, "Switched on"),
+          (0x6F, 0x27, "Operation enabled"), (0x6F, 0x07, "Quick stop active"),
+          (0x4F, 0x0F, "Fault reaction active"), (0x4F, 0x08, "Fault"))
+
+
 def state_of(sw: int) -> str:
     """The CiA 402 state a statusword shows."""
-    if sw & 0x4F == 0x00:
-        return "Not ready to switch on"
-    if sw & 0x4F == 0x40:
-        return "Switch on disabled"
-    if sw & 0x6F == 0x21:
-        return "Ready to switch on"
-    if sw & 0x6F == 0x23:
-        return "Switched on"
-    if sw & 0x6F == 0x27:
-        return "Operation enabled"
-    if sw & 0x6F == 0x07:
-        return "Quick stop active"
-    if sw & 0x4F == 0x0F:
-        return "Fault reaction active"
-    if sw & 0x4F == 0x08:
-        return "Fault"
-    return "?"
+    return next((name for mask, value, name in STATES if sw & mask == value), "?")
 
 
 @dataclass

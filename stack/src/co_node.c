@@ -50,9 +50,25 @@ static void tx_drain(co_node_t *node)
     }
 }
 
+/* A COB-ID write (CiA 301 7.5.2), for the services' checks. */
+co_err_t co_check_cob(uint32_t cur, uint32_t v, uint32_t use_bits, bool use_when_set,
+                      uint32_t reserved)
+{
+    bool cur_used = use_when_set ? ((cur & use_bits) != 0U) : ((cur & use_bits) == 0U);
+    bool new_used = use_when_set ? ((v & use_bits) != 0U) : ((v & use_bits) == 0U);
+
+    if (((v & 0x20000000UL) != 0U) || ((v & 0x1FFFF800UL) != 0U) || ((v & reserved) != 0U)) {
+        return CO_ERR_VALUE;
+    }
+    if (cur_used && new_used && ((v & 0x7FFUL) != (cur & 0x7FFUL))) {
+        return CO_ERR_VALUE;
+    }
+    return CO_OK;
+}
+
 /* ------------------------------------------------------- RX dispatch */
 
-static void rx_add(co_node_t *node, uint16_t cob, uint8_t kind, uint8_t arg)
+void co_rx_add(co_node_t *node, uint16_t cob, uint8_t svc, uint8_t arg)
 {
     uint8_t i = node->n_rx;
 
@@ -65,35 +81,36 @@ static void rx_add(co_node_t *node, uint16_t cob, uint8_t kind, uint8_t arg)
         i--;
     }
     node->rx[i].cob = cob;
-    node->rx[i].kind = kind;
+    node->rx[i].kind = svc;
     node->rx[i].arg = arg;
     node->n_rx++;
-    node->rx_filter[(cob & 0x7FU) >> 3U] |= (uint8_t)(1U << (cob & 7U));
+    co_rx_accept(node, cob);
     node->rx_fc |= (uint16_t)(1U << (cob >> 7U));
 }
 
-void co_rx_rebuild(co_node_t *node)
+/* Until the table is rebuilt, every frame passes the filter and finds no
+ * slot: the first one rebuilds it (co_rx_dispatch). */
+void co_rx_invalidate(co_node_t *node)
 {
+    node->rx_dirty = 1U;
+    node->rx_fc = 0U;
+    node->pdo.fc = 0U;
+    (void)memset(node->rx_filter, 0xFF, sizeof node->rx_filter);
+}
+
+/* Every service adds its slots, in table order. */
+static void rx_rebuild(co_node_t *node)
+{
+    node->rx_dirty = 0U;
     node->n_rx = 0U;
     node->rx_fc = 0U;
+    node->pdo.fc = 0U;
     (void)memset(node->rx_filter, 0, sizeof node->rx_filter);
-    rx_add(node, 0x000U, CO_RX_NMT, 0U);
-    rx_add(node, (uint16_t)(0x600U + node->node_id), CO_RX_SDO, 0U);
-    rx_add(node, (uint16_t)(0x700U + node->node_id), CO_RX_GUARD, 0U);
-    if ((node->sync_cob != NULL) && ((*node->sync_cob & 0x40000000UL) == 0U)) {
-        rx_add(node, (uint16_t)(*node->sync_cob & 0x7FFU), CO_RX_SYNC, 0U);
-    }
-    if ((co_time_cob(node) != NULL) && ((*co_time_cob(node) & 0x80000000UL) != 0U)) {
-        rx_add(node, (uint16_t)(*co_time_cob(node) & 0x7FFU), CO_RX_TIME, 0U);
-    }
-    for (uint8_t k = 0U; k < node->n_hb_cons; k++) {
-        uint32_t v = node->hb_cons[k];
-        uint8_t id = (uint8_t)((v >> 16U) & 0x7FU);
-        if (((v & 0xFFFFU) != 0U) && (id != 0U) && (id != node->node_id)) {
-            rx_add(node, (uint16_t)(0x700U + id), CO_RX_HB, k);
+    for (uint8_t k = 0U; k < co_n_services; k++) {
+        if (co_services[k]->rx_slots != NULL) {
+            co_services[k]->rx_slots(node, k);
         }
     }
-    co_pdo_rx_rebuild(node);
 }
 
 static const co_rx_slot_t *rx_find(const co_node_t *node, uint16_t cob)
@@ -119,13 +136,13 @@ static const co_rx_slot_t *rx_find(const co_node_t *node, uint16_t cob)
 static const co_pdo_slot_t *pdo_find(const co_node_t *node, uint16_t cob)
 {
     uint32_t lo = 0U;
-    uint32_t hi = node->n_pdo_rx;
+    uint32_t hi = node->pdo.n_rx;
 
     while (lo < hi) {
         uint32_t mid = (lo + hi) >> 1U;
-        uint16_t at = node->pdo_rx[mid].cob;
+        uint16_t at = node->pdo.rx[mid].cob;
         if (at == cob) {
-            return &node->pdo_rx[mid];
+            return &node->pdo.rx[mid];
         }
         if (at < cob) {
             lo = mid + 1U;
@@ -136,22 +153,24 @@ static const co_pdo_slot_t *pdo_find(const co_node_t *node, uint16_t cob)
     return NULL;
 }
 
-/* A frame that may be on a PDO's COB-ID. */
+/* A frame that may be on a PDO's COB-ID: the PDO service's rx with the
+ * PDO's number. */
 static void pdo_rx(co_node_t *node, uint16_t cob, const co_frame_t *f, uint32_t now_us)
 {
     const co_pdo_slot_t *ps = pdo_find(node, cob);
 
-    if (ps == NULL) {
-        return;
+    if (ps != NULL) {
+        node->now = now_us;
+        co_services[node->pdo.svc]->rx(node, ps->pdo, f);
     }
-    node->now = now_us;
-    if (ps->pdo < node->dev->n_rpdo) {
-        co_rpdo_rx(node, ps->pdo, f);
-    } else if (co_frame_is_rtr(f)) {
-        co_tpdo_rtr(node, ps->pdo);
-    } else {
-        /* another node's data frame on this TPDO's identifier */
-    }
+}
+
+/* A frame that came while the table was out of date: rebuild, look again. */
+CO_NOINLINE static void rx_stale(co_node_t *node, const co_frame_t *f, uint16_t cob,
+                                 uint32_t now_us)
+{
+    rx_rebuild(node);
+    co_rx_dispatch(node, f, cob, now_us);
 }
 
 /* A frame the filter let through: find what it is for. (Not static, so
@@ -165,34 +184,15 @@ void co_rx_dispatch(co_node_t *node, const co_frame_t *f, uint16_t cob, uint32_t
     if ((node->rx_fc & fc) != 0U) {
         slot = rx_find(node, cob);
     }
-    if (slot == NULL) {
-        if ((node->pdo_fc & fc) != 0U) {
-            pdo_rx(node, cob, f, now_us);
-        }
-        return;
-    }
-    node->now = now_us;
-    switch (slot->kind) {
-    case CO_RX_NMT:
-        co_nmt_rx(node, f);
-        break;
-    case CO_RX_SDO:
-        co_sdo_rx(node, f);
-        break;
-    case CO_RX_GUARD:
-        co_guard_rx(node, f);
-        break;
-    case CO_RX_HB:
-        co_hb_rx(node, slot->arg, f);
-        break;
-    case CO_RX_SYNC:
-        co_sync_rx(node, f);
-        break;
-    case CO_RX_TIME:
-        co_time_rx(node, f);
-        break;
-    default:
-        break;
+    if (slot != NULL) {
+        node->now = now_us;
+        co_services[slot->kind]->rx(node, slot->arg, f);
+    } else if ((node->pdo.fc & fc) != 0U) {
+        pdo_rx(node, cob, f, now_us);
+    } else if (node->rx_dirty != 0U) {
+        rx_stale(node, f, cob, now_us);
+    } else {
+        /* not for this node */
     }
 }
 
@@ -217,12 +217,11 @@ uint32_t co_node_process(co_node_t *node, uint32_t now_us)
 
     node->now = now_us;
     tx_drain(node);
-    next = co_sdo_process(node, next);
-    next = co_hb_process(node, next);
-    next = co_emcy_process(node, next);
-    next = co_sync_process(node, next);
-    next = co_rpdo_process(node, next);
-    next = co_tpdo_process(node, next);
+    for (uint8_t k = 0U; k < co_n_services; k++) {
+        if (co_services[k]->process != NULL) {
+            next = co_services[k]->process(node, next);
+        }
+    }
     if (node->txq_len > 0U) {
         /* TX path still full: look again in a millisecond */
         next = co_deadline_min(now_us, next, now_us + 1000U);
@@ -230,41 +229,160 @@ uint32_t co_node_process(co_node_t *node, uint32_t now_us)
     return next;
 }
 
+/* ------------------------------------------------------------ NMT */
+
+void co_node_set_state(co_node_t *node, co_nmt_state_t st)
+{
+    co_nmt_state_t from = (co_nmt_state_t)node->nmt;
+
+    if (node->nmt == (uint8_t)st) {
+        return;
+    }
+    node->nmt = (uint8_t)st;
+    for (uint8_t k = 0U; k < co_n_services; k++) {
+        if (co_services[k]->nmt != NULL) {
+            co_services[k]->nmt(node, from);
+        }
+    }
+    if (node->cb.nmt_state != NULL) {
+        node->cb.nmt_state(node->cb.ctx, node, st);
+    }
+}
+
+static void services_reset(co_node_t *node, uint8_t kind)
+{
+    for (uint8_t k = 0U; k < co_n_services; k++) {
+        if (co_services[k]->reset != NULL) {
+            co_services[k]->reset(node, kind);
+        }
+    }
+}
+
+/* Initialising: the communication services start from their reset values,
+ * the boot-up frame goes out, and the node enters Pre-operational. */
+static void boot(co_node_t *node)
+{
+    node->nmt = (uint8_t)CO_NMT_INITIALISING;
+    services_reset(node, CO_SVC_START);
+    co_rx_invalidate(node);
+    if (!co_opt(node, CO_OPT_NO_BOOTUP)) {
+        static const uint8_t bootup = 0x00U;
+        co_tx(node, 0x700UL + node->node_id, &bootup, 1U);
+    }
+    co_node_set_state(node, CO_NMT_PRE_OPERATIONAL);
+}
+
+/* Reset communication restores the communication area, reset node all of
+ * the image, each to defaults and then to the stored set (0x1010): the
+ * services' reset of that kind. Where the objects live does not change, so
+ * what the services' bind found at init stays valid. */
+static void reset(co_node_t *node, co_reset_t kind)
+{
+    services_reset(node, (uint8_t)kind);
+    if (node->cb.nmt_reset != NULL) {
+        node->cb.nmt_reset(node->cb.ctx, node, kind);
+    }
+    boot(node);
+}
+
+void co_node_nmt_command(co_node_t *node, uint8_t cs, uint32_t now_us)
+{
+    node->now = now_us;
+    switch (cs) {
+    case CO_NMT_CMD_START:
+        co_node_set_state(node, CO_NMT_OPERATIONAL);
+        break;
+    case CO_NMT_CMD_STOP:
+        co_node_set_state(node, CO_NMT_STOPPED);
+        break;
+    case CO_NMT_CMD_PRE_OPERATIONAL:
+        co_node_set_state(node, CO_NMT_PRE_OPERATIONAL);
+        break;
+    case CO_NMT_CMD_RESET_NODE:
+        reset(node, CO_RESET_NODE);
+        break;
+    case CO_NMT_CMD_RESET_COMMUNICATION:
+        reset(node, CO_RESET_COMMUNICATION);
+        break;
+    default:
+        break; /* unknown command specifier: ignored (CiA 301 defines no answer) */
+    }
+}
+
 /* -------------------------------------------------------------- init */
 
-co_err_t co_node_init(co_node_t *node, const co_node_config_t *cfg, uint32_t now_us)
+/* Every service finds its objects and registers its hooks on them. */
+static co_result_t bind_services(co_node_t *node)
 {
+    for (uint8_t k = 0U; k < co_n_services; k++) {
+        const co_service_t *svc = co_services[k];
+        if ((svc->bind != NULL) && (svc->bind(node) != CO_OK)) {
+            return CO_RESULT_DEV_INCOMPAT;
+        }
+        for (uint8_t h = 0U; h < svc->n_hooks; h++) {
+            co_result_t r = co_od_register(node, &svc->hooks[h]);
+            if (r != CO_RESULT_OK) {
+                return r;
+            }
+        }
+    }
+#if CO_OPTIONS != 0xFFFFFFFFUL
+    if ((node->dev->options & ~(uint32_t)CO_OPTIONS) != 0U) {
+        return CO_RESULT_DEV_INCOMPAT;
+    }
+#endif
+#if !CO_LIMITS
+    if (node->dev->limits != NULL) {
+        return CO_RESULT_DEV_INCOMPAT;
+    }
+#endif
+    return CO_RESULT_OK;
+}
+
+co_result_t co_node_init(co_node_t *node, const co_node_config_t *cfg, uint32_t now_us)
+{
+    co_result_t r;
+
     if ((cfg == NULL) || (cfg->dev == NULL) || (cfg->ram == NULL) || (cfg->hal.ops == NULL) ||
         (cfg->hal.ops->send == NULL) || (cfg->dev->od == NULL)) {
-        return CO_ERR_OD_MISSING;
+        return CO_RESULT_BAD_CONFIG;
     }
     if (((cfg->dev->n_rpdo + cfg->dev->n_tpdo) != 0U) &&
         ((cfg->dev->pdo == NULL) || (cfg->pdo == NULL) || (cfg->pdo_rx == NULL))) {
-        return CO_ERR_OD_MISSING;
+        return CO_RESULT_BAD_CONFIG;
     }
     if ((cfg->node_id < 1U) || (cfg->node_id > 127U)) {
-        return CO_ERR_VALUE;
+        return CO_RESULT_BAD_NODE_ID;
     }
     (void)memset(node, 0, sizeof *node);
     node->dev = cfg->dev;
     node->hal = cfg->hal;
     node->ram = (uint8_t *)cfg->ram;
     node->hooks = cfg->hooks;
+    if (node->hooks != NULL) {
+        (void)memset(node->hooks, 0, (size_t)cfg->dev->n_hooks * sizeof node->hooks[0]);
+    }
     node->cb = cfg->cb;
     node->node_id = cfg->node_id;
-    node->sdo_timeout_us = (cfg->sdo_timeout_us != 0U) ? cfg->sdo_timeout_us : 1000000UL;
-    node->pdo = cfg->pdo;
-    node->pdo_rx = cfg->pdo_rx;
+    node->sdo.timeout_us = (cfg->sdo_timeout_us != 0U) ? cfg->sdo_timeout_us : 1000000UL;
+    node->pdo.p = cfg->pdo;
+    node->pdo.rx = cfg->pdo_rx;
     node->now = now_us;
-    co_store_reset(node, CO_RESET_NODE); /* defaults, then the stored set */
-    if (co_comm_bind(node) != CO_OK) {
-        return CO_ERR_DEV_INCOMPAT;
+    r = bind_services(node);
+    if (r != CO_RESULT_OK) {
+        return r;
     }
-    co_nmt_boot(node);
-    return CO_OK;
+    services_reset(node, (uint8_t)CO_RESET_NODE); /* defaults, then the stored set */
+    boot(node);
+    return CO_RESULT_OK;
 }
 
 co_nmt_state_t co_node_nmt_state(const co_node_t *node)
 {
     return (co_nmt_state_t)node->nmt;
+}
+
+uint32_t co_node_now(const co_node_t *node)
+{
+    return node->now;
 }

@@ -122,6 +122,118 @@ uint32_t co_od_data_size(const co_node_t *node, const co_od_sub_t *s)
     return n;
 }
 
+/* ------------------------------------------------------ service hooks */
+
+/* The service hook whose range holds @p index (binary search over the
+ * registered ranges, which do not overlap), or NULL. */
+static const co_svc_hook_t *svc_hook(const co_node_t *node, uint16_t index)
+{
+    uint32_t lo = 0U;
+    uint32_t hi = node->n_svc_hooks;
+
+    if ((hi == 0U) || (index < node->svc_hooks[0]->first) ||
+        (index > node->svc_hooks[hi - 1U]->last)) {
+        return NULL;
+    }
+    while (lo < hi) {
+        uint32_t mid = (lo + hi) >> 1U;
+        const co_svc_hook_t *h = node->svc_hooks[mid];
+        if (index < h->first) {
+            hi = mid;
+        } else if (index > h->last) {
+            lo = mid + 1U;
+        } else {
+            return h;
+        }
+    }
+    return NULL;
+}
+
+co_result_t co_od_register(co_node_t *node, const co_svc_hook_t *h)
+{
+    uint8_t n = node->n_svc_hooks;
+    uint8_t at = n;
+
+    while ((at > 0U) && (node->svc_hooks[at - 1U]->first > h->first)) {
+        at--;
+    }
+    if (((at > 0U) && (node->svc_hooks[at - 1U]->last >= h->first)) ||
+        ((at < n) && (node->svc_hooks[at]->first <= h->last)) || (h->last < h->first)) {
+        return CO_RESULT_HOOK_BOUND;
+    }
+    if (n >= CO_SVC_HOOKS_MAX) {
+        return CO_RESULT_NO_MEMORY;
+    }
+    for (uint8_t i = n; i > at; i--) {
+        node->svc_hooks[i] = node->svc_hooks[i - 1U];
+    }
+    node->svc_hooks[at] = h;
+    node->n_svc_hooks = (uint8_t)(n + 1U);
+    if (h->read != NULL) {
+        if ((node->svc_rd_hi == 0U) || (h->first < node->svc_rd_lo)) {
+            node->svc_rd_lo = h->first;
+        }
+        if (h->last > node->svc_rd_hi) {
+            node->svc_rd_hi = h->last;
+        }
+    }
+    return CO_RESULT_OK;
+}
+
+/* Before a stored value is read: the owning service's read hook. Only
+ * indexes in [svc_rd_lo, svc_rd_hi], the span of the hooks that have one,
+ * are looked up (the read path of every other object stays short). */
+static inline co_err_t svc_read(const co_node_t *node, uint16_t index, uint8_t sub)
+{
+    const co_svc_hook_t *h;
+
+    if ((index < node->svc_rd_lo) || (index > node->svc_rd_hi)) {
+        return CO_OK;
+    }
+    h = svc_hook(node, index);
+    return ((h != NULL) && (h->read != NULL)) ? h->read(node, index, sub) : CO_OK;
+}
+
+static void svc_written(co_node_t *node, const co_svc_hook_t *h, uint16_t index, uint8_t sub)
+{
+    if ((h != NULL) && (h->written != NULL)) {
+        h->written(node, index, sub);
+    }
+}
+
+void *co_od_ram_of(co_node_t *node, uint16_t index, uint8_t sub, uint8_t type)
+{
+    const co_od_entry_t *e = find(node->dev->od, node->dev->od_count, index);
+    const co_od_sub_t *s = (e != NULL) ? find_sub(e, sub) : NULL;
+
+    if ((s == NULL) || (s->type != type) || ((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) != 0U)) {
+        return NULL;
+    }
+    return &node->ram[s->off];
+}
+
+uint8_t co_od_array_len(const co_node_t *node, uint16_t index, uint8_t type, uint8_t max)
+{
+    const co_od_entry_t *e = find(node->dev->od, node->dev->od_count, index);
+    uint8_t n = 0U;
+
+    if (e == NULL) {
+        return 0U;
+    }
+    for (uint8_t k = 1U; (k < e->nsubs) && (n < max); k++) {
+        const co_od_sub_t *s = &e->subs[k];
+        if ((s->sub != k) || (s->type != type) ||
+            ((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) != 0U) ||
+            (s->off != (uint16_t)(e->subs[1].off + ((uint16_t)(k - 1U) * co_type_len(type))))) {
+            break;
+        }
+        n++;
+    }
+    return n;
+}
+
+/* ------------------------------------------------------ application hooks */
+
 static inline co_od_hook_t *hook_of(const co_node_t *node, const co_od_entry_t *e)
 {
     if ((e->hook == 0U) || (node->hooks == NULL) || (e->hook > node->dev->n_hooks)) {
@@ -190,7 +302,7 @@ co_err_t co_od_read_part(co_node_t *node, const co_od_entry_t *e, const co_od_su
         return read_hookio(node, e, s, c);
     }
     if (offset == 0U) {
-        co_err_t err = co_comm_check_read(node, e->index, s->sub);
+        co_err_t err = svc_read(node, e->index, s->sub);
         if ((err == CO_OK) && (e->hook != 0U)) {
             err = read_hook(node, e, s);
         }
@@ -284,6 +396,7 @@ co_err_t co_od_write_value(co_node_t *node, const co_od_entry_t *e, const co_od_
                            const uint8_t *data, uint32_t len)
 {
     co_od_hook_t *h = hook_of(node, e);
+    const co_svc_hook_t *sh = svc_hook(node, e->index);
     co_od_io_t io;
     co_err_t err;
     uint8_t *v = (uint8_t *)co_od_loc(node, s);
@@ -301,8 +414,8 @@ co_err_t co_od_write_value(co_node_t *node, const co_od_entry_t *e, const co_od_
         /* fits */
     }
     err = check_limits(node, s, data, len);
-    if (err == CO_OK) {
-        err = co_comm_check_write(node, e->index, s->sub, data, len);
+    if ((err == CO_OK) && (sh != NULL) && (sh->check != NULL)) {
+        err = sh->check(node, e->index, s->sub, data, len);
     }
     if (err != CO_OK) {
         return err;
@@ -322,8 +435,8 @@ co_err_t co_od_write_value(co_node_t *node, const co_od_entry_t *e, const co_od_
     } else {
         /* plain stored value */
     }
-    if (co_store_is_command(e, s)) {
-        return co_store_command(node, e->index, s->sub, data); /* acted on, never stored */
+    if ((sh != NULL) && (sh->act != NULL) && sh->act(node, e, s, data, &err)) {
+        return err; /* the service acted on the value, which is never stored */
     }
     if ((v != NULL) && ((s->flags & CO_SUB_ROM) == 0U)) {
         if (fixed != 0U) {
@@ -335,7 +448,7 @@ co_err_t co_od_write_value(co_node_t *node, const co_od_entry_t *e, const co_od_
             }
         }
     }
-    co_comm_written(node, e->index, s->sub);
+    svc_written(node, sh, e->index, s->sub);
     return CO_OK;
 }
 
@@ -384,7 +497,7 @@ co_err_t co_od_write_part(co_node_t *node, const co_od_entry_t *e, const co_od_s
                 return err;
             }
         }
-        co_comm_written(node, e->index, s->sub);
+        svc_written(node, svc_hook(node, e->index), e->index, s->sub);
     }
     return CO_OK;
 }
@@ -488,16 +601,21 @@ void *co_od_value_ptr(co_node_t *node, uint16_t index, uint8_t sub)
     return &node->ram[s->off];
 }
 
-co_err_t co_od_bind_hook(co_node_t *node, uint16_t index, const co_od_hook_t *hook)
+co_result_t co_od_bind_hook(co_node_t *node, uint16_t index, const co_od_hook_t *hook)
 {
     const co_od_entry_t *e = co_od_find(node->dev->od, node->dev->od_count, index);
+    co_od_hook_t *h;
 
     if (e == NULL) {
-        return CO_ERR_NO_OBJECT;
+        return CO_RESULT_NO_OBJECT;
     }
     if ((e->hook == 0U) || (node->hooks == NULL) || (e->hook > node->dev->n_hooks)) {
-        return CO_ERR_NO_ACCESS;
+        return CO_RESULT_NO_HOOK_SLOT;
     }
-    node->hooks[e->hook - 1U] = *hook;
-    return CO_OK;
+    h = &node->hooks[e->hook - 1U];
+    if ((h->read != NULL) || (h->write != NULL)) {
+        return CO_RESULT_HOOK_BOUND; /* two plug-ins on one object: the first stays */
+    }
+    *h = *hook;
+    return CO_RESULT_OK;
 }

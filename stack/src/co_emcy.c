@@ -36,7 +36,7 @@ static uint32_t cob_id(const co_node_t *node)
 
 static uint32_t inhibit_us(const co_node_t *node)
 {
-    return (node->emcy.inhibit != NULL) ? ((uint32_t)*node->emcy.inhibit * 100UL) : 0U;
+    return (node->emcy.inhibit != NULL) ? co_dict_us(*node->emcy.inhibit, 100UL) : 0U;
 }
 
 /* Still within the inhibit time of the last EMCY? emcy_next is at most one
@@ -271,7 +271,7 @@ static co_err_t cob_check(const co_node_t *node, uint16_t index, uint8_t sub,
 {
     if ((index == 0x1014U) && (sub == 0U) && (len == 4U) && (node->emcy.cob != NULL)) {
         return co_check_cob(*node->emcy.cob, co_get_u32(data), 0x80000000UL, false,
-                            0x40000000UL);
+                            0x40000000UL, false);
     }
     return CO_OK;
 }

@@ -88,6 +88,6 @@ const co_service_t co_svc_nmt = {
 
 void co_node_error_behaviour(co_node_t *node, uint8_t sub, uint32_t now_us)
 {
-    node->now = now_us;
+    co_node_clock(node, now_us);
     co_nmt_error(node, sub);
 }

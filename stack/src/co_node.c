@@ -52,7 +52,7 @@ static void tx_drain(co_node_t *node)
 
 /* A COB-ID write (CiA 301 7.5.2), for the services' checks. */
 co_err_t co_check_cob(uint32_t cur, uint32_t v, uint32_t use_bits, bool use_when_set,
-                      uint32_t reserved)
+                      uint32_t reserved, bool always)
 {
     bool cur_used = use_when_set ? ((cur & use_bits) != 0U) : ((cur & use_bits) == 0U);
     bool new_used = use_when_set ? ((v & use_bits) != 0U) : ((v & use_bits) == 0U);
@@ -61,6 +61,9 @@ co_err_t co_check_cob(uint32_t cur, uint32_t v, uint32_t use_bits, bool use_when
         return CO_ERR_VALUE;
     }
     if (cur_used && new_used && ((v & 0x7FFUL) != (cur & 0x7FFUL))) {
+        return CO_ERR_VALUE;
+    }
+    if ((new_used || always) && co_cob_restricted(v & 0x7FFUL)) {
         return CO_ERR_VALUE;
     }
     return CO_OK;
@@ -160,7 +163,7 @@ static void pdo_rx(co_node_t *node, uint16_t cob, const co_frame_t *f, uint32_t 
     const co_pdo_slot_t *ps = pdo_find(node, cob);
 
     if (ps != NULL) {
-        node->now = now_us;
+        co_node_clock(node, now_us);
         co_services[node->pdo.svc]->rx(node, ps->pdo, f);
     }
 }
@@ -185,7 +188,7 @@ void co_rx_dispatch(co_node_t *node, const co_frame_t *f, uint16_t cob, uint32_t
         slot = rx_find(node, cob);
     }
     if (slot != NULL) {
-        node->now = now_us;
+        co_node_clock(node, now_us);
         co_services[slot->kind]->rx(node, slot->arg, f);
     } else if ((node->pdo.fc & fc) != 0U) {
         pdo_rx(node, cob, f, now_us);
@@ -211,11 +214,34 @@ void co_node_rx(co_node_t *node, const co_frame_t *f, uint32_t now_us)
 
 /* ------------------------------------------------------------ timers */
 
+/* The caller's clock jumped ahead by 2^31 us or more since the node last saw
+ * it (a stopped process, a paused VM, a debugger): every armed deadline is
+ * then in the past, although the wrap-safe comparison would take it for one
+ * up to 35 minutes ahead. They all become due now. */
+CO_NOINLINE void co_node_stalled(co_node_t *node, uint32_t now_us)
+{
+    uint16_t n = (uint16_t)(node->dev->n_rpdo + node->dev->n_tpdo);
+
+    node->errctl.hb_deadline = now_us;
+    node->errctl.guard_deadline = now_us;
+    node->sync.deadline = now_us;
+    node->sync.last = now_us - (uint32_t)CO_HORIZON_US; /* the SYNC window is long closed */
+    node->emcy.next = now_us;
+    node->sdo.deadline = now_us;
+    for (uint8_t k = 0U; k < node->errctl.n_hb_cons; k++) {
+        node->errctl.hbc[k].deadline = now_us;
+    }
+    for (uint16_t i = 0U; i < n; i++) {
+        node->pdo.p[i].timer = now_us;
+        node->pdo.p[i].inhibit = now_us;
+    }
+}
+
 uint32_t co_node_process(co_node_t *node, uint32_t now_us)
 {
     uint32_t next = CO_NO_DEADLINE;
 
-    node->now = now_us;
+    co_node_clock(node, now_us);
     tx_drain(node);
     for (uint8_t k = 0U; k < co_n_services; k++) {
         if (co_services[k]->process != NULL) {
@@ -225,6 +251,9 @@ uint32_t co_node_process(co_node_t *node, uint32_t now_us)
     if (node->txq_len > 0U) {
         /* TX path still full: look again in a millisecond */
         next = co_deadline_min(now_us, next, now_us + 1000U);
+    }
+    if ((next != CO_NO_DEADLINE) && !co_time_reached(next, now_us)) {
+        next = now_us; /* never a deadline before the time given */
     }
     return next;
 }
@@ -287,7 +316,7 @@ static void reset(co_node_t *node, co_reset_t kind)
 
 void co_node_nmt_command(co_node_t *node, uint8_t cs, uint32_t now_us)
 {
-    node->now = now_us;
+    co_node_clock(node, now_us);
     switch (cs) {
     case CO_NMT_CMD_START:
         co_node_set_state(node, CO_NMT_OPERATIONAL);

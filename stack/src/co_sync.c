@@ -28,6 +28,12 @@ static bool producing(const co_node_t *node)
 #endif
 }
 
+/* The communication cycle period 0x1006 in us, within the timer horizon. */
+static uint32_t period_us(const co_node_t *node)
+{
+    return co_dict_us(*node->sync.period, 1U);
+}
+
 /* Everything a SYNC sets in motion, received or produced here. */
 static void on_sync(co_node_t *node, uint8_t counter)
 {
@@ -46,7 +52,7 @@ static void sync_reset(co_node_t *node)
     node->sync.counter = 1U;
     node->sync.last = node->now;
     if (producing(node)) {
-        node->sync.deadline = node->now + *node->sync.period;
+        node->sync.deadline = node->now + period_us(node);
     }
 }
 
@@ -77,7 +83,7 @@ static uint32_t sync_process(co_node_t *node, uint32_t next)
     if (co_time_reached(node->now, node->sync.deadline)) {
         uint8_t ovf = overflow(node);
         uint8_t cnt = 0U;
-        uint32_t period = *node->sync.period;
+        uint32_t period = period_us(node);
         if (sync_allowed(node)) {
             if (ovf > 1U) {
                 cnt = node->sync.counter;
@@ -140,12 +146,16 @@ static void sync_rx_frame(co_node_t *node, uint16_t arg, const co_frame_t *f)
 static co_err_t sync_check(const co_node_t *node, uint16_t index, uint8_t sub,
                            const uint8_t *data, uint32_t len)
 {
-    if ((sub != 0U) || (node->sync.cob == NULL)) {
+    if ((sub != 0U) || (len != 4U)) {
         return CO_OK;
     }
-    if ((index == 0x1005U) && (len == 4U)) {
+    if ((index == 0x1005U) && (node->sync.cob != NULL)) {
         /* the CAN-ID is fixed while this node produces SYNC (bit 30) */
-        return co_check_cob(*node->sync.cob, co_get_u32(data), COB_SYNC_GEN, true, 0U);
+        return co_check_cob(*node->sync.cob, co_get_u32(data), COB_SYNC_GEN, true, 0U, true);
+    }
+    if ((index == 0x1006U) && (co_get_u32(data) > CO_HORIZON_US)) {
+        /* communication cycle period: within the timer horizon (2^31 us) */
+        return CO_ERR_VALUE_HIGH;
     }
     return CO_OK;
 }

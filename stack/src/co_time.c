@@ -70,7 +70,7 @@ static co_err_t time_check(const co_node_t *node, uint16_t index, uint8_t sub,
     (void)index;
     if ((sub == 0U) && (len == 4U) && (node->time.cob != NULL)) {
         return co_check_cob(*node->time.cob, co_get_u32(data), COB_TIME_CONS | COB_TIME_PROD,
-                            true, 0U);
+                            true, 0U, false);
     }
     return CO_OK;
 }

@@ -236,49 +236,42 @@ static void emcy_nmt(co_node_t *node, co_nmt_state_t from)
     co_emcy_clear(node, CO_EMCY_RPDO_TIMEOUT);
 }
 
-/* 0x1003: entries beyond the number of recorded errors hold no data. */
-static co_err_t hist_read(const co_node_t *node, uint16_t index, uint8_t sub)
+/* 0x1003: entries beyond the number of recorded errors hold no data; only
+ * 0 may be written to sub0, which clears the history. 0x1014: the CAN-ID is
+ * fixed while the EMCY is valid (bit 31 = 0). */
+static co_err_t emcy_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
+                         const co_od_sub_t *s, const uint8_t *data, uint32_t len)
 {
-    (void)index;
-    if ((sub > 0U) && (node->emcy.hist_count != NULL) && (sub > *node->emcy.hist_count)) {
-        return CO_ERR_NO_DATA;
-    }
-    return CO_OK;
-}
+    co_emcy_t *m = &node->emcy;
+    uint8_t sub = s->sub;
+    co_err_t err = CO_OK;
 
-/* only 0 may be written to sub0: it clears the history */
-static co_err_t hist_check(const co_node_t *node, uint16_t index, uint8_t sub,
-                           const uint8_t *data, uint32_t len)
-{
-    (void)node;
-    (void)index;
-    return ((sub == 0U) && (len == 1U) && (data[0] != 0U)) ? CO_ERR_VALUE : CO_OK;
-}
-
-static void hist_written(co_node_t *node, uint16_t index, uint8_t sub)
-{
-    (void)index;
-    if ((sub == 0U) && (node->emcy.hist != NULL)) {
-        for (uint8_t i = 0U; i < node->emcy.hist_depth; i++) {
-            node->emcy.hist[i] = 0U;
+    if (e->index != 0x1003U) {
+        if ((e->index == 0x1014U) && (sub == 0U) && (len == 4U) && (m->cob != NULL)) {
+            err = co_check_cob(*m->cob, co_get_u32(data), 0x80000000UL, false, 0x40000000UL,
+                               false);
         }
+    } else if (op == (uint8_t)CO_SVC_READ) {
+        if ((sub > 0U) && (m->hist_count != NULL) && (sub > *m->hist_count)) {
+            err = CO_ERR_NO_DATA;
+        }
+    } else if (op == (uint8_t)CO_SVC_CHECK) {
+        if ((sub == 0U) && (len == 1U) && (data[0] != 0U)) {
+            err = CO_ERR_VALUE;
+        }
+    } else if ((sub == 0U) && (m->hist != NULL)) { /* written */
+        for (uint8_t i = 0U; i < m->hist_depth; i++) {
+            m->hist[i] = 0U;
+        }
+    } else {
+        /* a history entry written by the application */
     }
-}
-
-/* 0x1014: the CAN-ID is fixed while the EMCY is valid (bit 31 = 0) */
-static co_err_t cob_check(const co_node_t *node, uint16_t index, uint8_t sub,
-                          const uint8_t *data, uint32_t len)
-{
-    if ((index == 0x1014U) && (sub == 0U) && (len == 4U) && (node->emcy.cob != NULL)) {
-        return co_check_cob(*node->emcy.cob, co_get_u32(data), 0x80000000UL, false,
-                            0x40000000UL, false);
-    }
-    return CO_OK;
+    return err;
 }
 
 static const co_svc_hook_t emcy_hooks[] = {
-    {0x1003U, 0x1003U, hist_read, hist_check, NULL, hist_written},
-    {0x1014U, 0x1015U, NULL, cob_check, NULL, NULL},
+    {0x1003U, 0x1003U, CO_SVC_READ | CO_SVC_CHECK | CO_SVC_WRITTEN, emcy_obj},
+    {0x1014U, 0x1015U, CO_SVC_CHECK, emcy_obj},
 };
 
 const co_service_t co_svc_emcy = {

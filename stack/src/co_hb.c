@@ -298,17 +298,10 @@ static void errctl_rx(co_node_t *node, uint16_t arg, const co_frame_t *f)
 }
 
 /* 0x1016: one producer may be monitored by one entry only. */
-static co_err_t errctl_check(const co_node_t *node, uint16_t index, uint8_t sub,
-                             const uint8_t *data, uint32_t len)
+static co_err_t hb_consumer_check(const co_node_t *node, uint8_t sub, uint32_t v)
 {
-    uint32_t v;
-    uint8_t id;
+    uint8_t id = (uint8_t)((v >> 16U) & 0xFFU);
 
-    if ((index != 0x1016U) || (sub == 0U) || (len != 4U) || (sub > node->errctl.n_hb_cons)) {
-        return CO_OK;
-    }
-    v = co_get_u32(data);
-    id = (uint8_t)((v >> 16U) & 0xFFU);
     if ((v & 0xFF000000UL) != 0U) {
         return CO_ERR_VALUE;
     }
@@ -327,29 +320,37 @@ static co_err_t errctl_check(const co_node_t *node, uint16_t index, uint8_t sub,
     return CO_OK;
 }
 
-static void errctl_written(co_node_t *node, uint16_t index, uint8_t sub)
+static co_err_t errctl_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
+                           const co_od_sub_t *s, const uint8_t *data, uint32_t len)
 {
-    if (index == 0x1016U) {
-        if ((sub > 0U) && (sub <= node->errctl.n_hb_cons)) {
-            node->errctl.hbc[sub - 1U].state = (uint8_t)HBC_UNUSED; /* this entry starts over */
-            consumers_changed(node);
-        }
-    } else if (index == 0x1017U) {
+    co_errctl_t *c = &node->errctl;
+    uint8_t sub = s->sub;
+    bool consumer = (e->index == 0x1016U) && (sub > 0U) && (sub <= c->n_hb_cons);
+
+    if (op == (uint8_t)CO_SVC_CHECK) {
+        return (consumer && (len == 4U)) ? hb_consumer_check(node, sub, co_get_u32(data))
+                                         : CO_OK;
+    }
+    if (consumer) {
+        c->hbc[sub - 1U].state = (uint8_t)HBC_UNUSED; /* this entry starts over */
+        consumers_changed(node);
+    } else if (e->index == 0x1017U) {
         producer_changed(node);
-    } else if (node->errctl.guard_state == (uint8_t)GUARD_ARMED) {
+    } else if ((e->index != 0x1016U) && (c->guard_state == (uint8_t)GUARD_ARMED)) {
         /* 0x100C / 0x100D: life guarding is re-armed with the new life time
          * by the next guarding request. A lost state is kept: that request
          * must still end the error (errctl_process ends it if life guarding
          * is now off). */
-        node->errctl.guard_state = (uint8_t)GUARD_OFF;
+        c->guard_state = (uint8_t)GUARD_OFF;
     } else {
         /* nothing armed */
     }
+    return CO_OK;
 }
 
 static const co_svc_hook_t errctl_hooks[] = {
-    {0x100CU, 0x100DU, NULL, NULL, NULL, errctl_written},
-    {0x1016U, 0x1017U, NULL, errctl_check, NULL, errctl_written},
+    {0x100CU, 0x100DU, CO_SVC_WRITTEN, errctl_obj},
+    {0x1016U, 0x1017U, CO_SVC_CHECK | CO_SVC_WRITTEN, errctl_obj},
 };
 
 const co_service_t co_svc_errctl = {

@@ -51,19 +51,20 @@ void co_nmt_error(co_node_t *node, uint8_t sub)
 }
 
 /* 0..2, 0x80..0xFF manufacturer-specific; 3..0x7F reserved */
-static co_err_t errbeh_check(const co_node_t *node, uint16_t index, uint8_t sub,
-                             const uint8_t *data, uint32_t len)
+static co_err_t errbeh_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
+                           const co_od_sub_t *s, const uint8_t *data, uint32_t len)
 {
     (void)node;
-    (void)index;
-    if ((sub > 0U) && (len == 1U) && (data[0] >= 3U) && (data[0] <= 0x7FU)) {
+    (void)op;
+    (void)e;
+    if ((s->sub > 0U) && (len == 1U) && (data[0] >= 3U) && (data[0] <= 0x7FU)) {
         return CO_ERR_VALUE;
     }
     return CO_OK;
 }
 
 static const co_svc_hook_t nmt_hooks[] = {
-    {0x1029U, 0x1029U, NULL, errbeh_check, NULL, NULL},
+    {0x1029U, 0x1029U, CO_SVC_CHECK, errbeh_obj},
 };
 
 const co_service_t co_svc_nmt = {

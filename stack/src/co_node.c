@@ -156,15 +156,16 @@ static const co_pdo_slot_t *pdo_find(const co_node_t *node, uint16_t cob)
     return NULL;
 }
 
-/* A frame that may be on a PDO's COB-ID: the PDO service's rx with the
- * PDO's number. */
+/* A frame that may be on a PDO's COB-ID: the PDO service's receive entry
+ * (which its rx_slots left in node->pdo.recv, with the table) with the PDO's
+ * number. */
 static void pdo_rx(co_node_t *node, uint16_t cob, const co_frame_t *f, uint32_t now_us)
 {
     const co_pdo_slot_t *ps = pdo_find(node, cob);
 
     if (ps != NULL) {
         co_node_clock(node, now_us);
-        co_services[node->pdo.svc]->rx(node, ps->pdo, f);
+        node->pdo.recv(node, ps->pdo, f);
     }
 }
 

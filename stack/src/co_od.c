@@ -151,53 +151,62 @@ static const co_svc_hook_t *svc_hook(const co_node_t *node, uint16_t index)
 
 co_result_t co_od_register(co_node_t *node, const co_svc_hook_t *h)
 {
-    uint8_t n = node->n_svc_hooks;
-    uint8_t at = n;
+    uint8_t at = node->n_svc_hooks;
 
-    while ((at > 0U) && (node->svc_hooks[at - 1U]->first > h->first)) {
-        at--;
+    for (uint8_t i = 0U; i < at; i++) {
+        const co_svc_hook_t *r = node->svc_hooks[i];
+        if ((h->first <= r->last) && (r->first <= h->last)) {
+            return CO_RESULT_HOOK_BOUND; /* an object already has its service */
+        }
     }
-    if (((at > 0U) && (node->svc_hooks[at - 1U]->last >= h->first)) ||
-        ((at < n) && (node->svc_hooks[at]->first <= h->last)) || (h->last < h->first)) {
-        return CO_RESULT_HOOK_BOUND;
-    }
-    if (n >= CO_SVC_HOOKS_MAX) {
+    if (at >= CO_SVC_HOOKS_MAX) {
         return CO_RESULT_NO_MEMORY;
     }
-    for (uint8_t i = n; i > at; i--) {
-        node->svc_hooks[i] = node->svc_hooks[i - 1U];
+    node->n_svc_hooks = (uint8_t)(at + 1U);
+    while ((at > 0U) && (node->svc_hooks[at - 1U]->first > h->first)) {
+        node->svc_hooks[at] = node->svc_hooks[at - 1U];
+        at--;
     }
     node->svc_hooks[at] = h;
-    node->n_svc_hooks = (uint8_t)(n + 1U);
-    if (h->read != NULL) {
-        if ((node->svc_rd_hi == 0U) || (h->first < node->svc_rd_lo)) {
-            node->svc_rd_lo = h->first;
+    if ((h->ops & CO_SVC_READ) != 0U) {
+        /* the span [svc_rd_lo, svc_rd_lo + svc_rd_span] grows to take it in */
+        uint16_t hi = (uint16_t)(node->svc_rd_lo + node->svc_rd_span);
+        uint16_t lo = node->svc_rd_lo;
+        if ((node->n_svc_rd == 0U) || (h->first < lo)) {
+            lo = h->first;
         }
-        if (h->last > node->svc_rd_hi) {
-            node->svc_rd_hi = h->last;
+        if ((node->n_svc_rd == 0U) || (h->last > hi)) {
+            hi = h->last;
         }
+        node->svc_rd_lo = lo;
+        node->svc_rd_span = (uint16_t)(hi - lo);
+        node->n_svc_rd = 1U;
     }
     return CO_RESULT_OK;
 }
 
 /* Before a stored value is read: the owning service's read hook. Only
- * indexes in [svc_rd_lo, svc_rd_hi], the span of the hooks that have one,
- * are looked up (the read path of every other object stays short). */
-static inline co_err_t svc_read(const co_node_t *node, uint16_t index, uint8_t sub)
+ * indexes in [svc_rd_lo, svc_rd_lo + svc_rd_span], the span of the hooks
+ * that have one, are looked up (the read path of every other object stays
+ * short; without read hooks only index 0, which no dictionary has). */
+static inline co_err_t svc_read(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s)
 {
     const co_svc_hook_t *h;
 
-    if ((index < node->svc_rd_lo) || (index > node->svc_rd_hi)) {
+    if ((uint16_t)(e->index - node->svc_rd_lo) > node->svc_rd_span) {
         return CO_OK;
     }
-    h = svc_hook(node, index);
-    return ((h != NULL) && (h->read != NULL)) ? h->read(node, index, sub) : CO_OK;
+    h = svc_hook(node, e->index);
+    return ((h != NULL) && ((h->ops & CO_SVC_READ) != 0U))
+               ? h->fn(node, CO_SVC_READ, e, s, NULL, 0U)
+               : CO_OK;
 }
 
-static void svc_written(co_node_t *node, const co_svc_hook_t *h, uint16_t index, uint8_t sub)
+static void svc_written(co_node_t *node, const co_svc_hook_t *h, const co_od_entry_t *e,
+                        const co_od_sub_t *s)
 {
-    if ((h != NULL) && (h->written != NULL)) {
-        h->written(node, index, sub);
+    if ((h != NULL) && ((h->ops & CO_SVC_WRITTEN) != 0U)) {
+        (void)h->fn(node, CO_SVC_WRITTEN, e, s, NULL, 0U);
     }
 }
 
@@ -302,7 +311,7 @@ co_err_t co_od_read_part(co_node_t *node, const co_od_entry_t *e, const co_od_su
         return read_hookio(node, e, s, c);
     }
     if (offset == 0U) {
-        co_err_t err = svc_read(node, e->index, s->sub);
+        co_err_t err = svc_read(node, e, s);
         if ((err == CO_OK) && (e->hook != 0U)) {
             err = read_hook(node, e, s);
         }
@@ -414,8 +423,8 @@ co_err_t co_od_write_value(co_node_t *node, const co_od_entry_t *e, const co_od_
         /* fits */
     }
     err = check_limits(node, s, data, len);
-    if ((err == CO_OK) && (sh != NULL) && (sh->check != NULL)) {
-        err = sh->check(node, e->index, s->sub, data, len);
+    if ((err == CO_OK) && (sh != NULL) && ((sh->ops & CO_SVC_CHECK) != 0U)) {
+        err = sh->fn(node, CO_SVC_CHECK, e, s, data, len);
     }
     if (err != CO_OK) {
         return err;
@@ -435,9 +444,19 @@ co_err_t co_od_write_value(co_node_t *node, const co_od_entry_t *e, const co_od_
     } else {
         /* plain stored value */
     }
-    if ((sh != NULL) && (sh->act != NULL) && sh->act(node, e, s, data, &err)) {
-        return err; /* the service acted on the value, which is never stored */
+    if ((sh != NULL) && ((sh->ops & CO_SVC_COMMIT) != 0U)) {
+        return sh->fn(node, CO_SVC_COMMIT, e, s, data, len); /* the service's commit */
     }
+    co_od_commit(node, s, data, len);
+    svc_written(node, sh, e, s);
+    return CO_OK;
+}
+
+void co_od_commit(co_node_t *node, const co_od_sub_t *s, const uint8_t *data, uint32_t len)
+{
+    uint8_t *v = (uint8_t *)co_od_loc(node, s);
+    uint8_t fixed = co_type_len(s->type);
+
     if ((v != NULL) && ((s->flags & CO_SUB_ROM) == 0U)) {
         if (fixed != 0U) {
             co_from_wire(v, data, fixed);
@@ -448,8 +467,6 @@ co_err_t co_od_write_value(co_node_t *node, const co_od_entry_t *e, const co_od_
             }
         }
     }
-    svc_written(node, sh, e->index, s->sub);
-    return CO_OK;
 }
 
 co_err_t co_od_write_part(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
@@ -497,7 +514,7 @@ co_err_t co_od_write_part(co_node_t *node, const co_od_entry_t *e, const co_od_s
                 return err;
             }
         }
-        svc_written(node, svc_hook(node, e->index), e->index, s->sub);
+        svc_written(node, svc_hook(node, e->index), e, s);
     }
     return CO_OK;
 }

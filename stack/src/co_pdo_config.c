@@ -328,13 +328,16 @@ static void pdo_nmt(co_node_t *node, co_nmt_state_t from)
     }
 }
 
+static void pdo_rx(co_node_t *node, uint16_t i, const co_frame_t *f);
+
 static void pdo_rx_slots(co_node_t *node, uint8_t svc)
 {
     uint16_t n = (uint16_t)(node->dev->n_rpdo + node->dev->n_tpdo);
     uint16_t used = 0U;
     uint16_t fc = 0U;
 
-    node->pdo.svc = svc;
+    (void)svc;
+    node->pdo.recv = pdo_rx;
     if (node->pdo.rx == NULL) {
         return;
     }
@@ -377,8 +380,18 @@ static uint32_t pdo_process(co_node_t *node, uint32_t next)
     return co_tpdo_process(node, co_rpdo_process(node, next));
 }
 
+static co_err_t pdo_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
+                        const co_od_sub_t *s, const uint8_t *data, uint32_t len)
+{
+    if (op == (uint8_t)CO_SVC_CHECK) {
+        return pdo_check_write(node, e->index, s->sub, data, len);
+    }
+    pdo_written(node, e->index, s->sub);
+    return CO_OK;
+}
+
 static const co_svc_hook_t pdo_hooks[] = {
-    {0x1400U, 0x1BFFU, NULL, pdo_check_write, NULL, pdo_written},
+    {0x1400U, 0x1BFFU, CO_SVC_CHECK | CO_SVC_WRITTEN, pdo_obj},
 };
 
 const co_service_t co_svc_pdo = {

@@ -204,25 +204,29 @@ void co_node_set_state(co_node_t *node, co_nmt_state_t st);
 
 /* ---- the services (co_services.c): the node's dispatch table */
 
+/* What the dictionary engine asks of a service's hook (co_svc_hook_t.fn),
+ * for an access to an object the service owns; the hook's ops bits say
+ * which it wants to be asked. */
+enum {
+    CO_SVC_READ = 0x01U,    /* before a stored value is read (offset 0): an error vetoes it */
+    CO_SVC_CHECK = 0x02U,   /* a complete new value (type, size and limits checked), before
+                               the application's hook: an error vetoes the write */
+    CO_SVC_COMMIT = 0x04U,  /* after the application's hook, instead of the engine's commit:
+                               the service stores or acts on the value (co_od_commit stores
+                               it); its result is the answer, CO_SVC_WRITTEN does not follow */
+    CO_SVC_WRITTEN = 0x08U  /* after the value was stored (the result is ignored) */
+};
+
 /* A service's hook on the objects it owns, @p first .. @p last. The
- * dictionary engine (co_od.c) calls it for every access to such an object,
- * before the application's hook of the entry; any hook may be NULL. */
+ * dictionary engine (co_od.c) calls fn for the accesses @p ops names,
+ * before the application's hook of the entry (data/len: the value in wire
+ * bytes for CO_SVC_CHECK and CO_SVC_COMMIT, NULL/0 otherwise). */
 typedef struct co_svc_hook {
     uint16_t first;
     uint16_t last;
-    /* Before a stored value is read (offset 0): an error vetoes the read. */
-    co_err_t (*read)(const co_node_t *node, uint16_t index, uint8_t sub);
-    /* A complete new value (type, size and limits checked), before the
-     * application's hook: an error vetoes the write. */
-    co_err_t (*check)(const co_node_t *node, uint16_t index, uint8_t sub, const uint8_t *data,
-                      uint32_t len);
-    /* After the application's hook, instead of storing: true when the
-     * service acted on the value itself (its answer in *err; nothing is
-     * stored, written is not called). */
-    bool (*act)(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
-                const uint8_t *data, co_err_t *err);
-    /* After the value was stored. */
-    void (*written)(co_node_t *node, uint16_t index, uint8_t sub);
+    uint8_t ops;
+    co_err_t (*fn)(co_node_t *node, uint8_t op, const co_od_entry_t *e, const co_od_sub_t *s,
+                   const uint8_t *data, uint32_t len);
 } co_svc_hook_t;
 
 /* Reset kinds a service sees (co_service_t.reset): CO_RESET_NODE and
@@ -316,6 +320,8 @@ void co_od_restore(co_node_t *node, uint16_t from, uint16_t to);
  * overlaps one already registered, CO_RESULT_NO_MEMORY when the table
  * (CO_SVC_HOOKS_MAX) is full. */
 co_result_t co_od_register(co_node_t *node, const co_svc_hook_t *h);
+/* Store a checked value of @p s from wire bytes (the engine's commit). */
+void co_od_commit(co_node_t *node, const co_od_sub_t *s, const uint8_t *data, uint32_t len);
 
 /* Where a core object lives in the RAM image: the value of @p index sub
  * @p sub if it has type @p type and a stored RAM value, else NULL. */

@@ -295,20 +295,22 @@ static void store_reset(co_node_t *node, uint8_t kind)
 
 /* ------------------------------------------------------------ service */
 
-/* A checked write to a sub-entry of 0x1010 / 0x1011 the core acts on (sub
- * >= 1, UNSIGNED32 in RAM): save or restore; the value is never stored. */
-static bool store_act(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
-                      const uint8_t *data, co_err_t *err)
+/* A checked write to 0x1010 / 0x1011: a sub-entry the core acts on (sub
+ * >= 1, UNSIGNED32 in RAM) saves or restores, its value is never stored;
+ * any other is stored as usual. */
+static co_err_t store_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
+                          const co_od_sub_t *s, const uint8_t *data, uint32_t len)
 {
+    (void)op;
     if (!is_command(e, s)) {
-        return false;
+        co_od_commit(node, s, data, len);
+        return CO_OK;
     }
-    *err = command(node, e->index, s->sub, data);
-    return true;
+    return command(node, e->index, s->sub, data);
 }
 
 static const co_svc_hook_t store_hooks[] = {
-    {0x1010U, 0x1011U, NULL, NULL, store_act, NULL},
+    {0x1010U, 0x1011U, CO_SVC_COMMIT, store_obj},
 };
 
 const co_service_t co_svc_store = {

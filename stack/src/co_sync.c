@@ -143,51 +143,44 @@ static void sync_rx_frame(co_node_t *node, uint16_t arg, const co_frame_t *f)
     sync_rx(node, f);
 }
 
-static co_err_t sync_check(const co_node_t *node, uint16_t index, uint8_t sub,
-                           const uint8_t *data, uint32_t len)
+/* 0x1005: the CAN-ID is fixed while this node produces SYNC (bit 30);
+ * 0x1006 within the timer horizon (2^31 us); 0x1019 counter overflow 0 or
+ * 2..240, and only while no SYNC period is set. A change of 0x1005, 0x1006
+ * or 0x1019 starts SYNC over. */
+static co_err_t sync_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
+                         const co_od_sub_t *s, const uint8_t *data, uint32_t len)
 {
-    if ((sub != 0U) || (len != 4U)) {
-        return CO_OK;
-    }
-    if ((index == 0x1005U) && (node->sync.cob != NULL)) {
-        /* the CAN-ID is fixed while this node produces SYNC (bit 30) */
-        return co_check_cob(*node->sync.cob, co_get_u32(data), COB_SYNC_GEN, true, 0U, true);
-    }
-    if ((index == 0x1006U) && (co_get_u32(data) > CO_HORIZON_US)) {
-        /* communication cycle period: within the timer horizon (2^31 us) */
-        return CO_ERR_VALUE_HIGH;
-    }
-    return CO_OK;
-}
+    uint16_t index = e->index;
+    co_err_t err = CO_OK;
 
-/* 0x1019 counter overflow: 0 or 2..240, and only while no SYNC period is set */
-static co_err_t overflow_check(const co_node_t *node, uint16_t index, uint8_t sub,
-                               const uint8_t *data, uint32_t len)
-{
-    (void)index;
-    if ((sub == 0U) && (len == 1U)) {
+    if (op == (uint8_t)CO_SVC_WRITTEN) {
+        if (index != 0x1007U) {
+            sync_reset(node);
+            co_rx_invalidate(node);
+        }
+    } else if (s->sub != 0U) {
+        /* not a SYNC parameter */
+    } else if ((index == 0x1005U) && (len == 4U) && (node->sync.cob != NULL)) {
+        err = co_check_cob(*node->sync.cob, co_get_u32(data), COB_SYNC_GEN, true, 0U, true);
+    } else if ((index == 0x1006U) && (len == 4U) && (co_get_u32(data) > CO_HORIZON_US)) {
+        err = CO_ERR_VALUE_HIGH;
+    } else if ((index == 0x1019U) && (len == 1U)) {
         if ((data[0] == 1U) || (data[0] > 240U)) {
-            return CO_ERR_VALUE;
+            err = CO_ERR_VALUE;
+        } else if ((node->sync.period != NULL) && (*node->sync.period != 0U)) {
+            err = CO_ERR_STORE_STATE;
+        } else {
+            /* allowed */
         }
-        if ((node->sync.period != NULL) && (*node->sync.period != 0U)) {
-            return CO_ERR_STORE_STATE;
-        }
+    } else {
+        /* no rule */
     }
-    return CO_OK;
-}
-
-static void sync_written(co_node_t *node, uint16_t index, uint8_t sub)
-{
-    (void)sub;
-    if (index != 0x1007U) {
-        sync_reset(node);
-        co_rx_invalidate(node);
-    }
+    return err;
 }
 
 static const co_svc_hook_t sync_hooks[] = {
-    {0x1005U, 0x1007U, NULL, sync_check, NULL, sync_written},
-    {0x1019U, 0x1019U, NULL, overflow_check, NULL, sync_written},
+    {0x1005U, 0x1007U, CO_SVC_CHECK | CO_SVC_WRITTEN, sync_obj},
+    {0x1019U, 0x1019U, CO_SVC_CHECK | CO_SVC_WRITTEN, sync_obj},
 };
 
 const co_service_t co_svc_sync = {

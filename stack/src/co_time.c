@@ -63,27 +63,25 @@ static void time_rx_slots(co_node_t *node, uint8_t svc)
     }
 }
 
-/* The CAN-ID is fixed while consumed or produced (bits 31, 30). */
-static co_err_t time_check(const co_node_t *node, uint16_t index, uint8_t sub,
-                           const uint8_t *data, uint32_t len)
+/* The CAN-ID is fixed while consumed or produced (bits 31, 30); a new one
+ * is received from the next frame on. */
+static co_err_t time_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
+                         const co_od_sub_t *s, const uint8_t *data, uint32_t len)
 {
-    (void)index;
-    if ((sub == 0U) && (len == 4U) && (node->time.cob != NULL)) {
+    (void)e;
+    if (op == (uint8_t)CO_SVC_WRITTEN) {
+        co_rx_invalidate(node);
+    } else if ((s->sub == 0U) && (len == 4U) && (node->time.cob != NULL)) {
         return co_check_cob(*node->time.cob, co_get_u32(data), COB_TIME_CONS | COB_TIME_PROD,
                             true, 0U, false);
+    } else {
+        /* no rule */
     }
     return CO_OK;
 }
 
-static void time_written(co_node_t *node, uint16_t index, uint8_t sub)
-{
-    (void)index;
-    (void)sub;
-    co_rx_invalidate(node);
-}
-
 static const co_svc_hook_t time_hooks[] = {
-    {0x1012U, 0x1012U, NULL, time_check, NULL, time_written},
+    {0x1012U, 0x1012U, CO_SVC_CHECK | CO_SVC_WRITTEN, time_obj},
 };
 
 const co_service_t co_svc_time = {

@@ -77,37 +77,30 @@ static void note(char c)
     }
 }
 
-static co_err_t rec_read(const co_node_t *node, uint16_t index, uint8_t sub)
+static co_err_t rec_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
+                       const co_od_sub_t *s, const uint8_t *data, uint32_t len)
 {
-    (void)node;
-    (void)index;
-    (void)sub;
-    note('r');
-    return CO_OK;
-}
-
-static co_err_t rec_check(const co_node_t *node, uint16_t index, uint8_t sub,
-                          const uint8_t *data, uint32_t len)
-{
-    (void)node;
-    (void)sub;
+    (void)s;
     (void)data;
-    assert_int_equal(index, 0x2000);
-    assert_int_equal(len, 4);
-    note('c');
-    return svc_veto;
-}
-
-static void rec_written(co_node_t *node, uint16_t index, uint8_t sub)
-{
-    (void)sub;
-    assert_int_equal(index, 0x2000);
+    assert_int_equal(e->index, 0x2000);
+    if (op == CO_SVC_READ) {
+        note('r');
+        return CO_OK;
+    }
+    if (op == CO_SVC_CHECK) {
+        assert_int_equal(len, 4);
+        note('c');
+        return svc_veto;
+    }
+    assert_int_equal(op, CO_SVC_WRITTEN);
     /* the value is committed when the service hears of it */
     assert_int_equal(((const ram_t *)(const void *)node->ram)->v2000, 0x12345678U);
     note('w');
+    return CO_OK;
 }
 
-static const co_svc_hook_t rec_hooks[] = {{0x2000U, 0x2000U, rec_read, rec_check, NULL, rec_written}};
+static const co_svc_hook_t rec_hooks[] = {
+    {0x2000U, 0x2000U, CO_SVC_READ | CO_SVC_CHECK | CO_SVC_WRITTEN, rec_obj}};
 static const co_service_t rec_svc = {NULL, NULL, NULL, NULL, NULL, NULL, rec_hooks, 1U};
 
 extern const co_service_t co_svc_store;
@@ -218,10 +211,10 @@ static void test_service_veto_first(void **state)
 /* two services on one object, or overlapping ranges: refused, the first stays */
 static void test_register_conflict(void **state)
 {
-    static const co_svc_hook_t same[] = {{0x2000U, 0x2000U, NULL, NULL, NULL, NULL}};
-    static const co_svc_hook_t overlap[] = {{0x1FFFU, 0x2001U, NULL, NULL, NULL, NULL}};
-    static const co_svc_hook_t inside[] = {{0x1011U, 0x1011U, NULL, NULL, NULL, NULL}};
-    static const co_svc_hook_t free_range[] = {{0x3000U, 0x3000U, NULL, NULL, NULL, NULL}};
+    static const co_svc_hook_t same[] = {{0x2000U, 0x2000U, 0U, NULL}};
+    static const co_svc_hook_t overlap[] = {{0x1FFFU, 0x2001U, 0U, NULL}};
+    static const co_svc_hook_t inside[] = {{0x1011U, 0x1011U, 0U, NULL}};
+    static const co_svc_hook_t free_range[] = {{0x3000U, 0x3000U, 0U, NULL}};
     static co_svc_hook_t filler[CO_SVC_HOOKS_MAX];
 
     (void)state;
@@ -240,7 +233,7 @@ static void test_register_conflict(void **state)
         assert_int_equal(co_od_register(&node, f), CO_RESULT_OK);
     }
     {
-        static const co_svc_hook_t one_more[] = {{0x5000U, 0x5000U, NULL, NULL, NULL, NULL}};
+        static const co_svc_hook_t one_more[] = {{0x5000U, 0x5000U, 0U, NULL}};
         assert_int_equal(co_od_register(&node, one_more), CO_RESULT_NO_MEMORY);
     }
 }

@@ -272,7 +272,8 @@ typedef struct co_pdo_svc {
     uint16_t n_rx;
     uint16_t fc;             /**< bit per function code in rx[] */
     uint8_t buffered;        /**< some RPDO may hold data for the next SYNC */
-    uint8_t svc;             /**< the PDO service's place in the service table */
+    /** the PDO service's receive entry, for frames found in rx[] */
+    void (*recv)(struct co_node *node, uint16_t i, const co_frame_t *f);
 } co_pdo_svc_t;
 
 struct co_svc_hook;
@@ -292,14 +293,15 @@ typedef struct co_node {
     uint8_t txq_head;
     uint8_t txq_len;
     uint8_t n_svc_hooks;
+    uint8_t n_svc_rd;        /**< 1 once a service hook with a read hook is registered */
     uint8_t rx_filter[16];   /**< bit per (COB-ID & 0x7F): quick reject */
     uint16_t rx_fc;          /**< bit per function code (COB-ID >> 7) in rx[] */
     co_rx_slot_t rx[CO_RX_SLOTS_MAX];
     co_frame_t txq[CO_TXQ_LEN];
     /** The services' own hooks on the objects they own (co_od.c), sorted by index. */
     const struct co_svc_hook *svc_hooks[CO_SVC_HOOKS_MAX];
-    uint16_t svc_rd_lo;      /**< indexes with a service read hook: [svc_rd_lo, svc_rd_hi] */
-    uint16_t svc_rd_hi;
+    uint16_t svc_rd_lo;      /**< indexes with a service read hook: svc_rd_lo .. + svc_rd_span */
+    uint16_t svc_rd_span;
     /* one part per service */
     co_sdo_srv_t sdo;
     co_errctl_t errctl;

@@ -328,6 +328,10 @@ static co_err_t errctl_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
     bool consumer = (e->index == 0x1016U) && (sub > 0U) && (sub <= c->n_hb_cons);
 
     if (op == (uint8_t)CO_SVC_CHECK) {
+        if ((e->index < 0x1016U) && co_opt(node, CO_OPT_GUARD_HB_EXCLUSIVE) &&
+            heartbeat_producing(node)) {
+            return CO_ERR_RESOURCE; /* guarding refused while the heartbeat runs */
+        }
         return (consumer && (len == 4U)) ? hb_consumer_check(node, sub, co_get_u32(data))
                                          : CO_OK;
     }
@@ -349,7 +353,7 @@ static co_err_t errctl_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
 }
 
 static const co_svc_hook_t errctl_hooks[] = {
-    {0x100CU, 0x100DU, CO_SVC_WRITTEN, errctl_obj},
+    {0x100CU, 0x100DU, CO_SVC_CHECK | CO_SVC_WRITTEN, errctl_obj},
     {0x1016U, 0x1017U, CO_SVC_CHECK | CO_SVC_WRITTEN, errctl_obj},
 };
 

@@ -302,13 +302,41 @@ static void boot(co_node_t *node)
     co_node_set_state(node, CO_NMT_PRE_OPERATIONAL);
 }
 
+/* A device with a node-ID object (co_dev_t.nodeid_index): take the node-ID
+ * from it when it holds another valid one; true if it changed. */
+static bool take_nodeid(co_node_t *node)
+{
+    const uint8_t *v;
+
+    if (node->dev->nodeid_index == 0U) {
+        return false;
+    }
+    v = (const uint8_t *)co_od_value_ptr(node, node->dev->nodeid_index, 0U);
+    if ((v == NULL) || (*v < 1U) || (*v > 127U) || (*v == node->node_id)) {
+        return false;
+    }
+    node->node_id = *v;
+    return true;
+}
+
 /* Reset communication restores the communication area, reset node all of
  * the image, each to defaults and then to the stored set (0x1010): the
  * services' reset of that kind. Where the objects live does not change, so
- * what the services' bind found at init stays valid. */
+ * what the services' bind found at init stays valid. A device with a
+ * node-ID object takes its node-ID from it first ($NODEID defaults follow
+ * it); after a node reset that object has its stored value, so the image is
+ * restored again if the node-ID changes. */
 static void reset(co_node_t *node, co_reset_t kind)
 {
-    services_reset(node, (uint8_t)kind);
+    if (kind == CO_RESET_COMMUNICATION) {
+        (void)take_nodeid(node);
+        services_reset(node, (uint8_t)kind);
+    } else {
+        services_reset(node, (uint8_t)kind);
+        if (take_nodeid(node)) {
+            services_reset(node, (uint8_t)kind);
+        }
+    }
     if (node->cb.nmt_reset != NULL) {
         node->cb.nmt_reset(node->cb.ctx, node, kind);
     }
@@ -403,6 +431,9 @@ co_result_t co_node_init(co_node_t *node, const co_node_config_t *cfg, uint32_t 
         return r;
     }
     services_reset(node, (uint8_t)CO_RESET_NODE); /* defaults, then the stored set */
+    if (take_nodeid(node)) {
+        services_reset(node, (uint8_t)CO_RESET_NODE); /* the stored node-ID: its $NODEID defaults */
+    }
     boot(node);
     return CO_RESULT_OK;
 }

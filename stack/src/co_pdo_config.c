@@ -397,17 +397,3 @@ static const co_svc_hook_t pdo_hooks[] = {
 const co_service_t co_svc_pdo = {
     NULL, pdo_reset, pdo_rx_slots, pdo_rx, pdo_process, pdo_nmt, pdo_hooks, 1U,
 };
-
-co_err_t co_tpdo_request(co_node_t *node, uint16_t n)
-{
-    uint16_t i = (uint16_t)(node->dev->n_rpdo + n);
-
-    if ((node->dev->pdo == NULL) || (n >= node->dev->n_tpdo)) {
-        return CO_ERR_NO_OBJECT;
-    }
-    if (!co_pdo_usable(node, i)) {
-        return CO_ERR_STORE_STATE;
-    }
-    node->pdo.p[i].flags |= CO_PDO_F_EVENT;
-    return CO_OK;
-}

@@ -359,3 +359,17 @@ uint32_t co_tpdo_process(co_node_t *node, uint32_t next)
     }
     return tpdo_pass(node, next, true);
 }
+
+co_err_t co_tpdo_request(co_node_t *node, uint16_t n)
+{
+    uint16_t i = (uint16_t)(node->dev->n_rpdo + n);
+
+    if ((node->dev->pdo == NULL) || (n >= node->dev->n_tpdo)) {
+        return CO_ERR_NO_OBJECT;
+    }
+    if (!co_pdo_usable(node, i)) {
+        return CO_ERR_STORE_STATE;
+    }
+    node->pdo.p[i].flags |= CO_PDO_F_EVENT;
+    return CO_OK;
+}

@@ -16,6 +16,7 @@
 #include <stdint.h>
 #include <string.h>
 
+#include "co/co_canstate.h"
 #include "co/co_node.h"
 #include "co_xcan/xcan.h"
 #include "dev_generic_301.h"
@@ -266,6 +267,8 @@ void fw_main(void)
     fw_args_t args;
     co_node_config_t cfg;
     uint32_t deadline;
+    co_can_state_t can_state = CO_CAN_ERROR_ACTIVE;
+    uint32_t overruns = 0U;
 
     clock_start(&clk);
     if ((sh_cmdline(cmdline, sizeof cmdline) != 0) || (parse_args(cmdline, &args) != 0)) {
@@ -297,8 +300,16 @@ void fw_main(void)
         co_frame_t f;
         uint32_t now = clock_us(&clk);
         int got = 0;
+        co_can_state_t st = co_xcan_state(&can);
 
+        if (st != can_state) { /* the core's CiA 301 policy: EMCY, 0x1029 */
+            can_state = st;
+            co_node_can_state(&g301.node, st, now);
+            got = 1;
+        }
         while (co_xcan_recv(&can, &f) != 0) {
+            co_node_can_overrun(&g301.node, can.rx_overruns != overruns);
+            overruns = can.rx_overruns;
             co_node_rx(&g301.node, &f, now);
             got = 1;
         }

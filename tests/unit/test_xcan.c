@@ -29,6 +29,7 @@ typedef struct model {
     uint32_t tx_words;    /* words of the frame being written */
     uint32_t tx_cap;      /* TX FIFO depth */
     uint32_t isr;
+    uint32_t estat;       /* SR bits 8:7 */
 } model_t;
 
 static uint32_t m_read(void *ctx, uint32_t off)
@@ -40,7 +41,8 @@ static uint32_t m_read(void *ctx, uint32_t off)
         return m->isr | ((m->n_rx > 0U) ? CO_XCAN_IXR_RXNEMP : 0U);
     case CO_XCAN_SR:
         return (((m->regs[0] & CO_XCAN_SRR_CEN) != 0U) ? CO_XCAN_SR_NORMAL : CO_XCAN_SR_CONFIG) |
-               ((m->n_tx >= m->tx_cap) ? CO_XCAN_SR_TXFLL : 0U);
+               ((m->n_tx >= m->tx_cap) ? CO_XCAN_SR_TXFLL : 0U) |
+               (m->estat << CO_XCAN_SR_ESTAT_SHIFT);
     case CO_XCAN_RXFIFO_ID:
         assert_true(m->n_rx > 0U);
         (void)memcpy(m->rx_latch, m->rx[0], sizeof m->rx_latch);
@@ -248,6 +250,22 @@ static void long_dlc_is_clamped(void **state)
     assert_int_equal(f.dlc, 8U);
 }
 
+static void controller_state_from_estat(void **state)
+{
+    model_t m;
+    co_xcan_t c;
+    (void)state;
+    start(&m, &c);
+    m.estat = 1U;
+    assert_int_equal(co_xcan_state(&c), CO_CAN_ERROR_ACTIVE);
+    m.estat = 3U;
+    assert_int_equal(co_xcan_state(&c), CO_CAN_ERROR_PASSIVE);
+    m.estat = 2U;
+    assert_int_equal(co_xcan_state(&c), CO_CAN_BUS_OFF);
+    m.estat = 0U;
+    assert_int_equal(co_xcan_state(&c), CO_CAN_ERROR_ACTIVE);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -258,6 +276,7 @@ int main(void)
         cmocka_unit_test(send_refused_while_the_fifo_is_full),
         cmocka_unit_test(receive_in_order_until_empty),
         cmocka_unit_test(long_dlc_is_clamped),
+        cmocka_unit_test(controller_state_from_estat),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -211,3 +211,18 @@ int co_xcan_send(void *ctx, const co_frame_t *f)
     wr(c, CO_XCAN_TXFIFO_ID + 12U, pack(&d[4])); /* writing DATA2 sends */
     return 0;
 }
+
+co_can_state_t co_xcan_state(const co_xcan_t *c)
+{
+    uint32_t estat = (rd(c, CO_XCAN_SR) >> CO_XCAN_SR_ESTAT_SHIFT) & 3U;
+    co_can_state_t st = CO_CAN_ERROR_ACTIVE;
+
+    if (estat == 2U) {
+        st = CO_CAN_BUS_OFF;
+    } else if (estat == 3U) {
+        st = CO_CAN_ERROR_PASSIVE;
+    } else {
+        /* 1: error active; 0: configuration mode */
+    }
+    return st;
+}

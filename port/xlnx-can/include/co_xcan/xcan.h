@@ -22,6 +22,7 @@
 
 #include <stdint.h>
 
+#include "co/co_canstate.h"
 #include "co/co_frame.h"
 #include "co/co_hal.h"
 
@@ -96,6 +97,11 @@ int co_xcan_recv(co_xcan_t *c, co_frame_t *f);
 /** The HAL's send (ctx is the co_xcan_t): 0 when the frame went into the TX
  *  FIFO, 1 when the FIFO is full (the core keeps it and retries). */
 int co_xcan_send(void *ctx, const co_frame_t *f);
+
+/** The controller's error state from SR.ESTAT (2 bus-off, 3 error passive,
+ *  else error active; QEMU's model keeps its error counters at 0, so there
+ *  it is always active). For co_node_can_state. */
+co_can_state_t co_xcan_state(const co_xcan_t *c);
 
 /** The identifier register value for @p id (CO_FRAME_RTR / CO_FRAME_EFF
  *  flags included) in the build's layout, and back. */

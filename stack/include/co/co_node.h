@@ -252,7 +252,6 @@ typedef struct co_node {
     uint8_t hist_depth;
     uint8_t n_hb_cons;
     uint8_t n_rx;
-    uint8_t txq_head;
     uint8_t txq_len;
     uint8_t n_active;
     uint8_t n_emcy_q;
@@ -296,6 +295,14 @@ void co_node_rx(co_node_t *node, const co_frame_t *f, uint32_t now_us);
 /** Run timers and retry held-back frames. Returns the time (absolute, us) by
  *  which it wants to be called again, or CO_NO_DEADLINE. */
 uint32_t co_node_process(co_node_t *node, uint32_t now_us);
+
+/** The port's TX-ready notice: the controller has room again (a TX mailbox
+ *  or FIFO slot emptied; on an MCU the TX interrupt sets a flag the main loop
+ *  turns into this call). Frames held back go out now, lowest CAN-ID first,
+ *  and a block upload stalled on the full TX path resumes; without the
+ *  notice both wait for co_node_process, which looks again every 1 ms while
+ *  the path is full. */
+void co_node_tx_ready(co_node_t *node, uint32_t now_us);
 
 /** The current NMT state. */
 co_nmt_state_t co_node_nmt_state(const co_node_t *node);

@@ -44,7 +44,7 @@ uint32_t co_xcan_id_to_reg(uint32_t id)
 
     if ((id & CO_FRAME_EFF) != 0U) {
         r = ((cob >> 18U) << HW_IDH_SHIFT) | HW_SRR | HW_IDE |
-            ((cob & 0x3FFFFUL) << HW_IDL_SHIFT);
+            ((cob & 0x3FFFFU) << HW_IDL_SHIFT);
         if (rtr) {
             r |= HW_RTR;
         }
@@ -69,7 +69,7 @@ uint32_t co_xcan_reg_to_id(uint32_t reg)
     uint32_t idh = reg >> HW_IDH_SHIFT;
 
     if ((reg & HW_IDE) != 0U) {
-        uint32_t id = (idh << 18U) | ((reg >> HW_IDL_SHIFT) & 0x3FFFFUL) | CO_FRAME_EFF;
+        uint32_t id = (idh << 18U) | ((reg >> HW_IDL_SHIFT) & 0x3FFFFU) | CO_FRAME_EFF;
         return ((reg & HW_RTR) != 0U) ? (id | CO_FRAME_RTR) : id;
     }
     return ((reg & HW_SRR) != 0U) ? (idh | CO_FRAME_RTR) : idh;

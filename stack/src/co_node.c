@@ -123,6 +123,25 @@ void co_rx_rebuild(co_node_t *node)
         }
     }
     co_pdo_rx_rebuild(node);
+    if (node->cb.rx_set != NULL) {
+        node->cb.rx_set(node->cb.ctx, node);
+    }
+}
+
+bool co_node_rx_cob(const co_node_t *node, uint16_t i, uint16_t *cob)
+{
+    bool found = false;
+
+    if (i < node->n_rx) {
+        *cob = node->rx[i].cob;
+        found = true;
+    } else if ((uint16_t)(i - node->n_rx) < node->n_pdo_rx) {
+        *cob = node->pdo_rx[i - node->n_rx].cob;
+        found = true;
+    } else {
+        /* past the last */
+    }
+    return found;
 }
 
 static const co_rx_slot_t *rx_find(const co_node_t *node, uint16_t cob)

@@ -164,6 +164,10 @@ typedef struct co_node_callbacks {
      *  updated, before the frame. It must not raise or clear errors. NULL:
      *  zeros (CiA 301 leaves the field to the manufacturer). */
     void (*emcy_mfr)(void *ctx, struct co_node *node, uint16_t code, uint8_t mfr[5]);
+    /** The set of CAN-IDs the node receives (co_node_rx_cob) was made anew:
+     *  at init and whenever a COB-ID, a heartbeat consumer or a PDO's
+     *  validity changed. A port with hardware filters reprograms them. */
+    void (*rx_set)(void *ctx, struct co_node *node);
 } co_node_callbacks_t;
 
 /** Everything co_node_init needs. */
@@ -303,6 +307,13 @@ uint32_t co_node_process(co_node_t *node, uint32_t now_us);
  *  notice both wait for co_node_process, which looks again every 1 ms while
  *  the path is full. */
 void co_node_tx_ready(co_node_t *node, uint32_t now_us);
+
+/** The @p i-th CAN-ID (11 bits, 0-based) of the frames the node acts on:
+ *  NMT, its SDO and guarding RTR, SYNC, TIME, heartbeats it consumes, its
+ *  RPDOs, and its TPDOs (whose RTR it answers). For a controller's hardware
+ *  filters; false past the last. The set changes only where the rx_set
+ *  callback says so. */
+bool co_node_rx_cob(const co_node_t *node, uint16_t i, uint16_t *cob);
 
 /** The current NMT state. */
 co_nmt_state_t co_node_nmt_state(const co_node_t *node);

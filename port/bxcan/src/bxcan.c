@@ -83,7 +83,7 @@ static const co_bxcan_timing_t timing[] = {
 
 const co_bxcan_timing_t *co_bxcan_timing_table(uint32_t *n)
 {
-    *n = (uint32_t)(sizeof timing / sizeof timing[0]);
+    *n = (uint32_t)((sizeof timing) / (sizeof timing[0]));
     return timing;
 }
 
@@ -91,7 +91,7 @@ uint32_t co_bxcan_timing(uint32_t clk_hz, uint32_t bitrate)
 {
     uint32_t btr = 0U;
 
-    for (size_t k = 0U; k < (sizeof timing / sizeof timing[0]); k++) {
+    for (size_t k = 0U; k < ((sizeof timing) / (sizeof timing[0])); k++) {
         if ((timing[k].clk_hz == clk_hz) && (timing[k].bitrate == bitrate)) {
             btr = timing[k].btr;
             break;
@@ -143,7 +143,7 @@ int co_bxcan_init(co_bxcan_t *c, uintptr_t base, const co_bxcan_io_t *io, void *
 /* a 16-bit list filter entry: STID at 15:5, RTR 4, IDE 3 (0), EXID 17:15 at 2:0 */
 static uint32_t f16(uint16_t cob, bool rtr)
 {
-    return ((uint32_t)(cob & 0x7FFU) << 5U) | (rtr ? 0x10U : 0U);
+    return (((uint32_t)cob & 0x7FFU) << 5U) | (rtr ? 0x10U : 0U);
 }
 
 uint32_t co_bxcan_filters(co_bxcan_t *c, const uint16_t *cobs, uint32_t n)
@@ -237,8 +237,7 @@ int co_bxcan_send(void *ctx, const co_frame_t *f)
 void co_bxcan_tx_isr(co_bxcan_t *c)
 {
     uint32_t tsr = rd(c, CO_BXCAN_TSR);
-    uint32_t done = tsr & (CO_BXCAN_TSR_RQCP0 | (CO_BXCAN_TSR_RQCP0 << 8U) |
-                           (CO_BXCAN_TSR_RQCP0 << 16U));
+    uint32_t done = tsr & CO_BXCAN_TSR_RQCP_ALL;
 
     if (done != 0U) {
         wr(c, CO_BXCAN_TSR, done); /* rc_w1: acknowledge those mailboxes */

@@ -214,7 +214,7 @@ int co_bxcan_send(void *ctx, const co_frame_t *f)
         return 1; /* all three mailboxes busy */
     }
     if ((f->id & CO_FRAME_EFF) != 0U) {
-        tir = ((f->id & CO_FRAME_ID_MASK) << 3U) | CO_BXCAN_XIR_IDE;
+        tir = (uint32_t)((f->id & CO_FRAME_ID_MASK) << 3U) | CO_BXCAN_XIR_IDE;
     } else {
         tir = (f->id & 0x7FFU) << 21U;
     }
@@ -263,7 +263,7 @@ void co_bxcan_rx_isr(co_bxcan_t *c, uint32_t fifo)
         uint32_t hi = rd(c, box + 12U);
 
         if ((rir & CO_BXCAN_XIR_IDE) != 0U) {
-            f.id = ((rir >> 3U) & CO_FRAME_ID_MASK) | CO_FRAME_EFF;
+            f.id = (uint32_t)(((rir >> 3U) & CO_FRAME_ID_MASK) | CO_FRAME_EFF);
         } else {
             f.id = rir >> 21U;
         }

@@ -331,6 +331,9 @@ co_err_t co_node_init(co_node_t *node, const co_node_config_t *cfg, uint32_t now
     node->pdo_rx = cfg->pdo_rx;
     node->now = now_us;
     co_store_reset(node, CO_RESET_NODE); /* defaults, then the stored set */
+    if (co_nmt_take_nodeid(node)) {
+        co_store_reset(node, CO_RESET_NODE); /* the stored node-ID: its $NODEID defaults */
+    }
     if (co_comm_bind(node) != CO_OK) {
         return CO_ERR_DEV_INCOMPAT;
     }

@@ -1,5 +1,6 @@
 #include "t408.h"
 
+#include <inttypes.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -81,8 +82,9 @@ void t408_sdo_write(t408_t *f, uint16_t index, uint8_t sub, int64_t value, uint8
         snprintf(resp, sizeof resp, "%03X 60 %02X %02X %02X 00 00 00 00", 0x580U + id,
                  index & 0xFFU, index >> 8, sub);
     } else {
-        snprintf(resp, sizeof resp, "%03X 80 %02X %02X %02X %02X %02X %02X %02X", 0x580U + id,
-                 index & 0xFFU, index >> 8, sub, abort & 0xFFU, (abort >> 8) & 0xFFU,
+        snprintf(resp, sizeof resp,
+                 "%03X 80 %02X %02X %02X %02" PRIX32 " %02" PRIX32 " %02" PRIX32 " %02" PRIX32,
+                 0x580U + id, index & 0xFFU, index >> 8, sub, abort & 0xFFU, (abort >> 8) & 0xFFU,
                  (abort >> 16) & 0xFFU, abort >> 24);
     }
     tb_xfer(&f->bus, req, resp);

@@ -189,6 +189,16 @@ bool co_tx_try(co_node_t *node, uint32_t id, const uint8_t *data, uint8_t len);
 /* The receive table is out of date (a COB-ID changed): the node rebuilds it
  * from the services' rx_slots before it looks up the next frame. */
 void co_rx_invalidate(co_node_t *node);
+void co_rx_rebuild(co_node_t *node);
+/* Rebuild a stale receive table now (the node's entry points, the SDO
+ * server after a request: a port with hardware filters must hear of a new
+ * COB-ID before frames on it can arrive). */
+static inline void co_rx_settle(co_node_t *node)
+{
+    if (node->rx_dirty != 0U) {
+        co_rx_rebuild(node);
+    }
+}
 /* From a service's rx_slots: frames on @p cob go to service @p svc's rx
  * with @p arg. */
 void co_rx_add(co_node_t *node, uint16_t cob, uint8_t svc, uint8_t arg);

@@ -828,14 +828,14 @@ static void sdo_rx(co_node_t *node, uint16_t arg, const co_frame_t *f)
 #if CO_SDO_BLOCK
     if (t->state == (uint8_t)S_BLK_DL) {
         block_download_segment(node, d);
-        return;
-    }
+    } else
 #endif
     if (t->state == (uint8_t)S_IDLE) {
         idle_request(node, d);
     } else {
         transfer_request(node, d);
     }
+    co_rx_settle(node); /* a COB-ID written: the receive set (the port's filters) */
 }
 
 #if CO_SDO_BLOCK

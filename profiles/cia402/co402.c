@@ -1243,6 +1243,12 @@ static uint32_t op_process(void *inst, uint32_t now_us)
     if (!ax->attached) {
         return CO_NO_DEADLINE;
     }
+    if ((int32_t)(ax->next_tick - now_us) > (int32_t)(CO402_IDLE_US + tick)) {
+        /* the next tick is never more than a tick (or the rest period) ahead:
+         * the caller's clock jumped by 2^31 us or more (a stall), which the
+         * wrap-safe comparison takes for a time 35 minutes back */
+        ax->next_tick = now_us;
+    }
     while ((int32_t)(now_us - ax->next_tick) >= 0) {
         int8_t m = (int8_t)co402_get(ax, O_MODE, ax->mode);
         if ((m != ax->mode) && ((ax->cfg.options & CO402_OPT_VELOCITY_RAMP) == 0U) &&

@@ -8,6 +8,8 @@
 
 #define SIM_US_PER_S 1000000LL
 #define SIM_E_MAX (INT64_C(1) << 40) /* Q16 increments/s: 2^24 increments/s */
+#define SIM_CATCHUP_US 1000000UL     /* at most this much simulated time per update */
+#define SIM_STEP_BACK_US 1000000UL   /* a time this much before the plant's: a step back */
 
 static int64_t sim_floor_div(int64_t a, int64_t b)
 {
@@ -204,6 +206,14 @@ static void sim_update(void *ctx, uint32_t now_us, co402_feedback_t *fb)
     co402_sim_t *s = (co402_sim_t *)ctx;
     uint32_t h = (s->cfg.step_us != 0U) ? s->cfg.step_us : 250U;
 
+    uint32_t gap = now_us - s->t;
+
+    if ((gap > SIM_CATCHUP_US) && (gap < (0xFFFFFFFFUL - SIM_STEP_BACK_US))) {
+        /* the caller was stopped (a stall, perhaps beyond 2^31 us, where the
+         * wrap-safe comparison would freeze the plant for up to 35
+         * minutes): the plant catches up on the last second only */
+        s->t = now_us - (uint32_t)SIM_CATCHUP_US;
+    }
     while ((int32_t)(now_us - s->t) > 0) {
         uint32_t dt = now_us - s->t;
         step(s, (dt < h) ? dt : h);

@@ -104,12 +104,43 @@ static void csp_far_target(void **state)
     assert_true(t402_get(&fx, 0x6064, 0) < 100000);
 }
 
+/* Item 8: a stall of the caller's clock. Beyond 2^31 us the profile's next
+ * tick looked 35 minutes ahead (the axis froze); below it the plant
+ * simulated every 250 us of the stall (seconds of CPU). Now the profile
+ * ticks at once and the plant catches up on the last second only. */
+static void stall_profile_and_plant(void **state)
+{
+    const uint32_t stalls[2] = {40UL * 60UL * 1000000UL, 30UL * 60UL * 1000000UL};
+
+    (void)state;
+    for (int k = 0; k < 2; k++) {
+        int64_t p0;
+        int64_t p1;
+        t402_start(&fx, 1, 0, NULL);
+        t402_set(&fx, 0x6060, 0, 3, 1);
+        t402_enable(&fx);
+        t402_set(&fx, 0x60FF, 0, 5000, 4);
+        t402_run(&fx, 500000);
+        assert_between(t402_get(&fx, 0x606C, 0), 4990, 5010);
+        p0 = t402_get(&fx, 0x6064, 0);
+        fx.bus.now += stalls[k];
+        t402_run(&fx, 10000);
+        p1 = t402_get(&fx, 0x6064, 0);
+        /* at 5000 increments/s: the last second caught up (below 2^31 us
+         * also the profile's 1000 missed ticks, its own bound) and 10 ms run */
+        assert_between(p1 - p0, 5000 + 40, (k == 0) ? (5000 + 60) : (10000 + 60));
+        t402_run(&fx, 100000);
+        assert_between(t402_get(&fx, 0x6064, 0) - p1, 490, 510);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(encoder_fewer_increments_than_revolutions),
         cmocka_unit_test(velocity_factor_saturates),
         cmocka_unit_test(csp_far_target),
+        cmocka_unit_test(stall_profile_and_plant),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -29,11 +29,18 @@ class ValveSample:
 
 def write_valve_csv(path, samples: list[ValveSample]) -> None:
     """The columns tools/plot-trace draws: position = actual value,
-    position_demand = set-point, velocity = control deviation."""
+    position_demand = set-point, velocity = control deviation. The TPDO
+    goes out only when its data change, so each value holds until the next
+    sample: a row with the old values just before every new one."""
     with open(path, "w") as f:
         f.write("t_ms,position,position_demand,velocity,statusword\n")
+        prev = None
         for s in samples:
+            if prev is not None and s.t > prev.t:
+                f.write(f"{s.t * 1000 - 0.1:.1f},{prev.actual},{prev.setpoint},"
+                        f"{prev.deviation},{prev.statusword}\n")
             f.write(f"{s.t * 1000:.1f},{s.actual},{s.setpoint},{s.deviation},{s.statusword}\n")
+            prev = s
 
 
 def setup_closed_loop(node: canopen.RemoteNode) -> None:

@@ -390,29 +390,33 @@ class Demo:
         steps = [(0.0, 0), (0.1, 8192), (0.6, 4096), (1.0, -4096), (1.4, 0)]
         m = self.watch.mark()
         t0 = time.monotonic()
-        sent: list[tuple[float, int]] = []
         for at, sp in steps:
             time.sleep(max(0.0, t0 + at - time.monotonic()))
             cob, data = rpdo(nid, 0x0007, sp)
             self.net.send_message(cob, data)
-            sent.append((time.monotonic(), sp))
             say(f"-> {cob:03X} {hexs(data)}   RPDO2: control word D, H, M; set-point {sp} "
                 f"({sp * 100 / 16384:+.0f} %)")
         time.sleep(0.4)
-        frames = self.watch.since(m)
+        # the set-point in force at each TPDO2: the last RPDO2 seen before it
+        # on the bus (one clock for both: the frames' receive times)
         samples = []
-        tf = sent[0][0]
-        for f in frames:
-            if f.arbitration_id != t2 or len(f.data) < 6:
-                continue
+        tf = None
+        sp = 0
+        for f in self.watch.since(m):
             d = bytes(f.data)
-            sw = int.from_bytes(d[0:2], "little")
-            act = int.from_bytes(d[2:4], "little", signed=True)
-            dev = int.from_bytes(d[4:6], "little", signed=True)
-            sp = [v for t, v in sent if t <= f.timestamp + 0.002]
-            samples.append(ValveSample(f.timestamp - tf, act, sp[-1] if sp else 0, dev, sw))
+            if f.arbitration_id == 0x300 + nid and len(d) >= 4:
+                sp = int.from_bytes(d[2:4], "little", signed=True)
+                tf = f.timestamp if tf is None else tf
+                last = samples[-1] if samples else ValveSample(0.0, 0, 0, 0, 0x000F)
+                samples.append(ValveSample(f.timestamp - tf, last.actual, sp, last.deviation,
+                                           last.statusword))
+            elif f.arbitration_id == t2 and len(d) >= 6 and tf is not None:
+                sw = int.from_bytes(d[0:2], "little")
+                act = int.from_bytes(d[2:4], "little", signed=True)
+                dev = int.from_bytes(d[4:6], "little", signed=True)
+                samples.append(ValveSample(f.timestamp - tf, act, sp, dev, sw))
         if len(samples) < 20:
-            raise AssertionError(f"only {len(samples)} TPDO2 samples")
+            raise AssertionError(f"only {len(samples)} samples")
         first = next((s for s in samples if s.setpoint == 8192 and s.statusword & 0x1000), None)
         if first is None:
             raise AssertionError("the pressure never reached the 50 % set-point's target window")

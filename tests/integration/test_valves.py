@@ -42,12 +42,14 @@ def test_valve_active_by_rpdo_and_actual_follows(device, network, daemons, sniff
     node.sdo.download(0x604F, 0, bytes([0]))
     node.sdo.download(0x6042, 0, bytes([1]))
     node.sdo.download(0x6043, 0, bytes([1]))              # vpoc
+    m = sniffer.mark()
     node.nmt.state = "OPERATIONAL"
-    time.sleep(0.05)
+    f = sniffer.wait_cob(0x180 + NODE, 2.0, m)              # the TPDO of the start: INIT
+    assert f is not None and f.data[0:2] == b"\x08\x00", f
     m = sniffer.mark()
     sniffer.send(0x200 + NODE, rpdo1(0x0007, 8192))       # D, H, M and 50 %
-    f = sniffer.wait_cob(0x180 + NODE, 2.0, m)
-    assert f is not None and f.data[0:2] == b"\x0F\x00", f  # DEVICE_MODE_ACTIVE at once
+    f = sniffer.wait(lambda f: f.id == 0x180 + NODE and f.data[0:2] == b"\x0F\x00", 2.0, m)
+    assert f is not None, [str(x) for x in sniffer.since(m)]  # DEVICE_MODE_ACTIVE at once
     if device == "wandfluh-dsv":
         # type 255: the TPDO right after every RPDO, also when nothing changed
         for _ in range(3):

@@ -45,8 +45,10 @@ set_property(GLOBAL PROPERTY CO_CORE_HEADER "${CO_CORE_HEADER}")
 
 function(co_device name toml)
   cmake_parse_arguments(PARSE_ARGV 2 arg "" "CORE" "")
-  if(NOT arg_CORE)
+  if(NOT arg_CORE AND TARGET canopen::stack)
     set(arg_CORE canopen::stack)
+  elseif(NOT arg_CORE)
+    set(arg_CORE costack)     # a project that defines the core target itself
   endif()
   get_property(python GLOBAL PROPERTY CO_PYTHON)
   get_property(odgen GLOBAL PROPERTY CO_ODGEN)

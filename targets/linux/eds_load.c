@@ -590,6 +590,7 @@ static int add_sub(ctx_t *c, const subspec_t *sp, uint16_t index)
     c->sub = (bsub_t *)q;
     b = &c->sub[c->nsub];
     (void)memset(b, 0, sizeof *b);
+    c->nsub++; /* counted at once, so that ctx_free / a skip release its value */
     b->s.sub = sp->sub;
     if (sp->compact_count >= 0) {
         /* sub 0 of a CompactSubObj object: NrOfObjects, UNSIGNED8 ro */
@@ -601,7 +602,6 @@ static int add_sub(ctx_t *c, const subspec_t *sp, uint16_t index)
             return fail(c, NULL, NULL, "out of memory");
         }
         b->val[0] = (uint8_t)sp->compact_count;
-        c->nsub++;
         return 0;
     }
     if (kt == NULL) {
@@ -737,6 +737,9 @@ static int add_sub(ctx_t *c, const subspec_t *sp, uint16_t index)
         long n = hex_bytes(text, NULL);
         int raw = (n < 0);
         size_t cap;
+        if (raw && (ti->type != (uint8_t)CO_DOMAIN)) {
+            return fail(c, s, kval, "'%s' is not hex bytes", text);
+        }
         if (raw) {
             /* not hex (objdictgen writes DOMAIN values as text): the text's bytes */
             (void)skip(c, s, kval, "'%s' is not hex bytes: taken as the text's bytes", text);
@@ -762,7 +765,6 @@ static int add_sub(ctx_t *c, const subspec_t *sp, uint16_t index)
         break;
     }
     }
-    c->nsub++;
     return 0;
 }
 

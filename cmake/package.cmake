@@ -6,7 +6,7 @@
 # installs the libraries (targets canopen::stack, canopen::profile,
 # canopen::profile_cia402, canopen::profile_cia402_sim,
 # canopen::profile_cia402_device, canopen::profile_cia408,
-# canopen::profile_cia408_sim, canopen::port_linux on Linux), their headers
+# canopen::profile_cia408_sim, canopen::profile_cia408_device, canopen::port_linux), their headers
 # under include/canopen-stack, the object-dictionary generator and co_device()
 # (share/canopen-stack/odgen, lib/cmake/canopen-stack/codev.cmake),
 # canopen-stackConfig.cmake with its version file, pkg-config files
@@ -24,7 +24,7 @@ set(CO_PKG_CMAKEDIR "${CMAKE_INSTALL_LIBDIR}/cmake/${CO_PKG_NAME}")
 set(CO_PKG_INCDIR "${CMAKE_INSTALL_INCLUDEDIR}/${CO_PKG_NAME}")
 set(CO_PKG_DATADIR "${CMAKE_INSTALL_DATADIR}/${CO_PKG_NAME}")
 
-set(co_exported costack coprofile co402 co402sim co402dev co408 co408sim)
+set(co_exported costack coprofile co402 co402sim co402dev co408 co408sim co408dev)
 set(co_header_dirs stack/include/ profiles/common/include/ profiles/cia402/include/
     profiles/cia408/include/)
 if(TARGET coport_linux)
@@ -80,7 +80,7 @@ co_pkgconfig(canopen-stack "CANopen slave stack: the CiA 301 core" "" "-lcostack
 co_pkgconfig(canopen-stack-cia402 "CANopen slave stack: CiA 402 drive profile and plant"
              "canopen-stack" "-lco402dev -lco402 -lco402sim -lcoprofile" "")
 co_pkgconfig(canopen-stack-cia408 "CANopen slave stack: CiA 408 valve profile and valve"
-             "canopen-stack" "-lco408 -lco408sim -lcoprofile" "")
+             "canopen-stack" "-lco408dev -lco408 -lco408sim -lcoprofile" "")
 if(TARGET coport_linux)
   co_pkgconfig(canopen-stack-linux "CANopen slave stack: Linux SocketCAN port"
                "canopen-stack" "-lcoport_linux" "-D_GNU_SOURCE")

@@ -54,6 +54,7 @@ function(co_device name toml)
   get_property(odgen GLOBAL PROPERTY CO_ODGEN)
   get_property(odgen_sources GLOBAL PROPERTY CO_ODGEN_SOURCES)
   get_property(core_header GLOBAL PROPERTY CO_CORE_HEADER)
+  get_filename_component(core_dir "${core_header}" DIRECTORY)
   get_filename_component(toml "${toml}" ABSOLUTE BASE_DIR "${CMAKE_CURRENT_SOURCE_DIR}")
   string(MAKE_C_IDENTIFIER "${name}" cname)
   set(out "${CMAKE_BINARY_DIR}/codev/${name}")
@@ -71,8 +72,11 @@ function(co_device name toml)
   endif()
   add_custom_command(
     OUTPUT ${products}
-    COMMAND "${python}" "${odgen}" --base "${name}" --out "${out}" "${toml}"
-    DEPENDS "${toml}" ${included} ${odgen_sources} "${core_header}"
+    COMMAND "${python}" "${odgen}" --base "${name}" --out "${out}"
+            "--build=$<JOIN:$<TARGET_PROPERTY:${arg_CORE},INTERFACE_COMPILE_DEFINITIONS>,$<COMMA>>"
+            "--build-header=$<TARGET_PROPERTY:${arg_CORE},CO_CONFIG_FILE>"
+            "${toml}"
+    DEPENDS "${toml}" ${included} ${odgen_sources} "${core_header}" "${core_dir}/co_config.h"
     COMMENT "odgen: ${name} (C dictionary, EDS, object table)"
     VERBATIM)
   add_library(codev_${name} STATIC "${out}/${cname}.c" "${out}/${cname}.h")

@@ -179,7 +179,7 @@ static int start_node(dnode_t *d, const opt_node_t *spec, const char *iface)
     co_node_config_t cfg;
     co_lx_can_fail_t why = CO_LX_CAN_OK;
     char err[256];
-    co_err_t e;
+    co_result_t e;
 
     d->dev = (spec->eds != NULL) ? &d->eds.entry : device_find(spec->device);
     (void)snprintf(d->tag, sizeof d->tag, "node %u (%s)", (unsigned)spec->id, d->dev->name);
@@ -233,8 +233,8 @@ static int start_node(dnode_t *d, const opt_node_t *spec, const char *iface)
         return -1;
     }
     e = co_node_init(&d->node, &cfg, co_lx_now_us());
-    if (e != CO_OK) {
-        log_line(d->tag, CO_LX_ERROR, "co_node_init failed: 0x%08lX", (unsigned long)e);
+    if (e != CO_RESULT_OK) {
+        log_line(d->tag, CO_LX_ERROR, "co_node_init failed: result %d", (int)e);
         return -1;
     }
     co_lx_port_attach(&d->port, &d->node);

@@ -77,7 +77,7 @@ int main(void)
     cfg.hal.ops = &bus_ops;
     cfg.hal.ctx = &b;
     cfg.node_id = NODE_ID;
-    if (co_node_init(&s.node, &cfg, 0U) != CO_OK || b.n != 1U || b.sent[0].id != 0x710U) {
+    if (co_node_init(&s.node, &cfg, 0U) != CO_RESULT_OK || b.n != 1U || b.sent[0].id != 0x710U) {
         printf("boot-up                                      FAIL\n");
         return 1;
     }

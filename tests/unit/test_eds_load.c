@@ -90,7 +90,7 @@ static int setup(void **state)
     cfg.ram = f->ram;
     cfg.pdo = f->pdo;
     cfg.pdo_rx = f->slot;
-    assert_int_equal(co_node_init(&f->node, &cfg, 0U), CO_OK);
+    assert_int_equal(co_node_init(&f->node, &cfg, 0U), CO_RESULT_OK);
     tb_attach(&f->bus, 0U, &f->node);
     tb_expect(&f->bus, "705 00");
     tb_expect_none(&f->bus);

@@ -9,7 +9,8 @@ Steps: boot-ups, identity over SDO, NMT states, heartbeats watched, a PDO
 mapped and exchanged at SYNC, a parameter stored and read back after the
 device process restarts, and a CiA 402 drive (simulated motor) enabled,
 moved in profile position with its statusword, position and velocity
-sampled by TPDOs at SYNC and plotted to a PNG (tools/plot-trace), then homed. A step that fails is reported as FAILED with its
+sampled by TPDOs at SYNC and plotted to PNG and SVG (tools/plot-trace), then
+homed. A step that fails is reported as FAILED with its
 reason and the demo goes on; the exit status is 1 when any step failed.
 """
 from __future__ import annotations
@@ -369,7 +370,7 @@ class Demo:
         csv_path, png = self.out / "cia402-move.csv", self.out / "cia402-move.png"
         write_csv(csv_path, samples)
         subprocess.run([sys.executable, str(ROOT / "tools" / "plot-trace"), str(csv_path),
-                        "-o", str(png), "--title",
+                        "-o", str(png), "-o", str(png.with_suffix(".svg")), "--title",
                         f"cia402 node {nid}: profile position 0 to {target}"], check=True)
         say(f"trace {csv_path.relative_to(ROOT) if csv_path.is_relative_to(ROOT) else csv_path}"
             f", plot {png.relative_to(ROOT) if png.is_relative_to(ROOT) else png}")
@@ -426,8 +427,9 @@ class Demo:
         csv_path, png = self.out / "cia408-step.csv", self.out / "cia408-step.png"
         write_valve_csv(csv_path, samples)
         subprocess.run([sys.executable, str(ROOT / "tools" / "plot-trace"), str(csv_path),
-                        "-o", str(png), "--labels", "actual value,control deviation,set-point",
-                        "--title", f"cia408 node {nid}: vprc closed-loop set-point steps"],
+                        "-o", str(png), "--title",
+                        f"cia408 node {nid}: vprc set-point steps (position = actual value, "
+                        f"demand = set-point, velocity = control deviation)"],
                        check=True)
         say(f"trace {csv_path.relative_to(ROOT) if csv_path.is_relative_to(ROOT) else csv_path}"
             f", plot {png.relative_to(ROOT) if png.is_relative_to(ROOT) else png}")
@@ -531,7 +533,7 @@ def main() -> int:
     ap.add_argument("--daemon", default=str(ROOT / "build" / "host" / "bin" / "canopen-device"))
     ap.add_argument("--iface", default="vcan0")
     ap.add_argument("--out", default=str(ROOT / "build" / "demo"),
-                    help="where the move trace (CSV) and its plot (PNG) go")
+                    help="where the move trace (CSV) and its plot (PNG, SVG) go")
     ap.add_argument("--devices", nargs="+", metavar="NAME",
                     help="devices to bring up (default: generic-301 cia402; 'all': every "
                          "device of canopen-device --list-devices)")

@@ -2,12 +2,15 @@
  * cia402: the standard CiA 402 drive (devices/cia402.toml) on the profile
  * without deviations, on the default simulated motor.
  */
-#include "cia402.h"
-#include "co402_devices.h"
+#include "co/co402_device.h"
 
-const co402_device_t co402_dev_cia402 = {
-    .name = "cia402",
-    .dev = &cia402_dev,
-    .axes = 1U,
+static const co402_params_t params_cia402_impl = {
     .options = 0U,
+};
+
+static const co_device_part_t parts_cia402_impl[] = {{&co402_part, &params_cia402_impl, 1U}};
+
+const co_device_impl_t cia402_impl = {
+    .parts = parts_cia402_impl,
+    .n_parts = 1U,
 };

@@ -29,7 +29,7 @@
  * The simulated motor: 2^20 increments per revolution (PRBASE 20, as 0x6063
  * and 0x608F say), one index pulse per revolution, 100 rev/s top speed.
  */
-#include "co402_devices.h"
+#include "co/co402_device.h"
 #include "kollmorgen_s300_s700.h"
 
 /* D6.9: the methods the drive accepts. Not simulated (refused with
@@ -74,10 +74,10 @@ static const co402_error_t errors[] = {
  * until the fault reset. */
 #define WARN_N04 ((uint32_t)0x00000008U)
 
-static void show_n04(co402_drive_t *r)
+static void show_n04(co_device_run_t *r)
 {
-    uint32_t *warnings = (uint32_t *)co_od_value_ptr(co402_drive_node(r), 0x2000U, 0U);
-    const co402_axis_t *ax = co402_drive_axis(r, 0U);
+    uint32_t *warnings = (uint32_t *)co_od_value_ptr(co_device_node(r), 0x2000U, 0U);
+    const co402_axis_t *ax = co402_device_axis(r, 0U);
 
     if ((warnings != NULL) && (ax != NULL)) {
         *warnings = co402_connection_lost(ax) ? (*warnings | WARN_N04) : (*warnings & (uint32_t)~WARN_N04);
@@ -88,14 +88,14 @@ static co_err_t op_attach(void *inst, co_node_t *node, uint32_t now_us)
 {
     (void)node;
     (void)now_us;
-    show_n04((co402_drive_t *)inst);
+    show_n04((co_device_run_t *)inst);
     return CO_OK;
 }
 
 static uint32_t op_process(void *inst, uint32_t now_us)
 {
     (void)now_us;
-    show_n04((co402_drive_t *)inst);
+    show_n04((co_device_run_t *)inst);
     return CO_NO_DEADLINE;
 }
 
@@ -105,11 +105,14 @@ static void op_error_control(void *inst, co_hb_event_t ev, uint8_t id, uint32_t 
     (void)ev;
     (void)id;
     (void)now_us;
-    show_n04((co402_drive_t *)inst);
+    show_n04((co_device_run_t *)inst);
 }
 
 static const co_profile_ops_t kollmorgen_ops = {
-    "kollmorgen-s300-s700", op_attach, op_process, NULL, NULL, NULL, op_error_control, NULL,
+    .name = "kollmorgen-s300-s700",
+    .attach = op_attach,
+    .process = op_process,
+    .error_control = op_error_control,
 };
 
 static void sim_config(co402_sim_config_t *c)
@@ -119,10 +122,7 @@ static void sim_config(co402_sim_config_t *c)
     c->accel_rated = 524288000U;    /* top speed in 0.2 s at rated torque */
 }
 
-const co402_device_t co402_dev_kollmorgen_s300_s700 = {
-    .name = "kollmorgen-s300-s700",
-    .dev = &kollmorgen_s300_s700_dev,
-    .axes = 1U,
+static const co402_params_t params_kollmorgen_s300_s700_impl = {
     .options = CO402_OPT_VOLTAGE_WHEN_ON | CO402_OPT_BIT7_DONT_CARE | CO402_OPT_QS_STAY |
                CO402_OPT_QS_CLEARS_TARGET | CO402_OPT_UNITS_FROM_POS | CO402_OPT_HM_TARGET_FIRST |
                CO402_OPT_PV_NO_SPEED_BIT | CO402_OPT_LOSS_WARN_STOP,
@@ -131,5 +131,12 @@ const co402_device_t co402_dev_kollmorgen_s300_s700 = {
     .errors = errors,
     .n_errors = (uint8_t)(sizeof errors / sizeof errors[0]),
     .sim_config = sim_config,
+};
+
+static const co_device_part_t parts_kollmorgen_s300_s700_impl[] = {{&co402_part, &params_kollmorgen_s300_s700_impl, 1U}};
+
+const co_device_impl_t kollmorgen_s300_s700_impl = {
+    .parts = parts_kollmorgen_s300_s700_impl,
+    .n_parts = 1U,
     .plugin = &kollmorgen_ops,
 };

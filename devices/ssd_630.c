@@ -27,7 +27,7 @@
 #include <stddef.h>
 #include <string.h>
 
-#include "co402_devices.h"
+#include "co/co402_device.h"
 #include "ssd_630.h"
 
 /* 0 is "no homing"; mode m (0..23) is written as m - 24. Only mode 0 (-24,
@@ -69,10 +69,7 @@ static void powered_on(co_node_t *node, uint32_t now_us)
     }
 }
 
-const co402_device_t co402_dev_ssd_630 = {
-    .name = "ssd-630",
-    .dev = &ssd_630_dev,
-    .axes = 1U,
+static const co402_params_t params_ssd_630_impl = {
     .options = CO402_OPT_NO_VOLTAGE_BIT | CO402_OPT_REMOTE_IS_ENABLE | CO402_OPT_SW15_MIRRORS_12 |
                CO402_OPT_MODE_AT_REST | CO402_OPT_VEL_RPM | CO402_OPT_PP_TR_NEXT_TICK |
                CO402_OPT_IP_TR_AT_REST,
@@ -82,5 +79,12 @@ const co402_device_t co402_dev_ssd_630 = {
     .errors = errors,
     .n_errors = (uint8_t)(sizeof errors / sizeof errors[0]),
     .sim_config = NULL,
+};
+
+static const co_device_part_t parts_ssd_630_impl[] = {{&co402_part, &params_ssd_630_impl, 1U}};
+
+const co_device_impl_t ssd_630_impl = {
+    .parts = parts_ssd_630_impl,
+    .n_parts = 1U,
     .powered_on = powered_on,
 };

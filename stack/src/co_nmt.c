@@ -61,6 +61,35 @@ void co_nmt_boot(co_node_t *node)
     co_emcy_clear(node, CO_EMCY_RPDO_TIMEOUT);
 }
 
+/* The application's notice before NMT command @p cs is executed: only
+ * when it changes the state or resets. */
+void co_nmt_notice(co_node_t *node, uint8_t cs)
+{
+    bool change;
+
+    switch (cs) {
+    case NMT_START:
+        change = (node->nmt != (uint8_t)CO_NMT_OPERATIONAL);
+        break;
+    case NMT_STOP:
+        change = (node->nmt != (uint8_t)CO_NMT_STOPPED);
+        break;
+    case NMT_PRE_OP:
+        change = (node->nmt != (uint8_t)CO_NMT_PRE_OPERATIONAL);
+        break;
+    case NMT_RESET_NODE:
+    case NMT_RESET_COMM:
+        change = true;
+        break;
+    default:
+        change = false;
+        break;
+    }
+    if (change && (node->cb.nmt_command != NULL)) {
+        node->cb.nmt_command(node->cb.ctx, node, cs);
+    }
+}
+
 /* 0x1029 Error behaviour (CiA 301): what the device does on a serious
  * error of class @p sub (1: communication error, 2..: device-specific). 0:
  * Pre-operational, only from Operational; 1: no change; 2: Stopped;
@@ -81,8 +110,10 @@ void co_nmt_error(co_node_t *node, uint8_t sub)
         return;
     }
     if ((*v == 0U) && (node->nmt == (uint8_t)CO_NMT_OPERATIONAL)) {
+        co_nmt_notice(node, NMT_PRE_OP);
         set_state(node, CO_NMT_PRE_OPERATIONAL);
     } else if (*v == 2U) {
+        co_nmt_notice(node, NMT_STOP);
         set_state(node, CO_NMT_STOPPED);
     } else {
         /* no change */
@@ -93,6 +124,9 @@ void co_nmt_error(co_node_t *node, uint8_t sub)
 void co_node_error_behaviour(co_node_t *node, uint8_t sub, uint32_t now_us)
 {
     node->now = now_us;
+    if (node->cb.error_class != NULL) {
+        node->cb.error_class(node->cb.ctx, node, sub);
+    }
     co_nmt_error(node, sub);
 }
 
@@ -115,6 +149,7 @@ static void reset(co_node_t *node, co_reset_t kind)
 void co_node_nmt_command(co_node_t *node, uint8_t cs, uint32_t now_us)
 {
     node->now = now_us;
+    co_nmt_notice(node, cs);
     switch (cs) {
     case NMT_START:
         set_state(node, CO_NMT_OPERATIONAL);

@@ -240,6 +240,8 @@ static inline const uint32_t *co_time_cob(const co_node_t *node)
 /* ---- services */
 void co_nmt_rx(co_node_t *node, const co_frame_t *f);
 void co_nmt_boot(co_node_t *node);
+/* Tell the application that NMT command @p cs is about to be executed. */
+void co_nmt_notice(co_node_t *node, uint8_t cs);
 /* A serious error of 0x1029 class @p sub: the NMT reaction it configures
  * (nothing without CO_ERROR_BEHAVIOUR). */
 #if CO_ERROR_BEHAVIOUR

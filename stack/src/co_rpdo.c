@@ -64,6 +64,9 @@ static void apply(co_node_t *node, uint16_t i, const uint8_t *data, uint8_t dlc)
     } else {
         co_pdo_store(node, i, data, dlc);
     }
+    if (node->cb.rpdo != NULL) {
+        node->cb.rpdo(node->cb.ctx, node, i);
+    }
 }
 
 /* The length checks of a received RPDO with their EMCYs (CiA 301): false

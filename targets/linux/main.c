@@ -1,6 +1,7 @@
 /*
  * canopen-device: simulated CANopen devices on a SocketCAN interface.
- * Options in options.h, devices in device_registry.h, the loop in
+ * Options in options.h, devices in co_devices.h (generated from devices/),
+ * each run by the device layer (co/co_device.h) on simulated plants, the loop in
  * port/linux (co_lx/loop.h).
  */
 #include <errno.h>
@@ -16,7 +17,8 @@
 #include "co_lx/nvfile.h"
 #include "co_lx/port.h"
 #include "co_lx/trace.h"
-#include "device_registry.h"
+#include "co/co_device.h"
+#include "co_devices.h"
 #include "options.h"
 
 #ifndef CO_VERSION
@@ -26,13 +28,14 @@
 #define PROG "canopen-device"
 
 typedef struct dnode {
-    const device_entry_t *dev;
+    const co_device_t *dev;
+    co_device_run_t run;
     co_node_t node;
     void *ram;
     co_od_hook_t *hooks;
     co_pdo_t *pdo;          /* the device's RPDOs then TPDOs */
     co_pdo_slot_t *pdo_rx;
-    void *app;
+    void *mem;              /* the device's instances, plants and plug-in state */
     co_lx_port_t port;
     co_lx_nv_t nv;
     int has_nv;
@@ -96,21 +99,17 @@ static void cb_nmt_state(void *ctx, co_node_t *node, co_nmt_state_t state)
 {
     dnode_t *d = (dnode_t *)ctx;
 
+    (void)node;
     log_line(d->tag, CO_LX_INFO, "NMT %s", state_name(state));
-    if (d->dev->nmt != NULL) {
-        d->dev->nmt(d->app, node, state);
-    }
 }
 
 static void cb_nmt_reset(void *ctx, co_node_t *node, co_reset_t kind)
 {
     dnode_t *d = (dnode_t *)ctx;
 
+    (void)node;
     log_line(d->tag, CO_LX_INFO, "NMT reset %s",
              (kind == CO_RESET_NODE) ? "node" : "communication");
-    if (d->dev->reset != NULL) {
-        d->dev->reset(d->app, node, kind);
-    }
 }
 
 static void cb_hb_event(void *ctx, co_node_t *node, co_hb_event_t ev, uint8_t id,
@@ -126,20 +125,12 @@ static void cb_hb_event(void *ctx, co_node_t *node, co_hb_event_t ev, uint8_t id
              "%s (producer %u, %s)", names[(unsigned)ev % 6U], (unsigned)id, state_name(state));
 }
 
-static void cb_sync(void *ctx, co_node_t *node, uint8_t counter)
-{
-    dnode_t *d = (dnode_t *)ctx;
-
-    if (d->dev->sync != NULL) {
-        d->dev->sync(d->app, node, counter);
-    }
-}
-
 static uint32_t tick(void *ctx, co_node_t *node, uint32_t now_us)
 {
     dnode_t *d = (dnode_t *)ctx;
 
-    return (d->dev->process != NULL) ? d->dev->process(d->app, node, now_us) : CO_NO_DEADLINE;
+    (void)node;
+    return co_device_process(&d->run, now_us);
 }
 
 /* ---------------------------------------------------- start and stop */
@@ -179,23 +170,21 @@ static int start_node(dnode_t *d, const opt_node_t *spec, const char *iface)
     char err[256];
     co_err_t e;
 
-    d->dev = device_find(spec->device);
+    size_t mem_size;
+
+    d->dev = co_device_find(spec->device);
     (void)snprintf(d->tag, sizeof d->tag, "node %u (%s)", (unsigned)spec->id, d->dev->name);
-    if ((d->dev->ram_size != d->dev->dev->ram_size) ||
-        (d->dev->n_hooks < d->dev->dev->n_hooks)) {
-        log_line(d->tag, CO_LX_ERROR, "registry entry does not fit the dictionary");
-        return -1;
-    }
-    d->ram = calloc(1U, d->dev->ram_size);
-    d->hooks = (co_od_hook_t *)calloc((d->dev->n_hooks != 0U) ? d->dev->n_hooks : 1U,
+    mem_size = co_device_mem_size(d->dev, true);
+    d->ram = calloc(1U, d->dev->dev->ram_size);
+    d->hooks = (co_od_hook_t *)calloc((d->dev->dev->n_hooks != 0U) ? d->dev->dev->n_hooks : 1U,
                                       sizeof *d->hooks);
     {
         size_t n_pdo = (size_t)d->dev->dev->n_rpdo + d->dev->dev->n_tpdo;
         d->pdo = (co_pdo_t *)calloc((n_pdo != 0U) ? n_pdo : 1U, sizeof *d->pdo);
         d->pdo_rx = (co_pdo_slot_t *)calloc((n_pdo != 0U) ? n_pdo : 1U, sizeof *d->pdo_rx);
     }
-    d->app = calloc(1U, (d->dev->app_size != 0U) ? d->dev->app_size : 1U);
-    if ((d->ram == NULL) || (d->hooks == NULL) || (d->app == NULL) || (d->pdo == NULL) ||
+    d->mem = calloc(1U, (mem_size != 0U) ? mem_size : 1U);
+    if ((d->ram == NULL) || (d->hooks == NULL) || (d->mem == NULL) || (d->pdo == NULL) ||
         (d->pdo_rx == NULL)) {
         log_line(d->tag, CO_LX_ERROR, "out of memory");
         return -1;
@@ -225,19 +214,22 @@ static int start_node(dnode_t *d, const opt_node_t *spec, const char *iface)
     cfg.cb.nmt_state = cb_nmt_state;
     cfg.cb.nmt_reset = cb_nmt_reset;
     cfg.cb.hb_event = cb_hb_event;
-    cfg.cb.sync = cb_sync;
-    if ((d->dev->prepare != NULL) && (d->dev->prepare(d->app, d->dev, &cfg, co_lx_now_us()) != 0)) {
-        log_line(d->tag, CO_LX_ERROR, "device application failed to prepare");
+    /* the device's instances first, then the daemon's own callbacks (logging) */
+    if (co_device_init(&d->run, d->dev, d->mem, mem_size, NULL, &cfg.cb, co_lx_now_us()) !=
+        CO_OK) {
+        log_line(d->tag, CO_LX_ERROR, "device failed to prepare");
         return -1;
     }
+    cfg.cb = co_device_callbacks(&d->run);
     e = co_node_init(&d->node, &cfg, co_lx_now_us());
     if (e != CO_OK) {
         log_line(d->tag, CO_LX_ERROR, "co_node_init failed: 0x%08lX", (unsigned long)e);
         return -1;
     }
     co_lx_port_attach(&d->port, &d->node);
-    if ((d->dev->attach != NULL) && (d->dev->attach(d->app, &d->node) != 0)) {
-        log_line(d->tag, CO_LX_ERROR, "device application failed to start");
+    e = co_device_attach(&d->run, &d->node, co_lx_now_us());
+    if (e != CO_OK) {
+        log_line(d->tag, CO_LX_ERROR, "device failed to start: 0x%08lX", (unsigned long)e);
         return -1;
     }
     log_line(d->tag, CO_LX_INFO, "up on %s%s%s", iface, d->has_nv ? ", parameters in " : "",
@@ -247,9 +239,6 @@ static int start_node(dnode_t *d, const opt_node_t *spec, const char *iface)
 
 static void stop_node(dnode_t *d)
 {
-    if ((d->dev != NULL) && (d->dev->detach != NULL) && (d->port.node != NULL)) {
-        d->dev->detach(d->app, &d->node);
-    }
     co_lx_port_close(&d->port);
     if (d->has_nv) {
         co_lx_nv_close(&d->nv);
@@ -258,12 +247,12 @@ static void stop_node(dnode_t *d)
     free(d->hooks);
     free(d->pdo);
     free(d->pdo_rx);
-    free(d->app);
+    free(d->mem);
 }
 
 static int export_eds(const options_t *o)
 {
-    const device_entry_t *dev = device_find(o->nodes[0].device);
+    const co_device_t *dev = co_device_find(o->nodes[0].device);
     size_t len = strlen((const char *)dev->eds);
     int to_stdout = (strcmp(o->export_path, "-") == 0);
     FILE *f = to_stdout ? stdout : fopen(o->export_path, "w");
@@ -384,8 +373,8 @@ int main(int argc, char **argv)
         (void)printf(PROG " %s\n", CO_VERSION);
         break;
     case OPT_LIST:
-        for (size_t i = 0U; i < device_count(); i++) {
-            (void)printf("%-22s %s\n", device_at(i)->name, device_at(i)->summary);
+        for (size_t i = 0U; i < co_device_count(); i++) {
+            (void)printf("%-22s %s\n", co_device_at(i)->name, co_device_at(i)->summary);
         }
         break;
     case OPT_EXPORT_EDS:

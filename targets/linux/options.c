@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "device_registry.h"
+#include "co_devices.h"
 
 const char options_usage[] =
     "Usage: canopen-device [OPTION]...\n"
@@ -218,7 +218,7 @@ int options_parse(options_t *o, int argc, char **argv, char *err, size_t cap)
         o->mode = want_help ? OPT_HELP : (want_version ? OPT_VERSION : OPT_LIST);
         return 0;
     }
-    if (device_find(primary.device) == NULL) {
+    if (co_device_find(primary.device) == NULL) {
         return fail(err, cap, "unknown device '%s' (see --list-devices)%s", primary.device, "");
     }
     if (o->mode == OPT_EXPORT_EDS) {
@@ -230,7 +230,7 @@ int options_parse(options_t *o, int argc, char **argv, char *err, size_t cap)
         o->nodes[o->n_nodes++] = primary;
     }
     for (size_t k = 0U; k < extra; k++) {
-        if (device_find(extras[k].device) == NULL) {
+        if (co_device_find(extras[k].device) == NULL) {
             return fail(err, cap, "unknown device '%s' (see --list-devices)%s", extras[k].device,
                         "");
         }

@@ -208,7 +208,8 @@ def network():
 
 NODE_ID = 5
 
-# Axes the CiA 402 devices run (devices/co402_devices.c; 1 when not listed).
+# Axes the CiA 402 devices run (their co_device_impl_t in devices/*.c; 1 when
+# not listed).
 # A dictionary may hold more: anagate-motion-bt2 is the 4-axis module with 2
 # motors fitted.
 AXES = {"anagate-motion": 4, "anagate-motion-bt2": 2, "anagate-motion-bl": 2,

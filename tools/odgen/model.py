@@ -940,9 +940,10 @@ def _include(data: dict, path: Path) -> dict:
         raise DescError(f"include {inc!r}: cannot read: {e.strerror}") from None
     except tomllib.TOMLDecodeError as e:
         raise DescError(f"include {inc!r}: TOML syntax: {e}") from None
-    _check_keys(base, {"device", "eds", "dcf", "object"}, f"include {inc!r}: top level")
+    _check_keys(base, {"device", "eds", "dcf", "object", "profile"},
+                f"include {inc!r}: top level")
     out: dict = {}
-    for key in ("device", "eds", "dcf"):
+    for key in ("device", "eds", "dcf", "profile"):
         a, b = base.get(key), data.get(key)
         if a is None or b is None:
             if a is not None or b is not None:
@@ -951,6 +952,10 @@ def _include(data: dict, path: Path) -> dict:
         if not isinstance(a, dict) or not isinstance(b, dict):
             raise DescError(f"[{key}] must be a table")
         out[key] = {**a, **b}
+        if key == "profile":   # one level deeper: [profile.cia402] keys
+            for k in set(a) & set(b):
+                if isinstance(a[k], dict) and isinstance(b[k], dict):
+                    out[key][k] = {**a[k], **b[k]}
     objs = base.get("object", [])
     mine = data.get("object", [])
     if not isinstance(objs, list) or not isinstance(mine, list):
@@ -967,6 +972,21 @@ def _include(data: dict, path: Path) -> dict:
     return out
 
 
+def load_raw(path: str | Path) -> dict:
+    """The description's tables with its include resolved (for the device
+    registry: tools/odgen/gen_registry.py reads [profile])."""
+    path = Path(path)
+    try:
+        data = tomllib.loads(path.read_text(encoding="utf-8"))
+    except OSError as e:
+        raise DescError(f"cannot read: {e.strerror}") from None
+    except tomllib.TOMLDecodeError as e:
+        raise DescError(f"TOML syntax: {e}") from None
+    if "include" in data:
+        data = _include(data, path)
+    return data
+
+
 def loads(text: str, path: str | Path = "<description>", base: str | None = None) -> Device:
     """Load a description from its text (path: for messages and the default base)."""
     path = Path(path)
@@ -974,7 +994,7 @@ def loads(text: str, path: str | Path = "<description>", base: str | None = None
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as e:
         raise DescError(f"TOML syntax: {e}") from None
-    _check_keys(data, {"include", "device", "eds", "dcf", "object"}, "top level")
+    _check_keys(data, {"include", "device", "eds", "dcf", "object", "profile"}, "top level")
     if "include" in data:
         data = _include(data, path)
     dev = data.get("device")

@@ -164,6 +164,28 @@ typedef struct co_node_callbacks {
      *  updated, before the frame. It must not raise or clear errors. NULL:
      *  zeros (CiA 301 leaves the field to the manufacturer). */
     void (*emcy_mfr)(void *ctx, struct co_node *node, uint16_t code, uint8_t mfr[5]);
+    /** RPDO @p n (0-based) was received and all the mapped objects it
+     *  covers are written (asynchronous: at once; synchronous: at the SYNC
+     *  that applies it). A device applies its outputs here, all at once. */
+    void (*rpdo)(void *ctx, struct co_node *node, uint16_t n);
+    /** The mapped data of event-driven TPDO @p n (0-based) changed from
+     *  @p last (what it sent last) to @p now (8 bytes each, zero beyond the
+     *  mapping; the change masks of CO_OPT_TPDO_MASK_* passed): true lets
+     *  the change send it (asked at every co_node_process while the data
+     *  differs from what was sent). Not asked for the first transmission in
+     *  Operational, a request, the event timer or an RTR. NULL: every
+     *  change sends. */
+    bool (*tpdo_event)(void *ctx, struct co_node *node, uint16_t n, const uint8_t last[8],
+                       const uint8_t now[8]);
+    /** An NMT command @p cs (0x01 start, 0x02 stop, 0x80 pre-operational,
+     *  0x81 reset node, 0x82 reset communication; a 0x1029 reaction as its
+     *  command) is about to be executed: the node is still in its old state
+     *  (an EMCY may still go out). Only when it changes the state or resets. */
+    void (*nmt_command)(void *ctx, struct co_node *node, uint8_t cs);
+    /** A serious error of class @p sub was reported by co_node_error_behaviour
+     *  (CO_ERRBEH_COMM: the port's bus-off, ...), before the 0x1029 reaction.
+     *  (Heartbeat and life-guarding losses arrive through hb_event.) */
+    void (*error_class)(void *ctx, struct co_node *node, uint8_t sub);
 } co_node_callbacks_t;
 
 /** Everything co_node_init needs. */

@@ -123,7 +123,7 @@ void co_nmt_error(co_node_t *node, uint8_t sub)
 
 void co_node_error_behaviour(co_node_t *node, uint8_t sub, uint32_t now_us)
 {
-    node->now = now_us;
+    co_node_clock(node, now_us);
     if (node->cb.error_class != NULL) {
         node->cb.error_class(node->cb.ctx, node, sub);
     }
@@ -148,7 +148,7 @@ static void reset(co_node_t *node, co_reset_t kind)
 
 void co_node_nmt_command(co_node_t *node, uint8_t cs, uint32_t now_us)
 {
-    node->now = now_us;
+    co_node_clock(node, now_us);
     co_nmt_notice(node, cs);
     switch (cs) {
     case NMT_START:

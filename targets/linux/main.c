@@ -373,8 +373,12 @@ int main(int argc, char **argv)
         (void)printf(PROG " %s\n", CO_VERSION);
         break;
     case OPT_LIST:
+        /* the default device first, then the others in name order */
+        (void)printf("%-22s %s\n", OPT_DEFAULT_DEVICE, co_device_find(OPT_DEFAULT_DEVICE)->summary);
         for (size_t i = 0U; i < co_device_count(); i++) {
-            (void)printf("%-22s %s\n", co_device_at(i)->name, co_device_at(i)->summary);
+            if (strcmp(co_device_at(i)->name, OPT_DEFAULT_DEVICE) != 0) {
+                (void)printf("%-22s %s\n", co_device_at(i)->name, co_device_at(i)->summary);
+            }
         }
         break;
     case OPT_EXPORT_EDS:

@@ -73,7 +73,7 @@ static int parse_node(char *spec, opt_node_t *n, char *err, size_t cap)
     char *dev = strchr(spec, ':');
     char *path = NULL;
 
-    n->device = "generic-301";
+    n->device = OPT_DEFAULT_DEVICE;
     n->storage = NULL;
     if (dev != NULL) {
         *dev = '\0';
@@ -111,7 +111,7 @@ static int set_level(options_t *o, const char *v)
 
 int options_parse(options_t *o, int argc, char **argv, char *err, size_t cap)
 {
-    opt_node_t primary = {1U, "generic-301", NULL};
+    opt_node_t primary = {1U, OPT_DEFAULT_DEVICE, NULL};
     bool primary_given = false;
     bool device_given = false;
     bool want_help = false;

@@ -21,6 +21,7 @@
 #include "co_lx/port.h"
 
 #define OPT_NODES_MAX 127U
+#define OPT_DEFAULT_DEVICE "generic-301" /**< --device without the option; listed first */
 
 typedef enum opt_mode {
     OPT_RUN,

@@ -43,11 +43,13 @@ def _int(tbl: dict, key: str, default: int, top: int, what: str) -> int:
 # ---- [profile.cia401]: co401_config_t (profiles/cia401/include/co/co401.h)
 CIA401_KEYS = {
     # key: (C field, default, top)
-    "di8": ("di8", 0x6000, 0xFFFF),        # 8-bit digital inputs object
-    "do8": ("do8", 0x6200, 0xFFFF),        # 8-bit digital outputs object
+    "di": ("di", 0, 0xFFFF),               # digital input object (0: 0x6000/0x6100/0x6120)
+    "do": ("dout", 0, 0xFFFF),             # digital output object (0: 0x6200/0x6300/0x6320)
     "first_sub": ("first_sub", 1, 1),      # sub-index of the first block (AnaGate: 0)
-    "blocks_di8": ("n_di8", 0, 255),       # 8-bit blocks (0: as many as the object has)
-    "blocks_do8": ("n_do8", 0, 255),
+    "blocks_di": ("n_di", 0, 8),           # blocks of di (0: as many as the object has)
+    "blocks_do": ("n_do", 0, 8),
+    "filter_us": ("filter_us", 0, 0x7FFFFFFF),  # input filter time (0: 3 ms)
+    "poll_us": ("poll_us", 0, 0x7FFFFFFF),      # inputs read at least this often (0: 10 ms)
 }
 
 
@@ -58,12 +60,16 @@ def _cia401(cname: str, tbl: dict, what: str) -> tuple[str, str]:
     fields = []
     for key, (field, default, top) in CIA401_KEYS.items():
         fields.append(f"    .{field} = 0x{_int(tbl, key, default, top, what):X}U,")
+    for key in ("di", "do"):
+        v = tbl.get(key, 0)
+        if v and not 0x2000 <= v <= 0x9FFF:
+            raise DescError(f"{what} {key} must be a manufacturer or profile object")
     cfg = f"static const co401_config_t cia401_{cname} = {{\n" + "\n".join(fields) + "\n};\n"
     return cfg, f"{{&co401_part, &cia401_{cname}, 1U}}"
 
 
 PROFILES = {"cia401": _cia401}
-PROFILE_HEADERS = {"cia401": "co/co401_device.h"}
+PROFILE_HEADERS = {"cia401": "co/co401_device.h"}  # defines co401_part
 
 
 def generate(paths: list[str]) -> tuple[str, str]:

@@ -36,19 +36,19 @@ const struct timespec *co_lx_sleep_for(uint32_t deadline, uint32_t now, struct t
     return ts;
 }
 
-/* Run every node's timers and application; the earliest deadline. */
+/* Run every node's application and timers; the earliest deadline. The
+ * application first: what its tick changed (an input, a statusword) goes
+ * out in the same round. */
 static uint32_t run_timers(co_lx_loop_t *l, uint32_t now)
 {
     uint32_t next = CO_NO_DEADLINE;
 
     for (size_t i = 0U; i < l->n_members; i++) {
         co_lx_member_t *m = &l->members[i];
+        uint32_t a = (m->tick != NULL) ? m->tick(m->tick_ctx, m->node, now) : CO_NO_DEADLINE;
         uint32_t d = co_node_process(m->node, now);
 
-        if (m->tick != NULL) {
-            uint32_t a = m->tick(m->tick_ctx, m->node, now);
-            d = (d == CO_NO_DEADLINE) ? a : ((a == CO_NO_DEADLINE) ? d : co_lx_earlier(a, d, now));
-        }
+        d = (d == CO_NO_DEADLINE) ? a : ((a == CO_NO_DEADLINE) ? d : co_lx_earlier(a, d, now));
         if (d != CO_NO_DEADLINE) {
             next = (next == CO_NO_DEADLINE) ? d : co_lx_earlier(d, next, now);
         }

@@ -67,8 +67,10 @@ typedef struct co_profile_ops {
     /** May this change send event-driven TPDO @p n (0-based)? @p last is
      *  what it sent last, @p now its data now; @p changed (last ^ now on the
      *  first call) comes with the bits of the instance's own objects whose
-     *  change is no event (masked, under a delta) cleared. The TPDO goes
-     *  out when some changed bit remains after every instance. */
+     *  change is no event (masked, under a delta) cleared; an instance may
+     *  set a bit of its own objects for an event whose value is back where
+     *  it was sent. The TPDO goes out when some bit remains set after every
+     *  instance. */
     void (*tpdo_event)(void *inst, uint16_t n, const uint8_t last[8], const uint8_t now[8],
                        uint8_t changed[8]);
     /** NMT command @p cs (co_node_callbacks_t.nmt_command) is about to be

@@ -167,8 +167,8 @@ static void drive(co401_t *m, bool force)
  * changed. Ends the error state. */
 static void take_outputs(co401_t *m, bool force)
 {
-    uint8_t obj[CO401_DIO_BYTES];
-    int16_t aobj[CO401_AIO_MAX];
+    uint8_t obj[CO401_DIO_BYTES] = {0U};
+    int16_t aobj[CO401_AIO_MAX] = {0};
     bool changed = force;
 
     for (uint8_t b = 0U; b < m->n_do; b++) {

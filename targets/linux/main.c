@@ -19,6 +19,7 @@
 #include "co_lx/trace.h"
 #include "co/co_device.h"
 #include "co_devices.h"
+#include "control.h"
 #include "options.h"
 
 #ifndef CO_VERSION
@@ -39,8 +40,15 @@ typedef struct dnode {
     co_lx_port_t port;
     co_lx_nv_t nv;
     int has_nv;
+    uint8_t id;
     char tag[64];
 } dnode_t;
+
+/* What the control interface acts on (control.h). */
+typedef struct ctl_nodes {
+    dnode_t *nodes;
+    size_t n;
+} ctl_nodes_t;
 
 static co_lx_level_t log_level = CO_LX_INFO;
 static volatile sig_atomic_t stop_flag;
@@ -173,6 +181,7 @@ static int start_node(dnode_t *d, const opt_node_t *spec, const char *iface)
     size_t mem_size;
 
     d->dev = co_device_find(spec->device);
+    d->id = spec->id;
     (void)snprintf(d->tag, sizeof d->tag, "node %u (%s)", (unsigned)spec->id, d->dev->name);
     mem_size = co_device_mem_size(d->dev, true);
     d->ram = calloc(1U, d->dev->dev->ram_size);
@@ -250,6 +259,79 @@ static void stop_node(dnode_t *d)
     free(d->mem);
 }
 
+/* ---------------------------------------------------- control interface */
+
+static int is_signed(uint8_t type)
+{
+    return ((type >= (uint8_t)CO_INTEGER8) && (type <= (uint8_t)CO_INTEGER32)) ||
+           ((type >= (uint8_t)CO_INTEGER24) && (type <= (uint8_t)CO_INTEGER64) &&
+            (type != (uint8_t)CO_REAL64));
+}
+
+static void ctl_get(dnode_t *d, const ctl_cmd_t *cmd, char *reply, size_t cap)
+{
+    const co_dev_t *dev = d->node.dev;
+    const co_od_entry_t *e = co_od_find(dev->od, dev->od_count, cmd->index);
+    const co_od_sub_t *sd = (e != NULL) ? co_od_find_sub(e, cmd->sub) : NULL;
+    uint8_t b[64];
+    uint32_t len = 0U;
+    co_err_t err = co_od_read(&d->node, cmd->index, cmd->sub, b, sizeof b, &len);
+
+    if (err != CO_OK) {
+        (void)snprintf(reply, cap, "error 0x%08lX", (unsigned long)err);
+    } else if ((sd != NULL) && ((sd->type == (uint8_t)CO_VISIBLE_STRING) || (len > 8U))) {
+        (void)snprintf(reply, cap, "ok %.*s", (int)len, (const char *)b);
+    } else {
+        uint64_t u = 0U;
+        for (uint32_t k = 0U; k < len; k++) {
+            u |= (uint64_t)b[k] << (8U * k);
+        }
+        if ((sd != NULL) && is_signed(sd->type) && (len > 0U) && (len < 8U) &&
+            ((b[len - 1U] & 0x80U) != 0U)) {
+            u |= ~(uint64_t)0U << (8U * len); /* sign-extend */
+        }
+        if ((sd != NULL) && is_signed(sd->type)) {
+            (void)snprintf(reply, cap, "ok %lld", (long long)(int64_t)u);
+        } else {
+            (void)snprintf(reply, cap, "ok %llu", (unsigned long long)u);
+        }
+    }
+}
+
+static void ctl_exec(void *ctx, const ctl_cmd_t *cmd, char *reply, size_t cap)
+{
+    const ctl_nodes_t *c = (const ctl_nodes_t *)ctx;
+    dnode_t *d = NULL;
+
+    for (size_t i = 0U; (i < c->n) && (d == NULL); i++) {
+        if ((cmd->node_id < 0) || (c->nodes[i].id == (uint8_t)cmd->node_id)) {
+            d = &c->nodes[i];
+        }
+    }
+    if (cmd->op == CTL_HELP) {
+        (void)snprintf(reply, cap, "ok [@ID] set INDEX SUB VALUE | [@ID] get INDEX SUB | nodes | help");
+    } else if (cmd->op == CTL_NODES) {
+        size_t at = (size_t)snprintf(reply, cap, "ok");
+        for (size_t i = 0U; (i < c->n) && (at < cap); i++) {
+            at += (size_t)snprintf(&reply[at], cap - at, " %u:%s", (unsigned)c->nodes[i].id,
+                                   c->nodes[i].dev->name);
+        }
+    } else if (d == NULL) {
+        (void)snprintf(reply, cap, "error no node %d", cmd->node_id);
+    } else if (cmd->op == CTL_GET) {
+        ctl_get(d, cmd, reply, cap);
+    } else {
+        co_err_t err = co_device_set(&d->run, cmd->index, cmd->sub, cmd->value);
+        if (err == CO_OK) {
+            log_line(d->tag, CO_LX_DEBUG, "control: set 0x%04X %u %lld", (unsigned)cmd->index,
+                     (unsigned)cmd->sub, (long long)cmd->value);
+            (void)snprintf(reply, cap, "ok");
+        } else {
+            (void)snprintf(reply, cap, "error 0x%08lX", (unsigned long)err);
+        }
+    }
+}
+
 static int export_eds(const options_t *o)
 {
     const co_device_t *dev = co_device_find(o->nodes[0].device);
@@ -277,6 +359,8 @@ static int run(const options_t *o)
     co_lx_member_t *members;
     dnode_t *nodes;
     co_lx_loop_t loop;
+    ctl_t ctl;
+    ctl_nodes_t ctl_nodes;
     FILE *trace_out = NULL;
     size_t started = 0U;
     int rc = 0;
@@ -295,6 +379,7 @@ static int run(const options_t *o)
 
     tracer.fd = -1;
     tracer.out = NULL;
+    ctl.lfd = -1;
     nodes = (dnode_t *)calloc(o->n_nodes, sizeof *nodes);
     members = (co_lx_member_t *)calloc(o->n_nodes, sizeof *members);
     if ((nodes == NULL) || (members == NULL)) {
@@ -324,8 +409,22 @@ static int run(const options_t *o)
         members[i].tick_ctx = &nodes[i];
         started = i + 1U;
     }
+    if ((rc == 0) && (o->control != NULL)) {
+        char err[160];
+        ctl_nodes.nodes = nodes;
+        ctl_nodes.n = o->n_nodes;
+        if (ctl_open(&ctl, o->control, ctl_exec, &ctl_nodes, err, sizeof err) != 0) {
+            (void)fprintf(stderr, PROG ": --control %s\n", err);
+            rc = 1;
+        }
+    }
     if (rc == 0) {
         (void)memset(&loop, 0, sizeof loop);
+        if (ctl.lfd >= 0) {
+            loop.extra_fds = ctl_fds;
+            loop.extra_ready = ctl_ready;
+            loop.extra_ctx = &ctl;
+        }
         loop.members = members;
         loop.n_members = o->n_nodes;
         loop.tracers = &tracer;
@@ -337,6 +436,9 @@ static int run(const options_t *o)
         rc = (co_lx_loop_run(&loop) == 0) ? 0 : 1;
         log_line(NULL, CO_LX_INFO, "%s after %llu loop rounds", rc == 0 ? "stopped" : "failed",
                  (unsigned long long)loop.rounds);
+    }
+    if (ctl.lfd >= 0) {
+        ctl_close(&ctl);
     }
     for (size_t i = 0U; i < started; i++) {
         stop_node(&nodes[i]);

@@ -20,6 +20,7 @@ const char options_usage[] =
     "  --node ID[:DEVICE[:PATH]]\n"
     "                       one more node in this process (repeatable)\n"
     "  --trace FILE|-       write every frame on the bus in candump -L format\n"
+    "  --control PATH       serve line commands on a Unix socket (set/get INDEX SUB ...)\n"
     "  --log-level LEVEL    error, warn, info (default) or debug; messages go to stderr\n"
     "  --export-eds PATH    write the EDS of --device to PATH ('-': stdout) and exit\n"
     "  --list-devices       list the device types and exit\n"
@@ -40,7 +41,8 @@ typedef struct opt_def {
 static const opt_def_t defs[] = {
     {"iface", O_ARG},        {"node-id", O_ARG},      {"device", O_ARG},
     {"storage", O_ARG},      {"node", O_ARG},         {"trace", O_ARG},
-    {"log-level", O_ARG},    {"export-eds", O_ARG},   {"list-devices", O_FLAG},
+    {"control", O_ARG},      {"log-level", O_ARG},    {"export-eds", O_ARG},
+    {"list-devices", O_FLAG},
     {"help", O_FLAG},        {"version", O_FLAG},
 };
 
@@ -192,6 +194,11 @@ int options_parse(options_t *o, int argc, char **argv, char *err, size_t cap)
                 return fail(err, cap, "--trace needs a file name or '-'%s%s", "", "");
             }
             o->trace = val;
+        } else if (strcmp(d->name, "control") == 0) {
+            if (val[0] == '\0') {
+                return fail(err, cap, "--control needs a socket path%s%s", "", "");
+            }
+            o->control = val;
         } else if (strcmp(d->name, "log-level") == 0) {
             if (set_level(o, val) != 0) {
                 return fail(err, cap,

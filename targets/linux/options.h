@@ -3,7 +3,7 @@
  *
  *   canopen-device [--iface IF] [--node-id N] [--device NAME] [--storage PATH]
  *                  [--node ID[:DEVICE[:PATH]]]... [--trace FILE|-]
- *                  [--log-level error|warn|info|debug]
+ *                  [--control PATH] [--log-level error|warn|info|debug]
  *   canopen-device --export-eds PATH [--device NAME]
  *   canopen-device --list-devices | --help | --version
  *
@@ -41,6 +41,7 @@ typedef struct options {
     opt_mode_t mode;
     const char *iface;
     const char *trace;        /**< NULL: no trace; "-": stdout */
+    const char *control;      /**< --control socket path, NULL: none */
     const char *export_path;
     co_lx_level_t log_level;
     size_t n_nodes;

@@ -82,7 +82,8 @@ static int drain_member(const co_lx_loop_t *l, co_lx_member_t *m)
 int co_lx_loop_run(co_lx_loop_t *l)
 {
     size_t nfds = l->n_members + l->n_tracers;
-    struct pollfd *fds = (struct pollfd *)calloc((nfds != 0U) ? nfds : 1U, sizeof *fds);
+    struct pollfd *fds =
+        (struct pollfd *)calloc(nfds + CO_LX_EXTRA_FDS_MAX + 1U, sizeof *fds);
     int rc = 0;
 
     if (fds == NULL) {
@@ -107,9 +108,12 @@ int co_lx_loop_run(co_lx_loop_t *l)
             fds[l->n_members + i].events = POLLIN;
             fds[l->n_members + i].revents = 0;
         }
+        size_t n_extra = (l->extra_fds != NULL)
+                             ? l->extra_fds(l->extra_ctx, &fds[nfds], CO_LX_EXTRA_FDS_MAX)
+                             : 0U;
         tsp = co_lx_sleep_for(next, co_lx_now_us(), &ts);
         l->rounds++;
-        r = ppoll(fds, (nfds_t)nfds, tsp, l->sleep_mask);
+        r = ppoll(fds, (nfds_t)(nfds + n_extra), tsp, l->sleep_mask);
         if (r < 0) {
             if (errno != EINTR) {
                 loop_say(l, CO_LX_ERROR, "ppoll failed");
@@ -131,6 +135,9 @@ int co_lx_loop_run(co_lx_loop_t *l)
             for (size_t i = 0U; i < l->n_tracers; i++) {
                 (void)fflush(l->tracers[i].out);
             }
+        }
+        if ((rc == 0) && (n_extra != 0U) && (l->extra_ready != NULL)) {
+            l->extra_ready(l->extra_ctx, &fds[nfds], n_extra);
         }
     }
     free(fds);

@@ -94,10 +94,14 @@ typedef struct co401 {
     co401_config_t cfg;
     co401_plant_t plant;
     co_node_t *node;
-    uint16_t di, dout;          /* objects found (0: none) */
-    uint8_t di_size, do_size;   /* bytes per block: 1, 2 or 4 */
-    uint8_t n_di, n_do;         /* blocks */
-    uint8_t n_ai, n_ao;         /* analog channels */
+    uint16_t di;                /* objects found (0: none) */
+    uint16_t dout;
+    uint8_t di_size;            /* bytes per block: 1, 2 or 4 */
+    uint8_t do_size;
+    uint8_t n_di;               /* blocks */
+    uint8_t n_do;
+    uint8_t n_ai;               /* analog channels */
+    uint8_t n_ao;
     uint8_t raw[CO401_DIO_BYTES];      /* physical inputs last read */
     uint8_t stable[CO401_DIO_BYTES];   /* filtered physical inputs */
     uint32_t since[CO401_DIO_BYTES * 8U]; /* filter: time a pending change was first seen */

@@ -9,13 +9,17 @@ Steps: boot-ups, identity over SDO, NMT states, heartbeats watched, a PDO
 mapped and exchanged at SYNC, a parameter stored and read back after the
 device process restarts, and a CiA 402 drive (simulated motor) enabled,
 moved in profile position with its statusword, position and velocity
-sampled by TPDOs at SYNC and plotted to a PNG (tools/plot-trace), then homed. A step that fails is reported as FAILED with its
+sampled by TPDOs at SYNC and plotted to a PNG (tools/plot-trace), then
+homed; next to it a CiA 401 I/O module (loopback simulation): outputs set by
+RPDO come back as inputs by TPDO, an input set through the daemon's control
+interface sends its TPDO, a masked input change sends none. A step that fails is reported as FAILED with its
 reason and the demo goes on; the exit status is 1 when any step failed.
 """
 from __future__ import annotations
 
 import argparse
 import signal
+import socket
 import subprocess
 import sys
 import tempfile
@@ -32,7 +36,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from cia402_master import Drive, Sample, state_of, write_csv  # noqa: E402
 
 GENERIC_ID = 5
-DEFAULT_DEVICES = ("generic-301", "cia402")
+DEFAULT_DEVICES = ("generic-301", "cia402", "cia401")
 T0 = time.monotonic()
 
 
@@ -131,7 +135,8 @@ class Demo:
 
     def start_device(self, node_id: int, device: str, storage: bool = False) -> None:
         args = [str(self.daemon), "--iface", self.iface, "--node-id", str(node_id),
-                "--device", device, "--log-level", "error"]
+                "--device", device, "--log-level", "error",
+                "--control", str(self.tmp / f"node{node_id}.sock")]
         if storage:
             args += ["--storage", str(self.tmp / f"node{node_id}.params")]
         m = self.watch.mark()
@@ -302,6 +307,50 @@ class Demo:
         say(f"<- {f.arbitration_id:03X} {hexs(f.data)}   EMCY 0x0000: error reset")
         node.sdo.download(0x1016, 1, bytes(4))
 
+    def control(self, node_id: int, line: str) -> str:
+        """One command of the daemon's control interface (docs/linux.md)."""
+        with socket.socket(socket.AF_UNIX, socket.SOCK_STREAM) as s:
+            s.settimeout(2.0)
+            s.connect(str(self.tmp / f"node{node_id}.sock"))
+            s.sendall((line + "\n").encode())
+            reply = s.makefile("r").readline().strip()
+        say(f"control: {line}  ->  {reply}")
+        return reply
+
+    def io_module(self):
+        nid = next(n for n, d in self.device_of.items() if d == "cia401")
+        node = self.nodes[nid]
+        tpdo1 = 0x180 + nid
+
+        def tpdo(m, what, data=None, timeout=2.0):
+            f, _ = self.watch.wait(lambda f: f.arbitration_id == tpdo1 and
+                                   (data is None or bytes(f.data) == data), timeout, m)
+            if f is None:
+                raise TimeoutError(f"no TPDO1 ({what})")
+            say(f"<- {f.arbitration_id:03X} {hexs(f.data)}   TPDO1 inputs 1..16: {what}")
+
+        m = self.watch.mark()
+        self.nmt(nid, "OPERATIONAL")
+        tpdo(m, "first transmission in Operational")
+        m = self.watch.mark()
+        self.net.send_message(0x200 + nid, bytes([0x0F, 0xF0]))
+        say(f"-> {0x200 + nid:03X} 0F F0   RPDO1 outputs 1..16")
+        tpdo(m, "the outputs looped back", bytes([0x0F, 0xF0]))
+        m = self.watch.mark()
+        if self.control(nid, "set 0x6000 1 0x8F") != "ok":
+            raise AssertionError("control interface refused the input")
+        tpdo(m, "input 8 set from outside", bytes([0x8F, 0xF0]))
+        node.sdo[0x6006][2].raw = 0x0F
+        say("SDO 0x6006:2 = 0x0F   interrupt mask: only inputs 9..12 send")
+        m = self.watch.mark()
+        self.net.send_message(0x200 + nid, bytes([0x8F, 0x00]))
+        say(f"-> {0x200 + nid:03X} 8F 00   RPDO1: outputs 13..16 off")
+        time.sleep(0.3)
+        if any(f.arbitration_id == tpdo1 for f in self.watch.since(m)):
+            raise AssertionError("a masked input change sent TPDO1")
+        say(f"   no TPDO1 within 0.3 s; {self.control(nid, 'get 0x6000 2')} (the input did change)")
+        return "outputs by RPDO, inputs by TPDO, control interface, interrupt mask"
+
     def drive_id(self) -> int:
         return next(n for n, d in self.device_of.items() if d == "cia402")
 
@@ -420,6 +469,8 @@ class Demo:
         if "cia402" in self.devices:
             self.step("CiA 402 drive: enable, profile-position move, plot", self.drive_move)
             self.step("CiA 402 drive: homing", self.drive_homing)
+        if "cia401" in self.devices:
+            self.step("CiA 401 I/O module: outputs, inputs, control interface", self.io_module)
         self.step("stop", self.shutdown)
         return self.summary()
 
@@ -449,7 +500,7 @@ def main() -> int:
     ap.add_argument("--out", default=str(ROOT / "build" / "demo"),
                     help="where the move trace (CSV) and its plot (PNG) go")
     ap.add_argument("--devices", nargs="+", metavar="NAME",
-                    help="devices to bring up (default: generic-301 cia402; 'all': every "
+                    help="devices to bring up (default: generic-301 cia402 cia401; 'all': every "
                          "device of canopen-device --list-devices)")
     a = ap.parse_args()
     demo = Demo(Path(a.daemon), a.iface, Path(a.out), a.devices)

@@ -10,8 +10,6 @@
 #include "anagate_motion_400vac.h"
 #include "anagate_motion_bl.h"
 
-#define ANAGATE_OPTIONS (CO402_OPT_VELOCITY_RAMP | CO402_OPT_VOLTAGE_WHEN_ON | CO402_OPT_NO_REMOTE_BIT)
-
 void anagate_motion_set_inputs(co_node_t *node, const uint8_t bytes[8])
 {
     for (uint8_t k = 0U; k < 8U; k++) {
@@ -52,19 +50,4 @@ static const co_profile_ops_t vac_ops = {
     .process = vac_process,
 };
 
-static const co402_params_t params = {
-    .options = ANAGATE_OPTIONS,
-    .full_speed = ANAGATE_FULL_SPEED,
-};
-
-static const co_device_part_t axes4[] = {{&co402_part, &params, 4U}};
-static const co_device_part_t axes2[] = {{&co402_part, &params, 2U}};
-
-const co_device_impl_t anagate_motion_impl = {.parts = axes4, .n_parts = 1U};
-const co_device_impl_t anagate_motion_bt2_impl = {.parts = axes2, .n_parts = 1U};
-const co_device_impl_t anagate_motion_bl_impl = {.parts = axes2, .n_parts = 1U};
-const co_device_impl_t anagate_motion_400vac_impl = {
-    .parts = axes2,
-    .n_parts = 1U,
-    .plugin = &vac_ops,
-};
+const co_device_plugin_t anagate_motion_400vac_plugin = {.ops = &vac_ops};

@@ -419,33 +419,7 @@ const co_profile_ops_t faulhaber_mc_ops = {
 
 /* ---------------------------------------------------------------- device */
 
-void faulhaber_mc_sim(co402_sim_config_t *c)
-{
-    c->counts_per_rev = 3000U;     /* BL: Hall sensors, 3000 increments/rev */
-    c->speed_max = 600000U;        /* 12000 rpm */
-    c->accel_rated = 30000000U;    /* 10000 1/s^2 at rated torque (3x: 30000 1/s^2) */
-    c->switches = CO402_IN_HOME;   /* a home switch at the positive end */
-    c->home_lo = 30000;
-    c->home_hi = INT32_MAX;
-}
-
-static const co402_params_t params_faulhaber_mc_impl = {
-    .options = CO402_OPT_ONE_TRANSITION | CO402_OPT_NMT_OPERATIONAL | CO402_OPT_NO_VOLTAGE_BIT |
-               CO402_OPT_NO_REMOTE_BIT | CO402_OPT_PP_ALWAYS_NOW | CO402_OPT_PP_TR_AFTER_MOVE |
-               CO402_OPT_HM_BIT4_CLEARS | CO402_OPT_FAULT_HOLDS_ZERO | CO402_OPT_TPDO_ON_SW |
-               CO402_OPT_QS_STAY | CO402_OPT_FR_SLOW,
-    .vel_num = 3000U, /* rpm: 3000 increments / 60 s */
-    .vel_den = 60U,
-    .acc_num = 3000U, /* 1/s^2: 3000 increments / s^2 */
-    .acc_den = 1U,
-    .sim_config = faulhaber_mc_sim,
-};
-
-static const co_device_part_t parts_faulhaber_mc_impl[] = {{&co402_part, &params_faulhaber_mc_impl, 1U}};
-
-const co_device_impl_t faulhaber_mc_impl = {
-    .parts = parts_faulhaber_mc_impl,
-    .n_parts = 1U,
-    .plugin = &faulhaber_mc_ops,
+const co_device_plugin_t faulhaber_mc_plugin = {
+    .ops = &faulhaber_mc_ops,
     .state_size = sizeof(faulhaber_mc_state_t),
 };

@@ -61,9 +61,6 @@ typedef struct faulhaber_mc_state {
  *  FAULHABER variants. */
 extern const co_profile_ops_t faulhaber_mc_ops;
 
-/** Plant parameters of the simulated BL motor (3000 increments/rev). */
-void faulhaber_mc_sim(co402_sim_config_t *c);
-
 /** A drive error condition (@p bit of 0x2320) arises (@p on) or ends. It is
  *  reported after the error delay 0x2322.01 (over-current, deviation,
  *  over-voltage) or at once, at the next co_device_process. */

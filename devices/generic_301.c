@@ -115,7 +115,7 @@ static const co_profile_ops_t g301_ops = {
     .reset = g301_reset,
 };
 
-const co_device_impl_t generic_301_impl = {
-    .plugin = &g301_ops,
+const co_device_plugin_t generic_301_plugin = {
+    .ops = &g301_ops,
     .state_size = sizeof(g301_app_t),
 };

@@ -29,7 +29,7 @@ size_t co_device_mem_size(const co_device_t *device, bool simulated)
         }
         n += one * impl->parts[p].count;
     }
-    return n + up(impl->state_size);
+    return n + ((impl->plugin != NULL) ? up(impl->plugin->state_size) : 0U);
 }
 
 static void *take(uint8_t *mem, size_t *at, size_t size)
@@ -90,9 +90,10 @@ co_err_t co_device_init(co_device_run_t *run, const co_device_t *device, void *m
             }
         }
     }
-    if ((err == CO_OK) && (impl->plugin != NULL)) {
-        run->state = (impl->state_size != 0U) ? take(block, &at, impl->state_size) : NULL;
-        err = co_profile_add(&run->host, impl->plugin, run);
+    if ((err == CO_OK) && (impl->plugin != NULL) && (impl->plugin->ops != NULL)) {
+        size_t st = impl->plugin->state_size;
+        run->state = (st != 0U) ? take(block, &at, st) : NULL;
+        err = co_profile_add(&run->host, impl->plugin->ops, run);
     }
     return err;
 }
@@ -108,9 +109,9 @@ co_err_t co_device_attach(co_device_run_t *run, co_node_t *node, uint32_t now_us
 
     run->node = node;
     err = co_profile_host_attach(&run->host, node, now_us);
-    if ((err == CO_OK) && (run->device->impl != NULL) &&
-        (run->device->impl->powered_on != NULL)) {
-        run->device->impl->powered_on(node, now_us);
+    if ((err == CO_OK) && (run->device->impl != NULL) && (run->device->impl->plugin != NULL) &&
+        (run->device->impl->plugin->powered_on != NULL)) {
+        run->device->impl->plugin->powered_on(node, now_us);
     }
     return err;
 }

@@ -38,8 +38,7 @@ static faulhaber_mc_node_t node;
 /* The unit of the manual's trace (section 7.1) stood at 13011 increments. */
 static void trace_sim(co402_sim_config_t *c)
 {
-    co402_sim_defaults(c);
-    faulhaber_mc_sim(c);
+    co402_params_sim_config(co402_device_params(&co_device_faulhaber_mc), c);
     c->start_pos = 13011;
 }
 

@@ -66,18 +66,25 @@ typedef struct co_device_part {
     uint8_t count;
 } co_device_part_t;
 
-/** What a device adds to its dictionary; made by the generator from the
- *  description's [profile] tables and, only where needed, by the device's
- *  C file (devices/<cname>.c, named in [profile] impl). */
-typedef struct co_device_impl {
-    const co_device_part_t *parts;
-    uint8_t n_parts;
-    /** The vendor plug-in (NULL: none); its instance is the co_device_run_t. */
-    const co_profile_ops_t *plugin;
+/** What a device's C file adds (devices/<cname>.c, named in the
+ *  description's [profile] plugin): a vendor plug-in for what is neither
+ *  core nor profile, and a power-on step. */
+typedef struct co_device_plugin {
+    /** The plug-in (NULL: none); its instance is the co_device_run_t. */
+    const co_profile_ops_t *ops;
     size_t state_size;                   /**< bytes of plug-in state (zeroed) */
     /** After power-on, once the node and its instances have started (NULL:
      *  nothing); e.g. a device that enters Operational by itself. */
     void (*powered_on)(co_node_t *node, uint32_t now_us);
+} co_device_plugin_t;
+
+/** What a device adds to its dictionary; made by the generator from the
+ *  description's [profile] tables ([profile.cia402], [profile.cia401] ...
+ *  and plugin), or by a C file of devices/ ([profile] impl). */
+typedef struct co_device_impl {
+    const co_device_part_t *parts;
+    uint8_t n_parts;
+    const co_device_plugin_t *plugin;    /**< NULL: none */
 } co_device_impl_t;
 
 /** A device type (const, one per description). */

@@ -130,13 +130,39 @@ void co_node_error_behaviour(co_node_t *node, uint8_t sub, uint32_t now_us)
     co_nmt_error(node, sub);
 }
 
+bool co_nmt_take_nodeid(co_node_t *node)
+{
+    const uint8_t *v;
+
+    if (node->dev->nodeid_index == 0U) {
+        return false;
+    }
+    v = (const uint8_t *)co_od_value_ptr(node, node->dev->nodeid_index, 0U);
+    if ((v == NULL) || (*v < 1U) || (*v > 127U) || (*v == node->node_id)) {
+        return false;
+    }
+    node->node_id = *v;
+    return true;
+}
+
 static void reset(co_node_t *node, co_reset_t kind)
 {
     /* Reset communication restores the communication area, reset node all
      * of the image, each to defaults and then to the stored set (0x1010).
      * Where the core's objects live does not change, so the pointers
-     * co_comm_bind found at init stay valid. */
-    co_store_reset(node, kind);
+     * co_comm_bind found at init stay valid. A device with a node-ID object
+     * takes its node-ID from it first ($NODEID defaults follow it); after a
+     * node reset that object has its stored value, so the image is restored
+     * again if the node-ID changes. */
+    if (kind == CO_RESET_COMMUNICATION) {
+        (void)co_nmt_take_nodeid(node);
+        co_store_reset(node, kind);
+    } else {
+        co_store_reset(node, kind);
+        if (co_nmt_take_nodeid(node)) {
+            co_store_reset(node, kind);
+        }
+    }
     if (kind == CO_RESET_NODE) {
         node->n_active = 0U;
     }

@@ -65,6 +65,12 @@
 #define CO_OPT_RESTORE_SAVED           0x08000000UL /**< 0x1011 sub 4/5/6 restore the saved set (all /
                                                          comm. / application); sub 1..3 keep its data
                                                          (FAULHABER) */
+#define CO_OPT_TPDO_AFTER_RPDO         0x10000000UL /**< a received RPDO n requests TPDO n when that
+                                                         TPDO has transmission type 255: "the TPDO
+                                                         right after the RPDO" (Wandfluh DSV) */
+#define CO_OPT_GUARD_HB_EXCLUSIVE      0x20000000UL /**< 0x100C / 0x100D refused with 0x060A0023
+                                                         while the heartbeat 0x1017 is not 0
+                                                         (Wandfluh DSV) */
 
 /** Error register 0x1001 bits. */
 #define CO_ERREG_GENERIC      0x01U
@@ -132,6 +138,10 @@ typedef struct co_dev {
      *  bytes 0..3, of the second of bytes 4..7; a change of the mapped data
      *  sends the TPDO only if it touches a set bit. NULL: no masks. */
     const uint16_t *tpdo_mask;
+    /** A manufacturer object (UNSIGNED8) that holds the node-ID the node takes
+     *  on at each Reset Communication (and at init), when it is 1..127; 0: none,
+     *  the node-ID stays the one co_node_init was given (Wandfluh DSV 0x2000). */
+    uint16_t nodeid_index;
 } co_dev_t;
 
 struct co_node;
@@ -186,6 +196,10 @@ typedef struct co_node_callbacks {
      *  (CO_ERRBEH_COMM: the port's bus-off, ...), before the 0x1029 reaction.
      *  (Heartbeat and life-guarding losses arrive through hb_event.) */
     void (*error_class)(void *ctx, struct co_node *node, uint8_t sub);
+    /** The set of CAN-IDs the node receives (co_node_rx_cob) was made anew:
+     *  at init and whenever a COB-ID, a heartbeat consumer or a PDO's
+     *  validity changed. A port with hardware filters reprograms them. */
+    void (*rx_set)(void *ctx, struct co_node *node);
 } co_node_callbacks_t;
 
 /** Everything co_node_init needs. */
@@ -274,7 +288,6 @@ typedef struct co_node {
     uint8_t hist_depth;
     uint8_t n_hb_cons;
     uint8_t n_rx;
-    uint8_t txq_head;
     uint8_t txq_len;
     uint8_t n_active;
     uint8_t n_emcy_q;
@@ -318,6 +331,21 @@ void co_node_rx(co_node_t *node, const co_frame_t *f, uint32_t now_us);
 /** Run timers and retry held-back frames. Returns the time (absolute, us) by
  *  which it wants to be called again, or CO_NO_DEADLINE. */
 uint32_t co_node_process(co_node_t *node, uint32_t now_us);
+
+/** The port's TX-ready notice: the controller has room again (a TX mailbox
+ *  or FIFO slot emptied; on an MCU the TX interrupt sets a flag the main loop
+ *  turns into this call). Frames held back go out now, lowest CAN-ID first,
+ *  and a block upload stalled on the full TX path resumes; without the
+ *  notice both wait for co_node_process, which looks again every 1 ms while
+ *  the path is full. */
+void co_node_tx_ready(co_node_t *node, uint32_t now_us);
+
+/** The @p i-th CAN-ID (11 bits, 0-based) of the frames the node acts on:
+ *  NMT, its SDO and guarding RTR, SYNC, TIME, heartbeats it consumes, its
+ *  RPDOs, and its TPDOs (whose RTR it answers). For a controller's hardware
+ *  filters; false past the last. The set changes only where the rx_set
+ *  callback says so. */
+bool co_node_rx_cob(const co_node_t *node, uint16_t i, uint16_t *cob);
 
 /** The current NMT state. */
 co_nmt_state_t co_node_nmt_state(const co_node_t *node);

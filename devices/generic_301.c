@@ -69,10 +69,10 @@ static co_err_t g301_attach(void *inst, co_node_t *node, uint32_t now_us)
     a->stage_len = 0U;
     a->restart = true;
     (void)now_us;
-    if (co_od_bind_hook(node, 0x2300U, &dom) != CO_OK) {
+    if (co_od_bind_hook(node, 0x2300U, &dom) != CO_RESULT_OK) {
         return CO_ERR_OD_MISSING;
     }
-    return co_od_bind_hook(node, 0x2200U, &veto);
+    return (co_od_bind_hook(node, 0x2200U, &veto) == CO_RESULT_OK) ? CO_OK : CO_ERR_OD_MISSING;
 }
 
 static uint32_t g301_process(void *inst, uint32_t now_us)

@@ -176,7 +176,7 @@ static int start_node(dnode_t *d, const opt_node_t *spec, const char *iface)
     co_node_config_t cfg;
     co_lx_can_fail_t why = CO_LX_CAN_OK;
     char err[256];
-    co_err_t e;
+    co_result_t e;
 
     size_t mem_size;
 
@@ -231,15 +231,17 @@ static int start_node(dnode_t *d, const opt_node_t *spec, const char *iface)
     }
     cfg.cb = co_device_callbacks(&d->run);
     e = co_node_init(&d->node, &cfg, co_lx_now_us());
-    if (e != CO_OK) {
-        log_line(d->tag, CO_LX_ERROR, "co_node_init failed: 0x%08lX", (unsigned long)e);
+    if (e != CO_RESULT_OK) {
+        log_line(d->tag, CO_LX_ERROR, "co_node_init failed: result %d", (int)e);
         return -1;
     }
     co_lx_port_attach(&d->port, &d->node);
-    e = co_device_attach(&d->run, &d->node, co_lx_now_us());
-    if (e != CO_OK) {
-        log_line(d->tag, CO_LX_ERROR, "device failed to start: 0x%08lX", (unsigned long)e);
-        return -1;
+    {
+        co_err_t ae = co_device_attach(&d->run, &d->node, co_lx_now_us());
+        if (ae != CO_OK) {
+            log_line(d->tag, CO_LX_ERROR, "device failed to start: 0x%08lX", (unsigned long)ae);
+            return -1;
+        }
     }
     log_line(d->tag, CO_LX_INFO, "up on %s%s%s", iface, d->has_nv ? ", parameters in " : "",
              d->has_nv ? spec->storage : "");

@@ -45,7 +45,7 @@ void sr_start(seedrun_t *s, const co_device_t *d, co_node_config_t *cfg, co_node
     cfg->cb = co_device_callbacks(&s->run);
     /* the node memory must be attached to the bus before init sends boot-up */
     tb_attach(&s->bus, 0, node);
-    assert_int_equal(co_node_init(node, cfg, s->bus.now), CO_OK);
+    assert_int_equal(co_node_init(node, cfg, s->bus.now), CO_RESULT_OK);
     assert_int_equal(co_device_attach(&s->run, node, s->bus.now), CO_OK);
     snprintf(boot, sizeof boot, "%03X 00", 0x700U + id);
     tb_expect(&s->bus, boot);

@@ -49,7 +49,7 @@ void tseed_start(tseed_t *f, unsigned k, const co_device_t *dev, co_node_config_
     cfg->cb = co_device_callbacks(&n->run);
     n->node = node;
     tb_attach(&f->bus, (uint8_t)k, node);
-    assert_int_equal(co_node_init(node, cfg, f->bus.now), CO_OK);
+    assert_int_equal(co_node_init(node, cfg, f->bus.now), CO_RESULT_OK);
     assert_int_equal(co_device_attach(&n->run, node, f->bus.now), CO_OK);
     if (f->count <= k) {
         f->count = k + 1U;

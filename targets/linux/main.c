@@ -20,6 +20,7 @@
 #include "co/co_device.h"
 #include "co_devices.h"
 #include "control.h"
+#include "dev_eds.h"
 #include "options.h"
 
 #ifndef CO_VERSION
@@ -41,6 +42,7 @@ typedef struct dnode {
     co_lx_nv_t nv;
     int has_nv;
     uint8_t id;
+    dev_eds_t eds;          /* a device built from an EDS/DCF (--eds) */
     char tag[64];
 } dnode_t;
 
@@ -180,7 +182,7 @@ static int start_node(dnode_t *d, const opt_node_t *spec, const char *iface)
 
     size_t mem_size;
 
-    d->dev = co_device_find(spec->device);
+    d->dev = (spec->eds != NULL) ? &d->eds.entry : co_device_find(spec->device);
     d->id = spec->id;
     (void)snprintf(d->tag, sizeof d->tag, "node %u (%s)", (unsigned)spec->id, d->dev->name);
     mem_size = co_device_mem_size(d->dev, true);
@@ -259,6 +261,7 @@ static void stop_node(dnode_t *d)
     free(d->pdo);
     free(d->pdo_rx);
     free(d->mem);
+    dev_eds_close(&d->eds);
 }
 
 /* ---------------------------------------------------- control interface */
@@ -334,22 +337,67 @@ static void ctl_exec(void *ctx, const ctl_cmd_t *cmd, char *reply, size_t cap)
     }
 }
 
+/* The nodes' EDS/DCF files, loaded before anything starts: a bad one is a
+ * usage error (one line naming file, line and entry; exit status 2). */
+static int load_eds(dnode_t *nodes, const options_t *o)
+{
+    char err[320];
+
+    for (size_t i = 0U; i < o->n_nodes; i++) {
+        if (o->nodes[i].eds == NULL) {
+            continue;
+        }
+        if (dev_eds_open(&nodes[i].eds, o->nodes[i].eds, err, sizeof err) != 0) {
+            (void)fprintf(stderr, PROG ": %s\n", err);
+            return 2;
+        }
+        {
+            const char *w = eds_warnings(nodes[i].eds.eds);
+            while (*w != '\0') {
+                const char *eol = strchr(w, '\n');
+                int n = (eol != NULL) ? (int)(eol - w) : (int)strlen(w);
+                log_line(NULL, CO_LX_WARN, "%.*s", n, w);
+                w += n + ((eol != NULL) ? 1 : 0);
+            }
+        }
+        log_line(NULL, CO_LX_INFO, "%s: %s", o->nodes[i].eds, eds_summary(nodes[i].eds.eds));
+    }
+    return 0;
+}
+
 static int export_eds(const options_t *o)
 {
-    const co_device_t *dev = co_device_find(o->nodes[0].device);
-    size_t len = strlen((const char *)dev->eds);
+    dev_eds_t loaded;
+    const co_device_t *dev;
+    size_t len;
+    char err[320];
+    int rc = 0;
+
+    (void)memset(&loaded, 0, sizeof loaded);
+    if (o->nodes[0].eds != NULL) {
+        if (dev_eds_open(&loaded, o->nodes[0].eds, err, sizeof err) != 0) {
+            (void)fprintf(stderr, PROG ": %s\n", err);
+            return 2;
+        }
+        dev = &loaded.entry;
+    } else {
+        dev = co_device_find(o->nodes[0].device);
+    }
+    len = strlen((const char *)dev->eds);
     int to_stdout = (strcmp(o->export_path, "-") == 0);
     FILE *f = to_stdout ? stdout : fopen(o->export_path, "w");
 
     if (f == NULL) {
         (void)fprintf(stderr, PROG ": %s: %s\n", o->export_path, strerror(errno));
-        return 1;
-    }
-    if ((fwrite(dev->eds, 1U, len, f) != len) | (to_stdout ? fflush(f) : fclose(f))) {
+        rc = 1;
+    } else if ((fwrite(dev->eds, 1U, len, f) != len) | (to_stdout ? fflush(f) : fclose(f))) {
         (void)fprintf(stderr, PROG ": %s: write failed\n", o->export_path);
-        return 1;
+        rc = 1;
+    } else {
+        /* written */
     }
-    return 0;
+    dev_eds_close(&loaded);
+    return rc;
 }
 
 static int run(const options_t *o)
@@ -389,6 +437,15 @@ static int run(const options_t *o)
         free(nodes);
         free(members);
         return 1;
+    }
+    rc = load_eds(nodes, o);
+    if (rc != 0) {
+        for (size_t i = 0U; i < o->n_nodes; i++) {
+            dev_eds_close(&nodes[i].eds);
+        }
+        free(nodes);
+        free(members);
+        return rc;
     }
     if (o->trace != NULL) {
         co_lx_can_fail_t why = CO_LX_CAN_OK;

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "co_devices.h"
+#include "dev_eds.h"
 
 const char options_usage[] =
     "Usage: canopen-device [OPTION]...\n"
@@ -16,6 +17,8 @@ const char options_usage[] =
     "  --iface IF           CAN interface (default vcan0)\n"
     "  --node-id N          node-ID 1..127 (default 1)\n"
     "  --device NAME        device type (default generic-301; see --list-devices)\n"
+    "  --eds FILE           the device an EDS or DCF describes, built at start-up\n"
+    "                       (also: --device FILE.eds, --node ID:FILE.eds)\n"
     "  --storage PATH       parameter file for 0x1010/0x1011 (default: none, store refused)\n"
     "  --node ID[:DEVICE[:PATH]]\n"
     "                       one more node in this process (repeatable)\n"
@@ -28,7 +31,7 @@ const char options_usage[] =
     "  --version            show the version and exit\n"
     "\n"
     "SIGTERM or SIGINT stop the daemon cleanly (exit 0). Exit 1: the interface or a\n"
-    "file cannot be used; exit 2: usage error.\n"
+    "file cannot be used; exit 2: usage error or a bad EDS (file:line: [section] key).\n"
     "A virtual bus: ip link add dev vcan0 type vcan; ip link set up vcan0\n";
 
 enum { O_NONE, O_ARG, O_FLAG };
@@ -39,7 +42,7 @@ typedef struct opt_def {
 } opt_def_t;
 
 static const opt_def_t defs[] = {
-    {"iface", O_ARG},        {"node-id", O_ARG},      {"device", O_ARG},
+    {"iface", O_ARG},        {"node-id", O_ARG},      {"device", O_ARG},      {"eds", O_ARG},
     {"storage", O_ARG},      {"node", O_ARG},         {"trace", O_ARG},
     {"control", O_ARG},      {"log-level", O_ARG},    {"export-eds", O_ARG},
     {"list-devices", O_FLAG},
@@ -77,6 +80,7 @@ static int parse_node(char *spec, opt_node_t *n, char *err, size_t cap)
 
     n->device = OPT_DEFAULT_DEVICE;
     n->storage = NULL;
+    n->eds = NULL;
     if (dev != NULL) {
         *dev = '\0';
         dev++;
@@ -88,6 +92,7 @@ static int parse_node(char *spec, opt_node_t *n, char *err, size_t cap)
         if (*dev != '\0') {
             n->device = dev;
         }
+        n->eds = dev_eds_is_file(dev) ? dev : NULL;
         if ((path != NULL) && (*path != '\0')) {
             n->storage = path;
         }
@@ -113,7 +118,7 @@ static int set_level(options_t *o, const char *v)
 
 int options_parse(options_t *o, int argc, char **argv, char *err, size_t cap)
 {
-    opt_node_t primary = {1U, OPT_DEFAULT_DEVICE, NULL};
+    opt_node_t primary = {1U, OPT_DEFAULT_DEVICE, NULL, NULL};
     bool primary_given = false;
     bool device_given = false;
     bool want_help = false;
@@ -172,8 +177,12 @@ int options_parse(options_t *o, int argc, char **argv, char *err, size_t cap)
                 return fail(err, cap, "--node-id must be 1..127, got '%s'%s", val, "");
             }
             primary_given = true;
-        } else if (strcmp(d->name, "device") == 0) {
+        } else if ((strcmp(d->name, "device") == 0) || (strcmp(d->name, "eds") == 0)) {
+            if ((d->name[0] == 'e') && !dev_eds_is_file(val) && (val[0] == '\0')) {
+                return fail(err, cap, "--eds needs a file name%s%s", "", "");
+            }
             primary.device = val;
+            primary.eds = ((d->name[0] == 'e') || dev_eds_is_file(val)) ? val : NULL;
             device_given = true;
         } else if (strcmp(d->name, "storage") == 0) {
             if (val[0] == '\0') {
@@ -225,7 +234,7 @@ int options_parse(options_t *o, int argc, char **argv, char *err, size_t cap)
         o->mode = want_help ? OPT_HELP : (want_version ? OPT_VERSION : OPT_LIST);
         return 0;
     }
-    if (co_device_find(primary.device) == NULL) {
+    if ((primary.eds == NULL) && (co_device_find(primary.device) == NULL)) {
         return fail(err, cap, "unknown device '%s' (see --list-devices)%s", primary.device, "");
     }
     if (o->mode == OPT_EXPORT_EDS) {
@@ -237,7 +246,7 @@ int options_parse(options_t *o, int argc, char **argv, char *err, size_t cap)
         o->nodes[o->n_nodes++] = primary;
     }
     for (size_t k = 0U; k < extra; k++) {
-        if (co_device_find(extras[k].device) == NULL) {
+        if ((extras[k].eds == NULL) && (co_device_find(extras[k].device) == NULL)) {
             return fail(err, cap, "unknown device '%s' (see --list-devices)%s", extras[k].device,
                         "");
         }

@@ -1,12 +1,14 @@
 /*
  * Command line of canopen-device.
  *
- *   canopen-device [--iface IF] [--node-id N] [--device NAME] [--storage PATH]
+ *   canopen-device [--iface IF] [--node-id N] [--device NAME | --eds FILE] [--storage PATH]
  *                  [--node ID[:DEVICE[:PATH]]]... [--trace FILE|-]
  *                  [--control PATH] [--log-level error|warn|info|debug]
  *   canopen-device --export-eds PATH [--device NAME]
  *   canopen-device --list-devices | --help | --version
  *
+ * --eds FILE runs the device an EDS or DCF describes (as does a --device or
+ * --node DEVICE ending in .eds / .dcf).
  * --node-id/--device/--storage describe one node (the default node: id 1,
  * generic-301, no storage); each --node adds one more node on the same
  * interface. With --node only, the default node is not started unless
@@ -35,6 +37,7 @@ typedef struct opt_node {
     uint8_t id;
     const char *device;   /**< registry name */
     const char *storage;  /**< parameter file, NULL for none */
+    const char *eds;      /**< EDS/DCF file the device is built from, or NULL */
 } opt_node_t;
 
 typedef struct options {

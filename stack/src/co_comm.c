@@ -66,6 +66,11 @@ static co_err_t check_build(const co_node_t *node)
         err = CO_ERR_DEV_INCOMPAT;
     }
 #endif
+#if !CO_LSS
+    if ((node->dev->options & CO_OPT_LSS) != 0U) {
+        err = CO_ERR_DEV_INCOMPAT;
+    }
+#endif
 #if !CO_LIMITS
     if (node->dev->limits != NULL) {
         err = CO_ERR_DEV_INCOMPAT;

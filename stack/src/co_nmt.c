@@ -35,7 +35,11 @@ void co_nmt_boot(co_node_t *node)
     co_emcy_reset(node);
     co_sync_reset(node);
     co_pdo_reset(node);
+    co_lss_reset(node);
     co_hb_reset(node); /* also rebuilds the receive table */
+    if (node->node_id == CO_NODE_ID_UNCONFIGURED) {
+        return; /* LSS init: no boot-up, no NMT until a valid node-ID */
+    }
     if (!co_opt(node, CO_OPT_NO_BOOTUP)) {
         static const uint8_t bootup = 0x00U;
         co_tx(node, 0x700UL + node->node_id, &bootup, 1U);
@@ -96,18 +100,21 @@ void co_node_error_behaviour(co_node_t *node, uint8_t sub, uint32_t now_us)
     co_nmt_error(node, sub);
 }
 
-static void reset(co_node_t *node, co_reset_t kind)
+void co_nmt_reset(co_node_t *node, co_reset_t kind)
 {
     /* Reset communication restores the communication area, reset node all
      * of the image, each to defaults and then to the stored set (0x1010).
      * Where the core's objects live does not change, so the pointers
-     * co_comm_bind found at init stay valid. */
-    co_store_reset(node, kind);
-    if (kind == CO_RESET_NODE) {
+     * co_comm_bind found at init stay valid. A new node-ID takes effect
+     * here (CiA 305). */
+    co_reset_t k = co_node_take_id(node, kind);
+
+    co_store_reset(node, k);
+    if (k == CO_RESET_NODE) {
         node->n_active = 0U;
     }
     if (node->cb.nmt_reset != NULL) {
-        node->cb.nmt_reset(node->cb.ctx, node, kind);
+        node->cb.nmt_reset(node->cb.ctx, node, k);
     }
     co_nmt_boot(node);
 }
@@ -126,10 +133,10 @@ void co_node_nmt_command(co_node_t *node, uint8_t cs, uint32_t now_us)
         set_state(node, CO_NMT_PRE_OPERATIONAL);
         break;
     case NMT_RESET_NODE:
-        reset(node, CO_RESET_NODE);
+        co_nmt_reset(node, CO_RESET_NODE);
         break;
     case NMT_RESET_COMM:
-        reset(node, CO_RESET_COMMUNICATION);
+        co_nmt_reset(node, CO_RESET_COMMUNICATION);
         break;
     default:
         break; /* unknown command specifier: ignored (CiA 301 defines no answer) */

@@ -77,6 +77,14 @@ void co_rx_rebuild(co_node_t *node)
     node->n_rx = 0U;
     node->rx_fc = 0U;
     (void)memset(node->rx_filter, 0, sizeof node->rx_filter);
+    if (co_lss_enabled(node)) {
+        rx_add(node, 0x7E5U, CO_RX_LSS, 0U);
+    }
+    if (node->node_id == CO_NODE_ID_UNCONFIGURED) {
+        node->pdo_fc = 0U; /* LSS only */
+        node->n_pdo_rx = 0U;
+        return;
+    }
     rx_add(node, 0x000U, CO_RX_NMT, 0U);
     rx_add(node, (uint16_t)(0x600U + node->node_id), CO_RX_SDO, 0U);
     rx_add(node, (uint16_t)(0x700U + node->node_id), CO_RX_GUARD, 0U);
@@ -191,6 +199,9 @@ void co_rx_dispatch(co_node_t *node, const co_frame_t *f, uint16_t cob, uint32_t
     case CO_RX_TIME:
         co_time_rx(node, f);
         break;
+    case CO_RX_LSS:
+        co_lss_rx(node, f);
+        break;
     default:
         break;
     }
@@ -217,6 +228,10 @@ uint32_t co_node_process(co_node_t *node, uint32_t now_us)
 
     node->now = now_us;
     tx_drain(node);
+    next = co_lss_process(node, next);
+    if (node->node_id == CO_NODE_ID_UNCONFIGURED) {
+        return next; /* LSS init: no other service runs */
+    }
     next = co_sdo_process(node, next);
     next = co_hb_process(node, next);
     next = co_emcy_process(node, next);
@@ -242,7 +257,9 @@ co_err_t co_node_init(co_node_t *node, const co_node_config_t *cfg, uint32_t now
         ((cfg->dev->pdo == NULL) || (cfg->pdo == NULL) || (cfg->pdo_rx == NULL))) {
         return CO_ERR_OD_MISSING;
     }
-    if ((cfg->node_id < 1U) || (cfg->node_id > 127U)) {
+    if (((cfg->node_id < 1U) || (cfg->node_id > 127U)) &&
+        ((cfg->node_id != CO_NODE_ID_UNCONFIGURED) ||
+         ((cfg->dev->options & CO_OPT_LSS) == 0U))) {
         return CO_ERR_VALUE;
     }
     (void)memset(node, 0, sizeof *node);
@@ -252,10 +269,13 @@ co_err_t co_node_init(co_node_t *node, const co_node_config_t *cfg, uint32_t now
     node->hooks = cfg->hooks;
     node->cb = cfg->cb;
     node->node_id = cfg->node_id;
+    node->pending_id = cfg->node_id;
+    node->cob_base = cfg->node_id;
     node->sdo_timeout_us = (cfg->sdo_timeout_us != 0U) ? cfg->sdo_timeout_us : 1000000UL;
     node->pdo = cfg->pdo;
     node->pdo_rx = cfg->pdo_rx;
     node->now = now_us;
+    co_lss_init(node); /* an LSS-stored node-ID replaces cfg->node_id */
     co_store_reset(node, CO_RESET_NODE); /* defaults, then the stored set */
     if (co_comm_bind(node) != CO_OK) {
         return CO_ERR_DEV_INCOMPAT;
@@ -267,4 +287,56 @@ co_err_t co_node_init(co_node_t *node, const co_node_config_t *cfg, uint32_t now
 co_nmt_state_t co_node_nmt_state(const co_node_t *node)
 {
     return (co_nmt_state_t)node->nmt;
+}
+
+uint8_t co_node_id(const co_node_t *node)
+{
+    return node->node_id;
+}
+
+static bool id_valid(const co_node_t *node, uint8_t id)
+{
+    return ((id >= 1U) && (id <= 127U)) ||
+           ((id == CO_NODE_ID_UNCONFIGURED) && co_lss_enabled(node));
+}
+
+co_err_t co_node_set_id(co_node_t *node, uint8_t id, uint32_t now_us)
+{
+    if (!id_valid(node, id)) {
+        return CO_ERR_VALUE;
+    }
+    node->now = now_us;
+    node->pending_id = id;
+    if ((node->node_id == CO_NODE_ID_UNCONFIGURED) && (id != CO_NODE_ID_UNCONFIGURED)) {
+        co_nmt_reset(node, CO_RESET_NODE); /* out of LSS init: initialise now */
+    }
+    return CO_OK;
+}
+
+uint8_t co_node_cob_base_for(const co_node_t *node, uint8_t id)
+{
+    if ((id == CO_NODE_ID_UNCONFIGURED) || (node->node_id == CO_NODE_ID_UNCONFIGURED) ||
+        !co_opt(node, CO_OPT_LSS_KEEP_COBS)) {
+        return id; /* CiA 305: the COB-IDs follow the node-ID */
+    }
+    return node->cob_base; /* valid to valid: the PDO and EMCY COB-IDs stay */
+}
+
+co_reset_t co_node_take_id(co_node_t *node, co_reset_t kind)
+{
+    uint8_t from = node->node_id;
+    uint8_t to = node->pending_id;
+
+    if (from == to) {
+        return kind;
+    }
+    node->cob_base = co_node_cob_base_for(node, to);
+    node->node_id = to;
+    if ((from != CO_NODE_ID_UNCONFIGURED) || (to == CO_NODE_ID_UNCONFIGURED)) {
+        return kind;
+    }
+    if (co_opt(node, CO_OPT_LSS_KEEP_COBS)) {
+        co_store_forget_comm(node); /* the communication settings start from defaults */
+    }
+    return CO_RESET_NODE; /* the node was never initialised with an ID */
 }

@@ -36,7 +36,8 @@ enum {
     CO_RX_GUARD,
     CO_RX_HB,
     CO_RX_SYNC,
-    CO_RX_TIME
+    CO_RX_TIME,
+    CO_RX_LSS
 };
 
 /* A personality option of the node's device; options this build leaves out
@@ -237,9 +238,57 @@ static inline const uint32_t *co_time_cob(const co_node_t *node)
 #endif
 }
 
+/* ---- node-ID (co_node.c) */
+/* The $NODEID base the PDO and EMCY COB-IDs would have with node-ID @p id. */
+uint8_t co_node_cob_base_for(const co_node_t *node, uint8_t id);
+/* At a reset: make the pending node-ID the active one; returns the reset
+ * to do (a node leaving the unconfigured state initialises completely). */
+co_reset_t co_node_take_id(co_node_t *node, co_reset_t kind);
+
+/* ---- LSS slave (co_lss.c) */
+#define CO_LSS_REC     16U               /* bytes of one stored LSS record */
+#define CO_LSS_NV_SIZE (2U * CO_LSS_REC) /* NV behind the parameter banks */
+/* NV address of the LSS records (co_store.c). */
+uint32_t co_store_lss_base(const co_dev_t *dev);
+#if CO_LSS
+bool co_lss_enabled(const co_node_t *node);
+/* At init: the stored configuration (node-ID, COB-ID base, bit timing). */
+void co_lss_init(co_node_t *node);
+/* At every boot: LSS waiting state. */
+void co_lss_reset(co_node_t *node);
+void co_lss_rx(co_node_t *node, const co_frame_t *f);
+uint32_t co_lss_process(co_node_t *node, uint32_t next);
+#else
+static inline bool co_lss_enabled(const co_node_t *node)
+{
+    (void)node;
+    return false;
+}
+static inline void co_lss_init(co_node_t *node)
+{
+    (void)node;
+}
+static inline void co_lss_reset(co_node_t *node)
+{
+    (void)node;
+}
+static inline void co_lss_rx(co_node_t *node, const co_frame_t *f)
+{
+    (void)node;
+    (void)f;
+}
+static inline uint32_t co_lss_process(co_node_t *node, uint32_t next)
+{
+    (void)node;
+    return next;
+}
+#endif
+
 /* ---- services */
 void co_nmt_rx(co_node_t *node, const co_frame_t *f);
 void co_nmt_boot(co_node_t *node);
+/* Reset communication or node: the pending node-ID, the restore, boot. */
+void co_nmt_reset(co_node_t *node, co_reset_t kind);
 /* A serious error of 0x1029 class @p sub: the NMT reaction it configures
  * (nothing without CO_ERROR_BEHAVIOUR). */
 #if CO_ERROR_BEHAVIOUR
@@ -355,5 +404,8 @@ void co_store_reset(co_node_t *node, co_reset_t kind);
 bool co_store_is_command(const co_od_entry_t *e, const co_od_sub_t *s);
 /* A checked write to such a sub-entry: save or restore; the value is never stored. */
 co_err_t co_store_command(co_node_t *node, uint16_t index, uint8_t sub, const uint8_t *data);
+/* Drop the communication group of the stored set (a node leaving the
+ * unconfigured state with CO_OPT_LSS_KEEP_COBS). */
+void co_store_forget_comm(co_node_t *node);
 
 #endif /* CO_PRIV_H */

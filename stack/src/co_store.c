@@ -85,6 +85,13 @@ static uint32_t bank_size(const co_dev_t *dev)
 
 uint32_t co_store_nv_size(const co_dev_t *dev)
 {
+    uint32_t lss = ((dev->options & CO_OPT_LSS) != 0U) ? CO_LSS_NV_SIZE : 0U;
+
+    return (2U * bank_size(dev)) + lss;
+}
+
+uint32_t co_store_lss_base(const co_dev_t *dev)
+{
     return 2U * bank_size(dev);
 }
 
@@ -259,6 +266,15 @@ co_err_t co_store_command(co_node_t *node, uint16_t index, uint8_t sub, const ui
         c.drop = grp;
     }
     return commit(node, &c);
+}
+
+void co_store_forget_comm(co_node_t *node)
+{
+    store_change_t c = {0U, GRP_COMM, 0U, 0U};
+
+    if (has_nv(node)) {
+        (void)commit(node, &c);
+    }
 }
 
 void co_store_reset(co_node_t *node, co_reset_t kind)

@@ -754,6 +754,8 @@ EDS_KEYS = {"file_version", "file_revision", "date", "time", "author", "descript
             "simple_boot_up_slave", "granularity", "dynamic_channels_supported", "compact_pdo",
             "group_messaging", "nr_of_rxpdo", "nr_of_txpdo"}
 BAUDRATES = (10, 20, 50, 125, 250, 500, 800, 1000)
+# kbit/s -> index of the CiA 305 bit-timing table (LSS configure bit timing)
+LSS_BIT_TIMING = {1000: 0, 800: 1, 500: 2, 250: 3, 125: 4, 50: 6, 20: 7, 10: 8}
 
 
 def _assign_fields(obj: Obj) -> None:
@@ -1030,6 +1032,13 @@ def loads(text: str, path: str | Path = "<description>", base: str | None = None
         "baudrates": rates,
         "lss": _flag(dev.get("lss", False), "[device] lss"),
     }
+    # [device] lss = true: the device is an LSS slave (core option LSS; EDS LSS_Supported)
+    if info["lss"] and "LSS" not in opts:
+        opts = list(opts) + ["LSS"]
+        bits |= known["LSS"]
+    if not info["lss"] and any(o.startswith("LSS") for o in opts):
+        raise DescError("[device] the LSS options need lss = true")
+    info["lss_bit_timings"] = sum(1 << LSS_BIT_TIMING[r] for r in rates)
     for k in ("vendor_id", "product_code", "revision"):
         info[k] = _uint(dev.get(k, 0), f"[device] {k}")
     # DeviceInfo numbers: the identity unless the EDS states other ones

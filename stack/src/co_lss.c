@@ -123,7 +123,7 @@ static uint32_t rec_addr(const co_node_t *node, uint8_t i)
     return co_store_lss_base(node->dev) + ((uint32_t)i * CO_LSS_REC);
 }
 
-static bool has_nv(const co_node_t *node)
+static bool lss_has_nv(const co_node_t *node)
 {
     return (node->hal.ops->nv_read != NULL) && (node->hal.ops->nv_write != NULL);
 }
@@ -160,14 +160,14 @@ static uint8_t rec_newest(co_node_t *node, uint32_t *seq, uint8_t data[3])
     return best;
 }
 
-static uint8_t store(co_node_t *node)
+static uint8_t lss_store(co_node_t *node)
 {
     uint8_t r[CO_LSS_REC] = {0};
     uint8_t old[3];
     uint32_t seq = 0U;
     uint8_t at;
 
-    if (!has_nv(node)) {
+    if (!lss_has_nv(node)) {
         return ERR_STORE_NONE;
     }
     at = (rec_newest(node, &seq, old) == 0U) ? 1U : 0U;
@@ -191,7 +191,7 @@ void co_lss_init(co_node_t *node)
     (void)memset(&node->lss, 0, sizeof node->lss);
     node->lss.bit_timing = BT_NONE;
     node->lss.active_bt = BT_NONE;
-    if (!co_lss_enabled(node) || !has_nv(node) || (rec_newest(node, &seq, d) == 2U)) {
+    if (!co_lss_enabled(node) || !lss_has_nv(node) || (rec_newest(node, &seq, d) == 2U)) {
         return;
     }
     if (((d[0] >= 1U) && (d[0] <= 127U)) || (d[0] == CO_NODE_ID_UNCONFIGURED)) {
@@ -303,7 +303,7 @@ static void fastscan(co_node_t *node, const uint8_t *d)
     if ((bit > 31U) || (sub > 3U) || (next > 3U) || (sub != node->lss.fs_pos)) {
         return;
     }
-    if (((id ^ address(node, sub)) & (0xFFFFFFFFUL << bit)) != 0U) {
+    if (((id ^ address(node, sub)) & (uint32_t)(0xFFFFFFFFUL << bit)) != 0U) {
         return; /* another slave's number */
     }
     answer(node, CS_IDENT_SLAVE, 0U, 0U);
@@ -370,7 +370,7 @@ static void rx_config(co_node_t *node, const uint8_t *d)
     } else if (cs == CS_ACTIVATE_BIT) {
         activate_bit_timing(node, co_get_u16(&d[1]));
     } else if (cs == CS_STORE) {
-        answer(node, CS_STORE, store(node), 0U);
+        answer(node, CS_STORE, lss_store(node), 0U);
     } else if ((cs >= CS_INQ_VENDOR) && (cs <= CS_INQ_NODE_ID)) {
         inquire(node, cs);
     } else {

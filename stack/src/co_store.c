@@ -85,9 +85,12 @@ static uint32_t bank_size(const co_dev_t *dev)
 
 uint32_t co_store_nv_size(const co_dev_t *dev)
 {
-    uint32_t lss = ((dev->options & CO_OPT_LSS) != 0U) ? CO_LSS_NV_SIZE : 0U;
+    uint32_t size = 2U * bank_size(dev);
 
-    return (2U * bank_size(dev)) + lss;
+    if ((dev->options & CO_OPT_LSS) != 0U) {
+        size += CO_LSS_NV_SIZE; /* the LSS records (co_lss.c) */
+    }
+    return size;
 }
 
 uint32_t co_store_lss_base(const co_dev_t *dev)

@@ -698,7 +698,7 @@ static bool fastscan(uint32_t out[4])
         uint32_t v = 0U;
         for (int bit = 31; bit >= 0; bit--) {
             if (!fs(v, (uint8_t)bit, sub, sub)) {
-                v |= 1UL << bit;
+                v |= (uint32_t)1U << (uint32_t)bit;
             }
         }
         if (!fs(v, 0U, sub, (uint8_t)((sub + 1U) & 3U))) {

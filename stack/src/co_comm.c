@@ -135,9 +135,11 @@ static co_err_t check_hb_consumer(const co_node_t *node, uint8_t sub, uint32_t v
 /* A COB-ID write (CiA 301 7.5.2): 29-bit identifiers are not supported,
  * bits 11..28 are 0, @p reserved bits must be 0, and the CAN-ID may not change
  * while the object is in use: in use is any of @p use_bits set (@p use_when_set)
- * or all of them clear (!use_when_set, the EMCY 'valid' bit). */
+ * or all of them clear (!use_when_set, the EMCY 'valid' bit). A CAN-ID in use
+ * (or @p always in use, the SYNC consumer) may not be a restricted one
+ * (CiA 301 7.3.5). */
 static co_err_t check_cob(uint32_t cur, uint32_t v, uint32_t use_bits, bool use_when_set,
-                          uint32_t reserved)
+                          uint32_t reserved, bool always)
 {
     bool cur_used = use_when_set ? ((cur & use_bits) != 0U) : ((cur & use_bits) == 0U);
     bool new_used = use_when_set ? ((v & use_bits) != 0U) : ((v & use_bits) == 0U);
@@ -146,6 +148,9 @@ static co_err_t check_cob(uint32_t cur, uint32_t v, uint32_t use_bits, bool use_
         return CO_ERR_VALUE;
     }
     if (cur_used && new_used && ((v & 0x7FFUL) != (cur & 0x7FFUL))) {
+        return CO_ERR_VALUE;
+    }
+    if ((new_used || always) && co_cob_restricted(v & 0x7FFUL)) {
         return CO_ERR_VALUE;
     }
     return CO_OK;
@@ -170,20 +175,27 @@ co_err_t co_comm_check_write(const co_node_t *node, uint16_t index, uint8_t sub,
     case 0x1005U:
         /* SYNC: the CAN-ID is fixed while this node produces SYNC (bit 30) */
         if ((sub == 0U) && (len == 4U) && (node->sync_cob != NULL)) {
-            return check_cob(*node->sync_cob, co_get_u32(data), 0x40000000UL, true, 0U);
+            return check_cob(*node->sync_cob, co_get_u32(data), 0x40000000UL, true, 0U, true);
+        }
+        break;
+    case 0x1006U:
+        /* communication cycle period: within the timer horizon (2^31 us) */
+        if ((sub == 0U) && (len == 4U) && (co_get_u32(data) > CO_HORIZON_US)) {
+            return CO_ERR_VALUE_HIGH;
         }
         break;
     case 0x1012U:
         /* TIME: the CAN-ID is fixed while consumed or produced (bits 31, 30) */
         if ((sub == 0U) && (len == 4U) && (co_time_cob(node) != NULL)) {
-            return check_cob(*co_time_cob(node), co_get_u32(data), 0xC0000000UL, true, 0U);
+            return check_cob(*co_time_cob(node), co_get_u32(data), 0xC0000000UL, true, 0U,
+                             false);
         }
         break;
     case 0x1014U:
         /* EMCY: the CAN-ID is fixed while the EMCY is valid (bit 31 = 0) */
         if ((sub == 0U) && (len == 4U) && (node->emcy_cob != NULL)) {
             return check_cob(*node->emcy_cob, co_get_u32(data), 0x80000000UL, false,
-                             0x40000000UL);
+                             0x40000000UL, false);
         }
         break;
     case 0x1019U:

@@ -36,7 +36,7 @@ static uint32_t cob_id(const co_node_t *node)
 
 static uint32_t inhibit_us(const co_node_t *node)
 {
-    return (node->emcy_inhibit != NULL) ? ((uint32_t)*node->emcy_inhibit * 100UL) : 0U;
+    return (node->emcy_inhibit != NULL) ? co_dict_us(*node->emcy_inhibit, 100UL) : 0U;
 }
 
 /* Still within the inhibit time of the last EMCY? emcy_next is at most one

@@ -9,7 +9,7 @@ enum { GUARD_OFF = 0, GUARD_ARMED, GUARD_LOST };
 
 static uint32_t ms_to_us(uint32_t ms)
 {
-    return (ms > 2147483UL) ? 0x7FFFFFFFUL : (ms * 1000UL);
+    return co_dict_us(ms, 1000UL);
 }
 
 static void event(co_node_t *node, co_hb_event_t ev, uint8_t id, uint8_t state)

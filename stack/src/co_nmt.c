@@ -96,7 +96,7 @@ void co_nmt_error(co_node_t *node, uint8_t sub)
 
 void co_node_error_behaviour(co_node_t *node, uint8_t sub, uint32_t now_us)
 {
-    node->now = now_us;
+    co_node_clock(node, now_us);
     co_nmt_error(node, sub);
 }
 
@@ -121,7 +121,7 @@ void co_nmt_reset(co_node_t *node, co_reset_t kind)
 
 void co_node_nmt_command(co_node_t *node, uint8_t cs, uint32_t now_us)
 {
-    node->now = now_us;
+    co_node_clock(node, now_us);
     switch (cs) {
     case NMT_START:
         set_state(node, CO_NMT_OPERATIONAL);

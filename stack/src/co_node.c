@@ -152,7 +152,7 @@ static void pdo_rx(co_node_t *node, uint16_t cob, const co_frame_t *f, uint32_t 
     if (ps == NULL) {
         return;
     }
-    node->now = now_us;
+    co_node_clock(node, now_us);
     if (ps->pdo < node->dev->n_rpdo) {
         co_rpdo_rx(node, ps->pdo, f);
     } else if (co_frame_is_rtr(f)) {
@@ -179,7 +179,7 @@ void co_rx_dispatch(co_node_t *node, const co_frame_t *f, uint16_t cob, uint32_t
         }
         return;
     }
-    node->now = now_us;
+    co_node_clock(node, now_us);
     switch (slot->kind) {
     case CO_RX_NMT:
         co_nmt_rx(node, f);
@@ -222,11 +222,34 @@ void co_node_rx(co_node_t *node, const co_frame_t *f, uint32_t now_us)
 
 /* ------------------------------------------------------------ timers */
 
+/* The caller's clock jumped ahead by 2^31 us or more since the node last saw
+ * it (a stopped process, a paused VM, a debugger): every armed deadline is
+ * then in the past, although the wrap-safe comparison would take it for one
+ * up to 35 minutes ahead. They all become due now. */
+CO_NOINLINE void co_node_stalled(co_node_t *node, uint32_t now_us)
+{
+    uint16_t n = (uint16_t)(node->dev->n_rpdo + node->dev->n_tpdo);
+
+    node->hb_deadline = now_us;
+    node->guard_deadline = now_us;
+    node->sync_deadline = now_us;
+    node->sync_last = now_us - (uint32_t)CO_HORIZON_US; /* the SYNC window is long closed */
+    node->emcy_next = now_us;
+    node->sdo.deadline = now_us;
+    for (uint8_t k = 0U; k < node->n_hb_cons; k++) {
+        node->hbc[k].deadline = now_us;
+    }
+    for (uint16_t i = 0U; i < n; i++) {
+        node->pdo[i].timer = now_us;
+        node->pdo[i].inhibit = now_us;
+    }
+}
+
 uint32_t co_node_process(co_node_t *node, uint32_t now_us)
 {
     uint32_t next = CO_NO_DEADLINE;
 
-    node->now = now_us;
+    co_node_clock(node, now_us);
     tx_drain(node);
     next = co_lss_process(node, next);
     if (node->node_id == CO_NODE_ID_UNCONFIGURED) {
@@ -241,6 +264,9 @@ uint32_t co_node_process(co_node_t *node, uint32_t now_us)
     if (node->txq_len > 0U) {
         /* TX path still full: look again in a millisecond */
         next = co_deadline_min(now_us, next, now_us + 1000U);
+    }
+    if ((next != CO_NO_DEADLINE) && !co_time_reached(next, now_us)) {
+        next = now_us; /* never a deadline before the time given */
     }
     return next;
 }

@@ -46,13 +46,6 @@ static bool is_tpdo(const co_node_t *node, uint16_t i)
 }
 
 /* CiA 301 7.3.5: identifiers no PDO may use. */
-static bool restricted_cob(uint32_t id)
-{
-    return (id <= 0x07FU) || ((id >= 0x101U) && (id <= 0x180U)) ||
-           ((id >= 0x581U) && (id <= 0x5FFU)) || ((id >= 0x601U) && (id <= 0x67FU)) ||
-           ((id >= 0x6E0U) && (id <= 0x6FFU)) || (id >= 0x701U);
-}
-
 /* One mapping entry (index:16 sub:8 bits:8). *bits gets its length, *obj
  * the mapped sub-entry (NULL for a dummy entry) and *e its entry. */
 static co_err_t check_entry(const co_node_t *node, bool tx, uint32_t v, uint8_t *bits,
@@ -213,7 +206,7 @@ static co_err_t check_comm_write(const co_node_t *node, uint16_t i, uint8_t sub,
             !co_opt(node, CO_OPT_PDO_COBID_WHILE_VALID)) {
             return CO_ERR_VALUE; /* the CAN-ID changes only while invalid */
         }
-        if (new_valid && restricted_cob(v & 0x7FFUL)) {
+        if (new_valid && co_cob_restricted(v & 0x7FFUL)) {
             return CO_ERR_VALUE;
         }
     } else if ((sub == 2U) && (len == 1U)) {

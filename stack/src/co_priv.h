@@ -53,6 +53,28 @@ static inline bool co_time_reached(uint32_t now, uint32_t when)
     return (int32_t)(now - when) >= 0;
 }
 
+/* The horizon of every timer: no deadline is set more than 2^31 - 1 us
+ * ahead of the time it is set at, so co_time_reached can tell it from a time
+ * in the past. Every time value that enters the core from the dictionary
+ * (0x1006, 0x1015, 0x1016, 0x1017, 0x100C x 0x100D, PDO inhibit times and
+ * event timers) goes through co_dict_us, which clamps it to the horizon. */
+#define CO_HORIZON_US 0x7FFFFFFFUL
+
+/* @p v units of @p unit_us microseconds, clamped to CO_HORIZON_US. */
+static inline uint32_t co_dict_us(uint32_t v, uint32_t unit_us)
+{
+    return (v > (CO_HORIZON_US / unit_us)) ? CO_HORIZON_US : (v * unit_us);
+}
+
+/* Restricted CAN-IDs (CiA 301 7.3.5): no configurable COB-ID (PDO, SYNC,
+ * TIME, EMCY) may use them. */
+static inline bool co_cob_restricted(uint32_t id)
+{
+    return (id <= 0x07FU) || ((id >= 0x101U) && (id <= 0x180U)) ||
+           ((id >= 0x581U) && (id <= 0x5FFU)) || ((id >= 0x601U) && (id <= 0x67FU)) ||
+           ((id >= 0x6E0U) && (id <= 0x6FFU)) || (id >= 0x701U);
+}
+
 /* Earliest of a deadline set and another candidate. */
 static inline uint32_t co_deadline_min(uint32_t now, uint32_t cur, uint32_t cand)
 {
@@ -135,6 +157,22 @@ static inline void co_from_wire(uint8_t *dst, const uint8_t *src, uint8_t n)
     } else {
         (void)memcpy(dst, src, n);
     }
+}
+
+/* ---- time (co_node.c) */
+void co_node_stalled(co_node_t *node, uint32_t now_us);
+/* Every entry point that brings a time sets node->now through this: a jump
+ * ahead of 2^31 us or more (but not a small step back, as receive time
+ * stamps taken before the last co_node_process may make) is a stall. */
+#define CO_STEP_BACK_MAX 0x04000000UL /* 67 s */
+CO_INLINE void co_node_clock(co_node_t *node, uint32_t now_us)
+{
+    uint32_t d = now_us - node->now;
+
+    if ((d > CO_HORIZON_US) && (d < (0xFFFFFFFFUL - CO_STEP_BACK_MAX))) {
+        co_node_stalled(node, now_us);
+    }
+    node->now = now_us;
 }
 
 /* ---- transmit (co_node.c) */
@@ -374,7 +412,7 @@ static inline uint32_t co_pdo_event_us(const co_node_t *node, uint16_t i)
     uint16_t off = node->dev->pdo[i].event;
     uint32_t unit = ((node->dev->options & CO_OPT_EVENT_TIMER_100US) != 0U) ? 100UL : 1000UL;
 
-    return (off == CO_PDO_NONE) ? 0U : ((uint32_t)co_ram_u16(node, off) * unit);
+    return (off == CO_PDO_NONE) ? 0U : co_dict_us(co_ram_u16(node, off), unit);
 }
 co_err_t co_pdo_check_write(const co_node_t *node, uint16_t index, uint8_t sub,
                             const uint8_t *data, uint32_t len);

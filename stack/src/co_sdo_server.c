@@ -802,20 +802,19 @@ void co_sdo_rx(co_node_t *node, const co_frame_t *f)
     if ((node->nmt == (uint8_t)CO_NMT_STOPPED) || co_frame_is_rtr(f)) {
         return;
     }
+    if ((f->dlc >= 1U) && ((t->state != (uint8_t)S_BLK_DL) ? ((d[0] >> 5U) == 4U)
+                                                             : (d[0] == 0x80U))) {
+        /* client abort, whatever its length: CiA 301 makes the abort
+         * unconfirmed, so nothing answers it; the transfer ends */
+        co_sdo_reset(node);
+        return;
+    }
     if (f->dlc != 8U) {
         bad_length(node, f);
         return;
     }
     if (t->state == (uint8_t)S_BLK_DL) {
-        if (d[0] == 0x80U) {
-            co_sdo_reset(node); /* abort from the client */
-        } else {
-            block_download_segment(node, d);
-        }
-        return;
-    }
-    if ((d[0] >> 5U) == 4U) {
-        co_sdo_reset(node); /* client abort: the transfer ends, no answer */
+        block_download_segment(node, d);
         return;
     }
     if (t->state == (uint8_t)S_IDLE) {

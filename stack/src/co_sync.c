@@ -31,6 +31,12 @@ static bool producing(const co_node_t *node)
 #endif
 }
 
+/* The communication cycle period 0x1006 in us, within the timer horizon. */
+static uint32_t period_us(const co_node_t *node)
+{
+    return co_dict_us(*node->sync_period, 1U);
+}
+
 /* Everything a SYNC sets in motion, received or produced here. */
 static void on_sync(co_node_t *node, uint8_t counter)
 {
@@ -49,7 +55,7 @@ void co_sync_reset(co_node_t *node)
     node->sync_counter = 1U;
     node->sync_last = node->now;
     if (producing(node)) {
-        node->sync_deadline = node->now + *node->sync_period;
+        node->sync_deadline = node->now + period_us(node);
     }
 }
 
@@ -80,7 +86,7 @@ uint32_t co_sync_process(co_node_t *node, uint32_t next)
     if (co_time_reached(node->now, node->sync_deadline)) {
         uint8_t ovf = overflow(node);
         uint8_t cnt = 0U;
-        uint32_t period = *node->sync_period;
+        uint32_t period = period_us(node);
         if (sync_allowed(node)) {
             if (ovf > 1U) {
                 cnt = node->sync_counter;

@@ -67,7 +67,7 @@ static bool send_event(co_node_t *node, uint16_t i, const uint8_t *data)
 {
     co_pdo_t *p = &node->pdo[i];
     uint16_t off = node->dev->pdo[i].inhibit;
-    uint32_t inhibit = (off == CO_PDO_NONE) ? 0U : ((uint32_t)co_ram_u16(node, off) * 100UL);
+    uint32_t inhibit = (off == CO_PDO_NONE) ? 0U : co_dict_us(co_ram_u16(node, off), 100UL);
     uint32_t ev = co_pdo_event_us(node, i);
 
     if (!send(node, i, data)) {
@@ -196,6 +196,18 @@ CO_INLINE void event_timers(const co_node_t *node, co_pdo_t *p)
     }
 }
 
+/* The event timer as a deadline while it runs. Once expired it has set
+ * CO_PDO_F_EVENT, whose own deadline (inhibit time, TX retry) counts: an
+ * expired timer is never a deadline (it would be one in the past, and the
+ * caller's loop would spin until the TPDO can go). */
+CO_INLINE uint32_t timer_next(const co_node_t *node, const co_pdo_t *p, uint32_t next)
+{
+    if (((p->flags & CO_PDO_F_TIMER) != 0U) && !co_time_reached(node->now, p->timer)) {
+        return co_deadline_min(node->now, next, p->timer);
+    }
+    return next;
+}
+
 /* A due event-driven TPDO (CO_PDO_F_EVENT): sent with @p now unless the
  * inhibit time holds it back; then the next deadline. */
 CO_INLINE uint32_t event_due(co_node_t *node, uint16_t i, uint32_t next, const uint8_t *now)
@@ -263,10 +275,7 @@ static uint32_t event_driven(co_node_t *node, uint16_t i, uint32_t next)
     if ((p->flags & CO_PDO_F_EVENT) != 0U) {
         next = event_due(node, i, next, now);
     }
-    if ((p->flags & CO_PDO_F_TIMER) != 0U) {
-        next = co_deadline_min(node->now, next, p->timer);
-    }
-    return next;
+    return timer_next(node, p, next);
 }
 
 /* CO_OPT_TPDO_NO_CHANGE_DETECT: event-driven (254/255) without change
@@ -294,10 +303,7 @@ static uint32_t event_requested(co_node_t *node, uint16_t i, uint32_t next)
             at = event_due(node, i, at, now);
         }
     }
-    if ((p->flags & CO_PDO_F_TIMER) != 0U) {
-        at = co_deadline_min(node->now, at, p->timer);
-    }
-    return at;
+    return timer_next(node, p, at);
 }
 
 /* One pass over the TPDOs: RTR answers and synchronous transmissions held

@@ -1,6 +1,8 @@
 """Run co402_trace, check the trace, render it with tools/plot-trace and
-check the PNG (a CTest test; arguments: trace program, plot tool, output
-prefix).
+check the PNG (a CTest test; arguments: plot tool, output prefix, then the
+command that runs the trace program: the program itself, or, when the tests
+are cross-built, the emulator that runs it (CMAKE_CROSSCOMPILING_EMULATOR)
+followed by the program).
 
 The trace must show the move: the position rises to the first set-point's
 way, turns, ends at 4000 with statusword bit 10 (target reached) and the
@@ -58,8 +60,10 @@ def check_png(path: str) -> None:
 
 
 def main() -> int:
-    trace_exe, plot, prefix = sys.argv[1:4]
-    subprocess.run([trace_exe, prefix + ".csv"], check=True)
+    plot, prefix = sys.argv[1:3]
+    trace_cmd = sys.argv[3:]
+    assert trace_cmd, "usage: check_plot.py PLOT PREFIX [EMULATOR...] TRACE"
+    subprocess.run([*trace_cmd, prefix + ".csv"], check=True)
     check_trace(prefix + ".csv")
     subprocess.run([sys.executable, plot, prefix + ".csv", "-o", prefix + ".png",
                     "--title", "cia402 profile position"], check=True)

@@ -9,6 +9,7 @@
  * [10000, 20000], open to the positive side [10000, ...) or open to the
  * negative side (..., -10000].
  */
+#include <inttypes.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -84,12 +85,12 @@ static void expect_home(int8_t method, int kind, int32_t start, int32_t where)
     uint16_t sw = home(method, kind, start, 1000);
 
     if (sw != 0x1637) {
-        print_error("method %d from %d: statusword 0x%04X\n", method, start, sw);
+        print_error("method %d from %" PRId32 ": statusword 0x%04X\n", method, start, sw);
         fail();
     }
     if ((co402_position(AX) - co402_sim_position(&fx.sim)) != (1000 - where)) {
-        print_error("method %d from %d: home at %d, expected %d\n", method, start,
-                    co402_sim_position(&fx.sim) - (co402_position(AX) - 1000), where);
+        print_error("method %d from %" PRId32 ": home at %" PRId32 ", expected %" PRId32 "\n",
+                    method, start, co402_sim_position(&fx.sim) - (co402_position(AX) - 1000), where);
         fail();
     }
     assert_int_equal(t402_get(&fx, 0x6064, 0), co402_position(AX));

@@ -13,9 +13,17 @@
 
 #include "co/co_node.h"
 
+/* Sizes: every frame of a test is logged (TB_LOG_MAX frames, about 17 bytes
+ * each) and the NV memory is TB_NV_SIZE bytes. A build for a target with
+ * little RAM may define smaller ones (-DTB_LOG_MAX=...); a test that logs
+ * more frames than that fails at the frame that does not fit. */
+#ifndef TB_LOG_MAX
 #define TB_LOG_MAX 4096U
+#endif
 #define TB_NODES_MAX 4U
+#ifndef TB_NV_SIZE
 #define TB_NV_SIZE 4096U
+#endif
 
 typedef struct tb_bus tb_bus_t;
 

@@ -134,23 +134,27 @@ static void nodeid_relative_defaults(void **state)
 
 static void app_access_path(void **state)
 {
-    uint32_t v = 0;
+    uint8_t w[4];
     uint32_t len = 0;
     char s[40];
     (void)state;
+    /* co_od_write takes the value as wire bytes (little-endian), never a
+     * native integer: on a big-endian CPU these must still mean 0x55AA */
+    co_put_u32(w, 0x55AAU);
     /* the application may set read-only values, SDO may not */
-    v = 0x55AA;
-    assert_int_equal(co_od_write(NODE, 0x1002, 0, &v, 4, true), CO_OK);
-    assert_int_equal(co_od_write(NODE, 0x1002, 0, &v, 4, false), CO_ERR_READ_ONLY);
+    assert_int_equal(co_od_write(NODE, 0x1002, 0, w, 4, true), CO_OK);
+    assert_int_equal(co_od_write(NODE, 0x1002, 0, w, 4, false), CO_ERR_READ_ONLY);
     assert_int_equal(fx.n.ram.mfr_status, 0x55AA);
     /* ... but never a ROM constant */
-    assert_int_equal(co_od_write(NODE, 0x1000, 0, &v, 4, true), CO_ERR_READ_ONLY);
+    assert_int_equal(co_od_write(NODE, 0x1000, 0, w, 4, true), CO_ERR_READ_ONLY);
     /* limits apply to the application too */
-    v = 5000;
-    assert_int_equal(co_od_write(NODE, 0x2020, 0, &v, 2, true), CO_ERR_VALUE_HIGH);
-    assert_int_equal(co_od_read(NODE, 0x1000, 0, &v, sizeof v, &len), CO_OK);
+    co_put_u16(w, 5000U);
+    assert_int_equal(co_od_write(NODE, 0x2020, 0, w, 2, true), CO_ERR_VALUE_HIGH);
+    /* co_od_read gives wire bytes too */
+    assert_int_equal(co_od_read(NODE, 0x1000, 0, w, sizeof w, &len), CO_OK);
     assert_int_equal(len, 4);
-    assert_int_equal(co_get_u32((const uint8_t *)&v), 0x00020192UL);
+    assert_int_equal(co_get_u32(w), 0x00020192UL);
+    assert_int_equal(w[0], 0x92);
     assert_int_equal(co_od_read(NODE, 0x1008, 0, s, sizeof s, &len), CO_OK);
     assert_int_equal(len, 7);
     assert_memory_equal(s, "631_402", 7);

@@ -368,12 +368,18 @@ void co_node_nmt_command(co_node_t *node, uint8_t cs, uint32_t now_us);
 void co_node_error_behaviour(co_node_t *node, uint8_t sub, uint32_t now_us);
 
 /** Read a whole value (up to @p cap bytes) through the dictionary path,
- *  hooks included. *len receives the length. */
+ *  hooks included. *len receives the length. The value arrives as wire
+ *  bytes: a number little-endian (as in an SDO upload, co_get_u32() etc.
+ *  decode it), never in the CPU's native byte order. */
 co_err_t co_od_read(co_node_t *node, uint16_t index, uint8_t sub, void *buf, uint32_t cap,
                     uint32_t *len);
 
 /** Write a whole value through the dictionary path: access, size, limits,
  *  hooks and the core's own checks apply, exactly as for an SDO download.
+ *  @p data holds the value as wire bytes: a number little-endian, @p len
+ *  bytes long (the size of its type), exactly as the data bytes of an SDO
+ *  download; encode it with co_put_u16()/co_put_u32() etc. Passing the
+ *  address of a native integer works only on a little-endian CPU.
  *  @p as_app: true skips the access check (an application may set ro values). */
 co_err_t co_od_write(co_node_t *node, uint16_t index, uint8_t sub, const void *data,
                      uint32_t len, bool as_app);

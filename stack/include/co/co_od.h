@@ -12,7 +12,9 @@
  *
  * Every access (SDO, PDO, application) goes through co_od_read()/co_od_write()
  * or the chunked calls below the SDO server uses; errors are co_err_t, whose
- * values are the SDO abort codes.
+ * values are the SDO abort codes. Those calls take and give values as wire
+ * bytes (numbers little-endian, as on the bus); the RAM and ROM images hold
+ * them in the CPU's native order, converted on the way in and out.
  */
 #ifndef CO_OD_H
 #define CO_OD_H

@@ -5,6 +5,10 @@ set(CMAKE_SYSTEM_PROCESSOR arm)
 set(CMAKE_C_COMPILER arm-none-eabi-gcc)
 set(CMAKE_ASM_COMPILER arm-none-eabi-gcc)
 set(CMAKE_SIZE arm-none-eabi-size)
+# The firmware this target builds (targets/cortex-m: the minimal slave and
+# the size report). No unit tests: nothing runs them (cmake/cortex-m3-mps2.cmake
+# is the Cortex-M3 build that does).
+set(CO_FIRMWARE cortex-m)
 # Link tests as static libraries: there is no host to run an executable on.
 set(CMAKE_TRY_COMPILE_TARGET_TYPE STATIC_LIBRARY)
 

@@ -198,6 +198,14 @@ co_err_t co_comm_check_write(const co_node_t *node, uint16_t index, uint8_t sub,
                              0x40000000UL, false);
         }
         break;
+    case 0x100CU:
+    case 0x100DU:
+        /* guarding and heartbeat exclusive: guarding refused while heartbeat runs */
+        if (co_opt(node, CO_OPT_GUARD_HB_EXCLUSIVE) && (node->hb_prod != NULL) &&
+            (*node->hb_prod != 0U)) {
+            return CO_ERR_RESOURCE;
+        }
+        break;
     case 0x1019U:
         /* counter overflow: 0 or 2..240, and only while no SYNC period is set */
         if ((sub == 0U) && (len == 1U)) {

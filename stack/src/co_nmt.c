@@ -100,16 +100,44 @@ void co_node_error_behaviour(co_node_t *node, uint8_t sub, uint32_t now_us)
     co_nmt_error(node, sub);
 }
 
+bool co_nmt_take_nodeid(co_node_t *node)
+{
+    const uint8_t *v;
+
+    if (node->dev->nodeid_index == 0U) {
+        return false;
+    }
+    v = (const uint8_t *)co_od_value_ptr(node, node->dev->nodeid_index, 0U);
+    if ((v == NULL) || (*v < 1U) || (*v > 127U) || (*v == node->node_id)) {
+        return false;
+    }
+    node->cob_base = co_node_cob_base_for(node, *v);
+    node->node_id = *v;
+    node->pending_id = *v;
+    return true;
+}
+
 void co_nmt_reset(co_node_t *node, co_reset_t kind)
 {
     /* Reset communication restores the communication area, reset node all
      * of the image, each to defaults and then to the stored set (0x1010).
      * Where the core's objects live does not change, so the pointers
-     * co_comm_bind found at init stay valid. A new node-ID takes effect
-     * here (CiA 305). */
+     * co_comm_bind found at init stay valid. A new node-ID (LSS,
+     * co_node_set_id) takes effect here (CiA 305). A device with a node-ID
+     * object takes its node-ID from it next ($NODEID defaults follow it);
+     * after a node reset that object has its stored value, so the image is
+     * restored again if the node-ID changes. */
     co_reset_t k = co_node_take_id(node, kind);
 
-    co_store_reset(node, k);
+    if (k == CO_RESET_COMMUNICATION) {
+        (void)co_nmt_take_nodeid(node);
+        co_store_reset(node, k);
+    } else {
+        co_store_reset(node, k);
+        if (co_nmt_take_nodeid(node)) {
+            co_store_reset(node, k);
+        }
+    }
     if (k == CO_RESET_NODE) {
         node->n_active = 0U;
     }

@@ -236,6 +236,9 @@ CO_NOINLINE void co_node_stalled(co_node_t *node, uint32_t now_us)
     node->sync_last = now_us - (uint32_t)CO_HORIZON_US; /* the SYNC window is long closed */
     node->emcy_next = now_us;
     node->sdo.deadline = now_us;
+#if CO_LSS
+    node->lss.switch_at = now_us;
+#endif
     for (uint8_t k = 0U; k < node->n_hb_cons; k++) {
         node->hbc[k].deadline = now_us;
     }
@@ -303,6 +306,9 @@ co_err_t co_node_init(co_node_t *node, const co_node_config_t *cfg, uint32_t now
     node->now = now_us;
     co_lss_init(node); /* an LSS-stored node-ID replaces cfg->node_id */
     co_store_reset(node, CO_RESET_NODE); /* defaults, then the stored set */
+    if (co_nmt_take_nodeid(node)) {
+        co_store_reset(node, CO_RESET_NODE); /* the stored node-ID: its $NODEID defaults */
+    }
     if (co_comm_bind(node) != CO_OK) {
         return CO_ERR_DEV_INCOMPAT;
     }
@@ -331,7 +337,7 @@ co_err_t co_node_set_id(co_node_t *node, uint8_t id, uint32_t now_us)
     if (!id_valid(node, id)) {
         return CO_ERR_VALUE;
     }
-    node->now = now_us;
+    co_node_clock(node, now_us);
     node->pending_id = id;
     if ((node->node_id == CO_NODE_ID_UNCONFIGURED) && (id != CO_NODE_ID_UNCONFIGURED)) {
         co_nmt_reset(node, CO_RESET_NODE); /* out of LSS init: initialise now */

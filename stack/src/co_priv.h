@@ -327,6 +327,9 @@ void co_nmt_rx(co_node_t *node, const co_frame_t *f);
 void co_nmt_boot(co_node_t *node);
 /* Reset communication or node: the pending node-ID, the restore, boot. */
 void co_nmt_reset(co_node_t *node, co_reset_t kind);
+/* A device with a node-ID object (co_dev_t.nodeid_index): take the node-ID
+ * from it when it holds another valid one; true if it changed. */
+bool co_nmt_take_nodeid(co_node_t *node);
 /* A serious error of 0x1029 class @p sub: the NMT reaction it configures
  * (nothing without CO_ERROR_BEHAVIOUR). */
 #if CO_ERROR_BEHAVIOUR

@@ -42,6 +42,9 @@ def read_eds(path) -> configparser.RawConfigParser:
 def test_eds_cia306_structure(device, generated):
     cp = read_eds(generated / f"{device.stem}.eds")
     layout = load(device).objects  # the description states deviations of the layout
+    sub0_1018 = next((o.subs[0].default for o in layout
+                      if o.index == 0x1018 and o.subs[0].type == "UNSIGNED8"
+                      and o.subs[0].default != len(o.subs) - 1), None)
     layout = "vendor-at-sub0" if any(o.index == 0x1018 and o.subs[0].type == "UNSIGNED32"
                                      for o in layout) else "cia"
     for sec, keys in {
@@ -107,6 +110,9 @@ def test_eds_cia306_structure(device, generated):
                 assert int(ss["ObjectType"], 0) == 0x7
             if vendor_at_sub0:
                 assert subs == [0, 1, 2]
+            elif index == 0x1018 and sub0_1018 is not None:
+                # documented deviation: 0x1018 sub 0 as printed (identity_sub0)
+                assert int(s0["DefaultValue"], 0) == sub0_1018
             elif s0["AccessType"] in ("ro", "const") and "DefaultValue" in s0 and index != 0x1004:
                 assert int(s0["DefaultValue"], 0) == max(subs), f"{index:04X}sub0"
         for s in [sec] + [cp[f"{index:04X}sub{x:X}"] for x in subs]:

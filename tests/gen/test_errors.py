@@ -411,6 +411,57 @@ def test_tpdo_mask_mistakes(tmp_path, opts, mask, objs, needle):
     assert needle in r.stderr, r.stderr
 
 
+# ------------------------------------------- node-ID object, identity sub 0
+
+NODEID_OBJ = """
+[[object]]
+index = 0x2000
+name = "Node address"
+type = "{type}"
+default = 1
+"""
+
+
+def test_nodeid_object_is_generated(tmp_path):
+    """[device] nodeid_object names the node-ID object: co_dev_t.nodeid_index."""
+    src = tmp_path / "bad.toml"
+    src.write_text((BASE + NODEID_OBJ.format(type="UNSIGNED8"))
+                   .replace("device_type = 0", "device_type = 0\nnodeid_object = 0x2000"))
+    r = run_odgen(src, tmp_path / "out")
+    assert r.returncode == 0, r.stderr
+    assert ".nodeid_index = 0x2000U," in (tmp_path / "out" / "bad.c").read_text()
+    plain = tmp_path / "plain"
+    plain.mkdir()
+    _, r = generate(plain, "")
+    assert ".nodeid_index = 0x0000U," in (plain / "out" / "bad.c").read_text()
+
+
+@pytest.mark.parametrize("index, objs, needle", [
+    (0x1000, "", "nodeid_object must be a manufacturer object"),
+    (0x2000, "", "nodeid_object 0x2000: needs an UNSIGNED8"),
+    (0x2000, NODEID_OBJ.format(type="UNSIGNED16"), "nodeid_object 0x2000: needs an UNSIGNED8"),
+], ids=["not-manufacturer", "missing", "not-u8"])
+def test_nodeid_object_mistakes(tmp_path, index, objs, needle):
+    src = tmp_path / "bad.toml"
+    src.write_text((BASE + objs).replace("device_type = 0",
+                                         f"device_type = 0\nnodeid_object = {index:#x}"))
+    r = run_odgen(src, tmp_path / "out")
+    assert r.returncode == 1, r.stderr
+    assert needle in r.stderr, r.stderr
+
+
+@pytest.mark.parametrize("value, ok", [(1, True), (4, True), (0, False), (5, False)])
+def test_identity_sub0(tmp_path, value, ok):
+    """identity_sub0: 0x1018 sub 0 as the device documents it (1..4)."""
+    src = tmp_path / "bad.toml"
+    src.write_text(BASE.replace("device_type = 0", f"device_type = 0\nidentity_sub0 = {value}"))
+    r = run_odgen(src, tmp_path / "out")
+    assert (r.returncode == 0) == ok, r.stderr
+    if ok:
+        eds = (tmp_path / "out" / "bad.eds").read_text()
+        assert f"DefaultValue={value}" in eds.split("[1018sub0]")[1].split("[")[0]
+
+
 # ------------------------------------------- include and identity layout
 
 def test_include_replaces_and_adds(tmp_path):

@@ -17,6 +17,7 @@
  * NMT start or because a position or velocity changed, and TxPDO4 (no
  * statusword) only on RTR or SYNC. The tests assert every frame.
  */
+#include <inttypes.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -88,11 +89,11 @@ static void expect_sw_pdos(uint16_t sw, int32_t pos, int32_t rpm)
 
     snprintf(f, sizeof f, "182 %02X %02X", sw & 0xFFU, sw >> 8);
     sr_expect(S, f);
-    snprintf(f, sizeof f, "282 %02X %02X %02X %02X %02X %02X", sw & 0xFFU, sw >> 8, p & 0xFFU,
-             (p >> 8) & 0xFFU, (p >> 16) & 0xFFU, p >> 24);
+    snprintf(f, sizeof f, "282 %02X %02X %02" PRIX32 " %02" PRIX32 " %02" PRIX32 " %02" PRIX32,
+             sw & 0xFFU, sw >> 8, p & 0xFFU, (p >> 8) & 0xFFU, (p >> 16) & 0xFFU, p >> 24);
     sr_expect(S, f);
-    snprintf(f, sizeof f, "382 %02X %02X %02X %02X %02X %02X", sw & 0xFFU, sw >> 8, v & 0xFFU,
-             (v >> 8) & 0xFFU, (v >> 16) & 0xFFU, v >> 24);
+    snprintf(f, sizeof f, "382 %02X %02X %02" PRIX32 " %02" PRIX32 " %02" PRIX32 " %02" PRIX32,
+             sw & 0xFFU, sw >> 8, v & 0xFFU, (v >> 8) & 0xFFU, (v >> 16) & 0xFFU, v >> 24);
     sr_expect(S, f);
 }
 

@@ -195,6 +195,7 @@ class Device:
     eds_only: list[RawObj] = field(default_factory=list)
     dcf: dict | None = None       # [DeviceComissioning] of a DCF
     tpdo_mask: int | None = None  # index of TPDO1's change mask (options TPDO_MASK_254/255)
+    nodeid_object: int | None = None  # node-ID object taken at Reset Communication
 
     def find(self, index: int, sub: int) -> Sub | None:
         for o in self.objects:
@@ -727,8 +728,13 @@ def _device_objects(dev: dict, what: str) -> list[Obj]:
             raise DescError(f"{what}: 0x1018 needs at least vendor_id")
         o = Obj(index=0x1018, name="Identity object", code="RECORD", prefix="x1018",
                 origin="[device] vendor_id")
+        # sub 0 is 4 (CiA 301) unless the device documents another number
+        # (Wandfluh DSV: 1, with sub 1..4 present all the same)
+        sub0 = _uint(dev.get("identity_sub0", 4), "[device] identity_sub0", 4)
+        if sub0 < 1:
+            raise DescError(f"{what}: identity_sub0 must be 1..4")
         subs = [{"sub": 0, "name": "Highest sub-index supported", "type": "UNSIGNED8",
-                 "access": "const", "default": 4}]
+                 "access": "const", "default": sub0}]
         for k, (key, name) in enumerate(zip(ids, ("Vendor-ID", "Product code",
                                                    "Revision number", "Serial number")), 1):
             t = {"sub": k, "name": name, "type": "UNSIGNED32", "access": "ro"}
@@ -747,7 +753,7 @@ DEVICE_KEYS = {"name", "vendor_name", "product_name", "order_code", "vendor_id",
                "revision", "serial", "device_type", "device_name", "hw_version", "sw_version",
                "options", "boot_emcy_data", "baudrates", "description", "lss",
                "vendor_number", "product_number", "revision_number", "mandatory_objects",
-               "identity_layout", "tpdo_mask"}
+               "identity_layout", "tpdo_mask", "nodeid_object", "identity_sub0"}
 EDS_KEYS = {"file_version", "file_revision", "date", "time", "author", "description",
             "file_name", "eds_version", "modified_date", "modified_time", "modified_by",
             "comments", "dummy_usage", "sections", "simple_boot_up_master",
@@ -1013,6 +1019,11 @@ def loads(text: str, path: str | Path = "<description>", base: str | None = None
         mask = _uint(mask, "[device] tpdo_mask", 0xFFFF)
         if not 0x2000 <= mask <= 0x5FFF:
             raise DescError("[device] tpdo_mask must be a manufacturer object (0x2000..0x5FFF)")
+    nodeid = dev.get("nodeid_object")
+    if nodeid is not None:
+        nodeid = _uint(nodeid, "[device] nodeid_object", 0xFFFF)
+        if not 0x2000 <= nodeid <= 0x5FFF:
+            raise DescError("[device] nodeid_object must be a manufacturer object (0x2000..0x5FFF)")
     mask_opts = [o for o in opts if o in ("TPDO_MASK_254", "TPDO_MASK_255")]
     if mask_opts and mask is None:
         raise DescError(f"[device] option {mask_opts[0]} needs tpdo_mask (the index of "
@@ -1110,8 +1121,13 @@ def loads(text: str, path: str | Path = "<description>", base: str | None = None
     device = Device(name=name, base=base, cname=cname, source=str(path), objects=objects,
                     info=info, eds=eds_info, options=list(opts), option_bits=bits,
                     boot_emcy_data=bed, limits=limits, n_hooks=slot, eds_only=eds_only,
-                    dcf=dcf, tpdo_mask=mask)
+                    dcf=dcf, tpdo_mask=mask, nodeid_object=nodeid)
     _check_pdo_mappings(device)
+    if nodeid is not None:
+        s = device.find(nodeid, 0)
+        if s is None or s.type != "UNSIGNED8" or s.hookio or s.rom:
+            raise DescError(f"[device] nodeid_object 0x{nodeid:04X}: needs an UNSIGNED8 RAM value "
+                            "at sub-index 0")
     return device
 
 

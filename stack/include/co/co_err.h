@@ -32,6 +32,7 @@ typedef enum co_err {
     CO_ERR_VALUE_HIGH        = 0x06090031, /**< value written too high */
     CO_ERR_VALUE_LOW         = 0x06090032, /**< value written too low */
     CO_ERR_MAX_LT_MIN        = 0x06090036, /**< maximum value is less than minimum */
+    CO_ERR_RESOURCE          = 0x060A0023, /**< resource not available: SDO connection */
     CO_ERR_GENERAL           = 0x08000000, /**< general error */
     CO_ERR_STORE             = 0x08000020, /**< data cannot be transferred or stored */
     CO_ERR_STORE_LOCAL       = 0x08000021, /**< ... because of local control */

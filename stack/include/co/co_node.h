@@ -76,6 +76,12 @@
 #define CO_OPT_RESTORE_SAVED           0x08000000UL /**< 0x1011 sub 4/5/6 restore the saved set (all /
                                                          comm. / application); sub 1..3 keep its data
                                                          (FAULHABER) */
+#define CO_OPT_TPDO_AFTER_RPDO         0x10000000UL /**< a received RPDO n requests TPDO n when that
+                                                         TPDO has transmission type 255: "the TPDO
+                                                         right after the RPDO" (Wandfluh DSV) */
+#define CO_OPT_GUARD_HB_EXCLUSIVE      0x20000000UL /**< 0x100C / 0x100D refused with 0x060A0023
+                                                         while the heartbeat 0x1017 is not 0
+                                                         (Wandfluh DSV) */
 
 /** Error register 0x1001 bits. */
 #define CO_ERREG_GENERIC      0x01U
@@ -148,6 +154,10 @@ typedef struct co_dev {
      *  6 50, 7 20, 8 10 kbit/s, 9 automatic detection); the generator makes
      *  it from [device] baudrates. Configure bit timing refuses the others. */
     uint16_t lss_bit_timings;
+    /** A manufacturer object (UNSIGNED8) that holds the node-ID the node takes
+     *  on at each Reset Communication (and at init), when it is 1..127; 0: none,
+     *  the node-ID stays the one co_node_init was given (Wandfluh DSV 0x2000). */
+    uint16_t nodeid_index;
 } co_dev_t;
 
 struct co_node;

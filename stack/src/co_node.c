@@ -278,6 +278,8 @@ uint32_t co_node_process(co_node_t *node, uint32_t now_us)
 
 co_err_t co_node_init(co_node_t *node, const co_node_config_t *cfg, uint32_t now_us)
 {
+    uint8_t id;
+
     if ((cfg == NULL) || (cfg->dev == NULL) || (cfg->ram == NULL) || (cfg->hal.ops == NULL) ||
         (cfg->hal.ops->send == NULL) || (cfg->dev->od == NULL)) {
         return CO_ERR_OD_MISSING;
@@ -286,9 +288,9 @@ co_err_t co_node_init(co_node_t *node, const co_node_config_t *cfg, uint32_t now
         ((cfg->dev->pdo == NULL) || (cfg->pdo == NULL) || (cfg->pdo_rx == NULL))) {
         return CO_ERR_OD_MISSING;
     }
-    if (((cfg->node_id < 1U) || (cfg->node_id > 127U)) &&
-        ((cfg->node_id != CO_NODE_ID_UNCONFIGURED) ||
-         ((cfg->dev->options & CO_OPT_LSS) == 0U))) {
+    id = ((cfg->dev->options & CO_OPT_LSS_ONLY) != 0U) ? CO_NODE_ID_UNCONFIGURED : cfg->node_id;
+    if (((id < 1U) || (id > 127U)) &&
+        ((id != CO_NODE_ID_UNCONFIGURED) || ((cfg->dev->options & CO_OPT_LSS) == 0U))) {
         return CO_ERR_VALUE;
     }
     (void)memset(node, 0, sizeof *node);
@@ -297,9 +299,9 @@ co_err_t co_node_init(co_node_t *node, const co_node_config_t *cfg, uint32_t now
     node->ram = (uint8_t *)cfg->ram;
     node->hooks = cfg->hooks;
     node->cb = cfg->cb;
-    node->node_id = cfg->node_id;
-    node->pending_id = cfg->node_id;
-    node->cob_base = cfg->node_id;
+    node->node_id = id;
+    node->pending_id = id;
+    node->cob_base = id;
     node->sdo_timeout_us = (cfg->sdo_timeout_us != 0U) ? cfg->sdo_timeout_us : 1000000UL;
     node->pdo = cfg->pdo;
     node->pdo_rx = cfg->pdo_rx;

@@ -6,6 +6,7 @@
 #include <errno.h>
 #include <signal.h>
 #include <stdarg.h>
+#include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -36,6 +37,8 @@ typedef struct dnode {
     co_lx_port_t port;
     co_lx_nv_t nv;
     int has_nv;
+    uint32_t serial;        /* 0x1018 sub 4 (--serial), when serial_given */
+    bool serial_given;
     char tag[64];
 } dnode_t;
 
@@ -102,9 +105,37 @@ static void cb_nmt_state(void *ctx, co_node_t *node, co_nmt_state_t state)
     }
 }
 
+/* "node 5 (generic-301)", "node - (generic-301)" while unconfigured. */
+static void set_tag(dnode_t *d, uint8_t id)
+{
+    if (id == CO_NODE_ID_UNCONFIGURED) {
+        (void)snprintf(d->tag, sizeof d->tag, "node - (%s)", d->dev->name);
+    } else {
+        (void)snprintf(d->tag, sizeof d->tag, "node %u (%s)", (unsigned)id, d->dev->name);
+    }
+}
+
+/* The instance's serial number (a RAM value a node reset sets back to the
+ * description's default). */
+static void set_serial(dnode_t *d, co_node_t *node)
+{
+    if (d->serial_given &&
+        (co_od_write(node, 0x1018U, 4U, &d->serial, 4U, true) != CO_OK)) {
+        log_line(d->tag, CO_LX_WARN, "--serial: 0x1018 sub 4 of %s cannot be set",
+                 d->dev->name);
+    }
+}
+
 static void cb_nmt_reset(void *ctx, co_node_t *node, co_reset_t kind)
 {
     dnode_t *d = (dnode_t *)ctx;
+
+    if (co_node_id(node) != CO_NODE_ID_UNCONFIGURED) {
+        set_tag(d, co_node_id(node)); /* LSS may have given it another */
+    }
+    if (kind == CO_RESET_NODE) {
+        set_serial(d, node);
+    }
 
     log_line(d->tag, CO_LX_INFO, "NMT reset %s",
              (kind == CO_RESET_NODE) ? "node" : "communication");
@@ -180,7 +211,9 @@ static int start_node(dnode_t *d, const opt_node_t *spec, const char *iface)
     co_err_t e;
 
     d->dev = device_find(spec->device);
-    (void)snprintf(d->tag, sizeof d->tag, "node %u (%s)", (unsigned)spec->id, d->dev->name);
+    d->serial = spec->serial;
+    d->serial_given = spec->serial_given;
+    set_tag(d, spec->id);
     if ((d->dev->ram_size != d->dev->dev->ram_size) ||
         (d->dev->n_hooks < d->dev->dev->n_hooks)) {
         log_line(d->tag, CO_LX_ERROR, "registry entry does not fit the dictionary");
@@ -235,6 +268,8 @@ static int start_node(dnode_t *d, const opt_node_t *spec, const char *iface)
         log_line(d->tag, CO_LX_ERROR, "co_node_init failed: 0x%08lX", (unsigned long)e);
         return -1;
     }
+    set_tag(d, co_node_id(&d->node)); /* an LSS-stored node-ID */
+    set_serial(d, &d->node);
     co_lx_port_attach(&d->port, &d->node);
     if ((d->dev->attach != NULL) && (d->dev->attach(d->app, &d->node) != 0)) {
         log_line(d->tag, CO_LX_ERROR, "device application failed to start");
@@ -242,6 +277,13 @@ static int start_node(dnode_t *d, const opt_node_t *spec, const char *iface)
     }
     log_line(d->tag, CO_LX_INFO, "up on %s%s%s", iface, d->has_nv ? ", parameters in " : "",
              d->has_nv ? spec->storage : "");
+    if (co_node_id(&d->node) == CO_NODE_ID_UNCONFIGURED) {
+        uint32_t sn = 0U;
+        uint32_t len = 0U;
+        (void)co_od_read(&d->node, 0x1018U, 4U, &sn, 4U, &len);
+        log_line(d->tag, CO_LX_INFO, "unconfigured: waiting for LSS (serial number %lu)",
+                 (unsigned long)sn);
+    }
     return 0;
 }
 
@@ -385,7 +427,10 @@ int main(int argc, char **argv)
         break;
     case OPT_LIST:
         for (size_t i = 0U; i < device_count(); i++) {
-            (void)printf("%-22s %s\n", device_at(i)->name, device_at(i)->summary);
+            uint32_t opt = device_at(i)->dev->options;
+            const char *lss = ((opt & CO_OPT_LSS_ONLY) != 0U) ? "LSS-only"
+                              : ((opt & CO_OPT_LSS) != 0U) ? "LSS" : "-";
+            (void)printf("%-22s %-8s %s\n", device_at(i)->name, lss, device_at(i)->summary);
         }
         break;
     case OPT_EXPORT_EDS:

@@ -218,6 +218,25 @@ static void test_global_configure_store(void **state)
     tb_expect_none(&fx.bus);
 }
 
+/* FAULHABER: the node-ID comes only through LSS; the configured one is
+ * not used, the LSS-stored one is. */
+static void test_lss_only(void **state)
+{
+    (void)state;
+    setup_bus(CO_OPT_LSS_ONLY);
+    start(0, 5U, 1U);
+    tb_expect_none(&fx.bus);
+    assert_int_equal(co_node_id(&fx.n[0].node), UNCONF);
+    silent("04 01");
+    xfer("11 06", "11 00");
+    xfer("17", "17 00");
+    req("04 00");
+    tb_expect(&fx.bus, "706 00");
+    start(0, 5U, 1U);
+    tb_expect(&fx.bus, "706 00");
+    tb_expect_none(&fx.bus);
+}
+
 /* Configure node-ID: 1..127 and 0xFF accepted, the rest answered with
  * error code 1 (node-ID out of range), the pending ID unchanged. */
 static void test_configure_node_id_range(void **state)
@@ -832,6 +851,7 @@ int main(void)
         cmocka_unit_test(test_unconfigured_silent),
         cmocka_unit_test(test_unconfigured_needs_lss),
         cmocka_unit_test(test_global_configure_store),
+        cmocka_unit_test(test_lss_only),
         cmocka_unit_test(test_configure_node_id_range),
         cmocka_unit_test(test_state_rules),
         cmocka_unit_test(test_inquire),

@@ -738,11 +738,16 @@ def _device_objects(dev: dict, what: str) -> list[Obj]:
         for k, (key, name) in enumerate(zip(ids, ("Vendor-ID", "Product code",
                                                    "Revision number", "Serial number")), 1):
             t = {"sub": k, "name": name, "type": "UNSIGNED32", "access": "ro"}
-            if key in dev:
+            if key in dev and not (key == "serial" and dev.get("lss") is True):
                 t["default"] = dev[key]
                 t["rom"] = True
             else:
-                t["storage"] = "none"  # filled in by the application at run time
+                # filled in by the application at run time; an LSS slave's serial
+                # number is the instance's (distinct LSS addresses), its default
+                # the description's
+                t["storage"] = "none"
+                if key in dev:
+                    t["default"] = dev[key]
             subs.append(t)
         o.subs = [make_sub(0x1018, t, None, f"{what}") for t in subs]
         out.append(o)

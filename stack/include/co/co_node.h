@@ -50,6 +50,10 @@
                                                     communication set is dropped (FAULHABER) */
 #define CO_OPT_LSS_NO_REVISION         0x4000U /**< switch state selective ignores the revision
                                                     number (FAULHABER) */
+#define CO_OPT_LSS_ONLY                0x8000U /**< the node-ID comes only through LSS: the
+                                                    node starts with its LSS-stored node-ID or
+                                                    unconfigured, co_node_config_t.node_id is
+                                                    not used (FAULHABER) */
 /* PDO options from bit 16 */
 #define CO_OPT_PDO_COBID_WHILE_VALID   0x00010000U /**< a PDO's CAN-ID may change while the
                                                         PDO is valid (Kollmorgen) */

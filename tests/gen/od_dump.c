@@ -112,6 +112,12 @@ int main(int argc, char **argv)
         fprintf(stderr, "od_dump: co_node_init: 0x%08lx\n", (unsigned long)err);
         return 1;
     }
+    if ((co_node_id(node) == CO_NODE_ID_UNCONFIGURED) &&
+        (co_node_set_id(node, (uint8_t)id, 0U) != CO_OK)) {
+        /* an LSS-only device (FAULHABER) starts unconfigured: give it the ID */
+        fprintf(stderr, "od_dump: co_node_set_id\n");
+        return 1;
+    }
     printf("{\"name\": \"%s\", \"node_id\": %lu, \"ram_size\": %u, \"comm_end\": %u, "
            "\"app_end\": %u, \"n_hooks\": %u, \"options\": %lu,\n",
            dev->name, id, (unsigned)dev->ram_size, (unsigned)dev->comm_end,

@@ -12,18 +12,55 @@ static bool hal_send(co_node_t *node, const co_frame_t *f)
     return node->hal.ops->send(node->hal.ctx, f) == 0;
 }
 
+/* The hold-back queue is kept in CAN priority order (lowest identifier
+ * first; frames of one identifier in the order they were made), so that a
+ * controller that frees a mailbox gets the frame that would win arbitration. */
+static void tx_drain(co_node_t *node)
+{
+    uint8_t sent = 0U;
+
+    while ((sent < node->txq_len) && hal_send(node, &node->txq[sent])) {
+        sent++;
+    }
+    if (sent > 0U) {
+        node->txq_len = (uint8_t)(node->txq_len - sent);
+        (void)memmove(&node->txq[0], &node->txq[sent], (size_t)node->txq_len * sizeof node->txq[0]);
+    }
+}
+
 void co_tx_frame(co_node_t *node, const co_frame_t *f)
 {
+    uint32_t cob = co_frame_cob(f);
+    uint8_t at = node->txq_len;
+
     if ((node->txq_len == 0U) && hal_send(node, f)) {
         return;
     }
-    if (node->txq_len < CO_TXQ_LEN) {
-        uint8_t at = (uint8_t)((node->txq_head + node->txq_len) % CO_TXQ_LEN);
-        node->txq[at] = *f;
-        node->txq_len++;
+    while ((at > 0U) && (co_frame_cob(&node->txq[at - 1U]) > cob)) {
+        at--;
     }
-    /* else: the hold-back queue is full too; the frame is lost (the port
-     * reports the overrun as EMCY 0x8110 where the hardware tells it). */
+    if (node->txq_len == CO_TXQ_LEN) {
+        /* full: the frame of lowest priority is lost (the new one, when
+         * nothing waiting ranks below it) */
+        if (at == CO_TXQ_LEN) {
+            return;
+        }
+        node->txq_len--;
+    }
+    (void)memmove(&node->txq[at + 1U], &node->txq[at],
+                  (size_t)(node->txq_len - at) * sizeof node->txq[0]);
+    node->txq[at] = *f;
+    node->txq_len++;
+    tx_drain(node); /* the controller may have room again */
+}
+
+void co_node_tx_ready(co_node_t *node, uint32_t now_us)
+{
+    co_node_clock(node, now_us);
+    tx_drain(node);
+    if (node->txq_len == 0U) {
+        (void)co_sdo_process(node, CO_NO_DEADLINE); /* a stalled block upload goes on */
+    }
 }
 
 void co_tx(co_node_t *node, uint32_t id, const uint8_t *data, uint8_t len)
@@ -40,14 +77,6 @@ bool co_tx_try(co_node_t *node, uint32_t id, const uint8_t *data, uint8_t len)
 
     co_frame_set(&f, id, data, len);
     return co_tx_now(node, &f);
-}
-
-static void tx_drain(co_node_t *node)
-{
-    while ((node->txq_len > 0U) && hal_send(node, &node->txq[node->txq_head])) {
-        node->txq_head = (uint8_t)((node->txq_head + 1U) % CO_TXQ_LEN);
-        node->txq_len--;
-    }
 }
 
 /* ------------------------------------------------------- RX dispatch */
@@ -72,19 +101,9 @@ static void rx_add(co_node_t *node, uint16_t cob, uint8_t kind, uint8_t arg)
     node->rx_fc |= (uint16_t)(1U << (cob >> 7U));
 }
 
-void co_rx_rebuild(co_node_t *node)
+/* The services of a configured node (NMT, SDO, ...), then its PDOs. */
+static void rx_add_services(co_node_t *node)
 {
-    node->n_rx = 0U;
-    node->rx_fc = 0U;
-    (void)memset(node->rx_filter, 0, sizeof node->rx_filter);
-    if (co_lss_enabled(node)) {
-        rx_add(node, 0x7E5U, CO_RX_LSS, 0U);
-    }
-    if (node->node_id == CO_NODE_ID_UNCONFIGURED) {
-        node->pdo_fc = 0U; /* LSS only */
-        node->n_pdo_rx = 0U;
-        return;
-    }
     rx_add(node, 0x000U, CO_RX_NMT, 0U);
     rx_add(node, (uint16_t)(0x600U + node->node_id), CO_RX_SDO, 0U);
     rx_add(node, (uint16_t)(0x700U + node->node_id), CO_RX_GUARD, 0U);
@@ -102,6 +121,41 @@ void co_rx_rebuild(co_node_t *node)
         }
     }
     co_pdo_rx_rebuild(node);
+}
+
+void co_rx_rebuild(co_node_t *node)
+{
+    node->n_rx = 0U;
+    node->rx_fc = 0U;
+    (void)memset(node->rx_filter, 0, sizeof node->rx_filter);
+    if (co_lss_enabled(node)) {
+        rx_add(node, 0x7E5U, CO_RX_LSS, 0U);
+    }
+    if (node->node_id == CO_NODE_ID_UNCONFIGURED) {
+        node->pdo_fc = 0U; /* LSS only */
+        node->n_pdo_rx = 0U;
+    } else {
+        rx_add_services(node);
+    }
+    if (node->cb.rx_set != NULL) {
+        node->cb.rx_set(node->cb.ctx, node);
+    }
+}
+
+bool co_node_rx_cob(const co_node_t *node, uint16_t i, uint16_t *cob)
+{
+    bool found = false;
+
+    if (i < node->n_rx) {
+        *cob = node->rx[i].cob;
+        found = true;
+    } else if ((uint16_t)(i - node->n_rx) < node->n_pdo_rx) {
+        *cob = node->pdo_rx[i - node->n_rx].cob;
+        found = true;
+    } else {
+        /* past the last */
+    }
+    return found;
 }
 
 static const co_rx_slot_t *rx_find(const co_node_t *node, uint16_t cob)

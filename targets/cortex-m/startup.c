@@ -16,7 +16,12 @@ extern uint32_t _estack[]; /* top of the stack */
 int main(void);
 void Reset_Handler(void);
 void Default_Handler(void);
-void CAN1_RX0_IRQHandler(void);
+/* The handlers an image may define; the others run Default_Handler. */
+void SysTick_Handler(void) __attribute__((weak, alias("Default_Handler")));
+void USB_HP_CAN1_TX_IRQHandler(void) __attribute__((weak, alias("Default_Handler")));
+void CAN1_RX0_IRQHandler(void) __attribute__((weak, alias("Default_Handler")));
+void CAN1_RX1_IRQHandler(void) __attribute__((weak, alias("Default_Handler")));
+void CAN1_SCE_IRQHandler(void) __attribute__((weak, alias("Default_Handler")));
 
 void Default_Handler(void)
 {
@@ -42,9 +47,10 @@ void Reset_Handler(void)
 
 typedef void (*vector_t)(void);
 
-/* System exceptions, then the STM32F1 interrupts up to CAN1 RX0 (IRQ 20);
- * the CAN RX interrupt is the only one the firmware uses. */
-__attribute__((section(".isr_vector"), used)) static const vector_t vectors[16 + 21] = {
+/* System exceptions, then the STM32F1 interrupts up to CAN1 SCE (IRQ 22):
+ * CAN1 TX (19, shared with USB high priority), RX0 (20), RX1 (21), status
+ * change / error (22). */
+__attribute__((section(".isr_vector"), used)) static const vector_t vectors[16 + 23] = {
     (vector_t)(uintptr_t)_estack,
     Reset_Handler,
     Default_Handler, /* NMI */
@@ -57,11 +63,14 @@ __attribute__((section(".isr_vector"), used)) static const vector_t vectors[16 +
     Default_Handler, /* DebugMon */
     0,
     Default_Handler, /* PendSV */
-    Default_Handler, /* SysTick */
+    SysTick_Handler,
     Default_Handler, Default_Handler, Default_Handler, Default_Handler, /* IRQ 0..3 */
     Default_Handler, Default_Handler, Default_Handler, Default_Handler, /* IRQ 4..7 */
     Default_Handler, Default_Handler, Default_Handler, Default_Handler, /* IRQ 8..11 */
     Default_Handler, Default_Handler, Default_Handler, Default_Handler, /* IRQ 12..15 */
-    Default_Handler, Default_Handler, Default_Handler, Default_Handler, /* IRQ 16..19 */
+    Default_Handler, Default_Handler, Default_Handler,                  /* IRQ 16..18 */
+    USB_HP_CAN1_TX_IRQHandler,                                          /* IRQ 19 */
     CAN1_RX0_IRQHandler,                                                /* IRQ 20 */
+    CAN1_RX1_IRQHandler,                                                /* IRQ 21 */
+    CAN1_SCE_IRQHandler,                                                /* IRQ 22 */
 };

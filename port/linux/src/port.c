@@ -1,5 +1,6 @@
 /* One node's socket, storage and error state (see port.h). */
 #include "co_lx/port.h"
+#include "co/co_canstate.h"
 
 #include <errno.h>
 #include <stdio.h>
@@ -126,18 +127,14 @@ static void apply(co_lx_port_t *p, const co_lx_emcy_action_t *a, unsigned n, uin
                        : (a[i].code == CO_LX_EMCY_PASSIVE) ? "error passive" : "overrun",
                        (unsigned)a[i].code, a[i].raise ? "raised" : "cleared");
         port_say(p, a[i].raise ? CO_LX_WARN : CO_LX_INFO, msg);
-        if (p->node == NULL) {
-            continue;
-        }
-        if (a[i].raise) {
-            co_emcy_raise(p->node, a[i].code, CO_ERREG_COMM, NULL);
-            if (a[i].code == CO_LX_EMCY_BUSOFF) {
-                /* CiA 301: bus-off is a communication error (0x1029 sub 1) */
-                co_node_error_behaviour(p->node, CO_ERRBEH_COMM, now_us);
-            }
-        } else {
-            co_emcy_clear(p->node, a[i].code);
-        }
+    }
+    /* the CiA 301 policy (EMCY codes, 0x1029 on bus-off) is the core's */
+    if ((p->node != NULL) && (n > 0U)) {
+        co_node_can_state(p->node,
+                          p->err.busoff ? CO_CAN_BUS_OFF
+                          : p->err.passive ? CO_CAN_ERROR_PASSIVE : CO_CAN_ERROR_ACTIVE,
+                          now_us);
+        co_node_can_overrun(p->node, p->err.overrun);
     }
 }
 

@@ -22,7 +22,8 @@
 /* ---- sizes of the node's fixed tables (co_node_t) */
 
 #ifndef CO_TXQ_LEN
-#define CO_TXQ_LEN 4U          /**< frames held back while the HAL's TX path is full */
+#define CO_TXQ_LEN 4U          /**< frames held back while the HAL's TX path is full, in CAN-ID
+                                    order; when full, the frame of highest CAN-ID is lost */
 #endif
 #ifndef CO_EMCY_ACTIVE_MAX
 #define CO_EMCY_ACTIVE_MAX 8U  /**< distinct error codes active at once */

@@ -194,6 +194,10 @@ typedef struct co_node_callbacks {
      *  updated, before the frame. It must not raise or clear errors. NULL:
      *  zeros (CiA 301 leaves the field to the manufacturer). */
     void (*emcy_mfr)(void *ctx, struct co_node *node, uint16_t code, uint8_t mfr[5]);
+    /** The set of CAN-IDs the node receives (co_node_rx_cob) was made anew:
+     *  at init and whenever a COB-ID, a heartbeat consumer or a PDO's
+     *  validity changed. A port with hardware filters reprograms them. */
+    void (*rx_set)(void *ctx, struct co_node *node);
 } co_node_callbacks_t;
 
 /** Everything co_node_init needs. */
@@ -304,7 +308,6 @@ typedef struct co_node {
     uint8_t hist_depth;
     uint8_t n_hb_cons;
     uint8_t n_rx;
-    uint8_t txq_head;
     uint8_t txq_len;
     uint8_t n_active;
     uint8_t n_emcy_q;
@@ -362,6 +365,22 @@ uint8_t co_node_id(const co_node_t *node);
  *  EMCY COB-IDs not with CO_OPT_LSS_KEEP_COBS). CO_ERR_VALUE for an ID out
  *  of range. LSS configure node-ID does the same through the bus. */
 co_err_t co_node_set_id(co_node_t *node, uint8_t id, uint32_t now_us);
+
+/** The port's TX-ready notice: the controller has room again (a TX mailbox
+ *  or FIFO slot emptied; on an MCU the TX interrupt sets a flag the main loop
+ *  turns into this call). Frames held back go out now, lowest CAN-ID first,
+ *  and a block upload stalled on the full TX path resumes; without the
+ *  notice both wait for co_node_process, which looks again every 1 ms while
+ *  the path is full. */
+void co_node_tx_ready(co_node_t *node, uint32_t now_us);
+
+/** The @p i-th CAN-ID (11 bits, 0-based) of the frames the node acts on:
+ *  LSS (0x7E5; alone while unconfigured), NMT, its SDO and guarding RTR,
+ *  SYNC, TIME, heartbeats it consumes, its
+ *  RPDOs, and its TPDOs (whose RTR it answers). For a controller's hardware
+ *  filters; false past the last. The set changes only where the rx_set
+ *  callback says so. */
+bool co_node_rx_cob(const co_node_t *node, uint16_t i, uint16_t *cob);
 
 /** The current NMT state. */
 co_nmt_state_t co_node_nmt_state(const co_node_t *node);

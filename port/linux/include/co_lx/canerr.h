@@ -2,8 +2,10 @@
  * SocketCAN error frames to CiA 301 EMCY codes.
  *
  * The controller state the kernel reports in error frames (CAN_ERR_FLAG) is
- * tracked per node and turned into raise/clear actions on the node's
- * emergency object:
+ * tracked per node (the flags below); each change is logged as the action
+ * on the node's emergency object, and the port hands the resulting state to
+ * the core (co_node_can_state / co_node_can_overrun, co/co_canstate.h),
+ * whose policy gives the same codes:
  *
  *   bus-off (CAN_ERR_BUSOFF)                  raise 0x8140 "recovered from bus-off"
  *       (the EMCY is held back by the core while the bus is off and leaves

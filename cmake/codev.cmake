@@ -49,8 +49,11 @@ function(co_device name toml)
   endif()
   add_custom_command(
     OUTPUT ${products}
-    COMMAND "${CO_PYTHON}" "${CO_ODGEN}" --base "${name}" --out "${out}" "${toml}"
+    COMMAND "${CO_PYTHON}" "${CO_ODGEN}" --base "${name}" --out "${out}"
+            "--build=$<JOIN:$<TARGET_PROPERTY:${arg_CORE},INTERFACE_COMPILE_DEFINITIONS>,$<COMMA>>"
+            "${toml}"
     DEPENDS "${toml}" ${included} ${CO_ODGEN_SOURCES} "${CO_REPO_ROOT}/stack/include/co/co_node.h"
+            "${CO_REPO_ROOT}/stack/include/co/co_config.h"
     COMMENT "odgen: ${name} (C dictionary, EDS, object table)"
     VERBATIM)
   add_library(codev_${name} STATIC "${out}/${cname}.c" "${out}/${cname}.h")

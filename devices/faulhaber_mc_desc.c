@@ -348,9 +348,8 @@ static co_err_t op_attach(void *inst, co_node_t *node, uint32_t now_us)
     }
     for (size_t i = 0U; i < (sizeof hooks / sizeof hooks[0]); i++) {
         co_od_hook_t h = {NULL, hooks[i].write, r};
-        co_err_t err = co_od_bind_hook(node, hooks[i].index, &h);
-        if (err != CO_OK) {
-            return err;
+        if (co_od_bind_hook(node, hooks[i].index, &h) != CO_RESULT_OK) {
+            return CO_ERR_OD_MISSING;
         }
     }
     (void)factor(r, 0U, 0U, 0U, true);

@@ -1187,7 +1187,7 @@ static co_err_t op_attach(void *inst, co_node_t *node, uint32_t now_us)
     h.read = NULL;
     h.ctx = ax;
     h.write = hook_cw;
-    if (co_od_bind_hook(node, axis_index(ax, 0x6040U), &h) != CO_OK) {
+    if (co_od_bind_hook(node, axis_index(ax, 0x6040U), &h) != CO_RESULT_OK) {
         ax->node = NULL;
         return CO_ERR_OD_MISSING; /* the controlword must be seen as it is written */
     }

@@ -519,7 +519,7 @@ static co_err_t op_attach(void *inst, co_node_t *node, uint32_t now_us)
     h.ctx = v;
     h.write = hook_cw;
     if (!co_pobj_has(&v->obj[O_SW]) ||
-        (co_od_bind_hook(node, chan_index(v, 0x6040U), &h) != CO_OK)) {
+        (co_od_bind_hook(node, chan_index(v, 0x6040U), &h) != CO_RESULT_OK)) {
         v->node = NULL;
         return CO_ERR_OD_MISSING; /* the control word must be seen as it is written */
     }

@@ -9,11 +9,11 @@
 
 /* The time of the event being dispatched. The node's callbacks carry no
  * time; the core stamps every received frame and process call into
- * node->now before it dispatches, so that is the time of the SYNC or NMT
+ * its time (co_node_now) before it dispatches, so that is the time of the SYNC or NMT
  * command at hand. (Only read, never written.) */
 static uint32_t event_time(const co_node_t *node)
 {
-    return node->now;
+    return co_node_now(node);
 }
 
 void co_profile_host_init(co_profile_host_t *h, co_profile_t *slots, uint8_t cap,

@@ -15,8 +15,8 @@ static uint8_t errreg_now(const co_node_t *node)
     bool generic = !co_opt(node, CO_OPT_ERREG_NO_GENERIC);
     uint8_t r = 0U;
 
-    for (uint8_t i = 0U; i < node->n_active; i++) {
-        uint8_t bits = node->active[i].reg;
+    for (uint8_t i = 0U; i < node->emcy.n_active; i++) {
+        uint8_t bits = node->emcy.active[i].reg;
         r |= (uint8_t)(bits | (((bits == 0U) || generic) ? CO_ERREG_GENERIC : 0U));
     }
     return r;
@@ -24,19 +24,19 @@ static uint8_t errreg_now(const co_node_t *node)
 
 static void update_errreg(co_node_t *node)
 {
-    if (node->errreg != NULL) {
-        *node->errreg = errreg_now(node);
+    if (node->emcy.errreg != NULL) {
+        *node->emcy.errreg = errreg_now(node);
     }
 }
 
 static uint32_t cob_id(const co_node_t *node)
 {
-    return (node->emcy_cob != NULL) ? *node->emcy_cob : (0x80UL + node->node_id);
+    return (node->emcy.cob != NULL) ? *node->emcy.cob : (0x80UL + node->node_id);
 }
 
 static uint32_t inhibit_us(const co_node_t *node)
 {
-    return (node->emcy_inhibit != NULL) ? co_dict_us(*node->emcy_inhibit, 100UL) : 0U;
+    return (node->emcy.inhibit != NULL) ? co_dict_us(*node->emcy.inhibit, 100UL) : 0U;
 }
 
 /* Still within the inhibit time of the last EMCY? emcy_next is at most one
@@ -46,7 +46,7 @@ static uint32_t inhibit_us(const co_node_t *node)
  * one back for up to 35 minutes.) */
 static bool inhibited(const co_node_t *node)
 {
-    uint32_t left = node->emcy_next - node->now;
+    uint32_t left = node->emcy.next - node->now;
 
     return (left != 0U) && (left <= inhibit_us(node));
 }
@@ -59,15 +59,15 @@ static void send(co_node_t *node, const uint8_t *d)
         (node->node_id == CO_NODE_ID_UNCONFIGURED)) {
         return; /* no EMCY in Stopped; not valid; nothing while unconfigured */
     }
-    if ((node->n_emcy_q > 0U) || inhibited(node)) {
-        if (node->n_emcy_q < CO_EMCY_QUEUE_LEN) {
-            (void)memcpy(node->emcy_q[node->n_emcy_q].data, d, 8U);
-            node->n_emcy_q++;
+    if ((node->emcy.n_q > 0U) || inhibited(node)) {
+        if (node->emcy.n_q < CO_EMCY_QUEUE_LEN) {
+            (void)memcpy(node->emcy.q[node->emcy.n_q].data, d, 8U);
+            node->emcy.n_q++;
         }
         return;
     }
     co_tx(node, cob & 0x7FFUL, d, 8U);
-    node->emcy_next = node->now + inhibit_us(node);
+    node->emcy.next = node->now + inhibit_us(node);
 }
 
 static void send_code(co_node_t *node, uint16_t code, const uint8_t *mfr)
@@ -75,7 +75,7 @@ static void send_code(co_node_t *node, uint16_t code, const uint8_t *mfr)
     uint8_t d[8] = {0};
 
     co_put_u16(d, code);
-    d[2] = (node->errreg != NULL) ? *node->errreg : errreg_now(node);
+    d[2] = (node->emcy.errreg != NULL) ? *node->emcy.errreg : errreg_now(node);
     if (mfr != NULL) {
         (void)memcpy(&d[3], mfr, 5U);
     }
@@ -86,23 +86,23 @@ static void history_push(co_node_t *node, uint16_t code, const uint8_t *mfr)
 {
     uint8_t n;
 
-    if ((node->hist == NULL) || (node->hist_count == NULL)) {
+    if ((node->emcy.hist == NULL) || (node->emcy.hist_count == NULL)) {
         return;
     }
-    n = *node->hist_count;
-    if (n < node->hist_depth) {
+    n = *node->emcy.hist_count;
+    if (n < node->emcy.hist_depth) {
         n++;
     }
     for (uint8_t i = (uint8_t)(n - 1U); i > 0U; i--) {
-        node->hist[i] = node->hist[i - 1U];
+        node->emcy.hist[i] = node->emcy.hist[i - 1U];
     }
     /* bits 0..15 error code, 16..31 additional information (mfr bytes 0..1;
      * none with CO_OPT_HISTORY_CODE_ONLY) */
-    node->hist[0] = code;
+    node->emcy.hist[0] = code;
     if ((mfr != NULL) && !co_opt(node, CO_OPT_HISTORY_CODE_ONLY)) {
-        node->hist[0] |= (uint32_t)co_get_u16(mfr) << 16U;
+        node->emcy.hist[0] |= (uint32_t)co_get_u16(mfr) << 16U;
     }
-    *node->hist_count = n;
+    *node->emcy.hist_count = n;
 }
 
 void co_emcy_raise(co_node_t *node, uint16_t code, uint8_t reg_bits, const uint8_t *mfr)
@@ -113,10 +113,10 @@ void co_emcy_raise(co_node_t *node, uint16_t code, uint8_t reg_bits, const uint8
     if (co_emcy_is_active(node, code) || (code == CO_EMCY_NO_ERROR)) {
         return;
     }
-    if (node->n_active < CO_EMCY_ACTIVE_MAX) {
-        node->active[node->n_active].code = code;
-        node->active[node->n_active].reg = reg_bits;
-        node->n_active++;
+    if (node->emcy.n_active < CO_EMCY_ACTIVE_MAX) {
+        node->emcy.active[node->emcy.n_active].code = code;
+        node->emcy.active[node->emcy.n_active].reg = reg_bits;
+        node->emcy.n_active++;
     }
     update_errreg(node);
     if ((data == NULL) && (node->cb.emcy_mfr != NULL)) {
@@ -136,59 +136,145 @@ void co_emcy_clear(co_node_t *node, uint16_t code)
 {
     uint8_t i = 0U;
 
-    while ((i < node->n_active) && (node->active[i].code != code)) {
+    while ((i < node->emcy.n_active) && (node->emcy.active[i].code != code)) {
         i++;
     }
-    if (i == node->n_active) {
+    if (i == node->emcy.n_active) {
         return;
     }
-    node->n_active--;
-    node->active[i] = node->active[node->n_active];
+    node->emcy.n_active--;
+    node->emcy.active[i] = node->emcy.active[node->emcy.n_active];
     update_errreg(node);
-    if ((node->n_active == 0U) || co_opt(node, CO_OPT_EMCY_RESET_PARTIAL)) {
+    if ((node->emcy.n_active == 0U) || co_opt(node, CO_OPT_EMCY_RESET_PARTIAL)) {
         send_code(node, CO_EMCY_NO_ERROR, NULL);
     }
 }
 
 bool co_emcy_is_active(const co_node_t *node, uint16_t code)
 {
-    for (uint8_t i = 0U; i < node->n_active; i++) {
-        if (node->active[i].code == code) {
+    for (uint8_t i = 0U; i < node->emcy.n_active; i++) {
+        if (node->emcy.active[i].code == code) {
             return true;
         }
     }
     return false;
 }
 
-void co_emcy_history_clear(co_node_t *node)
-{
-    if (node->hist != NULL) {
-        for (uint8_t i = 0U; i < node->hist_depth; i++) {
-            node->hist[i] = 0U;
-        }
-    }
-}
-
-void co_emcy_reset(co_node_t *node)
-{
-    node->n_emcy_q = 0U;
-    node->emcy_next = node->now;
-    update_errreg(node);
-}
-
-uint32_t co_emcy_process(co_node_t *node, uint32_t next)
+static uint32_t emcy_process(co_node_t *node, uint32_t next)
 {
     /* more than one only when the inhibit time was lowered to 0 meanwhile */
-    while ((node->n_emcy_q > 0U) && !inhibited(node)) {
+    while ((node->emcy.n_q > 0U) && !inhibited(node)) {
         uint32_t cob = cob_id(node);
         if ((node->nmt != (uint8_t)CO_NMT_STOPPED) && ((cob & 0x80000000UL) == 0U)) {
-            co_tx(node, cob & 0x7FFUL, node->emcy_q[0].data, 8U);
+            co_tx(node, cob & 0x7FFUL, node->emcy.q[0].data, 8U);
         }
-        node->n_emcy_q--;
-        for (uint8_t i = 0U; i < node->n_emcy_q; i++) {
-            node->emcy_q[i] = node->emcy_q[i + 1U];
+        node->emcy.n_q--;
+        for (uint8_t i = 0U; i < node->emcy.n_q; i++) {
+            node->emcy.q[i] = node->emcy.q[i + 1U];
         }
-        node->emcy_next = node->now + inhibit_us(node);
+        node->emcy.next = node->now + inhibit_us(node);
     }
-    return (node->n_emcy_q > 0U) ? co_deadline_min(node->now, next, node->emcy_next) : next;
+    return (node->emcy.n_q > 0U) ? co_deadline_min(node->now, next, node->emcy.next) : next;
 }
+
+/* ------------------------------------------------------------ service */
+
+static co_err_t emcy_bind(co_node_t *node)
+{
+    co_emcy_t *m = &node->emcy;
+
+    m->errreg = (uint8_t *)co_od_ram_of(node, 0x1001U, 0U, (uint8_t)CO_UNSIGNED8);
+    m->hist_count = (uint8_t *)co_od_ram_of(node, 0x1003U, 0U, (uint8_t)CO_UNSIGNED8);
+    m->hist_depth = (m->hist_count != NULL)
+                        ? co_od_array_len(node, 0x1003U, (uint8_t)CO_UNSIGNED32, 254U)
+                        : 0U;
+    m->hist = (m->hist_depth != 0U)
+                  ? (uint32_t *)co_od_ram_of(node, 0x1003U, 1U, (uint8_t)CO_UNSIGNED32)
+                  : NULL;
+    m->cob = (uint32_t *)co_od_ram_of(node, 0x1014U, 0U, (uint8_t)CO_UNSIGNED32);
+    m->inhibit = (uint16_t *)co_od_ram_of(node, 0x1015U, 0U, (uint8_t)CO_UNSIGNED16);
+    return CO_OK;
+}
+
+/* A reset node has no active errors; the communication starts over with an
+ * empty queue and no inhibit time running. */
+static void emcy_reset(co_node_t *node, uint8_t kind)
+{
+    if (kind == (uint8_t)CO_RESET_NODE) {
+        node->emcy.n_active = 0U;
+    } else if (kind == CO_SVC_START) {
+        node->emcy.n_q = 0U;
+        node->emcy.next = node->now;
+        update_errreg(node);
+    } else {
+        /* reset communication keeps the active errors */
+    }
+}
+
+/* Leaving Initialising, after the boot-up frame. */
+static void emcy_nmt(co_node_t *node, co_nmt_state_t from)
+{
+    if (from != CO_NMT_INITIALISING) {
+        return;
+    }
+    if (co_opt(node, CO_OPT_BOOT_EMCY) && (node->emcy.cob != NULL) &&
+        ((*node->emcy.cob & 0x80000000UL) == 0U)) {
+        uint8_t d[8] = {0};
+        if (node->dev->boot_emcy_data != NULL) {
+            (void)memcpy(&d[3], node->dev->boot_emcy_data, 5U);
+        }
+        co_tx(node, *node->emcy.cob & 0x7FFUL, d, 8U);
+    }
+    /* Heartbeat consumers, life guarding and RPDO monitoring started over
+     * (their CO_SVC_START reset), so an EMCY 0x8130 of a producer or master
+     * lost before the reset, or an RPDO error, has nothing left to clear it.
+     * CiA 301 is silent; we end them here, after the boot-up (the first frame
+     * after a reset) and in Pre-operational, where EMCY may be sent. No-op
+     * after a node reset (no active errors) and at init. */
+    co_emcy_clear(node, CO_EMCY_HB_GUARD);
+    co_emcy_clear(node, CO_EMCY_PDO_SHORT);
+    co_emcy_clear(node, CO_EMCY_PDO_LONG);
+    co_emcy_clear(node, CO_EMCY_RPDO_TIMEOUT);
+}
+
+/* 0x1003: entries beyond the number of recorded errors hold no data; only
+ * 0 may be written to sub0, which clears the history. 0x1014: the CAN-ID is
+ * fixed while the EMCY is valid (bit 31 = 0). */
+static co_err_t emcy_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
+                         const co_od_sub_t *s, const uint8_t *data, uint32_t len)
+{
+    co_emcy_t *m = &node->emcy;
+    uint8_t sub = s->sub;
+    co_err_t err = CO_OK;
+
+    if (e->index != 0x1003U) {
+        if ((e->index == 0x1014U) && (sub == 0U) && (len == 4U) && (m->cob != NULL)) {
+            err = co_check_cob(*m->cob, co_get_u32(data), 0x80000000UL, false, 0x40000000UL,
+                               false);
+        }
+    } else if (op == (uint8_t)CO_SVC_READ) {
+        if ((sub > 0U) && (m->hist_count != NULL) && (sub > *m->hist_count)) {
+            err = CO_ERR_NO_DATA;
+        }
+    } else if (op == (uint8_t)CO_SVC_CHECK) {
+        if ((sub == 0U) && (len == 1U) && (data[0] != 0U)) {
+            err = CO_ERR_VALUE;
+        }
+    } else if ((sub == 0U) && (m->hist != NULL)) { /* written */
+        for (uint8_t i = 0U; i < m->hist_depth; i++) {
+            m->hist[i] = 0U;
+        }
+    } else {
+        /* a history entry written by the application */
+    }
+    return err;
+}
+
+static const co_svc_hook_t emcy_hooks[] = {
+    {0x1003U, 0x1003U, CO_SVC_READ | CO_SVC_CHECK | CO_SVC_WRITTEN, emcy_obj},
+    {0x1014U, 0x1015U, CO_SVC_CHECK, emcy_obj},
+};
+
+const co_service_t co_svc_emcy = {
+    emcy_bind, emcy_reset, NULL, NULL, emcy_process, emcy_nmt, emcy_hooks, 2U,
+};

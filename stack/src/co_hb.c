@@ -2,6 +2,7 @@
  * Error control: heartbeat producer (0x1017), heartbeat consumer (0x1016),
  * node guarding and life guarding (0x100C, 0x100D).
  */
+#include "co/co_endian.h"
 #include "co_priv.h"
 
 enum { HBC_UNUSED = 0, HBC_WAITING, HBC_ACTIVE, HBC_LOST };
@@ -23,10 +24,10 @@ static void event(co_node_t *node, co_hb_event_t ev, uint8_t id, uint8_t state)
  * is lost, and cleared when the last one comes back. */
 static void update_error(co_node_t *node)
 {
-    bool lost = (node->guard_state == (uint8_t)GUARD_LOST);
+    bool lost = (node->errctl.guard_state == (uint8_t)GUARD_LOST);
 
-    for (uint8_t k = 0U; (k < node->n_hb_cons) && !lost; k++) {
-        lost = (node->hbc[k].state == (uint8_t)HBC_LOST);
+    for (uint8_t k = 0U; (k < node->errctl.n_hb_cons) && !lost; k++) {
+        lost = (node->errctl.hbc[k].state == (uint8_t)HBC_LOST);
     }
     if (lost) {
         co_emcy_raise(node, CO_EMCY_HB_GUARD, CO_ERREG_COMM, NULL);
@@ -39,7 +40,7 @@ static void update_error(co_node_t *node)
 
 static bool heartbeat_producing(const co_node_t *node)
 {
-    return (node->hb_prod != NULL) && (*node->hb_prod != 0U);
+    return (node->errctl.hb_prod != NULL) && (*node->errctl.hb_prod != 0U);
 }
 
 /* CiA 301: with a non-zero heartbeat producer time the node uses the
@@ -56,8 +57,8 @@ static uint32_t life_ms(const co_node_t *node)
 {
     uint32_t life = 0U;
 
-    if ((node->guard_time != NULL) && (node->life_factor != NULL)) {
-        life = (uint32_t)*node->guard_time * *node->life_factor;
+    if ((node->errctl.guard_time != NULL) && (node->errctl.life_factor != NULL)) {
+        life = (uint32_t)*node->errctl.guard_time * *node->errctl.life_factor;
     }
     return life;
 }
@@ -69,10 +70,10 @@ static uint32_t life_ms(const co_node_t *node)
  * that nothing can ever clear would stay in 0x1001 for good. */
 static void guard_check(co_node_t *node)
 {
-    if ((node->guard_state != (uint8_t)GUARD_OFF) &&
+    if ((node->errctl.guard_state != (uint8_t)GUARD_OFF) &&
         ((life_ms(node) == 0U) || !guarding_answered(node))) {
-        bool was_lost = (node->guard_state == (uint8_t)GUARD_LOST);
-        node->guard_state = (uint8_t)GUARD_OFF;
+        bool was_lost = (node->errctl.guard_state == (uint8_t)GUARD_LOST);
+        node->errctl.guard_state = (uint8_t)GUARD_OFF;
         if (was_lost) {
             update_error(node);
             event(node, CO_GUARD_RECOVERED, 0U, node->nmt);
@@ -80,10 +81,10 @@ static void guard_check(co_node_t *node)
     }
 }
 
-void co_hb_producer_changed(co_node_t *node)
+static void producer_changed(co_node_t *node)
 {
     if (heartbeat_producing(node)) {
-        node->hb_deadline = node->now + ms_to_us(*node->hb_prod);
+        node->errctl.hb_deadline = node->now + ms_to_us(*node->errctl.hb_prod);
     }
     guard_check(node);
 }
@@ -92,22 +93,22 @@ void co_hb_producer_changed(co_node_t *node)
  * waits for its producer's first heartbeat. The others keep monitoring. */
 static void consumers_restart(co_node_t *node)
 {
-    for (uint8_t k = 0U; k < node->n_hb_cons; k++) {
-        uint32_t v = node->hb_cons[k];
+    for (uint8_t k = 0U; k < node->errctl.n_hb_cons; k++) {
+        uint32_t v = node->errctl.hb_cons[k];
         bool used = ((v & 0xFFFFU) != 0U) && (((v >> 16U) & 0xFFU) != 0U);
-        if (node->hbc[k].state == (uint8_t)HBC_UNUSED) {
-            node->hbc[k].state = used ? (uint8_t)HBC_WAITING : (uint8_t)HBC_UNUSED;
-            node->hbc[k].nmt = (uint8_t)CO_NMT_INITIALISING;
+        if (node->errctl.hbc[k].state == (uint8_t)HBC_UNUSED) {
+            node->errctl.hbc[k].state = used ? (uint8_t)HBC_WAITING : (uint8_t)HBC_UNUSED;
+            node->errctl.hbc[k].nmt = (uint8_t)CO_NMT_INITIALISING;
         }
     }
-    co_rx_rebuild(node);
+    co_rx_invalidate(node);
 }
 
-/* After a write of 0x1016 sub k, co_comm_written has set hbc[k-1].state to
+/* After a write of 0x1016 sub k, errctl_written has set hbc[k-1].state to
  * HBC_UNUSED: only that entry starts over. CiA 301 does not say what a write
  * does to the other entries; restarting them would pause their monitoring
  * and end a pending timeout of a producer that is still silent. */
-void co_hb_consumers_changed(co_node_t *node)
+static void consumers_changed(co_node_t *node)
 {
     consumers_restart(node);
     update_error(node);
@@ -117,35 +118,35 @@ void co_hb_consumers_changed(co_node_t *node)
  * producer or master may have left active is not touched here: this runs
  * before the boot-up frame, which must be the first frame after the reset;
  * co_nmt_boot ends that error once the node is in Pre-operational. */
-void co_hb_reset(co_node_t *node)
+static void hb_reset(co_node_t *node)
 {
-    node->guard_toggle = 0U;
-    node->guard_state = (uint8_t)GUARD_OFF;
+    node->errctl.guard_toggle = 0U;
+    node->errctl.guard_state = (uint8_t)GUARD_OFF;
     /* The boot-up frame counts as the first heartbeat. */
     if (heartbeat_producing(node)) {
-        node->hb_deadline = node->now + ms_to_us(*node->hb_prod);
+        node->errctl.hb_deadline = node->now + ms_to_us(*node->errctl.hb_prod);
     }
-    for (uint8_t k = 0U; k < node->n_hb_cons; k++) {
-        node->hbc[k].state = (uint8_t)HBC_UNUSED;
+    for (uint8_t k = 0U; k < node->errctl.n_hb_cons; k++) {
+        node->errctl.hbc[k].state = (uint8_t)HBC_UNUSED;
     }
     consumers_restart(node);
 }
 
-void co_hb_rx(co_node_t *node, uint8_t slot, const co_frame_t *f)
+static void hb_rx(co_node_t *node, uint8_t slot, const co_frame_t *f)
 {
-    co_hb_consumer_t *c = &node->hbc[slot];
+    co_hb_consumer_t *c = &node->errctl.hbc[slot];
     uint8_t st;
     uint8_t id;
     uint8_t prev;
 
-    if (co_frame_is_rtr(f) || (f->dlc < 1U) || (slot >= node->n_hb_cons) ||
+    if (co_frame_is_rtr(f) || (f->dlc < 1U) || (slot >= node->errctl.n_hb_cons) ||
         (c->state == (uint8_t)HBC_UNUSED)) {
         return;
     }
     st = (uint8_t)(f->data[0] & 0x7FU);
-    id = (uint8_t)((node->hb_cons[slot] >> 16U) & 0x7FU);
+    id = (uint8_t)((node->errctl.hb_cons[slot] >> 16U) & 0x7FU);
     prev = c->state;
-    c->deadline = node->now + ms_to_us(node->hb_cons[slot] & 0xFFFFU);
+    c->deadline = node->now + ms_to_us(node->errctl.hb_cons[slot] & 0xFFFFU);
     c->state = (uint8_t)HBC_ACTIVE;
     if (prev == (uint8_t)HBC_WAITING) {
         event(node, CO_HB_STARTED, id, st);
@@ -163,7 +164,8 @@ void co_hb_rx(co_node_t *node, uint8_t slot, const co_frame_t *f)
     }
 }
 
-void co_guard_rx(co_node_t *node, const co_frame_t *f)
+#if CO_NODE_GUARDING
+static void guard_rx(co_node_t *node, const co_frame_t *f)
 {
     uint8_t reply;
     uint32_t life;
@@ -174,15 +176,15 @@ void co_guard_rx(co_node_t *node, const co_frame_t *f)
     if (!guarding_answered(node)) {
         return;
     }
-    reply = (uint8_t)(node->guard_toggle | node->nmt);
-    node->guard_toggle ^= 0x80U;
+    reply = (uint8_t)(node->errctl.guard_toggle | node->nmt);
+    node->errctl.guard_toggle ^= 0x80U;
     co_tx(node, 0x700UL + node->node_id, &reply, 1U);
 
     life = life_ms(node);
     if (life != 0U) {
-        bool was_lost = (node->guard_state == (uint8_t)GUARD_LOST);
-        node->guard_state = (uint8_t)GUARD_ARMED;
-        node->guard_deadline = node->now + ms_to_us(life);
+        bool was_lost = (node->errctl.guard_state == (uint8_t)GUARD_LOST);
+        node->errctl.guard_state = (uint8_t)GUARD_ARMED;
+        node->errctl.guard_deadline = node->now + ms_to_us(life);
         if (was_lost) {
             update_error(node);
             event(node, CO_GUARD_RECOVERED, 0U, node->nmt);
@@ -190,47 +192,172 @@ void co_guard_rx(co_node_t *node, const co_frame_t *f)
     }
 }
 
-uint32_t co_hb_process(co_node_t *node, uint32_t next)
+#endif
+
+static uint32_t errctl_process(co_node_t *node, uint32_t next)
 {
     uint32_t now = node->now;
 
     if (heartbeat_producing(node)) {
-        if (co_time_reached(now, node->hb_deadline)) {
+        if (co_time_reached(now, node->errctl.hb_deadline)) {
             uint8_t st = node->nmt;
-            uint32_t period = ms_to_us(*node->hb_prod);
+            uint32_t period = ms_to_us(*node->errctl.hb_prod);
             co_tx(node, 0x700UL + node->node_id, &st, 1U);
-            node->hb_deadline += period;
-            if (co_time_reached(now, node->hb_deadline)) {
-                node->hb_deadline = now + period; /* fell behind: no burst */
+            node->errctl.hb_deadline += period;
+            if (co_time_reached(now, node->errctl.hb_deadline)) {
+                node->errctl.hb_deadline = now + period; /* fell behind: no burst */
             }
         }
-        next = co_deadline_min(now, next, node->hb_deadline);
+        next = co_deadline_min(now, next, node->errctl.hb_deadline);
     }
-    for (uint8_t k = 0U; k < node->n_hb_cons; k++) {
-        co_hb_consumer_t *c = &node->hbc[k];
+    for (uint8_t k = 0U; k < node->errctl.n_hb_cons; k++) {
+        co_hb_consumer_t *c = &node->errctl.hbc[k];
         if (c->state == (uint8_t)HBC_ACTIVE) {
             if (co_time_reached(now, c->deadline)) {
                 c->state = (uint8_t)HBC_LOST;
                 update_error(node);
-                event(node, CO_HB_TIMEOUT, (uint8_t)((node->hb_cons[k] >> 16U) & 0x7FU), c->nmt);
+                event(node, CO_HB_TIMEOUT, (uint8_t)((node->errctl.hb_cons[k] >> 16U) & 0x7FU), c->nmt);
                 co_nmt_error(node, CO_ERRBEH_COMM); /* 0x1029: a communication error */
             } else {
                 next = co_deadline_min(now, next, c->deadline);
             }
         }
     }
-    /* 0x100C/0x100D written since the last call (co_comm_written keeps a
+    /* 0x100C/0x100D written since the last call (errctl_written keeps a
      * lost state so that the next request can end it) */
     guard_check(node);
-    if (node->guard_state == (uint8_t)GUARD_ARMED) {
-        if (co_time_reached(now, node->guard_deadline)) {
-            node->guard_state = (uint8_t)GUARD_LOST;
+    if (node->errctl.guard_state == (uint8_t)GUARD_ARMED) {
+        if (co_time_reached(now, node->errctl.guard_deadline)) {
+            node->errctl.guard_state = (uint8_t)GUARD_LOST;
             update_error(node);
             event(node, CO_GUARD_LOST, 0U, node->nmt);
             co_nmt_error(node, CO_ERRBEH_COMM); /* 0x1029: a communication error */
         } else {
-            next = co_deadline_min(now, next, node->guard_deadline);
+            next = co_deadline_min(now, next, node->errctl.guard_deadline);
         }
     }
     return next;
 }
+
+/* ------------------------------------------------------------ service */
+
+#define GUARD_SLOT 0xFFU /* receive-slot argument of the guarding RTR */
+
+static co_err_t errctl_bind(co_node_t *node)
+{
+    co_errctl_t *c = &node->errctl;
+
+    c->n_hb_cons = co_od_array_len(node, 0x1016U, (uint8_t)CO_UNSIGNED32,
+                                   (uint8_t)CO_HB_CONSUMERS_MAX);
+    c->hb_cons = (c->n_hb_cons != 0U)
+                     ? (uint32_t *)co_od_ram_of(node, 0x1016U, 1U, (uint8_t)CO_UNSIGNED32)
+                     : NULL;
+    c->hb_prod = (uint16_t *)co_od_ram_of(node, 0x1017U, 0U, (uint8_t)CO_UNSIGNED16);
+#if CO_NODE_GUARDING
+    c->guard_time = (uint16_t *)co_od_ram_of(node, 0x100CU, 0U, (uint8_t)CO_UNSIGNED16);
+    c->life_factor = (uint8_t *)co_od_ram_of(node, 0x100DU, 0U, (uint8_t)CO_UNSIGNED8);
+#else
+    if ((co_od_find(node->dev->od, node->dev->od_count, 0x100CU) != NULL) ||
+        (co_od_find(node->dev->od, node->dev->od_count, 0x100DU) != NULL)) {
+        return CO_ERR_DEV_INCOMPAT;
+    }
+#endif
+    return CO_OK;
+}
+
+static void errctl_reset(co_node_t *node, uint8_t kind)
+{
+    if (kind == CO_SVC_START) {
+        hb_reset(node);
+    }
+}
+
+static void errctl_rx_slots(co_node_t *node, uint8_t svc)
+{
+#if CO_NODE_GUARDING
+    co_rx_add(node, (uint16_t)(0x700U + node->node_id), svc, GUARD_SLOT);
+#endif
+    for (uint8_t k = 0U; k < node->errctl.n_hb_cons; k++) {
+        uint32_t v = node->errctl.hb_cons[k];
+        uint8_t id = (uint8_t)((v >> 16U) & 0x7FU);
+        if (((v & 0xFFFFU) != 0U) && (id != 0U) && (id != node->node_id)) {
+            co_rx_add(node, (uint16_t)(0x700U + id), svc, k);
+        }
+    }
+}
+
+static void errctl_rx(co_node_t *node, uint16_t arg, const co_frame_t *f)
+{
+#if CO_NODE_GUARDING
+    if (arg == GUARD_SLOT) {
+        guard_rx(node, f);
+        return;
+    }
+#endif
+    hb_rx(node, (uint8_t)arg, f);
+}
+
+/* 0x1016: one producer may be monitored by one entry only. */
+static co_err_t hb_consumer_check(const co_node_t *node, uint8_t sub, uint32_t v)
+{
+    uint8_t id = (uint8_t)((v >> 16U) & 0xFFU);
+
+    if ((v & 0xFF000000UL) != 0U) {
+        return CO_ERR_VALUE;
+    }
+    if (((v & 0xFFFFU) == 0U) || (id == 0U)) {
+        return CO_OK; /* entry not used */
+    }
+    if (id > 127U) {
+        return CO_ERR_VALUE;
+    }
+    for (uint8_t k = 0U; k < node->errctl.n_hb_cons; k++) {
+        uint32_t o = node->errctl.hb_cons[k];
+        if (((uint8_t)(k + 1U) != sub) && (((o >> 16U) & 0xFFU) == id) && ((o & 0xFFFFU) != 0U)) {
+            return CO_ERR_PARAM_INCOMPAT;
+        }
+    }
+    return CO_OK;
+}
+
+static co_err_t errctl_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
+                           const co_od_sub_t *s, const uint8_t *data, uint32_t len)
+{
+    co_errctl_t *c = &node->errctl;
+    uint8_t sub = s->sub;
+    bool consumer = (e->index == 0x1016U) && (sub > 0U) && (sub <= c->n_hb_cons);
+
+    if (op == (uint8_t)CO_SVC_CHECK) {
+        if ((e->index < 0x1016U) && co_opt(node, CO_OPT_GUARD_HB_EXCLUSIVE) &&
+            heartbeat_producing(node)) {
+            return CO_ERR_RESOURCE; /* guarding refused while the heartbeat runs */
+        }
+        return (consumer && (len == 4U)) ? hb_consumer_check(node, sub, co_get_u32(data))
+                                         : CO_OK;
+    }
+    if (consumer) {
+        c->hbc[sub - 1U].state = (uint8_t)HBC_UNUSED; /* this entry starts over */
+        consumers_changed(node);
+    } else if (e->index == 0x1017U) {
+        producer_changed(node);
+    } else if ((e->index != 0x1016U) && (c->guard_state == (uint8_t)GUARD_ARMED)) {
+        /* 0x100C / 0x100D: life guarding is re-armed with the new life time
+         * by the next guarding request. A lost state is kept: that request
+         * must still end the error (errctl_process ends it if life guarding
+         * is now off). */
+        c->guard_state = (uint8_t)GUARD_OFF;
+    } else {
+        /* nothing armed */
+    }
+    return CO_OK;
+}
+
+static const co_svc_hook_t errctl_hooks[] = {
+    {0x100CU, 0x100DU, CO_SVC_CHECK | CO_SVC_WRITTEN, errctl_obj},
+    {0x1016U, 0x1017U, CO_SVC_CHECK | CO_SVC_WRITTEN, errctl_obj},
+};
+
+const co_service_t co_svc_errctl = {
+    errctl_bind,   errctl_reset, errctl_rx_slots, errctl_rx, errctl_process,
+    NULL,          errctl_hooks, 2U,
+};

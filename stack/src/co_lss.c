@@ -205,9 +205,12 @@ void co_lss_init(co_node_t *node)
     }
 }
 
-void co_lss_reset(co_node_t *node)
+static void lss_reset(co_node_t *node, uint8_t kind)
 {
-    /* a reset of the node leaves LSS in waiting (CiA 305) */
+    if (kind != CO_SVC_START) {
+        return;
+    }
+    /* every boot leaves LSS in waiting (CiA 305) */
     node->lss.state = ST_WAITING;
     node->lss.sel_step = 0U;
     node->lss.id_step = 0U;
@@ -378,11 +381,12 @@ static void rx_config(co_node_t *node, const uint8_t *d)
     }
 }
 
-void co_lss_rx(co_node_t *node, const co_frame_t *f)
+static void lss_rx(co_node_t *node, uint16_t arg, const co_frame_t *f)
 {
     const uint8_t *d = f->data;
     uint8_t cs = d[0];
 
+    (void)arg;
     if (co_frame_is_rtr(f) || (f->dlc != 8U)) {
         return;
     }
@@ -408,7 +412,7 @@ void co_lss_rx(co_node_t *node, const co_frame_t *f)
     }
 }
 
-uint32_t co_lss_process(co_node_t *node, uint32_t next)
+static uint32_t lss_process(co_node_t *node, uint32_t next)
 {
     if (node->lss.switching == 0U) {
         return next;
@@ -423,5 +427,16 @@ uint32_t co_lss_process(co_node_t *node, uint32_t next)
     }
     return next;
 }
+
+static void lss_rx_slots(co_node_t *node, uint8_t svc)
+{
+    if (co_lss_enabled(node)) {
+        co_rx_add(node, LSS_RX, svc, 0U);
+    }
+}
+
+/* The first row of co_services[]: it alone runs while unconfigured. */
+const co_service_t co_svc_lss = {NULL, lss_reset, lss_rx_slots, lss_rx, lss_process, NULL,
+                                 NULL, 0U};
 
 #endif /* CO_LSS */

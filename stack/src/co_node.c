@@ -59,7 +59,13 @@ void co_node_tx_ready(co_node_t *node, uint32_t now_us)
     co_node_clock(node, now_us);
     tx_drain(node);
     if (node->txq_len == 0U) {
-        (void)co_sdo_process(node, CO_NO_DEADLINE); /* a stalled block upload goes on */
+        /* a stream stalled on the full TX path (SDO block upload) goes on:
+         * the services' timers, as an extra co_node_process would */
+        for (uint8_t k = 0U; k < co_n_services; k++) {
+            if (co_services[k]->process != NULL) {
+                (void)co_services[k]->process(node, CO_NO_DEADLINE);
+            }
+        }
     }
 }
 
@@ -79,9 +85,28 @@ bool co_tx_try(co_node_t *node, uint32_t id, const uint8_t *data, uint8_t len)
     return co_tx_now(node, &f);
 }
 
+/* A COB-ID write (CiA 301 7.5.2), for the services' checks. */
+co_err_t co_check_cob(uint32_t cur, uint32_t v, uint32_t use_bits, bool use_when_set,
+                      uint32_t reserved, bool always)
+{
+    bool cur_used = use_when_set ? ((cur & use_bits) != 0U) : ((cur & use_bits) == 0U);
+    bool new_used = use_when_set ? ((v & use_bits) != 0U) : ((v & use_bits) == 0U);
+
+    if (((v & 0x20000000UL) != 0U) || ((v & 0x1FFFF800UL) != 0U) || ((v & reserved) != 0U)) {
+        return CO_ERR_VALUE;
+    }
+    if (cur_used && new_used && ((v & 0x7FFUL) != (cur & 0x7FFUL))) {
+        return CO_ERR_VALUE;
+    }
+    if ((new_used || always) && co_cob_restricted(v & 0x7FFUL)) {
+        return CO_ERR_VALUE;
+    }
+    return CO_OK;
+}
+
 /* ------------------------------------------------------- RX dispatch */
 
-static void rx_add(co_node_t *node, uint16_t cob, uint8_t kind, uint8_t arg)
+void co_rx_add(co_node_t *node, uint16_t cob, uint8_t svc, uint8_t arg)
 {
     uint8_t i = node->n_rx;
 
@@ -94,48 +119,42 @@ static void rx_add(co_node_t *node, uint16_t cob, uint8_t kind, uint8_t arg)
         i--;
     }
     node->rx[i].cob = cob;
-    node->rx[i].kind = kind;
+    node->rx[i].kind = svc;
     node->rx[i].arg = arg;
     node->n_rx++;
-    node->rx_filter[(cob & 0x7FU) >> 3U] |= (uint8_t)(1U << (cob & 7U));
+    co_rx_accept(node, cob);
     node->rx_fc |= (uint16_t)(1U << (cob >> 7U));
 }
 
-/* The services of a configured node (NMT, SDO, ...), then its PDOs. */
-static void rx_add_services(co_node_t *node)
+/* The rows of co_services[] that run: all, or only LSS while unconfigured. */
+static uint8_t services_running(const co_node_t *node)
 {
-    rx_add(node, 0x000U, CO_RX_NMT, 0U);
-    rx_add(node, (uint16_t)(0x600U + node->node_id), CO_RX_SDO, 0U);
-    rx_add(node, (uint16_t)(0x700U + node->node_id), CO_RX_GUARD, 0U);
-    if ((node->sync_cob != NULL) && ((*node->sync_cob & 0x40000000UL) == 0U)) {
-        rx_add(node, (uint16_t)(*node->sync_cob & 0x7FFU), CO_RX_SYNC, 0U);
-    }
-    if ((co_time_cob(node) != NULL) && ((*co_time_cob(node) & 0x80000000UL) != 0U)) {
-        rx_add(node, (uint16_t)(*co_time_cob(node) & 0x7FFU), CO_RX_TIME, 0U);
-    }
-    for (uint8_t k = 0U; k < node->n_hb_cons; k++) {
-        uint32_t v = node->hb_cons[k];
-        uint8_t id = (uint8_t)((v >> 16U) & 0x7FU);
-        if (((v & 0xFFFFU) != 0U) && (id != 0U) && (id != node->node_id)) {
-            rx_add(node, (uint16_t)(0x700U + id), CO_RX_HB, k);
-        }
-    }
-    co_pdo_rx_rebuild(node);
+    return (node->node_id == CO_NODE_ID_UNCONFIGURED) ? CO_SVC_UNCONFIGURED_ROWS : co_n_services;
 }
 
+/* Until the table is rebuilt, every frame passes the filter and finds no
+ * slot: the first one rebuilds it (co_rx_dispatch). */
+void co_rx_invalidate(co_node_t *node)
+{
+    node->rx_dirty = 1U;
+    node->rx_fc = 0U;
+    node->pdo.fc = 0U;
+    (void)memset(node->rx_filter, 0xFF, sizeof node->rx_filter);
+}
+
+/* Every service adds its slots, in table order; then the port hears of the
+ * new set (its hardware filters). */
 void co_rx_rebuild(co_node_t *node)
 {
+    node->rx_dirty = 0U;
     node->n_rx = 0U;
     node->rx_fc = 0U;
+    node->pdo.fc = 0U;
     (void)memset(node->rx_filter, 0, sizeof node->rx_filter);
-    if (co_lss_enabled(node)) {
-        rx_add(node, 0x7E5U, CO_RX_LSS, 0U);
-    }
-    if (node->node_id == CO_NODE_ID_UNCONFIGURED) {
-        node->pdo_fc = 0U; /* LSS only */
-        node->n_pdo_rx = 0U;
-    } else {
-        rx_add_services(node);
+    for (uint8_t k = 0U; k < services_running(node); k++) {
+        if (co_services[k]->rx_slots != NULL) {
+            co_services[k]->rx_slots(node, k);
+        }
     }
     if (node->cb.rx_set != NULL) {
         node->cb.rx_set(node->cb.ctx, node);
@@ -149,8 +168,8 @@ bool co_node_rx_cob(const co_node_t *node, uint16_t i, uint16_t *cob)
     if (i < node->n_rx) {
         *cob = node->rx[i].cob;
         found = true;
-    } else if ((uint16_t)(i - node->n_rx) < node->n_pdo_rx) {
-        *cob = node->pdo_rx[i - node->n_rx].cob;
+    } else if ((uint16_t)(i - node->n_rx) < node->pdo.n_rx) {
+        *cob = node->pdo.rx[i - node->n_rx].cob;
         found = true;
     } else {
         /* past the last */
@@ -181,13 +200,13 @@ static const co_rx_slot_t *rx_find(const co_node_t *node, uint16_t cob)
 static const co_pdo_slot_t *pdo_find(const co_node_t *node, uint16_t cob)
 {
     uint32_t lo = 0U;
-    uint32_t hi = node->n_pdo_rx;
+    uint32_t hi = node->pdo.n_rx;
 
     while (lo < hi) {
         uint32_t mid = (lo + hi) >> 1U;
-        uint16_t at = node->pdo_rx[mid].cob;
+        uint16_t at = node->pdo.rx[mid].cob;
         if (at == cob) {
-            return &node->pdo_rx[mid];
+            return &node->pdo.rx[mid];
         }
         if (at < cob) {
             lo = mid + 1U;
@@ -198,22 +217,25 @@ static const co_pdo_slot_t *pdo_find(const co_node_t *node, uint16_t cob)
     return NULL;
 }
 
-/* A frame that may be on a PDO's COB-ID. */
+/* A frame that may be on a PDO's COB-ID: the PDO service's receive entry
+ * (which its rx_slots left in node->pdo.recv, with the table) with the PDO's
+ * number. */
 static void pdo_rx(co_node_t *node, uint16_t cob, const co_frame_t *f, uint32_t now_us)
 {
     const co_pdo_slot_t *ps = pdo_find(node, cob);
 
-    if (ps == NULL) {
-        return;
+    if (ps != NULL) {
+        co_node_clock(node, now_us);
+        node->pdo.recv(node, ps->pdo, f);
     }
-    co_node_clock(node, now_us);
-    if (ps->pdo < node->dev->n_rpdo) {
-        co_rpdo_rx(node, ps->pdo, f);
-    } else if (co_frame_is_rtr(f)) {
-        co_tpdo_rtr(node, ps->pdo);
-    } else {
-        /* another node's data frame on this TPDO's identifier */
-    }
+}
+
+/* A frame that came while the table was out of date: rebuild, look again. */
+CO_NOINLINE static void rx_stale(co_node_t *node, const co_frame_t *f, uint16_t cob,
+                                 uint32_t now_us)
+{
+    co_rx_rebuild(node);
+    co_rx_dispatch(node, f, cob, now_us);
 }
 
 /* A frame the filter let through: find what it is for. (Not static, so
@@ -227,37 +249,15 @@ void co_rx_dispatch(co_node_t *node, const co_frame_t *f, uint16_t cob, uint32_t
     if ((node->rx_fc & fc) != 0U) {
         slot = rx_find(node, cob);
     }
-    if (slot == NULL) {
-        if ((node->pdo_fc & fc) != 0U) {
-            pdo_rx(node, cob, f, now_us);
-        }
-        return;
-    }
-    co_node_clock(node, now_us);
-    switch (slot->kind) {
-    case CO_RX_NMT:
-        co_nmt_rx(node, f);
-        break;
-    case CO_RX_SDO:
-        co_sdo_rx(node, f);
-        break;
-    case CO_RX_GUARD:
-        co_guard_rx(node, f);
-        break;
-    case CO_RX_HB:
-        co_hb_rx(node, slot->arg, f);
-        break;
-    case CO_RX_SYNC:
-        co_sync_rx(node, f);
-        break;
-    case CO_RX_TIME:
-        co_time_rx(node, f);
-        break;
-    case CO_RX_LSS:
-        co_lss_rx(node, f);
-        break;
-    default:
-        break;
+    if (slot != NULL) {
+        co_node_clock(node, now_us);
+        co_services[slot->kind]->rx(node, slot->arg, f);
+    } else if ((node->pdo.fc & fc) != 0U) {
+        pdo_rx(node, cob, f, now_us);
+    } else if (node->rx_dirty != 0U) {
+        rx_stale(node, f, cob, now_us);
+    } else {
+        /* not for this node */
     }
 }
 
@@ -284,21 +284,21 @@ CO_NOINLINE void co_node_stalled(co_node_t *node, uint32_t now_us)
 {
     uint16_t n = (uint16_t)(node->dev->n_rpdo + node->dev->n_tpdo);
 
-    node->hb_deadline = now_us;
-    node->guard_deadline = now_us;
-    node->sync_deadline = now_us;
-    node->sync_last = now_us - (uint32_t)CO_HORIZON_US; /* the SYNC window is long closed */
-    node->emcy_next = now_us;
+    node->errctl.hb_deadline = now_us;
+    node->errctl.guard_deadline = now_us;
+    node->sync.deadline = now_us;
+    node->sync.last = now_us - (uint32_t)CO_HORIZON_US; /* the SYNC window is long closed */
+    node->emcy.next = now_us;
     node->sdo.deadline = now_us;
 #if CO_LSS
     node->lss.switch_at = now_us;
 #endif
-    for (uint8_t k = 0U; k < node->n_hb_cons; k++) {
-        node->hbc[k].deadline = now_us;
+    for (uint8_t k = 0U; k < node->errctl.n_hb_cons; k++) {
+        node->errctl.hbc[k].deadline = now_us;
     }
     for (uint16_t i = 0U; i < n; i++) {
-        node->pdo[i].timer = now_us;
-        node->pdo[i].inhibit = now_us;
+        node->pdo.p[i].timer = now_us;
+        node->pdo.p[i].inhibit = now_us;
     }
 }
 
@@ -307,17 +307,13 @@ uint32_t co_node_process(co_node_t *node, uint32_t now_us)
     uint32_t next = CO_NO_DEADLINE;
 
     co_node_clock(node, now_us);
+    co_rx_settle(node); /* COB-IDs the application changed since */
     tx_drain(node);
-    next = co_lss_process(node, next);
-    if (node->node_id == CO_NODE_ID_UNCONFIGURED) {
-        return next; /* LSS init: no other service runs */
+    for (uint8_t k = 0U; k < services_running(node); k++) {
+        if (co_services[k]->process != NULL) {
+            next = co_services[k]->process(node, next);
+        }
     }
-    next = co_sdo_process(node, next);
-    next = co_hb_process(node, next);
-    next = co_emcy_process(node, next);
-    next = co_sync_process(node, next);
-    next = co_rpdo_process(node, next);
-    next = co_tpdo_process(node, next);
     if (node->txq_len > 0U) {
         /* TX path still full: look again in a millisecond */
         next = co_deadline_min(now_us, next, now_us + 1000U);
@@ -328,53 +324,214 @@ uint32_t co_node_process(co_node_t *node, uint32_t now_us)
     return next;
 }
 
+/* ------------------------------------------------------------ NMT */
+
+void co_node_set_state(co_node_t *node, co_nmt_state_t st)
+{
+    co_nmt_state_t from = (co_nmt_state_t)node->nmt;
+
+    if (node->nmt == (uint8_t)st) {
+        return;
+    }
+    node->nmt = (uint8_t)st;
+    for (uint8_t k = 0U; k < co_n_services; k++) {
+        if (co_services[k]->nmt != NULL) {
+            co_services[k]->nmt(node, from);
+        }
+    }
+    if (node->cb.nmt_state != NULL) {
+        node->cb.nmt_state(node->cb.ctx, node, st);
+    }
+}
+
+static void services_reset(co_node_t *node, uint8_t kind)
+{
+    for (uint8_t k = 0U; k < co_n_services; k++) {
+        if (co_services[k]->reset != NULL) {
+            co_services[k]->reset(node, kind);
+        }
+    }
+}
+
+/* Initialising: the communication services start from their reset values,
+ * the boot-up frame goes out, and the node enters Pre-operational. */
+static void boot(co_node_t *node)
+{
+    node->nmt = (uint8_t)CO_NMT_INITIALISING;
+    services_reset(node, CO_SVC_START);
+    co_rx_invalidate(node);
+    if (node->node_id == CO_NODE_ID_UNCONFIGURED) {
+        return; /* LSS init: no boot-up, no NMT until a valid node-ID */
+    }
+    if (!co_opt(node, CO_OPT_NO_BOOTUP)) {
+        static const uint8_t bootup = 0x00U;
+        co_tx(node, 0x700UL + node->node_id, &bootup, 1U);
+    }
+    co_node_set_state(node, CO_NMT_PRE_OPERATIONAL);
+}
+
+/* A device with a node-ID object (co_dev_t.nodeid_index): take the node-ID
+ * from it when it holds another valid one; true if it changed. */
+static bool take_nodeid(co_node_t *node)
+{
+    const uint8_t *v;
+
+    if (node->dev->nodeid_index == 0U) {
+        return false;
+    }
+    v = (const uint8_t *)co_od_value_ptr(node, node->dev->nodeid_index, 0U);
+    if ((v == NULL) || (*v < 1U) || (*v > 127U) || (*v == node->node_id)) {
+        return false;
+    }
+    node->cob_base = co_node_cob_base_for(node, *v);
+    node->node_id = *v;
+    node->pending_id = *v;
+    return true;
+}
+
+/* Reset communication restores the communication area, reset node all of
+ * the image, each to defaults and then to the stored set (0x1010): the
+ * services' reset of that kind. Where the objects live does not change, so
+ * what the services' bind found at init stays valid. A device with a
+ * node-ID object takes its node-ID from it first ($NODEID defaults follow
+ * it); after a node reset that object has its stored value, so the image is
+ * restored again if the node-ID changes. */
+static void reset(co_node_t *node, co_reset_t kind_asked)
+{
+    /* a new node-ID (LSS, co_node_set_id) takes effect here (CiA 305) */
+    co_reset_t kind = co_node_take_id(node, kind_asked);
+
+    if (kind == CO_RESET_COMMUNICATION) {
+        (void)take_nodeid(node);
+        services_reset(node, (uint8_t)kind);
+    } else {
+        services_reset(node, (uint8_t)kind);
+        if (take_nodeid(node)) {
+            services_reset(node, (uint8_t)kind);
+        }
+    }
+    if (node->cb.nmt_reset != NULL) {
+        node->cb.nmt_reset(node->cb.ctx, node, kind);
+    }
+    boot(node);
+}
+
+void co_node_nmt_command(co_node_t *node, uint8_t cs, uint32_t now_us)
+{
+    co_node_clock(node, now_us);
+    switch (cs) {
+    case CO_NMT_CMD_START:
+        co_node_set_state(node, CO_NMT_OPERATIONAL);
+        break;
+    case CO_NMT_CMD_STOP:
+        co_node_set_state(node, CO_NMT_STOPPED);
+        break;
+    case CO_NMT_CMD_PRE_OPERATIONAL:
+        co_node_set_state(node, CO_NMT_PRE_OPERATIONAL);
+        break;
+    case CO_NMT_CMD_RESET_NODE:
+        reset(node, CO_RESET_NODE);
+        break;
+    case CO_NMT_CMD_RESET_COMMUNICATION:
+        reset(node, CO_RESET_COMMUNICATION);
+        break;
+    default:
+        break; /* unknown command specifier: ignored (CiA 301 defines no answer) */
+    }
+    co_rx_settle(node);
+}
+
 /* -------------------------------------------------------------- init */
 
-co_err_t co_node_init(co_node_t *node, const co_node_config_t *cfg, uint32_t now_us)
+/* Every service finds its objects and registers its hooks on them. */
+static co_result_t bind_services(co_node_t *node)
 {
+    for (uint8_t k = 0U; k < co_n_services; k++) {
+        const co_service_t *svc = co_services[k];
+        if ((svc->bind != NULL) && (svc->bind(node) != CO_OK)) {
+            return CO_RESULT_DEV_INCOMPAT;
+        }
+        for (uint8_t h = 0U; h < svc->n_hooks; h++) {
+            co_result_t r = co_od_register(node, &svc->hooks[h]);
+            if (r != CO_RESULT_OK) {
+                return r;
+            }
+        }
+    }
+#if CO_OPTIONS != 0xFFFFFFFFUL
+    if ((node->dev->options & ~(uint32_t)CO_OPTIONS) != 0U) {
+        return CO_RESULT_DEV_INCOMPAT;
+    }
+#endif
+#if !CO_LIMITS
+    if (node->dev->limits != NULL) {
+        return CO_RESULT_DEV_INCOMPAT;
+    }
+#endif
+#if !CO_LSS
+    if ((node->dev->options & CO_OPT_LSS) != 0U) {
+        return CO_RESULT_DEV_INCOMPAT;
+    }
+#endif
+    return CO_RESULT_OK;
+}
+
+co_result_t co_node_init(co_node_t *node, const co_node_config_t *cfg, uint32_t now_us)
+{
+    co_result_t r;
     uint8_t id;
 
     if ((cfg == NULL) || (cfg->dev == NULL) || (cfg->ram == NULL) || (cfg->hal.ops == NULL) ||
         (cfg->hal.ops->send == NULL) || (cfg->dev->od == NULL)) {
-        return CO_ERR_OD_MISSING;
+        return CO_RESULT_BAD_CONFIG;
     }
     if (((cfg->dev->n_rpdo + cfg->dev->n_tpdo) != 0U) &&
         ((cfg->dev->pdo == NULL) || (cfg->pdo == NULL) || (cfg->pdo_rx == NULL))) {
-        return CO_ERR_OD_MISSING;
+        return CO_RESULT_BAD_CONFIG;
     }
     id = ((cfg->dev->options & CO_OPT_LSS_ONLY) != 0U) ? CO_NODE_ID_UNCONFIGURED : cfg->node_id;
     if (((id < 1U) || (id > 127U)) &&
         ((id != CO_NODE_ID_UNCONFIGURED) || ((cfg->dev->options & CO_OPT_LSS) == 0U))) {
-        return CO_ERR_VALUE;
+        return CO_RESULT_BAD_NODE_ID;
     }
     (void)memset(node, 0, sizeof *node);
     node->dev = cfg->dev;
     node->hal = cfg->hal;
     node->ram = (uint8_t *)cfg->ram;
     node->hooks = cfg->hooks;
+    if (node->hooks != NULL) {
+        (void)memset(node->hooks, 0, (size_t)cfg->dev->n_hooks * sizeof node->hooks[0]);
+    }
     node->cb = cfg->cb;
     node->node_id = id;
     node->pending_id = id;
     node->cob_base = id;
-    node->sdo_timeout_us = (cfg->sdo_timeout_us != 0U) ? cfg->sdo_timeout_us : 1000000UL;
-    node->pdo = cfg->pdo;
-    node->pdo_rx = cfg->pdo_rx;
+    node->sdo.timeout_us = (cfg->sdo_timeout_us != 0U) ? cfg->sdo_timeout_us : 1000000UL;
+    node->pdo.p = cfg->pdo;
+    node->pdo.rx = cfg->pdo_rx;
     node->now = now_us;
+    r = bind_services(node);
+    if (r != CO_RESULT_OK) {
+        return r;
+    }
     co_lss_init(node); /* an LSS-stored node-ID replaces cfg->node_id */
-    co_store_reset(node, CO_RESET_NODE); /* defaults, then the stored set */
-    if (co_nmt_take_nodeid(node)) {
-        co_store_reset(node, CO_RESET_NODE); /* the stored node-ID: its $NODEID defaults */
+    services_reset(node, (uint8_t)CO_RESET_NODE); /* defaults, then the stored set */
+    if (take_nodeid(node)) {
+        services_reset(node, (uint8_t)CO_RESET_NODE); /* the stored node-ID: its $NODEID defaults */
     }
-    if (co_comm_bind(node) != CO_OK) {
-        return CO_ERR_DEV_INCOMPAT;
-    }
-    co_nmt_boot(node);
-    return CO_OK;
+    boot(node);
+    co_rx_settle(node); /* the receive set, told to the port */
+    return CO_RESULT_OK;
 }
 
 co_nmt_state_t co_node_nmt_state(const co_node_t *node)
 {
     return (co_nmt_state_t)node->nmt;
+}
+
+uint32_t co_node_now(const co_node_t *node)
+{
+    return node->now;
 }
 
 uint8_t co_node_id(const co_node_t *node)
@@ -396,7 +553,8 @@ co_err_t co_node_set_id(co_node_t *node, uint8_t id, uint32_t now_us)
     co_node_clock(node, now_us);
     node->pending_id = id;
     if ((node->node_id == CO_NODE_ID_UNCONFIGURED) && (id != CO_NODE_ID_UNCONFIGURED)) {
-        co_nmt_reset(node, CO_RESET_NODE); /* out of LSS init: initialise now */
+        reset(node, CO_RESET_NODE); /* out of LSS init: initialise now */
+        co_rx_settle(node);
     }
     return CO_OK;
 }

@@ -122,6 +122,127 @@ uint32_t co_od_data_size(const co_node_t *node, const co_od_sub_t *s)
     return n;
 }
 
+/* ------------------------------------------------------ service hooks */
+
+/* The service hook whose range holds @p index (binary search over the
+ * registered ranges, which do not overlap), or NULL. */
+static const co_svc_hook_t *svc_hook(const co_node_t *node, uint16_t index)
+{
+    uint32_t lo = 0U;
+    uint32_t hi = node->n_svc_hooks;
+
+    if ((hi == 0U) || (index < node->svc_hooks[0]->first) ||
+        (index > node->svc_hooks[hi - 1U]->last)) {
+        return NULL;
+    }
+    while (lo < hi) {
+        uint32_t mid = (lo + hi) >> 1U;
+        const co_svc_hook_t *h = node->svc_hooks[mid];
+        if (index < h->first) {
+            hi = mid;
+        } else if (index > h->last) {
+            lo = mid + 1U;
+        } else {
+            return h;
+        }
+    }
+    return NULL;
+}
+
+co_result_t co_od_register(co_node_t *node, const co_svc_hook_t *h)
+{
+    uint8_t at = node->n_svc_hooks;
+
+    for (uint8_t i = 0U; i < at; i++) {
+        const co_svc_hook_t *r = node->svc_hooks[i];
+        if ((h->first <= r->last) && (r->first <= h->last)) {
+            return CO_RESULT_HOOK_BOUND; /* an object already has its service */
+        }
+    }
+    if (at >= CO_SVC_HOOKS_MAX) {
+        return CO_RESULT_NO_MEMORY;
+    }
+    node->n_svc_hooks = (uint8_t)(at + 1U);
+    while ((at > 0U) && (node->svc_hooks[at - 1U]->first > h->first)) {
+        node->svc_hooks[at] = node->svc_hooks[at - 1U];
+        at--;
+    }
+    node->svc_hooks[at] = h;
+    if ((h->ops & CO_SVC_READ) != 0U) {
+        /* the span [svc_rd_lo, svc_rd_lo + svc_rd_span] grows to take it in */
+        uint16_t hi = (uint16_t)(node->svc_rd_lo + node->svc_rd_span);
+        uint16_t lo = node->svc_rd_lo;
+        if ((node->n_svc_rd == 0U) || (h->first < lo)) {
+            lo = h->first;
+        }
+        if ((node->n_svc_rd == 0U) || (h->last > hi)) {
+            hi = h->last;
+        }
+        node->svc_rd_lo = lo;
+        node->svc_rd_span = (uint16_t)(hi - lo);
+        node->n_svc_rd = 1U;
+    }
+    return CO_RESULT_OK;
+}
+
+/* Before a stored value is read: the owning service's read hook. Only
+ * indexes in [svc_rd_lo, svc_rd_lo + svc_rd_span], the span of the hooks
+ * that have one, are looked up (the read path of every other object stays
+ * short; without read hooks only index 0, which no dictionary has). */
+static inline co_err_t svc_read(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s)
+{
+    const co_svc_hook_t *h;
+
+    if ((uint16_t)(e->index - node->svc_rd_lo) > node->svc_rd_span) {
+        return CO_OK;
+    }
+    h = svc_hook(node, e->index);
+    return ((h != NULL) && ((h->ops & CO_SVC_READ) != 0U))
+               ? h->fn(node, CO_SVC_READ, e, s, NULL, 0U)
+               : CO_OK;
+}
+
+static void svc_written(co_node_t *node, const co_svc_hook_t *h, const co_od_entry_t *e,
+                        const co_od_sub_t *s)
+{
+    if ((h != NULL) && ((h->ops & CO_SVC_WRITTEN) != 0U)) {
+        (void)h->fn(node, CO_SVC_WRITTEN, e, s, NULL, 0U);
+    }
+}
+
+void *co_od_ram_of(co_node_t *node, uint16_t index, uint8_t sub, uint8_t type)
+{
+    const co_od_entry_t *e = find(node->dev->od, node->dev->od_count, index);
+    const co_od_sub_t *s = (e != NULL) ? find_sub(e, sub) : NULL;
+
+    if ((s == NULL) || (s->type != type) || ((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) != 0U)) {
+        return NULL;
+    }
+    return &node->ram[s->off];
+}
+
+uint8_t co_od_array_len(const co_node_t *node, uint16_t index, uint8_t type, uint8_t max)
+{
+    const co_od_entry_t *e = find(node->dev->od, node->dev->od_count, index);
+    uint8_t n = 0U;
+
+    if (e == NULL) {
+        return 0U;
+    }
+    for (uint8_t k = 1U; (k < e->nsubs) && (n < max); k++) {
+        const co_od_sub_t *s = &e->subs[k];
+        if ((s->sub != k) || (s->type != type) ||
+            ((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) != 0U) ||
+            (s->off != (uint16_t)(e->subs[1].off + ((uint16_t)(k - 1U) * co_type_len(type))))) {
+            break;
+        }
+        n++;
+    }
+    return n;
+}
+
+/* ------------------------------------------------------ application hooks */
+
 static inline co_od_hook_t *hook_of(const co_node_t *node, const co_od_entry_t *e)
 {
     if ((e->hook == 0U) || (node->hooks == NULL) || (e->hook > node->dev->n_hooks)) {
@@ -190,7 +311,7 @@ co_err_t co_od_read_part(co_node_t *node, const co_od_entry_t *e, const co_od_su
         return read_hookio(node, e, s, c);
     }
     if (offset == 0U) {
-        co_err_t err = co_comm_check_read(node, e->index, s->sub);
+        co_err_t err = svc_read(node, e, s);
         if ((err == CO_OK) && (e->hook != 0U)) {
             err = read_hook(node, e, s);
         }
@@ -284,6 +405,7 @@ co_err_t co_od_write_value(co_node_t *node, const co_od_entry_t *e, const co_od_
                            const uint8_t *data, uint32_t len)
 {
     co_od_hook_t *h = hook_of(node, e);
+    const co_svc_hook_t *sh = svc_hook(node, e->index);
     co_od_io_t io;
     co_err_t err;
     uint8_t *v = (uint8_t *)co_od_loc(node, s);
@@ -301,8 +423,8 @@ co_err_t co_od_write_value(co_node_t *node, const co_od_entry_t *e, const co_od_
         /* fits */
     }
     err = check_limits(node, s, data, len);
-    if (err == CO_OK) {
-        err = co_comm_check_write(node, e->index, s->sub, data, len);
+    if ((err == CO_OK) && (sh != NULL) && ((sh->ops & CO_SVC_CHECK) != 0U)) {
+        err = sh->fn(node, CO_SVC_CHECK, e, s, data, len);
     }
     if (err != CO_OK) {
         return err;
@@ -322,9 +444,19 @@ co_err_t co_od_write_value(co_node_t *node, const co_od_entry_t *e, const co_od_
     } else {
         /* plain stored value */
     }
-    if (co_store_is_command(e, s)) {
-        return co_store_command(node, e->index, s->sub, data); /* acted on, never stored */
+    if ((sh != NULL) && ((sh->ops & CO_SVC_COMMIT) != 0U)) {
+        return sh->fn(node, CO_SVC_COMMIT, e, s, data, len); /* the service's commit */
     }
+    co_od_commit(node, s, data, len);
+    svc_written(node, sh, e, s);
+    return CO_OK;
+}
+
+void co_od_commit(co_node_t *node, const co_od_sub_t *s, const uint8_t *data, uint32_t len)
+{
+    uint8_t *v = (uint8_t *)co_od_loc(node, s);
+    uint8_t fixed = co_type_len(s->type);
+
     if ((v != NULL) && ((s->flags & CO_SUB_ROM) == 0U)) {
         if (fixed != 0U) {
             co_from_wire(v, data, fixed);
@@ -335,8 +467,6 @@ co_err_t co_od_write_value(co_node_t *node, const co_od_entry_t *e, const co_od_
             }
         }
     }
-    co_comm_written(node, e->index, s->sub);
-    return CO_OK;
 }
 
 co_err_t co_od_write_part(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
@@ -384,7 +514,7 @@ co_err_t co_od_write_part(co_node_t *node, const co_od_entry_t *e, const co_od_s
                 return err;
             }
         }
-        co_comm_written(node, e->index, s->sub);
+        svc_written(node, svc_hook(node, e->index), e, s);
     }
     return CO_OK;
 }
@@ -499,16 +629,21 @@ void *co_od_value_ptr(co_node_t *node, uint16_t index, uint8_t sub)
     return &node->ram[s->off];
 }
 
-co_err_t co_od_bind_hook(co_node_t *node, uint16_t index, const co_od_hook_t *hook)
+co_result_t co_od_bind_hook(co_node_t *node, uint16_t index, const co_od_hook_t *hook)
 {
     const co_od_entry_t *e = co_od_find(node->dev->od, node->dev->od_count, index);
+    co_od_hook_t *h;
 
     if (e == NULL) {
-        return CO_ERR_NO_OBJECT;
+        return CO_RESULT_NO_OBJECT;
     }
     if ((e->hook == 0U) || (node->hooks == NULL) || (e->hook > node->dev->n_hooks)) {
-        return CO_ERR_NO_ACCESS;
+        return CO_RESULT_NO_HOOK_SLOT;
     }
-    node->hooks[e->hook - 1U] = *hook;
-    return CO_OK;
+    h = &node->hooks[e->hook - 1U];
+    if ((h->read != NULL) || (h->write != NULL)) {
+        return CO_RESULT_HOOK_BOUND; /* two plug-ins on one object: the first stays */
+    }
+    *h = *hook;
+    return CO_RESULT_OK;
 }

@@ -229,7 +229,7 @@ static co_err_t check_comm_write(const co_node_t *node, uint16_t i, uint8_t sub,
     return CO_OK;
 }
 
-co_err_t co_pdo_check_write(const co_node_t *node, uint16_t index, uint8_t sub,
+static co_err_t pdo_check_write(const co_node_t *node, uint16_t index, uint8_t sub,
                             const uint8_t *data, uint32_t len)
 {
     uint16_t i;
@@ -254,7 +254,7 @@ co_err_t co_pdo_check_write(const co_node_t *node, uint16_t index, uint8_t sub,
 /* Recompute whether PDO i's mapping is usable and how long it is. */
 static void compile_mapping(co_node_t *node, uint16_t i)
 {
-    co_pdo_t *p = &node->pdo[i];
+    co_pdo_t *p = &node->pdo.p[i];
     uint8_t count = co_ram_u8(node, node->dev->pdo[i].count);
     uint8_t len = 0U;
 
@@ -269,14 +269,14 @@ static void compile_mapping(co_node_t *node, uint16_t i)
 /* Forget what a PDO was doing (errors stay until correct PDOs resume). */
 static void restart(co_node_t *node, uint16_t i)
 {
-    co_pdo_t *p = &node->pdo[i];
+    co_pdo_t *p = &node->pdo.p[i];
 
     p->flags &= (uint16_t)(CO_PDO_F_MAP_OK | CO_PDO_F_PLAIN | CO_PDO_F_TIMEOUT | CO_PDO_F_SHORT |
                            CO_PDO_F_LONG);
     p->count = 0U;
 }
 
-void co_pdo_written(co_node_t *node, uint16_t index, uint8_t sub)
+static void pdo_written(co_node_t *node, uint16_t index, uint8_t sub)
 {
     uint16_t i;
     bool is_map;
@@ -292,24 +292,27 @@ void co_pdo_written(co_node_t *node, uint16_t index, uint8_t sub)
         return;
     }
     if (sub == 1U) {
-        co_rx_rebuild(node);
+        co_rx_invalidate(node);
     }
     if ((sub == 1U) || (sub == 2U) || (sub == 5U)) {
         restart(node, i);
     }
 }
 
-void co_pdo_reset(co_node_t *node)
+static void pdo_reset(co_node_t *node, uint8_t kind)
 {
     uint16_t n = (uint16_t)(node->dev->n_rpdo + node->dev->n_tpdo);
 
+    if (kind != CO_SVC_START) {
+        return;
+    }
     for (uint16_t i = 0U; i < n; i++) {
-        (void)memset(&node->pdo[i], 0, sizeof node->pdo[i]);
+        (void)memset(&node->pdo.p[i], 0, sizeof node->pdo.p[i]);
         compile_mapping(node, i);
     }
 }
 
-void co_pdo_nmt(co_node_t *node, co_nmt_state_t st)
+static void pdo_nmt(co_node_t *node, co_nmt_state_t from)
 {
     uint16_t n = (uint16_t)(node->dev->n_rpdo + node->dev->n_tpdo);
 
@@ -319,18 +322,23 @@ void co_pdo_nmt(co_node_t *node, co_nmt_state_t st)
     for (uint16_t i = 0U; i < n; i++) {
         restart(node, i);
     }
-    if (st == CO_NMT_OPERATIONAL) {
+    (void)from;
+    if (node->nmt == (uint8_t)CO_NMT_OPERATIONAL) {
         (void)co_tpdo_process(node, CO_NO_DEADLINE);
     }
 }
 
-void co_pdo_rx_rebuild(co_node_t *node)
+static void pdo_rx(co_node_t *node, uint16_t i, const co_frame_t *f);
+
+static void pdo_rx_slots(co_node_t *node, uint8_t svc)
 {
     uint16_t n = (uint16_t)(node->dev->n_rpdo + node->dev->n_tpdo);
     uint16_t used = 0U;
     uint16_t fc = 0U;
 
-    if (node->pdo_rx == NULL) {
+    (void)svc;
+    node->pdo.recv = pdo_rx;
+    if (node->pdo.rx == NULL) {
         return;
     }
     for (uint16_t i = 0U; i < n; i++) {
@@ -341,30 +349,51 @@ void co_pdo_rx_rebuild(co_node_t *node)
             (is_tpdo(node, i) && ((cob & CO_PDO_COB_NO_RTR) != 0U))) {
             continue; /* not received: invalid, or a TPDO that answers no RTR */
         }
-        while ((at > 0U) && (node->pdo_rx[at - 1U].cob > id)) {
-            node->pdo_rx[at] = node->pdo_rx[at - 1U];
+        while ((at > 0U) && (node->pdo.rx[at - 1U].cob > id)) {
+            node->pdo.rx[at] = node->pdo.rx[at - 1U];
             at--;
         }
-        node->pdo_rx[at].cob = id;
-        node->pdo_rx[at].pdo = i;
+        node->pdo.rx[at].cob = id;
+        node->pdo.rx[at].pdo = i;
         used++;
-        node->rx_filter[(id & 0x7FU) >> 3U] |= (uint8_t)(1U << (id & 7U));
+        co_rx_accept(node, id);
         fc |= (uint16_t)(1U << (id >> 7U));
     }
-    node->pdo_fc = fc;
-    node->n_pdo_rx = used;
+    node->pdo.fc = fc;
+    node->pdo.n_rx = used;
 }
 
-co_err_t co_tpdo_request(co_node_t *node, uint16_t n)
+/* A frame on the COB-ID of PDO @p i (the node's PDO table). */
+static void pdo_rx(co_node_t *node, uint16_t i, const co_frame_t *f)
 {
-    uint16_t i = (uint16_t)(node->dev->n_rpdo + n);
+    if (i < node->dev->n_rpdo) {
+        co_rpdo_rx(node, i, f);
+    } else if (co_frame_is_rtr(f)) {
+        co_tpdo_rtr(node, i);
+    } else {
+        /* another node's data frame on this TPDO's identifier */
+    }
+}
 
-    if ((node->dev->pdo == NULL) || (n >= node->dev->n_tpdo)) {
-        return CO_ERR_NO_OBJECT;
+static uint32_t pdo_process(co_node_t *node, uint32_t next)
+{
+    return co_tpdo_process(node, co_rpdo_process(node, next));
+}
+
+static co_err_t pdo_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
+                        const co_od_sub_t *s, const uint8_t *data, uint32_t len)
+{
+    if (op == (uint8_t)CO_SVC_CHECK) {
+        return pdo_check_write(node, e->index, s->sub, data, len);
     }
-    if (!co_pdo_usable(node, i)) {
-        return CO_ERR_STORE_STATE;
-    }
-    node->pdo[i].flags |= CO_PDO_F_EVENT;
+    pdo_written(node, e->index, s->sub);
     return CO_OK;
 }
+
+static const co_svc_hook_t pdo_hooks[] = {
+    {0x1400U, 0x1BFFU, CO_SVC_CHECK | CO_SVC_WRITTEN, pdo_obj},
+};
+
+const co_service_t co_svc_pdo = {
+    NULL, pdo_reset, pdo_rx_slots, pdo_rx, pdo_process, pdo_nmt, pdo_hooks, 1U,
+};

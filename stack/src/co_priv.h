@@ -187,8 +187,87 @@ void co_tx_frame(co_node_t *node, const co_frame_t *f);
 void co_tx(co_node_t *node, uint32_t id, const uint8_t *data, uint8_t len);
 /* Send now or not at all (nothing held back): for streams that resume later. */
 bool co_tx_try(co_node_t *node, uint32_t id, const uint8_t *data, uint8_t len);
+/* The receive table is out of date (a COB-ID changed): the node rebuilds it
+ * from the services' rx_slots before it looks up the next frame. */
+void co_rx_invalidate(co_node_t *node);
 void co_rx_rebuild(co_node_t *node);
+/* Rebuild a stale receive table now (the node's entry points, the SDO
+ * server after a request: a port with hardware filters must hear of a new
+ * COB-ID before frames on it can arrive). */
+static inline void co_rx_settle(co_node_t *node)
+{
+    if (node->rx_dirty != 0U) {
+        co_rx_rebuild(node);
+    }
+}
+/* From a service's rx_slots: frames on @p cob go to service @p svc's rx
+ * with @p arg. */
+void co_rx_add(co_node_t *node, uint16_t cob, uint8_t svc, uint8_t arg);
+/* Mark @p cob in the node's quick-reject filter (the PDO table's COB-IDs). */
+static inline void co_rx_accept(co_node_t *node, uint16_t cob)
+{
+    node->rx_filter[(cob & 0x7FU) >> 3U] |= (uint8_t)(1U << (cob & 7U));
+}
 void co_rx_dispatch(co_node_t *node, const co_frame_t *f, uint16_t cob, uint32_t now_us);
+/* Change the NMT state: the services' nmt entries in table order, then the
+ * application's callback. */
+void co_node_set_state(co_node_t *node, co_nmt_state_t st);
+
+/* ---- the services (co_services.c): the node's dispatch table */
+
+/* What the dictionary engine asks of a service's hook (co_svc_hook_t.fn),
+ * for an access to an object the service owns; the hook's ops bits say
+ * which it wants to be asked. */
+enum {
+    CO_SVC_READ = 0x01U,    /* before a stored value is read (offset 0): an error vetoes it */
+    CO_SVC_CHECK = 0x02U,   /* a complete new value (type, size and limits checked), before
+                               the application's hook: an error vetoes the write */
+    CO_SVC_COMMIT = 0x04U,  /* after the application's hook, instead of the engine's commit:
+                               the service stores or acts on the value (co_od_commit stores
+                               it); its result is the answer, CO_SVC_WRITTEN does not follow */
+    CO_SVC_WRITTEN = 0x08U  /* after the value was stored (the result is ignored) */
+};
+
+/* A service's hook on the objects it owns, @p first .. @p last. The
+ * dictionary engine (co_od.c) calls fn for the accesses @p ops names,
+ * before the application's hook of the entry (data/len: the value in wire
+ * bytes for CO_SVC_CHECK and CO_SVC_COMMIT, NULL/0 otherwise). */
+typedef struct co_svc_hook {
+    uint16_t first;
+    uint16_t last;
+    uint8_t ops;
+    co_err_t (*fn)(co_node_t *node, uint8_t op, const co_od_entry_t *e, const co_od_sub_t *s,
+                   const uint8_t *data, uint32_t len);
+} co_svc_hook_t;
+
+/* Reset kinds a service sees (co_service_t.reset): CO_RESET_NODE and
+ * CO_RESET_COMMUNICATION while the values are restored (before the
+ * application's nmt_reset callback), then CO_SVC_START before the boot-up
+ * frame: the service's state starts over. */
+#define CO_SVC_START 0U
+
+/* One service: the same entry points for all, any may be NULL. The node
+ * walks co_services[] in its order for each (docs/core.md). */
+typedef struct co_service {
+    /* co_node_init: find the objects the service uses. CO_ERR_DEV_INCOMPAT for
+     * a device that needs what this build leaves out (co_config.h). */
+    co_err_t (*bind)(co_node_t *node);
+    void (*reset)(co_node_t *node, uint8_t kind);
+    /* Add the receive-table slots (co_rx_add with @p svc, its own index). */
+    void (*rx_slots)(co_node_t *node, uint8_t svc);
+    /* A frame for it: @p arg is what its slot said (co_rx_add); for the
+     * PDO service, the PDO whose COB-ID it is (the node's PDO table). */
+    void (*rx)(co_node_t *node, uint16_t arg, const co_frame_t *f);
+    /* Timers: returns the earlier of @p next and its own deadline. */
+    uint32_t (*process)(co_node_t *node, uint32_t next);
+    /* The NMT state changed from @p from to node->nmt. */
+    void (*nmt)(co_node_t *node, co_nmt_state_t from);
+    const co_svc_hook_t *hooks;
+    uint8_t n_hooks;
+} co_service_t;
+
+extern const co_service_t *const co_services[];
+extern const uint8_t co_n_services;
 
 /* ---- object dictionary internals (co_od.c) */
 #define CO_TYPE_SIZES 0x1CU
@@ -248,32 +327,35 @@ co_err_t co_od_write_part(co_node_t *node, const co_od_entry_t *e, const co_od_s
 /* Restore [from, to) of the RAM image to defaults and apply $NODEID. */
 void co_od_restore(co_node_t *node, uint16_t from, uint16_t to);
 
-/* ---- communication objects owned by the core (co_comm.c) */
-/* 0x1003: entries beyond the number of recorded errors hold no data. */
-static inline co_err_t co_comm_check_read(const co_node_t *node, uint16_t index, uint8_t sub)
-{
-    if ((index == 0x1003U) && (sub > 0U) && (node->hist_count != NULL) &&
-        (sub > *node->hist_count)) {
-        return CO_ERR_NO_DATA;
-    }
-    return CO_OK;
-}
-co_err_t co_comm_check_write(const co_node_t *node, uint16_t index, uint8_t sub,
-                             const uint8_t *data, uint32_t len);
-void co_comm_written(co_node_t *node, uint16_t index, uint8_t sub);
-/* Find where the core's objects live; CO_ERR_DEV_INCOMPAT for a device that
- * needs a service this build leaves out (co_config.h). */
-co_err_t co_comm_bind(co_node_t *node);
+/* Register a service's hook (co_od.c). CO_RESULT_HOOK_BOUND when it
+ * overlaps one already registered, CO_RESULT_NO_MEMORY when the table
+ * (CO_SVC_HOOKS_MAX) is full. */
+co_result_t co_od_register(co_node_t *node, const co_svc_hook_t *h);
+/* Store a checked value of @p s from wire bytes (the engine's commit). */
+void co_od_commit(co_node_t *node, const co_od_sub_t *s, const uint8_t *data, uint32_t len);
 
-/* 0x1012 COB-ID TIME; NULL without it, and always without CO_TIME. */
-static inline const uint32_t *co_time_cob(const co_node_t *node)
+/* Where a core object lives in the RAM image: the value of @p index sub
+ * @p sub if it has type @p type and a stored RAM value, else NULL. */
+void *co_od_ram_of(co_node_t *node, uint16_t index, uint8_t sub, uint8_t type);
+/* Number of consecutive sub-entries 1..n (at most @p max) of an array whose
+ * values of @p type are stored back to back, 0 if there are none. */
+uint8_t co_od_array_len(const co_node_t *node, uint16_t index, uint8_t type, uint8_t max);
+
+/* A COB-ID write (CiA 301 7.5.2): 29-bit identifiers are not supported,
+ * bits 11..28 are 0, @p reserved bits must be 0, and the CAN-ID may not change
+ * while the object is in use: in use is any of @p use_bits set (@p use_when_set)
+ * or all of them clear (!use_when_set, the EMCY 'valid' bit). A CAN-ID in use
+ * (or @p always in use, the SYNC consumer) may not be a restricted one
+ * (CiA 301 7.3.5). */
+co_err_t co_check_cob(uint32_t cur, uint32_t v, uint32_t use_bits, bool use_when_set,
+                      uint32_t reserved, bool always);
+
+/* True while the synchronous window (0x1007) after the last SYNC is open. */
+static inline bool co_sync_window(const co_node_t *node)
 {
-#if CO_TIME
-    return node->time_cob;
-#else
-    (void)node;
-    return NULL;
-#endif
+    uint32_t w = (node->sync.window != NULL) ? *node->sync.window : 0U;
+
+    return (w == 0U) || ((uint32_t)(node->now - node->sync.last) <= w);
 }
 
 /* ---- node-ID (co_node.c) */
@@ -288,14 +370,13 @@ co_reset_t co_node_take_id(co_node_t *node, co_reset_t kind);
 #define CO_LSS_NV_SIZE (2U * CO_LSS_REC) /* NV behind the parameter banks */
 /* NV address of the LSS records (co_store.c). */
 uint32_t co_store_lss_base(const co_dev_t *dev);
+/* Rows at the head of co_services[] that run while the node is unconfigured
+ * (the LSS service); the others wait for a valid node-ID. */
+#define CO_SVC_UNCONFIGURED_ROWS ((uint8_t)(CO_LSS))
 #if CO_LSS
 bool co_lss_enabled(const co_node_t *node);
 /* At init: the stored configuration (node-ID, COB-ID base, bit timing). */
 void co_lss_init(co_node_t *node);
-/* At every boot: LSS waiting state. */
-void co_lss_reset(co_node_t *node);
-void co_lss_rx(co_node_t *node, const co_frame_t *f);
-uint32_t co_lss_process(co_node_t *node, uint32_t next);
 #else
 static inline bool co_lss_enabled(const co_node_t *node)
 {
@@ -306,32 +387,15 @@ static inline void co_lss_init(co_node_t *node)
 {
     (void)node;
 }
-static inline void co_lss_reset(co_node_t *node)
-{
-    (void)node;
-}
-static inline void co_lss_rx(co_node_t *node, const co_frame_t *f)
-{
-    (void)node;
-    (void)f;
-}
-static inline uint32_t co_lss_process(co_node_t *node, uint32_t next)
-{
-    (void)node;
-    return next;
-}
 #endif
 
-/* ---- services */
-void co_nmt_rx(co_node_t *node, const co_frame_t *f);
-void co_nmt_boot(co_node_t *node);
-/* Reset communication or node: the pending node-ID, the restore, boot. */
-void co_nmt_reset(co_node_t *node, co_reset_t kind);
-/* A device with a node-ID object (co_dev_t.nodeid_index): take the node-ID
- * from it when it holds another valid one; true if it changed. */
-bool co_nmt_take_nodeid(co_node_t *node);
+/* Drop the communication group of the stored set (a node leaving the
+ * unconfigured state with CO_OPT_LSS_KEEP_COBS; co_store.c). */
+void co_store_forget_comm(co_node_t *node);
+
+/* ---- what one service asks of another (no cycles: tools/core-callgraph) */
 /* A serious error of 0x1029 class @p sub: the NMT reaction it configures
- * (nothing without CO_ERROR_BEHAVIOUR). */
+ * (co_nmt.c; nothing without CO_ERROR_BEHAVIOUR). */
 #if CO_ERROR_BEHAVIOUR
 void co_nmt_error(co_node_t *node, uint8_t sub);
 #else
@@ -341,22 +405,6 @@ static inline void co_nmt_error(co_node_t *node, uint8_t sub)
     (void)sub;
 }
 #endif
-void co_sdo_rx(co_node_t *node, const co_frame_t *f);
-uint32_t co_sdo_process(co_node_t *node, uint32_t next);
-void co_sdo_reset(co_node_t *node);
-void co_hb_rx(co_node_t *node, uint8_t slot, const co_frame_t *f);
-void co_guard_rx(co_node_t *node, const co_frame_t *f);
-uint32_t co_hb_process(co_node_t *node, uint32_t next);
-void co_hb_reset(co_node_t *node);
-void co_hb_consumers_changed(co_node_t *node);
-void co_hb_producer_changed(co_node_t *node);
-uint32_t co_emcy_process(co_node_t *node, uint32_t next);
-void co_sync_rx(co_node_t *node, const co_frame_t *f);
-void co_time_rx(co_node_t *node, const co_frame_t *f);
-uint32_t co_sync_process(co_node_t *node, uint32_t next);
-void co_sync_reset(co_node_t *node);
-void co_emcy_reset(co_node_t *node);
-void co_emcy_history_clear(co_node_t *node);
 
 /* ---- PDO (co_pdo_config.c, co_rpdo.c, co_tpdo.c) */
 #define CO_PDO_F_MAP_OK    0x0001U /* mapping enabled and valid; len is set */
@@ -391,7 +439,7 @@ CO_INLINE uint8_t co_pdo_type(const co_node_t *node, uint16_t i)
 CO_INLINE bool co_pdo_usable(const co_node_t *node, uint16_t i)
 {
     return ((co_pdo_cob(node, i) & CO_PDO_COB_INVALID) == 0U) &&
-           ((node->pdo[i].flags & CO_PDO_F_MAP_OK) != 0U);
+           ((node->pdo.p[i].flags & CO_PDO_F_MAP_OK) != 0U);
 }
 
 /* RAM offset of the value of mapping entry k of PDO p, which is plain
@@ -417,12 +465,6 @@ static inline uint32_t co_pdo_event_us(const co_node_t *node, uint16_t i)
 
     return (off == CO_PDO_NONE) ? 0U : co_dict_us(co_ram_u16(node, off), unit);
 }
-co_err_t co_pdo_check_write(const co_node_t *node, uint16_t index, uint8_t sub,
-                            const uint8_t *data, uint32_t len);
-void co_pdo_written(co_node_t *node, uint16_t index, uint8_t sub);
-void co_pdo_reset(co_node_t *node);
-void co_pdo_rx_rebuild(co_node_t *node);
-void co_pdo_nmt(co_node_t *node, co_nmt_state_t st);
 /* The mapped objects of PDO i through the dictionary (co_pdo_map.c): sample
  * them into @p out (8 bytes, zeroed by the caller; an object that cannot be
  * read is sent as zeros), or write them from @p data (@p dlc bytes; entries
@@ -435,18 +477,5 @@ uint32_t co_rpdo_process(co_node_t *node, uint32_t next);
 void co_tpdo_rtr(co_node_t *node, uint16_t i);
 void co_tpdo_sync(co_node_t *node, uint8_t counter);
 uint32_t co_tpdo_process(co_node_t *node, uint32_t next);
-
-/* ---- parameter storage, 0x1010 / 0x1011 (co_store.c) */
-/* Restore the area a reset covers (node: the image, communication: [0, comm_end))
- * to defaults, load the stored values of that area if a valid set exists, and
- * set what 0x1010 / 0x1011 read. */
-void co_store_reset(co_node_t *node, co_reset_t kind);
-/* True for a sub-entry of 0x1010 / 0x1011 the core acts on (sub >= 1, UNSIGNED32 in RAM). */
-bool co_store_is_command(const co_od_entry_t *e, const co_od_sub_t *s);
-/* A checked write to such a sub-entry: save or restore; the value is never stored. */
-co_err_t co_store_command(co_node_t *node, uint16_t index, uint8_t sub, const uint8_t *data);
-/* Drop the communication group of the stored set (a node leaving the
- * unconfigured state with CO_OPT_LSS_KEEP_COBS). */
-void co_store_forget_comm(co_node_t *node);
 
 #endif /* CO_PRIV_H */

@@ -7,7 +7,7 @@
 static bool any_rpdo(const co_node_t *node, uint16_t flag)
 {
     for (uint16_t i = 0U; i < node->dev->n_rpdo; i++) {
-        if ((node->pdo[i].flags & flag) != 0U) {
+        if ((node->pdo.p[i].flags & flag) != 0U) {
             return true;
         }
     }
@@ -18,7 +18,7 @@ static bool any_rpdo(const co_node_t *node, uint16_t flag)
  * state and ends with the last one leaving it. */
 static void rpdo_error(co_node_t *node, uint16_t i, uint16_t flag, uint16_t code, bool on)
 {
-    co_pdo_t *p = &node->pdo[i];
+    co_pdo_t *p = &node->pdo.p[i];
 
     if (on == ((p->flags & flag) != 0U)) {
         return;
@@ -57,7 +57,7 @@ static void apply_plain(co_node_t *node, const co_pdo_t *p, uint16_t map, uint8_
 static void apply(co_node_t *node, uint16_t i, const uint8_t *data, uint8_t dlc)
 {
     const co_pdo_desc_t *d = &node->dev->pdo[i];
-    const co_pdo_t *p = &node->pdo[i];
+    const co_pdo_t *p = &node->pdo.p[i];
 
     if ((p->flags & CO_PDO_F_PLAIN) != 0U) {
         apply_plain(node, p, d->map, co_ram_u8(node, d->count), data, (dlc > 8U) ? 8U : dlc);
@@ -74,7 +74,7 @@ static void apply(co_node_t *node, uint16_t i, const uint8_t *data, uint8_t dlc)
  * when the frame is not processed. */
 static bool length_ok(co_node_t *node, uint16_t i, uint8_t dlc)
 {
-    uint8_t len = node->pdo[i].len;
+    uint8_t len = node->pdo.p[i].len;
 
     if (dlc < len) {
         if (!co_opt(node, CO_OPT_RPDO_SHORT_OK)) {
@@ -92,7 +92,7 @@ static bool length_ok(co_node_t *node, uint16_t i, uint8_t dlc)
 
 void co_rpdo_rx(co_node_t *node, uint16_t i, const co_frame_t *f)
 {
-    co_pdo_t *p = &node->pdo[i];
+    co_pdo_t *p = &node->pdo.p[i];
     uint32_t ev;
 
     if ((node->nmt != (uint8_t)CO_NMT_OPERATIONAL) || co_frame_is_rtr(f) ||
@@ -112,11 +112,11 @@ void co_rpdo_rx(co_node_t *node, uint16_t i, const co_frame_t *f)
     }
     if (co_pdo_type(node, i) <= 240U) {
         /* synchronous: takes effect at the next SYNC, if it came in time */
-        if (co_sync_window_open(node)) {
+        if (co_sync_window(node)) {
             (void)memcpy(p->data, f->data, 8U);
             p->count = f->dlc; /* the buffered frame's length */
             p->flags |= CO_PDO_F_RXBUF;
-            node->rpdo_buffered = 1U;
+            node->pdo.buffered = 1U;
         }
         return;
     }
@@ -125,12 +125,12 @@ void co_rpdo_rx(co_node_t *node, uint16_t i, const co_frame_t *f)
 
 void co_rpdo_sync(co_node_t *node)
 {
-    if ((node->nmt != (uint8_t)CO_NMT_OPERATIONAL) || (node->rpdo_buffered == 0U)) {
+    if ((node->nmt != (uint8_t)CO_NMT_OPERATIONAL) || (node->pdo.buffered == 0U)) {
         return;
     }
-    node->rpdo_buffered = 0U;
+    node->pdo.buffered = 0U;
     for (uint16_t i = 0U; i < node->dev->n_rpdo; i++) {
-        co_pdo_t *p = &node->pdo[i];
+        co_pdo_t *p = &node->pdo.p[i];
         if ((p->flags & CO_PDO_F_RXBUF) != 0U) {
             p->flags &= (uint16_t)~CO_PDO_F_RXBUF;
             apply(node, i, p->data, p->count);
@@ -144,7 +144,7 @@ uint32_t co_rpdo_process(co_node_t *node, uint32_t next)
         return next; /* leaving Operational disarms every deadline */
     }
     for (uint16_t i = 0U; i < node->dev->n_rpdo; i++) {
-        co_pdo_t *p = &node->pdo[i];
+        co_pdo_t *p = &node->pdo.p[i];
         if ((p->flags & CO_PDO_F_TIMER) == 0U) {
             continue;
         }

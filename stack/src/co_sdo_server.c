@@ -10,8 +10,10 @@
 #include <string.h>
 
 #include "co/co_endian.h"
-#include "co_crc16.h"
 #include "co_priv.h"
+#if CO_SDO_BLOCK
+#include "co_crc16.h"
+#endif
 
 #define SDO_BLKSIZE 127U /* segments per block the server asks for */
 #define SEG 7U           /* data bytes per segment */
@@ -59,7 +61,7 @@ static void reply(co_node_t *node, uint8_t cmd, uint16_t index, uint8_t sub, uin
     send8(node, d);
 }
 
-void co_sdo_reset(co_node_t *node)
+static void sdo_reset(co_node_t *node)
 {
     node->sdo.state = (uint8_t)S_IDLE;
     node->sdo.entry = NULL;
@@ -69,7 +71,7 @@ void co_sdo_reset(co_node_t *node)
 static void abort_at(co_node_t *node, uint16_t index, uint8_t sub, co_err_t err)
 {
     reply(node, 0x80U, index, sub, (uint32_t)err);
-    co_sdo_reset(node);
+    sdo_reset(node);
 }
 
 static void abort_cur(co_node_t *node, co_err_t err)
@@ -84,7 +86,7 @@ static void abort_cur(co_node_t *node, co_err_t err)
 static void start(co_node_t *node, uint8_t state)
 {
     node->sdo.state = state;
-    node->sdo.deadline = node->now + node->sdo_timeout_us;
+    node->sdo.deadline = node->now + node->sdo.timeout_us;
 }
 
 static bool is_fixed(const co_od_sub_t *s)
@@ -276,7 +278,7 @@ CO_NOINLINE static void initiate_download(co_node_t *node, const uint8_t *d, uin
             abort_at(node, index, sub, err);
             return;
         }
-        co_sdo_reset(node);
+        sdo_reset(node);
         reply(node, 0x60U, index, sub, 0U);
         return;
     }
@@ -304,7 +306,7 @@ static void respond_upload(co_node_t *node, bool last)
 
     if (fits_expedited(node, last, t->size)) {
         uint32_t size = t->size;
-        co_sdo_reset(node);
+        sdo_reset(node);
         send_expedited(node, index, sub, size);
         return;
     }
@@ -370,7 +372,7 @@ static void download_segment(co_node_t *node, const uint8_t *d)
         r[0] = (uint8_t)(0x20U | toggle);
         t->toggle ^= 0x10U;
         if (last) {
-            co_sdo_reset(node);
+            sdo_reset(node);
         } else {
             start(node, S_DL_SEG);
         }
@@ -401,13 +403,14 @@ static void upload_segment(co_node_t *node, const uint8_t *d)
     r[0] = (uint8_t)(toggle | ((SEG - got) << 1U) | (last ? 1U : 0U));
     t->toggle ^= 0x10U;
     if (last) {
-        co_sdo_reset(node);
+        sdo_reset(node);
     } else {
         start(node, S_UL_SEG);
     }
     send8(node, r);
 }
 
+#if CO_SDO_BLOCK
 /* ------------------------------------------------------------ block download */
 
 static void block_download_initiate(co_node_t *node, const uint8_t *d, uint16_t index,
@@ -521,7 +524,7 @@ static void block_download_end(co_node_t *node, const uint8_t *d)
         abort_cur(node, err);
         return;
     }
-    co_sdo_reset(node);
+    sdo_reset(node);
     {
         uint8_t r[8] = {0};
         r[0] = 0xA1U;
@@ -595,7 +598,7 @@ static void block_upload_send(co_node_t *node)
         }
         t->seqno++;
         /* the client's answer is due one timeout after the last segment */
-        t->deadline = node->now + node->sdo_timeout_us;
+        t->deadline = node->now + node->sdo.timeout_us;
         if (last) {
             /* The end is known now: keep it as the size (t->buf_len still
              * holds the staged first chunk, which a retransmission from
@@ -682,6 +685,8 @@ static void block_upload_ack(co_node_t *node, const uint8_t *d)
     block_upload_send(node);
 }
 
+#endif /* CO_SDO_BLOCK */
+
 /* ------------------------------------------------------------ dispatch */
 
 static void idle_request(co_node_t *node, const uint8_t *d)
@@ -689,7 +694,9 @@ static void idle_request(co_node_t *node, const uint8_t *d)
     uint16_t index = co_get_u16(&d[1]);
     uint8_t sub = d[3];
     uint8_t ccs = (uint8_t)(d[0] >> 5U);
+#if CO_SDO_BLOCK
     bool blocks = !co_opt(node, CO_OPT_SDO_NO_BLOCK | CO_OPT_SDO_EXPEDITED_ONLY);
+#endif
 
     switch (ccs) {
     case 1U:
@@ -700,6 +707,7 @@ static void idle_request(co_node_t *node, const uint8_t *d)
         break;
     case 4U:
         break; /* abort with nothing open: nothing to do */
+#if CO_SDO_BLOCK
     case 5U:
         if (blocks) {
             block_upload_initiate(node, d, index, sub);
@@ -714,6 +722,7 @@ static void idle_request(co_node_t *node, const uint8_t *d)
             abort_at(node, index, sub, CO_ERR_CMD);
         }
         break;
+#endif
     case 0U:
     case 3U:
         /* a segment without a transfer carries no index: answer with 0 */
@@ -761,6 +770,7 @@ CO_NOINLINE static void transfer_request(co_node_t *node, const uint8_t *d)
             abort_cur(node, CO_ERR_CMD);
         }
         break;
+#if CO_SDO_BLOCK
     case S_BLK_DL_END:
         block_download_end(node, d);
         break;
@@ -783,22 +793,24 @@ CO_NOINLINE static void transfer_request(co_node_t *node, const uint8_t *d)
         break;
     case S_BLK_UL_END:
         if ((d[0] & 0xE3U) == 0xA1U) {
-            co_sdo_reset(node);
+            sdo_reset(node);
         } else {
             abort_cur(node, CO_ERR_CMD);
         }
         break;
+#endif
     default:
-        co_sdo_reset(node);
+        sdo_reset(node);
         break;
     }
 }
 
-void co_sdo_rx(co_node_t *node, const co_frame_t *f)
+static void sdo_rx(co_node_t *node, uint16_t arg, const co_frame_t *f)
 {
     co_sdo_srv_t *t = &node->sdo;
     const uint8_t *d = f->data;
 
+    (void)arg;
     if ((node->nmt == (uint8_t)CO_NMT_STOPPED) || co_frame_is_rtr(f)) {
         return;
     }
@@ -806,32 +818,36 @@ void co_sdo_rx(co_node_t *node, const co_frame_t *f)
                                                              : (d[0] == 0x80U))) {
         /* client abort, whatever its length: CiA 301 makes the abort
          * unconfirmed, so nothing answers it; the transfer ends */
-        co_sdo_reset(node);
+        sdo_reset(node);
         return;
     }
     if (f->dlc != 8U) {
         bad_length(node, f);
         return;
     }
+#if CO_SDO_BLOCK
     if (t->state == (uint8_t)S_BLK_DL) {
         block_download_segment(node, d);
-        return;
-    }
+    } else
+#endif
     if (t->state == (uint8_t)S_IDLE) {
         idle_request(node, d);
     } else {
         transfer_request(node, d);
     }
+    co_rx_settle(node); /* a COB-ID written: the receive set (the port's filters) */
 }
 
+#if CO_SDO_BLOCK
 /* A block upload sub-block that the TX path has not taken completely yet. */
 static bool upload_pending(const co_sdo_srv_t *t)
 {
     return (t->state == (uint8_t)S_BLK_UL) && (t->seqno < t->blksize) &&
            ((t->flags & F_LAST) == 0U);
 }
+#endif
 
-uint32_t co_sdo_process(co_node_t *node, uint32_t next)
+static uint32_t sdo_process(co_node_t *node, uint32_t next)
 {
     co_sdo_srv_t *t = &node->sdo;
 
@@ -842,6 +858,7 @@ uint32_t co_sdo_process(co_node_t *node, uint32_t next)
         abort_cur(node, CO_ERR_TIMEOUT);
         return next;
     }
+#if CO_SDO_BLOCK
     if (upload_pending(t)) {
         block_upload_send(node);
         if (upload_pending(&node->sdo)) {
@@ -849,5 +866,33 @@ uint32_t co_sdo_process(co_node_t *node, uint32_t next)
             next = co_deadline_min(node->now, next, node->now + 1000U);
         }
     }
+#endif
     return co_deadline_min(node->now, next, t->deadline);
 }
+
+/* ------------------------------------------------------------ service */
+
+static void sdo_reset_kind(co_node_t *node, uint8_t kind)
+{
+    if (kind == CO_SVC_START) {
+        sdo_reset(node);
+    }
+}
+
+static void sdo_rx_slots(co_node_t *node, uint8_t svc)
+{
+    co_rx_add(node, (uint16_t)(0x600U + node->node_id), svc, 0U);
+}
+
+/* No SDO in Stopped: an open transfer ends silently. */
+static void sdo_nmt(co_node_t *node, co_nmt_state_t from)
+{
+    (void)from;
+    if (node->nmt == (uint8_t)CO_NMT_STOPPED) {
+        sdo_reset(node);
+    }
+}
+
+const co_service_t co_svc_sdo = {
+    NULL, sdo_reset_kind, sdo_rx_slots, sdo_rx, sdo_process, sdo_nmt, NULL, 0U,
+};

@@ -234,7 +234,7 @@ static co_err_t commit(co_node_t *node, const store_change_t *c)
     return (node->hal.ops->nv_write(node->hal.ctx, base, h, STORE_HDR) != 0) ? CO_ERR_HW : CO_OK;
 }
 
-bool co_store_is_command(const co_od_entry_t *e, const co_od_sub_t *s)
+static bool is_command(const co_od_entry_t *e, const co_od_sub_t *s)
 {
     return ((e->index == 0x1010U) || (e->index == 0x1011U)) && (s->sub != 0U) &&
            (s->type == (uint8_t)CO_UNSIGNED32) &&
@@ -247,7 +247,7 @@ static uint8_t last_sub(const co_node_t *node, uint16_t index)
     return ((index == 0x1011U) && co_opt(node, CO_OPT_RESTORE_SAVED)) ? 6U : 3U;
 }
 
-co_err_t co_store_command(co_node_t *node, uint16_t index, uint8_t sub, const uint8_t *data)
+static co_err_t command(co_node_t *node, uint16_t index, uint8_t sub, const uint8_t *data)
 {
     static const uint8_t groups_of_sub[7] = {0U, GRP_ALL, GRP_COMM, GRP_APP,
                                              GRP_ALL, GRP_COMM, GRP_APP};
@@ -280,13 +280,16 @@ void co_store_forget_comm(co_node_t *node)
     }
 }
 
-void co_store_reset(co_node_t *node, co_reset_t kind)
+static void store_reset(co_node_t *node, uint8_t kind)
 {
     const co_dev_t *dev = node->dev;
-    bool all = (kind == CO_RESET_NODE);
+    bool all = (kind == (uint8_t)CO_RESET_NODE);
     uint16_t end = all ? dev->ram_size : dev->comm_end;
     uint32_t cap = has_nv(node) ? 1U : 0U; /* bit 0: on command */
 
+    if (kind == CO_SVC_START) {
+        return; /* values are restored by the resets of a kind only */
+    }
     co_od_restore(node, 0U, end);
     if (cap != 0U) {
         bool io_err = false; /* an unreadable bank counts as invalid */
@@ -301,10 +304,34 @@ void co_store_reset(co_node_t *node, co_reset_t kind)
     for (uint16_t index = 0x1010U; index <= 0x1011U; index++) {
         const co_od_entry_t *e = co_od_find(dev->od, dev->od_count, index);
         for (uint8_t k = 0U; (e != NULL) && (k < e->nsubs); k++) {
-            if (co_store_is_command(e, &e->subs[k])) {
+            if (is_command(e, &e->subs[k])) {
                 uint32_t v = (e->subs[k].sub <= last_sub(node, index)) ? cap : 0U;
                 (void)memcpy(&node->ram[e->subs[k].off], (const uint8_t *)&v, 4U);
             }
         }
     }
 }
+
+/* ------------------------------------------------------------ service */
+
+/* A checked write to 0x1010 / 0x1011: a sub-entry the core acts on (sub
+ * >= 1, UNSIGNED32 in RAM) saves or restores, its value is never stored;
+ * any other is stored as usual. */
+static co_err_t store_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
+                          const co_od_sub_t *s, const uint8_t *data, uint32_t len)
+{
+    (void)op;
+    if (!is_command(e, s)) {
+        co_od_commit(node, s, data, len);
+        return CO_OK;
+    }
+    return command(node, e->index, s->sub, data);
+}
+
+static const co_svc_hook_t store_hooks[] = {
+    {0x1010U, 0x1011U, CO_SVC_COMMIT, store_obj},
+};
+
+const co_service_t co_svc_store = {
+    NULL, store_reset, NULL, NULL, NULL, NULL, store_hooks, 1U,
+};

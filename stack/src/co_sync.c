@@ -1,13 +1,10 @@
 /*
- * SYNC consumer and producer (0x1005, 0x1006, 0x1007, 0x1019) and the TIME
- * consumer/producer (0x1012).
+ * SYNC consumer and producer (0x1005, 0x1006, 0x1007, 0x1019).
  */
 #include "co/co_endian.h"
 #include "co_priv.h"
 
 #define COB_SYNC_GEN  0x40000000UL /* 0x1005 bit 30: this node produces SYNC */
-#define COB_TIME_CONS 0x80000000UL /* 0x1012 bit 31: consume TIME */
-#define COB_TIME_PROD 0x40000000UL /* 0x1012 bit 30: produce TIME */
 
 static bool sync_allowed(const co_node_t *node)
 {
@@ -17,14 +14,14 @@ static bool sync_allowed(const co_node_t *node)
 
 static uint8_t overflow(const co_node_t *node)
 {
-    return (node->sync_overflow != NULL) ? *node->sync_overflow : 0U;
+    return (node->sync.overflow != NULL) ? *node->sync.overflow : 0U;
 }
 
 static bool producing(const co_node_t *node)
 {
 #if CO_SYNC_PRODUCER
-    return (node->sync_cob != NULL) && ((*node->sync_cob & COB_SYNC_GEN) != 0U) &&
-           (node->sync_period != NULL) && (*node->sync_period != 0U);
+    return (node->sync.cob != NULL) && ((*node->sync.cob & COB_SYNC_GEN) != 0U) &&
+           (node->sync.period != NULL) && (*node->sync.period != 0U);
 #else
     (void)node;
     return false;
@@ -34,13 +31,13 @@ static bool producing(const co_node_t *node)
 /* The communication cycle period 0x1006 in us, within the timer horizon. */
 static uint32_t period_us(const co_node_t *node)
 {
-    return co_dict_us(*node->sync_period, 1U);
+    return co_dict_us(*node->sync.period, 1U);
 }
 
 /* Everything a SYNC sets in motion, received or produced here. */
 static void on_sync(co_node_t *node, uint8_t counter)
 {
-    node->sync_last = node->now;
+    node->sync.last = node->now;
     /* CiA 301: synchronous RPDOs received before this SYNC take effect, the
      * application runs its cycle, then synchronous TPDOs are sampled. */
     co_rpdo_sync(node);
@@ -50,16 +47,16 @@ static void on_sync(co_node_t *node, uint8_t counter)
     co_tpdo_sync(node, counter);
 }
 
-void co_sync_reset(co_node_t *node)
+static void sync_reset(co_node_t *node)
 {
-    node->sync_counter = 1U;
-    node->sync_last = node->now;
+    node->sync.counter = 1U;
+    node->sync.last = node->now;
     if (producing(node)) {
-        node->sync_deadline = node->now + period_us(node);
+        node->sync.deadline = node->now + period_us(node);
     }
 }
 
-void co_sync_rx(co_node_t *node, const co_frame_t *f)
+static void sync_rx(co_node_t *node, const co_frame_t *f)
 {
     uint8_t ovf = overflow(node);
     uint8_t want = (ovf > 1U) ? 1U : 0U;
@@ -78,65 +75,114 @@ void co_sync_rx(co_node_t *node, const co_frame_t *f)
     on_sync(node, (want != 0U) ? f->data[0] : 0U);
 }
 
-uint32_t co_sync_process(co_node_t *node, uint32_t next)
+static uint32_t sync_process(co_node_t *node, uint32_t next)
 {
     if (!producing(node)) {
         return next;
     }
-    if (co_time_reached(node->now, node->sync_deadline)) {
+    if (co_time_reached(node->now, node->sync.deadline)) {
         uint8_t ovf = overflow(node);
         uint8_t cnt = 0U;
         uint32_t period = period_us(node);
         if (sync_allowed(node)) {
             if (ovf > 1U) {
-                cnt = node->sync_counter;
-                node->sync_counter = (cnt >= ovf) ? 1U : (uint8_t)(cnt + 1U);
+                cnt = node->sync.counter;
+                node->sync.counter = (cnt >= ovf) ? 1U : (uint8_t)(cnt + 1U);
             }
-            co_tx(node, *node->sync_cob & 0x7FFUL, &cnt, (ovf > 1U) ? 1U : 0U);
+            co_tx(node, *node->sync.cob & 0x7FFUL, &cnt, (ovf > 1U) ? 1U : 0U);
             on_sync(node, cnt);
         }
-        node->sync_deadline += period;
-        if (co_time_reached(node->now, node->sync_deadline)) {
-            node->sync_deadline = node->now + period; /* fell behind: no burst */
+        node->sync.deadline += period;
+        if (co_time_reached(node->now, node->sync.deadline)) {
+            node->sync.deadline = node->now + period; /* fell behind: no burst */
         }
     }
-    return co_deadline_min(node->now, next, node->sync_deadline);
+    return co_deadline_min(node->now, next, node->sync.deadline);
 }
 
 bool co_sync_window_open(const co_node_t *node)
 {
-    uint32_t w = (node->sync_window != NULL) ? *node->sync_window : 0U;
-
-    return (w == 0U) || ((uint32_t)(node->now - node->sync_last) <= w);
+    return co_sync_window(node);
 }
 
-void co_time_rx(co_node_t *node, const co_frame_t *f)
+/* ------------------------------------------------------------ service */
+
+static co_err_t sync_bind(co_node_t *node)
 {
-    const uint32_t *cob = co_time_cob(node);
+    co_sync_t *y = &node->sync;
 
-    if (!sync_allowed(node) || co_frame_is_rtr(f) || (f->dlc < 6U) || (cob == NULL) ||
-        ((*cob & COB_TIME_CONS) == 0U)) {
-        return;
+    y->cob = (uint32_t *)co_od_ram_of(node, 0x1005U, 0U, (uint8_t)CO_UNSIGNED32);
+    y->period = (uint32_t *)co_od_ram_of(node, 0x1006U, 0U, (uint8_t)CO_UNSIGNED32);
+    y->window = (uint32_t *)co_od_ram_of(node, 0x1007U, 0U, (uint8_t)CO_UNSIGNED32);
+    y->overflow = (uint8_t *)co_od_ram_of(node, 0x1019U, 0U, (uint8_t)CO_UNSIGNED8);
+#if !CO_SYNC_PRODUCER
+    if (y->period != NULL) {
+        return CO_ERR_DEV_INCOMPAT;
     }
-    if (node->cb.time != NULL) {
-        node->cb.time(node->cb.ctx, node, co_get_u32(f->data) & 0x0FFFFFFFUL,
-                      co_get_u16(&f->data[4]));
-    }
-}
-
-co_err_t co_time_send(co_node_t *node, uint32_t ms, uint16_t days)
-{
-    const uint32_t *cob = co_time_cob(node);
-    uint8_t d[6];
-
-    if ((cob == NULL) || ((*cob & COB_TIME_PROD) == 0U)) {
-        return CO_ERR_NO_ACCESS;
-    }
-    if (!sync_allowed(node)) {
-        return CO_ERR_STORE_STATE;
-    }
-    co_put_u32(d, ms & 0x0FFFFFFFUL);
-    co_put_u16(&d[4], days);
-    co_tx(node, *cob & 0x7FFUL, d, 6U);
+#endif
     return CO_OK;
 }
+
+static void sync_reset_kind(co_node_t *node, uint8_t kind)
+{
+    if (kind == CO_SVC_START) {
+        sync_reset(node);
+    }
+}
+
+static void sync_rx_slots(co_node_t *node, uint8_t svc)
+{
+    if ((node->sync.cob != NULL) && ((*node->sync.cob & COB_SYNC_GEN) == 0U)) {
+        co_rx_add(node, (uint16_t)(*node->sync.cob & 0x7FFU), svc, 0U);
+    }
+}
+
+static void sync_rx_frame(co_node_t *node, uint16_t arg, const co_frame_t *f)
+{
+    (void)arg;
+    sync_rx(node, f);
+}
+
+/* 0x1005: the CAN-ID is fixed while this node produces SYNC (bit 30);
+ * 0x1006 within the timer horizon (2^31 us); 0x1019 counter overflow 0 or
+ * 2..240, and only while no SYNC period is set. A change of 0x1005, 0x1006
+ * or 0x1019 starts SYNC over. */
+static co_err_t sync_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
+                         const co_od_sub_t *s, const uint8_t *data, uint32_t len)
+{
+    uint16_t index = e->index;
+    co_err_t err = CO_OK;
+
+    if (op == (uint8_t)CO_SVC_WRITTEN) {
+        if (index != 0x1007U) {
+            sync_reset(node);
+            co_rx_invalidate(node);
+        }
+    } else if (s->sub != 0U) {
+        /* not a SYNC parameter */
+    } else if ((index == 0x1005U) && (len == 4U) && (node->sync.cob != NULL)) {
+        err = co_check_cob(*node->sync.cob, co_get_u32(data), COB_SYNC_GEN, true, 0U, true);
+    } else if ((index == 0x1006U) && (len == 4U) && (co_get_u32(data) > CO_HORIZON_US)) {
+        err = CO_ERR_VALUE_HIGH;
+    } else if ((index == 0x1019U) && (len == 1U)) {
+        if ((data[0] == 1U) || (data[0] > 240U)) {
+            err = CO_ERR_VALUE;
+        } else if ((node->sync.period != NULL) && (*node->sync.period != 0U)) {
+            err = CO_ERR_STORE_STATE;
+        } else {
+            /* allowed */
+        }
+    } else {
+        /* no rule */
+    }
+    return err;
+}
+
+static const co_svc_hook_t sync_hooks[] = {
+    {0x1005U, 0x1007U, CO_SVC_CHECK | CO_SVC_WRITTEN, sync_obj},
+    {0x1019U, 0x1019U, CO_SVC_CHECK | CO_SVC_WRITTEN, sync_obj},
+};
+
+const co_service_t co_svc_sync = {
+    sync_bind, sync_reset_kind, sync_rx_slots, sync_rx_frame, sync_process, NULL, sync_hooks, 2U,
+};

@@ -33,7 +33,7 @@ static void build_plain(const co_node_t *node, const co_pdo_t *p, uint16_t map, 
 static void build(co_node_t *node, uint16_t i, uint8_t *out)
 {
     const co_pdo_desc_t *d = &node->dev->pdo[i];
-    const co_pdo_t *p = &node->pdo[i];
+    const co_pdo_t *p = &node->pdo.p[i];
 
     (void)memset(out, 0, 8U);
     if ((p->flags & CO_PDO_F_PLAIN) != 0U) {
@@ -46,7 +46,7 @@ static void build(co_node_t *node, uint16_t i, uint8_t *out)
 /* Send @p data (8 bytes, zero beyond the mapping) now, or not at all. */
 static bool send(co_node_t *node, uint16_t i, const uint8_t *data)
 {
-    co_pdo_t *p = &node->pdo[i];
+    co_pdo_t *p = &node->pdo.p[i];
     co_frame_t f;
 
     f.id = co_pdo_cob(node, i) & 0x7FFUL;
@@ -65,7 +65,7 @@ static bool send(co_node_t *node, uint16_t i, const uint8_t *data)
 /* Event-driven send with inhibit time and event timer restart. */
 static bool send_event(co_node_t *node, uint16_t i, const uint8_t *data)
 {
-    co_pdo_t *p = &node->pdo[i];
+    co_pdo_t *p = &node->pdo.p[i];
     uint16_t off = node->dev->pdo[i].inhibit;
     uint32_t inhibit = (off == CO_PDO_NONE) ? 0U : co_dict_us(co_ram_u16(node, off), 100UL);
     uint32_t ev = co_pdo_event_us(node, i);
@@ -89,7 +89,7 @@ static bool send_event(co_node_t *node, uint16_t i, const uint8_t *data)
  * the synchronous window stays open. */
 static void send_sync(co_node_t *node, uint16_t i)
 {
-    co_pdo_t *p = &node->pdo[i];
+    co_pdo_t *p = &node->pdo.p[i];
 
     build(node, i, p->data);
     p->flags &= (uint16_t)~CO_PDO_F_EVENT;
@@ -102,12 +102,12 @@ static void send_sync(co_node_t *node, uint16_t i)
  * SYNC whose counter equals the start value when the SYNC has a counter. */
 static bool cyclic_due(co_node_t *node, uint16_t i, uint8_t type, uint8_t counter)
 {
-    co_pdo_t *p = &node->pdo[i];
+    co_pdo_t *p = &node->pdo.p[i];
     uint16_t off = node->dev->pdo[i].start;
     uint8_t start = (off != CO_PDO_NONE) ? co_ram_u8(node, off) : 0U;
 
     if ((start != 0U) && ((p->flags & CO_PDO_F_STARTED) == 0U) &&
-        (node->sync_overflow != NULL) && (*node->sync_overflow > 1U)) {
+        (node->sync.overflow != NULL) && (*node->sync.overflow > 1U)) {
         /* the first transmission waits for the SYNC counter */
         if (counter != start) {
             return false;
@@ -126,7 +126,7 @@ static bool cyclic_due(co_node_t *node, uint16_t i, uint8_t type, uint8_t counte
 /* Acyclic (0): due at the SYNC after a change of the data or a request. */
 static bool acyclic_due(co_node_t *node, uint16_t i)
 {
-    const co_pdo_t *p = &node->pdo[i];
+    const co_pdo_t *p = &node->pdo.p[i];
     uint8_t now[8];
 
     build(node, i, now);
@@ -145,7 +145,7 @@ void co_tpdo_sync(co_node_t *node, uint8_t counter)
         uint8_t type = co_pdo_type(node, i);
         /* RTR-only 253 and event-driven types do not follow SYNC */
         if (((type <= 240U) || (type == 252U)) && co_pdo_usable(node, i)) {
-            co_pdo_t *p = &node->pdo[i];
+            co_pdo_t *p = &node->pdo.p[i];
             p->flags &= (uint16_t)~CO_PDO_F_SYNC_PEND; /* a new SYNC replaces it */
             if (type == 252U) {
                 build(node, i, p->data); /* sampled now, sent on request */
@@ -163,7 +163,7 @@ void co_tpdo_sync(co_node_t *node, uint8_t counter)
  * every other type with the data of now. */
 static bool answer_rtr(co_node_t *node, uint16_t i)
 {
-    co_pdo_t *p = &node->pdo[i];
+    co_pdo_t *p = &node->pdo.p[i];
     uint8_t type = co_pdo_type(node, i);
     uint8_t now[8];
 
@@ -181,7 +181,7 @@ void co_tpdo_rtr(co_node_t *node, uint16_t i)
     }
     /* answered at once; only when the TX path is full does co_tpdo_process retry */
     if (!answer_rtr(node, i)) {
-        node->pdo[i].flags |= CO_PDO_F_RTR;
+        node->pdo.p[i].flags |= CO_PDO_F_RTR;
     }
 }
 
@@ -212,7 +212,7 @@ CO_INLINE uint32_t timer_next(const co_node_t *node, const co_pdo_t *p, uint32_t
  * inhibit time holds it back; then the next deadline. */
 CO_INLINE uint32_t event_due(co_node_t *node, uint16_t i, uint32_t next, const uint8_t *now)
 {
-    const co_pdo_t *p = &node->pdo[i];
+    const co_pdo_t *p = &node->pdo.p[i];
     uint32_t at = next;
 
     if ((p->flags & CO_PDO_F_INHIBIT) != 0U) {
@@ -230,7 +230,7 @@ CO_INLINE uint32_t event_due(co_node_t *node, uint16_t i, uint32_t next, const u
  * when no mask applies to its transmission type. */
 static CO_NOINLINE bool masked_change(const co_node_t *node, uint16_t i, const uint8_t *now)
 {
-    const co_pdo_t *p = &node->pdo[i];
+    const co_pdo_t *p = &node->pdo.p[i];
     uint32_t opt = (co_pdo_type(node, i) == 254U) ? CO_OPT_TPDO_MASK_254 : CO_OPT_TPDO_MASK_255;
     uint16_t off;
     uint32_t mask = 0U;
@@ -257,7 +257,7 @@ static CO_NOINLINE bool masked_change(const co_node_t *node, uint16_t i, const u
  * Returns the next deadline. */
 static uint32_t event_driven(co_node_t *node, uint16_t i, uint32_t next)
 {
-    co_pdo_t *p = &node->pdo[i];
+    co_pdo_t *p = &node->pdo.p[i];
     uint8_t now[8];
 
     event_timers(node, p);
@@ -283,7 +283,7 @@ static uint32_t event_driven(co_node_t *node, uint16_t i, uint32_t next)
  * Operational, when nothing has been sent), sampled when it goes out. */
 static uint32_t event_requested(co_node_t *node, uint16_t i, uint32_t next)
 {
-    co_pdo_t *p = &node->pdo[i];
+    co_pdo_t *p = &node->pdo.p[i];
     uint32_t at = next;
 
     event_timers(node, p);
@@ -315,7 +315,7 @@ CO_INLINE uint32_t tpdo_pass(co_node_t *node, uint32_t next, bool detect)
     uint16_t n = (uint16_t)(node->dev->n_rpdo + node->dev->n_tpdo);
 
     for (uint16_t i = node->dev->n_rpdo; i < n; i++) {
-        co_pdo_t *p = &node->pdo[i];
+        co_pdo_t *p = &node->pdo.p[i];
         uint8_t type;
         if (!co_pdo_usable(node, i)) {
             continue;
@@ -330,7 +330,7 @@ CO_INLINE uint32_t tpdo_pass(co_node_t *node, uint32_t next, bool detect)
         }
         if ((p->flags & CO_PDO_F_SYNC_PEND) != 0U) {
             /* CiA 301: synchronous PDOs outside the window are not sent */
-            if (!co_sync_window_open(node) || send(node, i, p->data)) {
+            if (!co_sync_window(node) || send(node, i, p->data)) {
                 p->flags &= (uint16_t)~CO_PDO_F_SYNC_PEND;
             } else {
                 next = co_deadline_min(node->now, next, node->now + RETRY_US);
@@ -358,4 +358,18 @@ uint32_t co_tpdo_process(co_node_t *node, uint32_t next)
         return tpdo_pass_requested(node, next);
     }
     return tpdo_pass(node, next, true);
+}
+
+co_err_t co_tpdo_request(co_node_t *node, uint16_t n)
+{
+    uint16_t i = (uint16_t)(node->dev->n_rpdo + n);
+
+    if ((node->dev->pdo == NULL) || (n >= node->dev->n_tpdo)) {
+        return CO_ERR_NO_OBJECT;
+    }
+    if (!co_pdo_usable(node, i)) {
+        return CO_ERR_STORE_STATE;
+    }
+    node->pdo.p[i].flags |= CO_PDO_F_EVENT;
+    return CO_OK;
 }

@@ -67,8 +67,8 @@ int g301_attach(void *app, co_node_t *node)
     a->domain_len = 0U;
     a->stage_len = 0U;
     a->restart = true;
-    if ((co_od_bind_hook(node, 0x2300U, &dom) != CO_OK) ||
-        (co_od_bind_hook(node, 0x2200U, &veto) != CO_OK)) {
+    if ((co_od_bind_hook(node, 0x2300U, &dom) != CO_RESULT_OK) ||
+        (co_od_bind_hook(node, 0x2200U, &veto) != CO_RESULT_OK)) {
         return -1;
     }
     return 0;

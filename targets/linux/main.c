@@ -208,7 +208,7 @@ static int start_node(dnode_t *d, const opt_node_t *spec, const char *iface)
     co_node_config_t cfg;
     co_lx_can_fail_t why = CO_LX_CAN_OK;
     char err[256];
-    co_err_t e;
+    co_result_t e;
 
     d->dev = device_find(spec->device);
     d->serial = spec->serial;
@@ -264,8 +264,8 @@ static int start_node(dnode_t *d, const opt_node_t *spec, const char *iface)
         return -1;
     }
     e = co_node_init(&d->node, &cfg, co_lx_now_us());
-    if (e != CO_OK) {
-        log_line(d->tag, CO_LX_ERROR, "co_node_init failed: 0x%08lX", (unsigned long)e);
+    if (e != CO_RESULT_OK) {
+        log_line(d->tag, CO_LX_ERROR, "co_node_init failed: result %d", (int)e);
         return -1;
     }
     set_tag(d, co_node_id(&d->node)); /* an LSS-stored node-ID */

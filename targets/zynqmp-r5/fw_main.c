@@ -291,7 +291,7 @@ void fw_main(void)
         }
         cfg.hal.ops = &hal_ops_nv;
     }
-    if ((co_node_init(&g301.node, &cfg, clock_us(&clk)) != CO_OK) ||
+    if ((co_node_init(&g301.node, &cfg, clock_us(&clk)) != CO_RESULT_OK) ||
         (g301_attach(&app, &g301.node) != 0)) {
         fail("node start failed");
     }

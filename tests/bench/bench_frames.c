@@ -87,7 +87,7 @@ int main(void)
     minimal_slave_config(&slave, &cfg);
     cfg.hal.ops = &ops;
     cfg.node_id = 1U;
-    if (co_node_init(&slave.node, &cfg, now) != CO_OK) {
+    if (co_node_init(&slave.node, &cfg, now) != CO_RESULT_OK) {
         return 1;
     }
     f = frame(0x000U, 2U, start);

@@ -84,6 +84,7 @@ int main(int argc, char **argv)
     co_node_t *node = &n.node;
     co_node_config_t cfg;
     unsigned long id = (argc > 1) ? strtoul(argv[1], NULL, 0) : 5UL;
+    co_result_t res;
     co_err_t err;
 
     if ((id < 1UL) || (id > 127UL)) {
@@ -107,9 +108,9 @@ int main(int argc, char **argv)
     }
     cfg.hal.ops = &ops;
     cfg.node_id = (uint8_t)id;
-    err = co_node_init(node, &cfg, 0U);
-    if (err != CO_OK) {
-        fprintf(stderr, "od_dump: co_node_init: 0x%08lx\n", (unsigned long)err);
+    res = co_node_init(node, &cfg, 0U);
+    if (res != CO_RESULT_OK) {
+        fprintf(stderr, "od_dump: co_node_init: %d\n", (int)res);
         return 1;
     }
     if ((co_node_id(node) == CO_NODE_ID_UNCONFIGURED) &&
@@ -125,9 +126,9 @@ int main(int argc, char **argv)
     printf(" \"core\": {\"errreg\": %d, \"hist_depth\": %u, \"n_hb_cons\": %u, "
            "\"emcy_cob\": %d, \"hb_prod\": %d, \"guard_time\": %d, \"life_factor\": %d, "
            "\"emcy_inhibit\": %d, \"frames\": %u, \"first_id\": %lu, \"nmt\": %u},\n",
-           node->errreg != NULL, (unsigned)node->hist_depth, (unsigned)node->n_hb_cons,
-           node->emcy_cob != NULL, node->hb_prod != NULL, node->guard_time != NULL,
-           node->life_factor != NULL, node->emcy_inhibit != NULL, frames_sent,
+           node->emcy.errreg != NULL, (unsigned)node->emcy.hist_depth, (unsigned)node->errctl.n_hb_cons,
+           node->emcy.cob != NULL, node->errctl.hb_prod != NULL, node->errctl.guard_time != NULL,
+           node->errctl.life_factor != NULL, node->emcy.inhibit != NULL, frames_sent,
            (unsigned long)first_id, (unsigned)co_node_nmt_state(node));
     printf(" \"entries\": [\n");
     for (uint16_t i = 0U; i < dev->od_count; i++) {

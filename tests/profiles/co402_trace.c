@@ -105,7 +105,7 @@ int main(int argc, char **argv)
     cfg.hal.ctx = &tr;
     cfg.node_id = 1;
     cfg.cb = co_profile_host_callbacks(&tr.host);
-    if ((co_node_init(&tr.n.node, &cfg, 0) != CO_OK) ||
+    if ((co_node_init(&tr.n.node, &cfg, 0) != CO_RESULT_OK) ||
         (co_profile_host_attach(&tr.host, &tr.n.node, 0) != CO_OK)) {
         fprintf(stderr, "co402_trace: cannot start the node\n");
         return 1;

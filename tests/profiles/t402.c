@@ -50,7 +50,7 @@ void t402_start(t402_t *f, uint8_t id, uint32_t options, const co402_sim_config_
     cb = co_profile_host_callbacks(&f->host);
     cfg.cb = cb;
     tb_attach(&f->bus, 0, &f->n.node);
-    assert_int_equal(co_node_init(&f->n.node, &cfg, f->bus.now), CO_OK);
+    assert_int_equal(co_node_init(&f->n.node, &cfg, f->bus.now), CO_RESULT_OK);
     assert_int_equal(co_profile_host_attach(&f->host, &f->n.node, f->bus.now), CO_OK);
     {
         char boot[16];

@@ -45,7 +45,7 @@ void t408_start(t408_t *f, uint8_t id)
     cfg.node_id = id;
     cfg.cb = co_profile_host_callbacks(&f->host);
     tb_attach(&f->bus, 0, &f->n.node);
-    assert_int_equal(co_node_init(&f->n.node, &cfg, f->bus.now), CO_OK);
+    assert_int_equal(co_node_init(&f->n.node, &cfg, f->bus.now), CO_RESULT_OK);
     assert_int_equal(co_profile_host_attach(&f->host, &f->n.node, f->bus.now), CO_OK);
     snprintf(boot, sizeof boot, "%03X 00", 0x700U + id);
     tb_expect(&f->bus, boot);

@@ -53,7 +53,7 @@ static int setup(void **state)
     cfg.node_id = 2;
     cfg.cb = co_profile_host_callbacks(&fx.host);
     tb_attach(BUS, 0, &fx.n.node);
-    assert_int_equal(co_node_init(&fx.n.node, &cfg, BUS->now), CO_OK);
+    assert_int_equal(co_node_init(&fx.n.node, &cfg, BUS->now), CO_RESULT_OK);
     assert_int_equal(co_profile_host_attach(&fx.host, &fx.n.node, BUS->now), CO_OK);
     tb_expect(BUS, "702 00");
     return 0;

@@ -86,7 +86,7 @@ static void p_emcy_mfr(void *inst, uint16_t code, uint8_t mfr[5])
     char b[16];
 
     snprintf(b, sizeof b, "mfr%04X", (unsigned)code);
-    note(r, b, r->node->now);
+    note(r, b, co_node_now(r->node));
     if (r->id == 1) {
         mfr[0] = 0x11U;
     } else {
@@ -157,7 +157,7 @@ static void start(bool with_app)
     cfg.node_id = 3;
     cfg.cb = co_profile_host_callbacks(&fx.host);
     tb_attach(&fx.bus, 0, &fx.n.node);
-    assert_int_equal(co_node_init(&fx.n.node, &cfg, fx.bus.now), CO_OK);
+    assert_int_equal(co_node_init(&fx.n.node, &cfg, fx.bus.now), CO_RESULT_OK);
     tb_expect(&fx.bus, "703 00");
 }
 

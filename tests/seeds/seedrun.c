@@ -36,7 +36,7 @@ void sr_start(seedrun_t *s, const co402_device_t *d, co_node_config_t *cfg, co_n
     cfg->cb = co402_drive_callbacks(&s->drv);
     /* the node memory must be attached to the bus before init sends boot-up */
     tb_attach(&s->bus, 0, node);
-    assert_int_equal(co_node_init(node, cfg, s->bus.now), CO_OK);
+    assert_int_equal(co_node_init(node, cfg, s->bus.now), CO_RESULT_OK);
     assert_int_equal(co402_drive_attach(&s->drv, node, s->bus.now), CO_OK);
     if ((cfg->dev->options & CO_OPT_LSS_ONLY) != 0U) {
         /* the node-ID only through LSS (FAULHABER quick start, digest 1.5):

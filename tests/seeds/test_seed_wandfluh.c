@@ -48,7 +48,7 @@ static void power_on(uint8_t id)
     cfg.node_id = id;
     cfg.cb = co408_unit_callbacks(&fx.u);
     tb_attach(&fx.bus, 0, NODE);
-    assert_int_equal(co_node_init(NODE, &cfg, fx.bus.now), CO_OK);
+    assert_int_equal(co_node_init(NODE, &cfg, fx.bus.now), CO_RESULT_OK);
     assert_int_equal(co408_unit_attach(&fx.u, NODE, fx.bus.now), CO_OK);
     snprintf(boot, sizeof boot, "%03X 00", 0x700U + NODE->node_id);
     tb_expect(BUS, boot); /* D1 */

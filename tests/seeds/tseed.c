@@ -45,7 +45,7 @@ void tseed_start(tseed_t *f, unsigned k, const co402_device_t *dev, co_node_conf
     cfg->cb = co402_drive_callbacks(&n->drv);
     n->node = node;
     tb_attach(&f->bus, (uint8_t)k, node);
-    assert_int_equal(co_node_init(node, cfg, f->bus.now), CO_OK);
+    assert_int_equal(co_node_init(node, cfg, f->bus.now), CO_RESULT_OK);
     assert_int_equal(co402_drive_attach(&n->drv, node, f->bus.now), CO_OK);
     if (f->count <= k) {
         f->count = k + 1U;

@@ -233,7 +233,7 @@ void td_start_cb(td_node_t *n, tb_bus_t *bus, uint8_t idx, uint8_t id, const co_
         cfg.cb = *cb;
     }
     tb_attach(bus, idx, &n->node);
-    assert_int_equal(co_node_init(&n->node, &cfg, bus->now), CO_OK);
+    assert_int_equal(co_node_init(&n->node, &cfg, bus->now), CO_RESULT_OK);
 }
 
 void td_start(td_node_t *n, tb_bus_t *bus, uint8_t idx, uint8_t id, const co_dev_t *dev)

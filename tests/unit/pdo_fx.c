@@ -42,10 +42,10 @@ void pfx_start(pfx_t *f, uint8_t id, uint32_t options)
     cfg.dev = &f->dev;
     cfg.hal = tb_hal(&f->bus, 0);
     cfg.node_id = id;
-    assert_int_equal(co_node_init(&f->n.node, &cfg, f->bus.now), CO_OK);
+    assert_int_equal(co_node_init(&f->n.node, &cfg, f->bus.now), CO_RESULT_OK);
     tb_attach(&f->bus, 0, &f->n.node);
     h.ctx = f;
-    assert_int_equal(co_od_bind_hook(&f->n.node, 0x2020U, &h), CO_OK);
+    assert_int_equal(co_od_bind_hook(&f->n.node, 0x2020U, &h), CO_RESULT_OK);
     snprintf(boot, sizeof boot, "%03X 00", 0x700U + id);
     tb_expect(&f->bus, boot);
     tb_expect_none(&f->bus);

@@ -358,7 +358,7 @@ static void node_fed_by_the_interrupts(void **state)
     cfg.hal.ops = &ops;
     cfg.hal.ctx = C;
     cfg.node_id = 5U;
-    assert_int_equal(co_node_init(&node.node, &cfg, 0U), CO_OK);
+    assert_int_equal(co_node_init(&node.node, &cfg, 0U), CO_RESULT_OK);
     assert_int_equal(co_od_write(&node.node, 0x2013U, 0U, text, 31U, true), CO_OK);
     assert_int_equal(m_flush(M), 1U);
     assert_int_equal(M->tx_log[0][0], (0x705U << 21U) | 1U); /* boot-up */

@@ -24,10 +24,10 @@ static tb_bus_t bus;
 static lean_test_node_t lean;
 #define BUS (&bus)
 
-static co_err_t start(const co_dev_t *dev)
+static co_result_t start(const co_dev_t *dev)
 {
     co_node_config_t cfg;
-    co_err_t err;
+    co_result_t err;
 
     memset(&lean, 0, sizeof lean);
     tb_init(&bus);
@@ -36,7 +36,7 @@ static co_err_t start(const co_dev_t *dev)
     cfg.hal = tb_hal(&bus, 0);
     cfg.node_id = 1;
     err = co_node_init(&lean.node, &cfg, bus.now);
-    if (err == CO_OK) {
+    if (err == CO_RESULT_OK) {
         tb_attach(&bus, 0, &lean.node);
     }
     return err;
@@ -53,7 +53,7 @@ static uint32_t get_u32(uint16_t index, uint8_t sub)
 static void storage_left_out(void **state)
 {
     (void)state;
-    assert_int_equal(start(&lean_test_dev), CO_OK);
+    assert_int_equal(start(&lean_test_dev), CO_RESULT_OK);
     tb_expect(BUS, "701 00");
     /* capability 0 on a HAL with NV; save and restore answer 0x08000020 */
     tb_xfer(BUS, "601 40 10 10 01 00 00 00 00", "581 43 10 10 01 00 00 00 00");
@@ -68,7 +68,7 @@ static void services_kept(void **state)
 {
     uint8_t v[4];
     (void)state;
-    assert_int_equal(start(&lean_test_dev), CO_OK);
+    assert_int_equal(start(&lean_test_dev), CO_RESULT_OK);
     tb_expect(BUS, "701 00");
     /* SDO: expedited, and a segmented download of a mapping entry */
     tb_xfer(BUS, "601 40 08 10 00 00 00 00 00", "581 47 08 10 00 6D 69 6E 00");
@@ -107,12 +107,12 @@ static void refuses_what_is_left_out(void **state)
     (void)state;
     /* a personality option */
     dev.options = CO_OPT_SDO_NO_BLOCK;
-    assert_int_equal(start(&dev), CO_ERR_DEV_INCOMPAT);
+    assert_int_equal(start(&dev), CO_RESULT_DEV_INCOMPAT);
     tb_expect_none(BUS);
     dev.options = 0U;
     /* value limits */
     dev.limits = limits;
-    assert_int_equal(start(&dev), CO_ERR_DEV_INCOMPAT);
+    assert_int_equal(start(&dev), CO_RESULT_DEV_INCOMPAT);
     tb_expect_none(BUS);
     dev.limits = NULL;
     /* error behaviour 0x1029 (the description's entries plus one) */
@@ -138,7 +138,7 @@ static void refuses_what_is_left_out(void **state)
         assert_true(added);
         dev.od = od;
         dev.od_count = n;
-        assert_int_equal(start(&dev), CO_ERR_DEV_INCOMPAT);
+        assert_int_equal(start(&dev), CO_RESULT_DEV_INCOMPAT);
         tb_expect_none(BUS);
         dev.od = lean_test_dev.od;
         dev.od_count = lean_test_dev.od_count;
@@ -153,7 +153,7 @@ static void refuses_what_is_left_out(void **state)
     cfg.node_id = 2;
     cfg.ram = &td.ram;
     cfg.hooks = td.hooks;
-    assert_int_equal(co_node_init(&td.node, &cfg, bus.now), CO_ERR_DEV_INCOMPAT);
+    assert_int_equal(co_node_init(&td.node, &cfg, bus.now), CO_RESULT_DEV_INCOMPAT);
     tb_expect_none(BUS);
 }
 

@@ -59,10 +59,10 @@ static void setup_bus(uint32_t options)
 }
 
 /* (Re)start node @p idx with node-ID @p id (UNCONF: unconfigured) on its NV. */
-static co_err_t start_ops(uint8_t idx, uint8_t id, uint32_t serial, const co_hal_ops_t *ops)
+static co_result_t start_ops(uint8_t idx, uint8_t id, uint32_t serial, const co_hal_ops_t *ops)
 {
     co_node_config_t cfg;
-    co_err_t e;
+    co_result_t e;
 
     lss_test_config(&fx.n[idx], &cfg);
     cfg.dev = &fx.dev;
@@ -73,7 +73,7 @@ static co_err_t start_ops(uint8_t idx, uint8_t id, uint32_t serial, const co_hal
     cfg.cb.nmt_reset = on_reset;
     fx.serial[idx] = serial;
     e = co_node_init(&fx.n[idx].node, &cfg, fx.bus.now);
-    if (e == CO_OK) {
+    if (e == CO_RESULT_OK) {
         set_serial(&fx.n[idx].node, serial);
         tb_attach(&fx.bus, idx, &fx.n[idx].node);
     }
@@ -82,7 +82,7 @@ static co_err_t start_ops(uint8_t idx, uint8_t id, uint32_t serial, const co_hal
 
 static void start(uint8_t idx, uint8_t id, uint32_t serial)
 {
-    assert_int_equal(start_ops(idx, id, serial, &tb_hal_ops), CO_OK);
+    assert_int_equal(start_ops(idx, id, serial, &tb_hal_ops), CO_RESULT_OK);
 }
 
 /* @p cob + @p bytes, padded with zeros to 8 bytes (LSS frames are 8 long). */
@@ -170,9 +170,9 @@ static void test_unconfigured_needs_lss(void **state)
     (void)state;
     setup_bus(0U);
     fx.dev.options &= ~(uint32_t)CO_OPT_LSS;
-    assert_int_equal(start_ops(0, UNCONF, 1U, &tb_hal_ops), CO_ERR_VALUE);
-    assert_int_equal(start_ops(0, 0U, 1U, &tb_hal_ops), CO_ERR_VALUE);
-    assert_int_equal(start_ops(0, 128U, 1U, &tb_hal_ops), CO_ERR_VALUE);
+    assert_int_equal(start_ops(0, UNCONF, 1U, &tb_hal_ops), CO_RESULT_BAD_NODE_ID);
+    assert_int_equal(start_ops(0, 0U, 1U, &tb_hal_ops), CO_RESULT_BAD_NODE_ID);
+    assert_int_equal(start_ops(0, 128U, 1U, &tb_hal_ops), CO_RESULT_BAD_NODE_ID);
     /* and without LSS nothing answers on 0x7E5 */
     start(0, 5U, 1U);
     tb_expect(&fx.bus, "705 00");
@@ -519,7 +519,7 @@ static void test_store_errors(void **state)
 {
     (void)state;
     setup_bus(0U);
-    assert_int_equal(start_ops(0, 0x10U, 1U, &tb_hal_ops_no_nv), CO_OK);
+    assert_int_equal(start_ops(0, 0x10U, 1U, &tb_hal_ops_no_nv), CO_RESULT_OK);
     tb_flush(&fx.bus);
     silent("04 01");
     xfer("17", "17 01");

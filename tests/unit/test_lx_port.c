@@ -66,7 +66,7 @@ static void start_node(uint8_t id)
     cfg.node_id = id;
     cfg.ram = &fx.n.ram;
     cfg.hooks = fx.n.hooks;
-    assert_int_equal(co_node_init(&fx.n.node, &cfg, 1000U), CO_OK);
+    assert_int_equal(co_node_init(&fx.n.node, &cfg, 1000U), CO_RESULT_OK);
     co_lx_port_attach(&fx.port, &fx.n.node);
 }
 

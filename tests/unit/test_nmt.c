@@ -162,9 +162,9 @@ static void init_rejects_bad_node_id(void **state)
     cfg.ram = &fx->n.ram;
     cfg.hooks = fx->n.hooks;
     cfg.node_id = 0;
-    assert_int_equal(co_node_init(&fx->n.node, &cfg, BUS->now), CO_ERR_VALUE);
+    assert_int_equal(co_node_init(&fx->n.node, &cfg, BUS->now), CO_RESULT_BAD_NODE_ID);
     cfg.node_id = 128;
-    assert_int_equal(co_node_init(&fx->n.node, &cfg, BUS->now), CO_ERR_VALUE);
+    assert_int_equal(co_node_init(&fx->n.node, &cfg, BUS->now), CO_RESULT_BAD_NODE_ID);
     tb_expect_none(BUS);
 }
 

@@ -79,8 +79,8 @@ static int setup(void **state)
     tb_init(&fx.bus);
     td_start(&fx.n, &fx.bus, 0, 5, NULL);
     tb_flush(&fx.bus);
-    assert_int_equal(co_od_bind_hook(&fx.n.node, 0x2100, &h1), CO_OK);
-    assert_int_equal(co_od_bind_hook(&fx.n.node, 0x2201, &h3), CO_OK);
+    assert_int_equal(co_od_bind_hook(&fx.n.node, 0x2100, &h1), CO_RESULT_OK);
+    assert_int_equal(co_od_bind_hook(&fx.n.node, 0x2201, &h3), CO_RESULT_OK);
     fx.refresh = 0x0BADCAFEUL;
     *state = &fx;
     return 0;
@@ -173,8 +173,8 @@ static void bind_hook_errors(void **state)
 {
     co_od_hook_t h = {NULL, NULL, NULL};
     (void)state;
-    assert_int_equal(co_od_bind_hook(NODE, 0x4321, &h), CO_ERR_NO_OBJECT);
-    assert_int_equal(co_od_bind_hook(NODE, 0x2004, &h), CO_ERR_NO_ACCESS); /* no slot */
+    assert_int_equal(co_od_bind_hook(NODE, 0x4321, &h), CO_RESULT_NO_OBJECT);
+    assert_int_equal(co_od_bind_hook(NODE, 0x2004, &h), CO_RESULT_NO_HOOK_SLOT); /* no slot */
 }
 
 static void read_hook_refreshes_value(void **state)

@@ -40,7 +40,7 @@ static int setup(void **state)
     cfg.node_id = 5U;
     cfg.cb.ctx = &fx;
     cfg.cb.rx_set = on_rx_set;
-    assert_int_equal(co_node_init(&fx.n.node, &cfg, 0U), CO_OK);
+    assert_int_equal(co_node_init(&fx.n.node, &cfg, 0U), CO_RESULT_OK);
     tb_attach(&fx.bus, 0, &fx.n.node);
     tb_flush(&fx.bus);
     *state = &fx;

@@ -108,7 +108,7 @@ static int setup(void **state)
     hook.read = dom_read;
     hook.write = dom_write;
     hook.ctx = &fx.dom;
-    assert_int_equal(co_od_bind_hook(&fx.n.node, 0x2200U, &hook), CO_OK);
+    assert_int_equal(co_od_bind_hook(&fx.n.node, 0x2200U, &hook), CO_RESULT_OK);
     *state = &fx;
     return 0;
 }

@@ -563,7 +563,7 @@ static void start_without_nv(td_node_t *n)
     cfg.ram = &n->ram;
     cfg.hooks = n->hooks;
     tb_attach(BUS, 0, &n->node);
-    assert_int_equal(co_node_init(&n->node, &cfg, fx.bus.now), CO_OK);
+    assert_int_equal(co_node_init(&n->node, &cfg, fx.bus.now), CO_RESULT_OK);
 }
 
 static void hal_without_nv(void **state)
@@ -844,7 +844,7 @@ static void start_generic(void)
     cfg.node_id = 5U;
     tb_attach(BUS, 0, &fx.g.node);
     tb_flush(BUS);
-    assert_int_equal(co_node_init(&fx.g.node, &cfg, fx.bus.now), CO_OK);
+    assert_int_equal(co_node_init(&fx.g.node, &cfg, fx.bus.now), CO_RESULT_OK);
     tb_expect(BUS, "705 00");
     tb_expect_none(BUS);
 }

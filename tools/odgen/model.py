@@ -941,7 +941,8 @@ def _dcf_table(dcf) -> dict | None:
 
 def _include(data: dict, path: Path) -> dict:
     """include = "other.toml": the other description (relative to this one) is
-    the base; this one's [device], [eds] and [dcf] keys replace the base's, its
+    the base; this one's [device], [eds], [dcf] and personality ([sdo] ...)
+    keys replace the base's, its
     objects replace the base's objects of the same index or are added."""
     inc = data["include"]
     if not isinstance(inc, str) or not inc:
@@ -953,9 +954,12 @@ def _include(data: dict, path: Path) -> dict:
         raise DescError(f"include {inc!r}: cannot read: {e.strerror}") from None
     except tomllib.TOMLDecodeError as e:
         raise DescError(f"include {inc!r}: TOML syntax: {e}") from None
-    _check_keys(base, {"device", "eds", "dcf", "object"}, f"include {inc!r}: top level")
+    import personality  # noqa: PLC0415
+
+    _check_keys(base, {"device", "eds", "dcf", "object", *personality.TABLES},
+                f"include {inc!r}: top level")
     out: dict = {}
-    for key in ("device", "eds", "dcf"):
+    for key in ("device", "eds", "dcf", *personality.TABLES):
         a, b = base.get(key), data.get(key)
         if a is None or b is None:
             if a is not None or b is not None:
@@ -982,12 +986,15 @@ def _include(data: dict, path: Path) -> dict:
 
 def loads(text: str, path: str | Path = "<description>", base: str | None = None) -> Device:
     """Load a description from its text (path: for messages and the default base)."""
+    import personality  # noqa: PLC0415 (it imports this module's DescError)
+
     path = Path(path)
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as e:
         raise DescError(f"TOML syntax: {e}") from None
-    _check_keys(data, {"include", "device", "eds", "dcf", "object"}, "top level")
+    _check_keys(data, {"include", "device", "eds", "dcf", "object", *personality.TABLES},
+                "top level")
     if "include" in data:
         data = _include(data, path)
     dev = data.get("device")
@@ -1004,13 +1011,16 @@ def loads(text: str, path: str | Path = "<description>", base: str | None = None
     opts = dev.get("options", [])
     if not isinstance(opts, list):
         raise DescError("[device] options must be a list of option names")
-    bits = 0
     for o in opts:
         if o not in known:
             raise DescError(f"[device] options: unknown option {o!r} "
                             f"(known: {', '.join(sorted(known))})")
+    # the typed settings per service ([sdo], [pdo], [tpdo], [emcy], ...)
+    opts, bed, mask = personality.apply(data, opts, dev.get("boot_emcy_data"),
+                                        dev.get("tpdo_mask"))
+    bits = 0
+    for o in opts:
         bits |= known[o]
-    bed = dev.get("boot_emcy_data")
     if bed is not None:
         if (not isinstance(bed, list) or len(bed) != 5 or
                 not all(isinstance(b, int) and not isinstance(b, bool) and 0 <= b <= 255 for b in bed)):
@@ -1019,7 +1029,6 @@ def loads(text: str, path: str | Path = "<description>", base: str | None = None
             raise DescError("[device] boot_emcy_data is only sent with option BOOT_EMCY")
     elif "BOOT_EMCY" in opts:
         raise DescError("[device] option BOOT_EMCY needs boot_emcy_data (5 bytes)")
-    mask = dev.get("tpdo_mask")
     if mask is not None:
         mask = _uint(mask, "[device] tpdo_mask", 0xFFFF)
         if not 0x2000 <= mask <= 0x5FFF:

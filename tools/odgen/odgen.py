@@ -22,6 +22,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
+import build  # noqa: E402
 import gen_c  # noqa: E402
 import gen_eds  # noqa: E402
 import gen_md  # noqa: E402
@@ -43,11 +44,16 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--c", action="store_true", help="write the C dictionary")
     ap.add_argument("--eds", action="store_true", help="write the EDS")
     ap.add_argument("--md", action="store_true", help="write the markdown table")
+    ap.add_argument("--build", action="append", default=[], metavar="NAME=VALUE",
+                    help="a build-time option of the core the device is built with "
+                         "(co_config.h; ',' or ';'-separated lists too): a device that needs "
+                         "a service or option the build leaves out is refused")
     args = ap.parse_args(argv)
     every = not (args.c or args.eds or args.md)
     src = args.toml
     try:
         dev = load(src, args.base)
+        build.check(dev, build.parse(args.build))
         name = Path(src).name
         out = Path(args.out)
         products = {}

@@ -40,6 +40,11 @@
  *  LSS and the heartbeat consumers. */
 #define CO_RX_SLOTS_MAX (5U + (unsigned)(CO_LSS) + CO_HB_CONSUMERS_MAX)
 #endif
+#ifndef CO_SVC_HOOKS_MAX
+/** Object ranges the services compiled in hook (co_node_t.svc_hooks): the
+ *  full core registers 10; a service added to the table may need more. */
+#define CO_SVC_HOOKS_MAX 10U
+#endif
 
 /* ---- PDO */
 
@@ -53,6 +58,18 @@
 
 /* ---- services a device may not need (1: in, 0: left out) */
 
+#ifndef CO_SDO_BLOCK
+/** SDO block upload and download (CiA 301 7.2.4.3.9..). Left out: block
+ *  requests answer 0x05040001 like an unknown command; a device whose
+ *  description offers block transfer ([sdo] block) is refused. */
+#define CO_SDO_BLOCK 1
+#endif
+#ifndef CO_NODE_GUARDING
+/** Node guarding and life guarding (0x100C, 0x100D, guarding RTRs). Left
+ *  out: a device with 0x100C or 0x100D is refused; guarding RTRs are not
+ *  answered (heartbeat only). */
+#define CO_NODE_GUARDING 1
+#endif
 #ifndef CO_STORAGE
 /** Parameter storage, 0x1010 / 0x1011 (co_store.c). Left out, the node
  *  behaves as with a HAL without non-volatile memory: 0x1010 / 0x1011 read 0

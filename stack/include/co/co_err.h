@@ -41,4 +41,20 @@ typedef enum co_err {
     CO_ERR_NO_DATA           = 0x08000024  /**< no data available */
 } co_err_t;
 
+/**
+ * What setting up a node or binding to it returns (co_node_init,
+ * co_od_bind_hook): a configuration result, not an SDO abort code.
+ */
+typedef enum co_result {
+    CO_RESULT_OK = 0,
+    CO_RESULT_BAD_CONFIG,   /**< a NULL pointer or missing table in the configuration */
+    CO_RESULT_BAD_NODE_ID,  /**< node-ID outside 1..127 */
+    CO_RESULT_DEV_INCOMPAT, /**< the device needs a service or option this build of the
+                                 core leaves out (co_config.h) */
+    CO_RESULT_NO_OBJECT,    /**< no such object in the dictionary */
+    CO_RESULT_NO_HOOK_SLOT, /**< the object has no hook slot (description: hook = true) */
+    CO_RESULT_HOOK_BOUND,   /**< a hook is already bound there: two plug-ins on one object */
+    CO_RESULT_NO_MEMORY     /**< a fixed-size table of the node is full (co_config.h) */
+} co_result_t;
+
 #endif /* CO_ERR_H */

@@ -246,6 +246,7 @@ typedef struct co_sdo_srv {
     uint32_t size;       /**< total size, 0 if unknown */
     uint32_t offset;     /**< bytes done (acknowledged) */
     uint32_t deadline;
+    uint32_t timeout_us; /**< co_node_config_t.sdo_timeout_us */
     uint16_t crc;
     uint8_t state;
     uint8_t toggle;
@@ -263,6 +264,20 @@ typedef struct co_hb_consumer {
     uint8_t nmt;         /**< producer's last state */
 } co_hb_consumer_t;
 
+/** Error control (co_hb.c): heartbeat producer and consumers, node and life guarding. */
+typedef struct co_errctl {
+    uint32_t *hb_cons;       /**< 0x1016 sub1.. */
+    uint16_t *hb_prod;       /**< 0x1017 */
+    uint16_t *guard_time;    /**< 0x100C */
+    uint8_t *life_factor;    /**< 0x100D */
+    uint32_t hb_deadline;
+    uint32_t guard_deadline;
+    uint8_t n_hb_cons;
+    uint8_t guard_toggle;
+    uint8_t guard_state;     /**< 0 off, 1 armed (first RTR seen), 2 lost */
+    co_hb_consumer_t hbc[CO_HB_CONSUMERS_MAX];
+} co_errctl_t;
+
 typedef struct co_emcy_active {
     uint16_t code;
     uint8_t reg;
@@ -272,61 +287,83 @@ typedef struct co_emcy_pending {
     uint8_t data[8];
 } co_emcy_pending_t;
 
+/** EMCY producer (co_emcy.c): 0x1001, 0x1003, 0x1014, 0x1015. */
+typedef struct co_emcy {
+    uint8_t *errreg;         /**< 0x1001 */
+    uint8_t *hist_count;     /**< 0x1003 sub0 */
+    uint32_t *hist;          /**< 0x1003 sub1.. */
+    uint32_t *cob;           /**< 0x1014 */
+    uint16_t *inhibit;       /**< 0x1015 */
+    uint32_t next;           /**< earliest time the next EMCY may go (inhibit) */
+    uint8_t hist_depth;
+    uint8_t n_active;
+    uint8_t n_q;
+    co_emcy_active_t active[CO_EMCY_ACTIVE_MAX];
+    co_emcy_pending_t q[CO_EMCY_QUEUE_LEN];
+} co_emcy_t;
+
+/** SYNC consumer and producer (co_sync.c): 0x1005, 0x1006, 0x1007, 0x1019. */
+typedef struct co_sync {
+    uint32_t *cob;           /**< 0x1005 */
+    uint32_t *period;        /**< 0x1006 */
+    uint32_t *window;        /**< 0x1007 */
+    uint8_t *overflow;       /**< 0x1019 */
+    uint32_t deadline;       /**< producer: next SYNC */
+    uint32_t last;           /**< time of the last SYNC (window) */
+    uint8_t counter;         /**< counter of the SYNC produced next */
+} co_sync_t;
+
+/** TIME consumer and producer (co_time.c): 0x1012. */
+typedef struct co_time {
+    uint32_t *cob;           /**< 0x1012 */
+} co_time_t;
+
+/** PDO (co_pdo_config.c, co_rpdo.c, co_tpdo.c). */
+typedef struct co_pdo_svc {
+    co_pdo_t *p;             /**< dev->n_rpdo + dev->n_tpdo */
+    co_pdo_slot_t *rx;       /**< PDO COB-IDs, sorted */
+    uint16_t n_rx;
+    uint16_t fc;             /**< bit per function code in rx[] */
+    uint8_t buffered;        /**< some RPDO may hold data for the next SYNC */
+    /** the PDO service's receive entry, for frames found in rx[] */
+    void (*recv)(struct co_node *node, uint16_t i, const co_frame_t *f);
+} co_pdo_svc_t;
+
+struct co_svc_hook;
+
 typedef struct co_node {
     const co_dev_t *dev;
     co_hal_t hal;
     uint8_t *ram;
     co_od_hook_t *hooks;
     co_node_callbacks_t cb;
-    uint32_t sdo_timeout_us;
     uint32_t now;
     uint8_t node_id;         /**< active node-ID, CO_NODE_ID_UNCONFIGURED while unconfigured */
     uint8_t pending_id;      /**< node-ID from the next reset communication */
     uint8_t cob_base;        /**< node-ID the $NODEID defaults of the PDO and EMCY
                                   COB-IDs use (CO_OPT_LSS_KEEP_COBS; else node_id) */
     uint8_t nmt;             /**< co_nmt_state_t */
-    uint8_t guard_toggle;
-    uint8_t guard_state;     /**< 0 off, 1 armed (first RTR seen), 2 lost */
-    /* where the core's own objects live (NULL: the device lacks them) */
-    uint8_t *errreg;         /* 0x1001 */
-    uint8_t *hist_count;     /* 0x1003 sub0 */
-    uint32_t *hist;          /* 0x1003 sub1.. */
-    uint32_t *emcy_cob;      /* 0x1014 */
-    uint16_t *emcy_inhibit;  /* 0x1015 */
-    uint32_t *hb_cons;       /* 0x1016 sub1.. */
-    uint16_t *hb_prod;       /* 0x1017 */
-    uint32_t *sync_cob;      /* 0x1005 */
-    uint32_t *sync_period;   /* 0x1006 */
-    uint32_t *sync_window;   /* 0x1007 */
-    uint32_t *time_cob;      /* 0x1012 */
-    uint8_t *sync_overflow;  /* 0x1019 */
-    uint8_t sync_counter;    /* counter of the SYNC produced next */
-    uint32_t sync_deadline;  /* producer: next SYNC */
-    uint32_t sync_last;      /* time of the last SYNC (window) */
-    uint16_t *guard_time;    /* 0x100C */
-    uint8_t *life_factor;    /* 0x100D */
-    uint8_t hist_depth;
-    uint8_t n_hb_cons;
+    /* the dispatcher's receive table (co_node.c), rebuilt when rx_dirty */
     uint8_t n_rx;
+    uint8_t rx_dirty;
     uint8_t txq_len;
-    uint8_t n_active;
-    uint8_t n_emcy_q;
-    uint8_t rpdo_buffered;   /**< some RPDO may hold data for the next SYNC */
+    uint8_t n_svc_hooks;
+    uint8_t n_svc_rd;        /**< 1 once a service hook with a read hook is registered */
     uint8_t rx_filter[16];   /**< bit per (COB-ID & 0x7F): quick reject */
     uint16_t rx_fc;          /**< bit per function code (COB-ID >> 7) in rx[] */
-    uint16_t pdo_fc;         /**< bit per function code in pdo_rx[] */
-    uint32_t hb_deadline;
-    uint32_t guard_deadline;
-    uint32_t emcy_next;      /**< earliest time the next EMCY may go (inhibit) */
     co_rx_slot_t rx[CO_RX_SLOTS_MAX];
     co_frame_t txq[CO_TXQ_LEN];
-    co_hb_consumer_t hbc[CO_HB_CONSUMERS_MAX];
-    co_emcy_active_t active[CO_EMCY_ACTIVE_MAX];
-    co_emcy_pending_t emcy_q[CO_EMCY_QUEUE_LEN];
+    /** The services' own hooks on the objects they own (co_od.c), sorted by index. */
+    const struct co_svc_hook *svc_hooks[CO_SVC_HOOKS_MAX];
+    uint16_t svc_rd_lo;      /**< indexes with a service read hook: svc_rd_lo .. + svc_rd_span */
+    uint16_t svc_rd_span;
+    /* one part per service */
     co_sdo_srv_t sdo;
-    co_pdo_t *pdo;
-    co_pdo_slot_t *pdo_rx;   /**< PDO COB-IDs, sorted */
-    uint16_t n_pdo_rx;
+    co_errctl_t errctl;
+    co_emcy_t emcy;
+    co_sync_t sync;
+    co_time_t time;
+    co_pdo_svc_t pdo;
 #if CO_LSS
     co_lss_t lss;
 #endif
@@ -336,11 +373,12 @@ typedef struct co_node {
 
 /** Initialise @p node from @p cfg, restore all values to their defaults and
  *  then to the stored set (0x1010) if the HAL's NV holds a valid one, send
- *  the boot-up frame and enter Pre-operational. Returns CO_OK, or
- *  CO_ERR_OD_MISSING / CO_ERR_VALUE for a bad configuration, or
- *  CO_ERR_DEV_INCOMPAT for a device that needs a service or option this
+ *  the boot-up frame and enter Pre-operational. Clears the hook slots
+ *  (cfg->hooks): bind hooks after this call. Returns CO_RESULT_OK, or
+ *  CO_RESULT_BAD_CONFIG / CO_RESULT_BAD_NODE_ID for a bad configuration, or
+ *  CO_RESULT_DEV_INCOMPAT for a device that needs a service or option this
  *  build of the core leaves out (co_config.h); nothing is sent then. */
-co_err_t co_node_init(co_node_t *node, const co_node_config_t *cfg, uint32_t now_us);
+co_result_t co_node_init(co_node_t *node, const co_node_config_t *cfg, uint32_t now_us);
 
 /** Bytes of non-volatile memory parameter storage (0x1010/0x1011) uses for a
  *  node of @p dev: the HAL's nv_read/nv_write see addresses 0 .. this - 1
@@ -366,6 +404,18 @@ uint8_t co_node_id(const co_node_t *node);
  *  of range. LSS configure node-ID does the same through the bus. */
 co_err_t co_node_set_id(co_node_t *node, uint8_t id, uint32_t now_us);
 
+/** NMT command specifiers (CiA 301 7.2.8.3.1), for co_node_nmt_command. */
+typedef enum co_nmt_cmd {
+    CO_NMT_CMD_START = 0x01,
+    CO_NMT_CMD_STOP = 0x02,
+    CO_NMT_CMD_PRE_OPERATIONAL = 0x80,
+    CO_NMT_CMD_RESET_NODE = 0x81,
+    CO_NMT_CMD_RESET_COMMUNICATION = 0x82
+} co_nmt_cmd_t;
+
+/** The node's current time: the time of the frame or process call it is
+ *  handling (for hooks and callbacks), else of the last one. */
+uint32_t co_node_now(const co_node_t *node);
 /** The port's TX-ready notice: the controller has room again (a TX mailbox
  *  or FIFO slot emptied; on an MCU the TX interrupt sets a flag the main loop
  *  turns into this call). Frames held back go out now, lowest CAN-ID first,
@@ -385,7 +435,8 @@ bool co_node_rx_cob(const co_node_t *node, uint16_t i, uint16_t *cob);
 /** The current NMT state. */
 co_nmt_state_t co_node_nmt_state(const co_node_t *node);
 
-/** Execute an NMT command locally (as if received for this node). */
+/** Execute an NMT command locally (as if received for this node); @p cs is a
+ *  co_nmt_cmd_t (other values are ignored). */
 void co_node_nmt_command(co_node_t *node, uint8_t cs, uint32_t now_us);
 
 /** 0x1029 sub-index of the communication error class. */
@@ -422,8 +473,12 @@ co_err_t co_od_write(co_node_t *node, uint16_t index, uint8_t sub, const void *d
  *  hook's back. */
 void *co_od_value_ptr(co_node_t *node, uint16_t index, uint8_t sub);
 
-/** Bind hooks to the entry @p index (which must have a hook slot). */
-co_err_t co_od_bind_hook(co_node_t *node, uint16_t index, const co_od_hook_t *hook);
+/** Bind hooks to the entry @p index (which must have a hook slot), after
+ *  co_node_init. They run after the core's own checks of the object (a
+ *  service's hook comes first). CO_RESULT_NO_OBJECT, CO_RESULT_NO_HOOK_SLOT,
+ *  or CO_RESULT_HOOK_BOUND when hooks are bound there already (two plug-ins
+ *  on one object): the bound ones stay. */
+co_result_t co_od_bind_hook(co_node_t *node, uint16_t index, const co_od_hook_t *hook);
 
 /** Raise an error: set it active, update 0x1001 and 0x1003 and send an EMCY
  *  with @p code, the register and @p mfr (5 bytes, NULL for zeros).

@@ -1,0 +1,35 @@
+/*
+ * The services compiled into the core, in the order the node walks them
+ * (docs/core.md, "The service table"): receive-table slots, resets, timers
+ * and NMT state changes all go down this list. Adding a service: its file
+ * defines one const co_service_t; add its declaration and its row here.
+ */
+#include "co_priv.h"
+
+#if CO_LSS
+extern const co_service_t co_svc_lss;
+#endif
+extern const co_service_t co_svc_nmt;
+extern const co_service_t co_svc_sdo;
+extern const co_service_t co_svc_errctl;
+extern const co_service_t co_svc_emcy;
+extern const co_service_t co_svc_sync;
+extern const co_service_t co_svc_time;
+extern const co_service_t co_svc_pdo;
+extern const co_service_t co_svc_store;
+
+const co_service_t *const co_services[] = {
+#if CO_LSS
+    &co_svc_lss,    /* LSS slave, CiA 305 (alone while unconfigured: CO_SVC_UNCONFIGURED_ROWS) */
+#endif
+    &co_svc_nmt,    /* NMT command, 0x1029 */
+    &co_svc_sdo,    /* SDO server */
+    &co_svc_errctl, /* heartbeat, node / life guarding: 0x100C, 0x100D, 0x1016, 0x1017 */
+    &co_svc_emcy,   /* EMCY: 0x1001, 0x1003, 0x1014, 0x1015 */
+    &co_svc_sync,   /* SYNC: 0x1005..0x1007, 0x1019 */
+    &co_svc_time,   /* TIME: 0x1012 */
+    &co_svc_pdo,    /* RPDO, TPDO: 0x1400..0x1BFF */
+    &co_svc_store,  /* parameter storage: 0x1010, 0x1011 */
+};
+
+const uint8_t co_n_services = (uint8_t)(sizeof co_services / sizeof co_services[0]);

@@ -1,0 +1,110 @@
+/*
+ * TIME consumer and producer (0x1012). Without CO_TIME only the refusal of
+ * a device with 0x1012 is left.
+ */
+#include "co/co_endian.h"
+#include "co_priv.h"
+
+#if CO_TIME
+
+#define COB_TIME_CONS 0x80000000UL /* 0x1012 bit 31: consume TIME */
+#define COB_TIME_PROD 0x40000000UL /* 0x1012 bit 30: produce TIME */
+
+static bool time_allowed(const co_node_t *node)
+{
+    return (node->nmt == (uint8_t)CO_NMT_PRE_OPERATIONAL) ||
+           (node->nmt == (uint8_t)CO_NMT_OPERATIONAL);
+}
+
+static void time_rx(co_node_t *node, uint16_t arg, const co_frame_t *f)
+{
+    const uint32_t *cob = node->time.cob;
+
+    (void)arg;
+    if (!time_allowed(node) || co_frame_is_rtr(f) || (f->dlc < 6U) || (cob == NULL) ||
+        ((*cob & COB_TIME_CONS) == 0U)) {
+        return;
+    }
+    if (node->cb.time != NULL) {
+        node->cb.time(node->cb.ctx, node, co_get_u32(f->data) & 0x0FFFFFFFUL,
+                      co_get_u16(&f->data[4]));
+    }
+}
+
+co_err_t co_time_send(co_node_t *node, uint32_t ms, uint16_t days)
+{
+    const uint32_t *cob = node->time.cob;
+    uint8_t d[6];
+
+    if ((cob == NULL) || ((*cob & COB_TIME_PROD) == 0U)) {
+        return CO_ERR_NO_ACCESS;
+    }
+    if (!time_allowed(node)) {
+        return CO_ERR_STORE_STATE;
+    }
+    co_put_u32(d, ms & 0x0FFFFFFFUL);
+    co_put_u16(&d[4], days);
+    co_tx(node, *cob & 0x7FFUL, d, 6U);
+    return CO_OK;
+}
+
+static co_err_t time_bind(co_node_t *node)
+{
+    node->time.cob = (uint32_t *)co_od_ram_of(node, 0x1012U, 0U, (uint8_t)CO_UNSIGNED32);
+    return CO_OK;
+}
+
+static void time_rx_slots(co_node_t *node, uint8_t svc)
+{
+    const uint32_t *cob = node->time.cob;
+
+    if ((cob != NULL) && ((*cob & COB_TIME_CONS) != 0U)) {
+        co_rx_add(node, (uint16_t)(*cob & 0x7FFU), svc, 0U);
+    }
+}
+
+/* The CAN-ID is fixed while consumed or produced (bits 31, 30); a new one
+ * is received from the next frame on. */
+static co_err_t time_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
+                         const co_od_sub_t *s, const uint8_t *data, uint32_t len)
+{
+    (void)e;
+    if (op == (uint8_t)CO_SVC_WRITTEN) {
+        co_rx_invalidate(node);
+    } else if ((s->sub == 0U) && (len == 4U) && (node->time.cob != NULL)) {
+        return co_check_cob(*node->time.cob, co_get_u32(data), COB_TIME_CONS | COB_TIME_PROD,
+                            true, 0U, false);
+    } else {
+        /* no rule */
+    }
+    return CO_OK;
+}
+
+static const co_svc_hook_t time_hooks[] = {
+    {0x1012U, 0x1012U, CO_SVC_CHECK | CO_SVC_WRITTEN, time_obj},
+};
+
+const co_service_t co_svc_time = {
+    time_bind, NULL, time_rx_slots, time_rx, NULL, NULL, time_hooks, 1U,
+};
+
+#else /* !CO_TIME */
+
+co_err_t co_time_send(co_node_t *node, uint32_t ms, uint16_t days)
+{
+    (void)node;
+    (void)ms;
+    (void)days;
+    return CO_ERR_NO_ACCESS;
+}
+
+static co_err_t time_refuse(co_node_t *node)
+{
+    return (co_od_find(node->dev->od, node->dev->od_count, 0x1012U) != NULL)
+               ? CO_ERR_DEV_INCOMPAT
+               : CO_OK;
+}
+
+const co_service_t co_svc_time = {time_refuse, NULL, NULL, NULL, NULL, NULL, NULL, 0U};
+
+#endif

@@ -1,0 +1,62 @@
+"""The generator refuses a description that needs a service or option the
+core build leaves out (--build NAME=VALUE, what co_device passes from the
+core library's definitions), and accepts it when the build has it."""
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from conftest import ROOT, run_odgen
+
+GENERIC = ROOT / "devices" / "generic-301.toml"       # 0x100C/0x100D, 0x1012, 0x1006
+MINIMAL = ROOT / "targets" / "cortex-m" / "minimal-slave.toml"
+LEAN = ROOT / "tests" / "unit" / "devices" / "lean-test.toml"
+KOLLMORGEN = ROOT / "devices" / "kollmorgen-s300-s700.toml"  # SDO expedited only
+FAULHABER = ROOT / "devices" / "faulhaber-mc.toml"  # 0x1029
+
+
+@pytest.mark.parametrize("option, needle", [
+    ("CO_TIME=0", "TIME (object 0x1012) needs CO_TIME=1"),
+    ("CO_SYNC_PRODUCER=0", "SYNC producer (object 0x1006) needs CO_SYNC_PRODUCER=1"),
+    ("CO_NODE_GUARDING=0", "node guarding (object 0x100C, 0x100D) needs CO_NODE_GUARDING=1"),
+    ("CO_SDO_BLOCK=0", "block SDO"),
+])
+def test_refused(tmp_path: Path, option: str, needle: str) -> None:
+    r = run_odgen(GENERIC, tmp_path, "--c", f"--build={option}")
+    assert r.returncode == 1
+    assert needle in r.stderr
+    assert not list(tmp_path.iterdir())  # nothing written
+
+
+def test_error_behaviour(tmp_path: Path) -> None:
+    r = run_odgen(FAULHABER, tmp_path, "--c", "--build=CO_ERROR_BEHAVIOUR=0")
+    assert r.returncode == 1
+    assert "error behaviour (object 0x1029) needs CO_ERROR_BEHAVIOUR=1" in r.stderr
+
+
+def test_refused_names_every_missing_part(tmp_path: Path) -> None:
+    r = run_odgen(GENERIC, tmp_path, "--c", "--build=CO_TIME=0,CO_NODE_GUARDING=0")
+    assert r.returncode == 1
+    assert "CO_TIME=1" in r.stderr and "CO_NODE_GUARDING=1" in r.stderr
+
+
+def test_options_outside_the_build(tmp_path: Path) -> None:
+    r = run_odgen(KOLLMORGEN, tmp_path, "--c", "--build=CO_OPTIONS=0U")
+    assert r.returncode == 1
+    assert "SDO_EXPEDITED_ONLY" in r.stderr and "CO_OPTIONS" in r.stderr
+
+
+def test_accepted(tmp_path: Path) -> None:
+    # what the device does not need may be left out
+    assert run_odgen(LEAN, tmp_path, "--c",
+                     "--build=CO_STORAGE=0;CO_TIME=0;CO_SYNC_PRODUCER=0;CO_ERROR_BEHAVIOUR=0;"
+                     "CO_LIMITS=0;CO_OPTIONS=0U;CO_NODE_GUARDING=0").returncode == 0
+    # the minimal slave has guarding: with it, its build's options pass
+    assert run_odgen(MINIMAL, tmp_path, "--c",
+                     "--build=CO_STORAGE=0,CO_TIME=0,CO_SYNC_PRODUCER=0,CO_ERROR_BEHAVIOUR=0,"
+                     "CO_LIMITS=0,CO_OPTIONS=0U,CO_HB_CONSUMERS_MAX=4U").returncode == 0
+    # a device that offers no block SDO is fine without it
+    assert run_odgen(KOLLMORGEN, tmp_path, "--c", "--build=CO_SDO_BLOCK=0").returncode == 0
+    # no build options: the full core
+    assert run_odgen(GENERIC, tmp_path, "--c", "--build=").returncode == 0

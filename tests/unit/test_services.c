@@ -1,0 +1,120 @@
+/*
+ * The node's service table: its documented order (docs/core.md) and what
+ * the order means on the bus: timers run in table order, so frames that
+ * fall due at the same co_node_process leave as heartbeat (error control),
+ * then a held-back EMCY, then the SYNC. Also the public names: the node's
+ * time and the NMT command constants.
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "co_priv.h"
+#include "test_bus.h"
+#include "test_dev.h"
+
+extern const co_service_t co_svc_nmt;
+extern const co_service_t co_svc_sdo;
+extern const co_service_t co_svc_errctl;
+extern const co_service_t co_svc_emcy;
+extern const co_service_t co_svc_sync;
+extern const co_service_t co_svc_time;
+extern const co_service_t co_svc_pdo;
+extern const co_service_t co_svc_store;
+#if CO_LSS
+extern const co_service_t co_svc_lss;
+#endif
+
+static tb_bus_t bus;
+static td_node_t n;
+
+#define BUS (&bus)
+#define NODE (&n.node)
+
+static int setup(void **state)
+{
+    (void)state;
+    tb_init(&bus);
+    td_start(&n, &bus, 0, 1, NULL);
+    tb_expect(BUS, "701 00");
+    return 0;
+}
+
+static void test_table_order(void **state)
+{
+    const co_service_t *const want[] = {
+#if CO_LSS
+                                        &co_svc_lss, /* first: alone while unconfigured */
+#endif
+                                        &co_svc_nmt,  &co_svc_sdo,  &co_svc_errctl,
+                                        &co_svc_emcy, &co_svc_sync, &co_svc_time,
+                                        &co_svc_pdo,  &co_svc_store};
+
+    (void)state;
+    assert_int_equal(co_n_services, sizeof want / sizeof want[0]);
+    for (uint8_t k = 0U; k < co_n_services; k++) {
+        assert_ptr_equal(co_services[k], want[k]);
+    }
+    /* every service's object ranges are registered, none twice */
+    assert_int_equal(NODE->n_svc_hooks, 10);
+}
+
+static void put(uint16_t index, uint32_t v, uint32_t len)
+{
+    uint8_t d[4] = {(uint8_t)v, (uint8_t)(v >> 8), (uint8_t)(v >> 16), (uint8_t)(v >> 24)};
+    assert_int_equal(co_od_write(NODE, index, 0U, d, len, true), CO_OK);
+}
+
+/* heartbeat, held-back EMCY and SYNC due at the same time: table order */
+static void test_process_order(void **state)
+{
+    (void)state;
+    put(0x1015U, 10U, 2U);          /* EMCY inhibit 1 ms */
+    put(0x1017U, 1U, 2U);           /* heartbeat every 1 ms */
+    put(0x1005U, 0x40000080UL, 4U); /* this node produces SYNC */
+    put(0x1006U, 1000U, 4U);        /* every 1 ms */
+    co_emcy_raise(NODE, 0x1000U, 0U, NULL);
+    tb_expect(BUS, "081 00 10 01 00 00 00 00 00");
+    co_emcy_raise(NODE, 0x5000U, CO_ERREG_CURRENT, NULL); /* held back by the inhibit time */
+    tb_expect_none(BUS);
+    tb_advance(BUS, 1000U);
+    tb_expect(BUS, "701 7F");                       /* error control */
+    tb_expect(BUS, "081 00 50 03 00 00 00 00 00");  /* EMCY */
+    tb_expect(BUS, "080");                          /* SYNC */
+    tb_expect_none(BUS);
+}
+
+/* the NMT command names and the node's time */
+static void test_public_names(void **state)
+{
+    (void)state;
+    co_node_nmt_command(NODE, CO_NMT_CMD_START, 1234U);
+    assert_int_equal(co_node_nmt_state(NODE), CO_NMT_OPERATIONAL);
+    assert_int_equal(co_node_now(NODE), 1234U);
+    co_node_nmt_command(NODE, CO_NMT_CMD_STOP, 1300U);
+    assert_int_equal(co_node_nmt_state(NODE), CO_NMT_STOPPED);
+    co_node_nmt_command(NODE, CO_NMT_CMD_PRE_OPERATIONAL, 1400U);
+    assert_int_equal(co_node_nmt_state(NODE), CO_NMT_PRE_OPERATIONAL);
+    co_node_nmt_command(NODE, CO_NMT_CMD_RESET_COMMUNICATION, 1500U);
+    tb_expect(BUS, "701 00");
+    co_node_nmt_command(NODE, CO_NMT_CMD_RESET_NODE, 1600U);
+    tb_expect(BUS, "701 00");
+    assert_int_equal(co_node_now(NODE), 1600U);
+    tb_send(BUS, "000 01 01");
+    assert_int_equal(co_node_now(NODE), bus.now);
+    assert_int_equal(co_node_nmt_state(NODE), CO_NMT_OPERATIONAL);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test_setup(test_table_order, setup),
+        cmocka_unit_test_setup(test_process_order, setup),
+        cmocka_unit_test_setup(test_public_names, setup),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,276 @@
+/*
+ * One service against the dictionary engine, nothing else of the core
+ * compiled in: this executable links co_od.c and co_store.c only, with its
+ * own service table (a recording service and parameter storage) and its own
+ * small dictionary. Shows the hook chain (a service's check before the
+ * application's hook, the service's written after the commit, a veto at any
+ * step leaves the old value), the refusal of overlapping registrations and
+ * of a second application hook on one object, and storage acting on 0x1010
+ * without the value being stored.
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "co/co_endian.h"
+#include "co_priv.h"
+
+/* ---- what the engine and the storage service see of the node */
+
+typedef struct ram {
+    uint32_t v2000;   /* 0x2000: owned by the recording service, hook slot 0 */
+    uint32_t v3000;   /* 0x3000: nobody's */
+    uint32_t save[1]; /* 0x1010 sub1 */
+    uint8_t save_n;   /* 0x1010 sub0 */
+} ram_t;
+
+static const co_od_sub_t s1010[] = {
+    {0, CO_UNSIGNED8, CO_SUB_R | CO_SUB_CONST | CO_SUB_ROM, 1, 0, 0},
+    {1, CO_UNSIGNED32, CO_SUB_RW, 4, offsetof(ram_t, save), 0},
+};
+static const co_od_sub_t s2000[] = {{0, CO_UNSIGNED32, CO_SUB_RW, 4, offsetof(ram_t, v2000), 0}};
+static const co_od_sub_t s3000[] = {{0, CO_UNSIGNED32, CO_SUB_RW, 4, offsetof(ram_t, v3000), 0}};
+static const co_od_entry_t od[] = {
+    {0x1010, 2, 0, CO_OBJ_ARRAY, s1010},
+    {0x2000, 1, 1, CO_OBJ_VAR, s2000},
+    {0x3000, 1, 0, CO_OBJ_VAR, s3000},
+};
+static const uint8_t rom[1] = {1};
+static const ram_t defaults = {0x11U, 0x22U, {0U}, 0U};
+static const co_dev_t dev = {
+    .name = "alone",
+    .od = od,
+    .od_count = 3,
+    .ram_size = sizeof(ram_t),
+    .comm_end = 0,
+    .app_end = sizeof(ram_t),
+    .defaults = &defaults,
+    .rom = rom,
+    .n_hooks = 1,
+};
+
+static int hal_send(void *ctx, const co_frame_t *f)
+{
+    (void)ctx;
+    (void)f;
+    fail_msg("the storage service sends nothing");
+    return 0;
+}
+static const co_hal_ops_t hal_ops = {.send = hal_send};
+
+/* ---- the recording service: owns 0x2000 */
+
+static char trail[64];
+static co_err_t svc_veto;
+static co_err_t app_veto;
+
+static void note(char c)
+{
+    size_t n = strlen(trail);
+    if (n + 1U < sizeof trail) {
+        trail[n] = c;
+        trail[n + 1U] = '\0';
+    }
+}
+
+static co_err_t rec_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
+                       const co_od_sub_t *s, const uint8_t *data, uint32_t len)
+{
+    (void)s;
+    (void)data;
+    assert_int_equal(e->index, 0x2000);
+    if (op == CO_SVC_READ) {
+        note('r');
+        return CO_OK;
+    }
+    if (op == CO_SVC_CHECK) {
+        assert_int_equal(len, 4);
+        note('c');
+        return svc_veto;
+    }
+    assert_int_equal(op, CO_SVC_WRITTEN);
+    /* the value is committed when the service hears of it */
+    assert_int_equal(((const ram_t *)(const void *)node->ram)->v2000, 0x12345678U);
+    note('w');
+    return CO_OK;
+}
+
+static const co_svc_hook_t rec_hooks[] = {
+    {0x2000U, 0x2000U, CO_SVC_READ | CO_SVC_CHECK | CO_SVC_WRITTEN, rec_obj}};
+static const co_service_t rec_svc = {NULL, NULL, NULL, NULL, NULL, NULL, rec_hooks, 1U};
+
+extern const co_service_t co_svc_store;
+const co_service_t *const co_services[] = {&rec_svc, &co_svc_store};
+const uint8_t co_n_services = 2U;
+
+/* ---- the application's hook on 0x2000 */
+
+static co_err_t app_read(void *ctx, co_od_io_t *io)
+{
+    (void)ctx;
+    (void)io;
+    note('R');
+    return CO_OK;
+}
+
+static co_err_t app_write(void *ctx, co_od_io_t *io)
+{
+    (void)ctx;
+    (void)io;
+    note('W');
+    return app_veto;
+}
+
+/* ---- fixture: the node as co_node_init would leave it, done by hand */
+
+static co_node_t node;
+static ram_t ram;
+static co_od_hook_t hooks[1];
+
+static int setup(void **state)
+{
+    (void)state;
+    memset(&node, 0, sizeof node);
+    memset(hooks, 0, sizeof hooks);
+    node.dev = &dev;
+    node.ram = (uint8_t *)&ram;
+    node.hooks = hooks;
+    node.hal.ops = &hal_ops;
+    node.node_id = 1U;
+    co_od_restore(&node, 0U, dev.ram_size);
+    for (uint8_t k = 0U; k < co_n_services; k++) {
+        for (uint8_t h = 0U; h < co_services[k]->n_hooks; h++) {
+            assert_int_equal(co_od_register(&node, &co_services[k]->hooks[h]), CO_RESULT_OK);
+        }
+    }
+    trail[0] = '\0';
+    svc_veto = CO_OK;
+    app_veto = CO_OK;
+    return 0;
+}
+
+static void write_sub(uint16_t index, uint8_t sub, uint32_t v, co_err_t expect)
+{
+    uint8_t d[4];
+    co_put_u32(d, v);
+    assert_int_equal(co_od_write(&node, index, sub, d, 4U, false), expect);
+}
+
+static void write_u32(uint16_t index, uint32_t v, co_err_t expect)
+{
+    write_sub(index, 0U, v, expect);
+}
+
+/* service check, application hook, commit, service written; reads: the
+ * service's read hook before the application's */
+static void test_chain_order(void **state)
+{
+    co_od_hook_t h = {app_read, app_write, NULL};
+    uint8_t buf[4];
+    uint32_t len = 0U;
+
+    (void)state;
+    assert_int_equal(co_od_bind_hook(&node, 0x2000U, &h), CO_RESULT_OK);
+    write_u32(0x2000U, 0x12345678U, CO_OK);
+    assert_string_equal(trail, "cWw");
+    trail[0] = '\0';
+    assert_int_equal(co_od_read(&node, 0x2000U, 0U, buf, 4U, &len), CO_OK);
+    assert_string_equal(trail, "rR");
+    assert_int_equal(co_get_u32(buf), 0x12345678U);
+    /* an object no service owns: no service hook at all */
+    trail[0] = '\0';
+    write_u32(0x3000U, 5U, CO_OK);
+    assert_string_equal(trail, "");
+    assert_int_equal(ram.v3000, 5U);
+}
+
+/* a veto of the service: the application's hook is not asked, the old value stays */
+static void test_service_veto_first(void **state)
+{
+    co_od_hook_t h = {NULL, app_write, NULL};
+
+    (void)state;
+    assert_int_equal(co_od_bind_hook(&node, 0x2000U, &h), CO_RESULT_OK);
+    svc_veto = CO_ERR_VALUE;
+    write_u32(0x2000U, 0x12345678U, CO_ERR_VALUE);
+    assert_string_equal(trail, "c");
+    assert_int_equal(ram.v2000, 0x11U);
+    /* a veto of the application: the service hears of no write */
+    trail[0] = '\0';
+    svc_veto = CO_OK;
+    app_veto = CO_ERR_STORE_STATE;
+    write_u32(0x2000U, 0x12345678U, CO_ERR_STORE_STATE);
+    assert_string_equal(trail, "cW");
+    assert_int_equal(ram.v2000, 0x11U);
+}
+
+/* two services on one object, or overlapping ranges: refused, the first stays */
+static void test_register_conflict(void **state)
+{
+    static const co_svc_hook_t same[] = {{0x2000U, 0x2000U, 0U, NULL}};
+    static const co_svc_hook_t overlap[] = {{0x1FFFU, 0x2001U, 0U, NULL}};
+    static const co_svc_hook_t inside[] = {{0x1011U, 0x1011U, 0U, NULL}};
+    static const co_svc_hook_t free_range[] = {{0x3000U, 0x3000U, 0U, NULL}};
+    static co_svc_hook_t filler[CO_SVC_HOOKS_MAX];
+
+    (void)state;
+    assert_int_equal(co_od_register(&node, same), CO_RESULT_HOOK_BOUND);
+    assert_int_equal(co_od_register(&node, overlap), CO_RESULT_HOOK_BOUND);
+    assert_int_equal(co_od_register(&node, inside), CO_RESULT_HOOK_BOUND);
+    assert_int_equal(node.n_svc_hooks, 2);
+    write_u32(0x2000U, 0x12345678U, CO_OK);
+    assert_string_equal(trail, "cw"); /* still the recording service's */
+    assert_int_equal(co_od_register(&node, free_range), CO_RESULT_OK);
+    /* the table is full after CO_SVC_HOOKS_MAX ranges */
+    for (uint16_t i = 0U; node.n_svc_hooks < CO_SVC_HOOKS_MAX; i++) {
+        co_svc_hook_t *f = &filler[i];
+        f->first = (uint16_t)(0x4000U + i);
+        f->last = f->first;
+        assert_int_equal(co_od_register(&node, f), CO_RESULT_OK);
+    }
+    {
+        static const co_svc_hook_t one_more[] = {{0x5000U, 0x5000U, 0U, NULL}};
+        assert_int_equal(co_od_register(&node, one_more), CO_RESULT_NO_MEMORY);
+    }
+}
+
+/* two plug-ins on one object: the second bind is refused, the first hook stays */
+static void test_bind_twice(void **state)
+{
+    co_od_hook_t first = {NULL, app_write, NULL};
+    co_od_hook_t second = {app_read, NULL, NULL};
+
+    (void)state;
+    assert_int_equal(co_od_bind_hook(&node, 0x2000U, &first), CO_RESULT_OK);
+    assert_int_equal(co_od_bind_hook(&node, 0x2000U, &second), CO_RESULT_HOOK_BOUND);
+    assert_ptr_equal(hooks[0].write, app_write);
+    assert_null(hooks[0].read);
+    assert_int_equal(co_od_bind_hook(&node, 0x3000U, &second), CO_RESULT_NO_HOOK_SLOT);
+    assert_int_equal(co_od_bind_hook(&node, 0x4000U, &second), CO_RESULT_NO_OBJECT);
+}
+
+/* storage acts on 0x1010 sub1 instead of storing it: without NV the answer
+ * is 0x08000020 and the value read stays what the service set */
+static void test_storage_acts(void **state)
+{
+    (void)state;
+    write_sub(0x1010U, 1U, 0x65766173U /* "save" */, CO_ERR_STORE);
+    assert_int_equal(ram.save[0], 0U);
+    assert_string_equal(trail, "");
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test_setup(test_chain_order, setup),
+        cmocka_unit_test_setup(test_service_veto_first, setup),
+        cmocka_unit_test_setup(test_register_conflict, setup),
+        cmocka_unit_test_setup(test_bind_twice, setup),
+        cmocka_unit_test_setup(test_storage_acts, setup),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,98 @@
+"""The core's build-time options (stack/include/co/co_config.h) and the
+services a device description needs: a description that needs a service or
+option the build leaves out is refused at generation time, with the option
+that would have to be on (the core refuses the same device at co_node_init;
+this says it before anything is compiled).
+
+The defaults come from co_config.h itself (every `#define CO_X value` inside
+its `#ifndef CO_X`); a build's overrides are the NAME=VALUE definitions of
+its core library (cmake: co_core(<lib> NAME=VALUE ...), passed on by
+co_device as --build NAME=VALUE).
+"""
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+from model import Device, DescError
+
+CONFIG_HEADER = Path(__file__).resolve().parents[2] / "stack" / "include" / "co" / "co_config.h"
+
+
+def _value(text: str) -> int | None:
+    t = text.strip().rstrip("uUlL")
+    try:
+        return int(t, 0)
+    except ValueError:
+        return None  # an expression (e.g. CO_RX_SLOTS_MAX): not a switch
+
+
+def defaults(header: Path = CONFIG_HEADER) -> dict[str, int]:
+    text = header.read_text(encoding="utf-8")
+    out = {}
+    for m in re.finditer(r"#ifndef\s+(CO_\w+)\s*\n(?:\s*/\*.*?\*/\s*\n)?\s*#define\s+\1\s+([^\n]+)",
+                         text, re.S):
+        v = _value(m.group(2))
+        if v is not None:
+            out[m.group(1)] = v
+    return out
+
+
+def parse(defs: list[str]) -> dict[str, int]:
+    """NAME=VALUE definitions of a core build (others, e.g. without a value, are ignored)."""
+    out = {}
+    for d in defs:
+        for item in re.split(r"[;,]", d):
+            name, sep, val = item.partition("=")
+            if sep and name.startswith("CO_"):
+                v = _value(val)
+                if v is None:
+                    raise DescError(f"build option {item!r}: not a number")
+                out[name] = v
+    return out
+
+
+# (option, what a device needs it for, test on the device)
+def _has(dev: Device, *indexes: int) -> list[int]:
+    return [o.index for o in dev.objects if o.index in indexes]
+
+
+def check(dev: Device, build: dict[str, int]) -> None:
+    """Raise DescError naming every service or option @p dev needs that
+    the build (co_config.h defaults overridden by @p build) leaves out."""
+    cfg = defaults()
+    cfg.update(build)
+    missing = []
+
+    def need(option: str, what: str) -> None:
+        missing.append(f"{what} needs {option}=1 (this build: {option}={cfg.get(option)})")
+
+    if not cfg.get("CO_TIME", 1) and _has(dev, 0x1012):
+        need("CO_TIME", "TIME (object 0x1012)")
+    if not cfg.get("CO_SYNC_PRODUCER", 1) and _has(dev, 0x1006):
+        need("CO_SYNC_PRODUCER", "the SYNC producer (object 0x1006)")
+    if not cfg.get("CO_ERROR_BEHAVIOUR", 1) and _has(dev, 0x1029):
+        need("CO_ERROR_BEHAVIOUR", "error behaviour (object 0x1029)")
+    found = _has(dev, 0x100C, 0x100D)
+    if not cfg.get("CO_NODE_GUARDING", 1) and found:
+        need("CO_NODE_GUARDING", "node guarding (object " +
+             ", ".join(f"0x{i:04X}" for i in found) + ")")
+    if not cfg.get("CO_LIMITS", 1) and dev.limits:
+        need("CO_LIMITS", "value limits")
+    if not cfg.get("CO_SDO_BLOCK", 1) and offers_block(dev):
+        missing.append("block SDO (offered unless [sdo] transfers leaves out \"block\") needs "
+                       "CO_SDO_BLOCK=1 (this build: CO_SDO_BLOCK=0)")
+    opts = cfg.get("CO_OPTIONS", 0xFFFFFFFF)
+    extra = dev.option_bits & ~opts & 0xFFFFFFFF
+    if extra:
+        from model import core_options
+        names = [n for n, b in sorted(core_options().items()) if b & extra]
+        missing.append("personality " + ", ".join(names) + f" needs CO_OPTIONS to have bits "
+                       f"0x{extra:08X} (this build: CO_OPTIONS=0x{opts:08X})")
+    if missing:
+        raise DescError("the core this device is built with leaves out what it needs: "
+                        + "; ".join(missing))
+
+
+def offers_block(dev: Device) -> bool:
+    return not ({"SDO_NO_BLOCK", "SDO_EXPEDITED_ONLY"} & set(dev.options))

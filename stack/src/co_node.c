@@ -220,7 +220,7 @@ static const co_pdo_slot_t *pdo_find(const co_node_t *node, uint16_t cob)
 /* A frame that may be on a PDO's COB-ID: the PDO service's receive entry
  * (which its rx_slots left in node->pdo.recv, with the table) with the PDO's
  * number. */
-static void pdo_rx(co_node_t *node, uint16_t cob, const co_frame_t *f, uint32_t now_us)
+static void rx_pdo(co_node_t *node, uint16_t cob, const co_frame_t *f, uint32_t now_us)
 {
     const co_pdo_slot_t *ps = pdo_find(node, cob);
 
@@ -253,7 +253,7 @@ void co_rx_dispatch(co_node_t *node, const co_frame_t *f, uint16_t cob, uint32_t
         co_node_clock(node, now_us);
         co_services[slot->kind]->rx(node, slot->arg, f);
     } else if ((node->pdo.fc & fc) != 0U) {
-        pdo_rx(node, cob, f, now_us);
+        rx_pdo(node, cob, f, now_us);
     } else if (node->rx_dirty != 0U) {
         rx_stale(node, f, cob, now_us);
     } else {

@@ -218,15 +218,13 @@ void co_node_set_state(co_node_t *node, co_nmt_state_t st);
 /* What the dictionary engine asks of a service's hook (co_svc_hook_t.fn),
  * for an access to an object the service owns; the hook's ops bits say
  * which it wants to be asked. */
-enum {
-    CO_SVC_READ = 0x01U,    /* before a stored value is read (offset 0): an error vetoes it */
-    CO_SVC_CHECK = 0x02U,   /* a complete new value (type, size and limits checked), before
-                               the application's hook: an error vetoes the write */
-    CO_SVC_COMMIT = 0x04U,  /* after the application's hook, instead of the engine's commit:
-                               the service stores or acts on the value (co_od_commit stores
-                               it); its result is the answer, CO_SVC_WRITTEN does not follow */
-    CO_SVC_WRITTEN = 0x08U  /* after the value was stored (the result is ignored) */
-};
+#define CO_SVC_READ    0x01U /* before a stored value is read (offset 0): an error vetoes it */
+#define CO_SVC_CHECK   0x02U /* a complete new value (type, size and limits checked), before
+                                the application's hook: an error vetoes the write */
+#define CO_SVC_COMMIT  0x04U /* after the application's hook, instead of the engine's commit:
+                                the service stores or acts on the value (co_od_commit stores
+                                it); its result is the answer, CO_SVC_WRITTEN does not follow */
+#define CO_SVC_WRITTEN 0x08U /* after the value was stored (the result is ignored) */
 
 /* A service's hook on the objects it owns, @p first .. @p last. The
  * dictionary engine (co_od.c) calls fn for the accesses @p ops names,
@@ -268,6 +266,18 @@ typedef struct co_service {
 
 extern const co_service_t *const co_services[];
 extern const uint8_t co_n_services;
+/* The services (one per file; co_services.c puts them in order). */
+extern const co_service_t co_svc_nmt;
+extern const co_service_t co_svc_sdo;
+extern const co_service_t co_svc_errctl;
+extern const co_service_t co_svc_emcy;
+extern const co_service_t co_svc_sync;
+extern const co_service_t co_svc_time;
+extern const co_service_t co_svc_pdo;
+extern const co_service_t co_svc_store;
+#if CO_LSS
+extern const co_service_t co_svc_lss;
+#endif
 
 /* ---- object dictionary internals (co_od.c) */
 #define CO_TYPE_SIZES 0x1CU

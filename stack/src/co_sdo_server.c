@@ -99,6 +99,7 @@ static bool is_fixed(const co_od_sub_t *s)
 static co_err_t finish_download(co_node_t *node, const uint8_t *data, uint32_t len)
 {
     co_sdo_srv_t *t = &node->sdo;
+    co_err_t err;
 
     if (is_fixed(t->desc)) {
         if (((uint32_t)t->buf_len + len) > sizeof t->buf) {
@@ -106,9 +107,12 @@ static co_err_t finish_download(co_node_t *node, const uint8_t *data, uint32_t l
         }
         (void)memcpy(&t->buf[t->buf_len], data, len);
         t->buf_len = (uint8_t)(t->buf_len + len);
-        return co_od_write_value(node, t->entry, t->desc, t->buf, t->buf_len);
+        err = co_od_write_value(node, t->entry, t->desc, t->buf, t->buf_len);
+    } else {
+        err = co_od_write_part(node, t->entry, t->desc, t->offset, data, len, t->size, true);
     }
-    return co_od_write_part(node, t->entry, t->desc, t->offset, data, len, t->size, true);
+    co_rx_settle(node); /* a COB-ID written: the receive set (the port's filters) */
+    return err;
 }
 
 /* A chunk that is not the last one. */
@@ -835,7 +839,6 @@ static void sdo_rx(co_node_t *node, uint16_t arg, const co_frame_t *f)
     } else {
         transfer_request(node, d);
     }
-    co_rx_settle(node); /* a COB-ID written: the receive set (the port's filters) */
 }
 
 #if CO_SDO_BLOCK

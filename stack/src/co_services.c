@@ -2,21 +2,10 @@
  * The services compiled into the core, in the order the node walks them
  * (docs/core.md, "The service table"): receive-table slots, resets, timers
  * and NMT state changes all go down this list. Adding a service: its file
- * defines one const co_service_t; add its declaration and its row here.
+ * defines one const co_service_t, declared next to the others in
+ * co_priv.h; its row goes here.
  */
 #include "co_priv.h"
-
-#if CO_LSS
-extern const co_service_t co_svc_lss;
-#endif
-extern const co_service_t co_svc_nmt;
-extern const co_service_t co_svc_sdo;
-extern const co_service_t co_svc_errctl;
-extern const co_service_t co_svc_emcy;
-extern const co_service_t co_svc_sync;
-extern const co_service_t co_svc_time;
-extern const co_service_t co_svc_pdo;
-extern const co_service_t co_svc_store;
 
 const co_service_t *const co_services[] = {
 #if CO_LSS
@@ -32,4 +21,4 @@ const co_service_t *const co_services[] = {
     &co_svc_store,  /* parameter storage: 0x1010, 0x1011 */
 };
 
-const uint8_t co_n_services = (uint8_t)(sizeof co_services / sizeof co_services[0]);
+const uint8_t co_n_services = (uint8_t)(sizeof(co_services) / sizeof(co_services[0]));

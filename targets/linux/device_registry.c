@@ -7,13 +7,17 @@
 #include "anagate_motion_400vac.h"
 #include "anagate_motion_bl.h"
 #include "cia402.h"
+#include "cia408.h"
 #include "co402_devices.h"
+#include "co408_devices.h"
 #include "dev_co402.h"
+#include "dev_co408.h"
 #include "dev_generic_301.h"
 #include "faulhaber_mc.h"
 #include "generic_301.h"
 #include "kollmorgen_s300_s700.h"
 #include "ssd_630.h"
+#include "wandfluh_dsv.h"
 
 /* EDS texts, embedded at build time (cmake/embed_text.cmake) */
 extern const unsigned char codev_eds_generic_301[];
@@ -24,6 +28,8 @@ extern const unsigned char codev_eds_faulhaber_mc[];
 extern const unsigned char codev_eds_anagate_motion[];
 extern const unsigned char codev_eds_anagate_motion_bl[];
 extern const unsigned char codev_eds_anagate_motion_400vac[];
+extern const unsigned char codev_eds_cia408[];
+extern const unsigned char codev_eds_wandfluh_dsv[];
 
 /* A CiA 402 drive: dictionary <c>_dev with its RAM type and hook count, the
  * profile's device description, one simulated plant per axis (dev_co402.h). */
@@ -34,6 +40,17 @@ extern const unsigned char codev_eds_anagate_motion_400vac[];
         .app_size = sizeof(dco402_app_t), .profile = &(drive_), .prepare = dco402_prepare,  \
         .attach = dco402_attach, .process = dco402_process, .sync = NULL, .nmt = NULL,      \
         .reset = NULL, .detach = dco402_detach,                                             \
+    }
+
+/* A CiA 408 valve: dictionary, the profile's device description, one
+ * simulated valve per channel (dev_co408.h). */
+#define VALVE(name_, c_, hooks_, valve_, summary_)                                         \
+    {                                                                                       \
+        .name = (name_), .summary = (summary_), .dev = &c_##_dev,                           \
+        .ram_size = sizeof(c_##_ram_t), .n_hooks = (hooks_), .eds = codev_eds_##c_,         \
+        .app_size = sizeof(dco408_app_t), .profile = &(valve_), .prepare = dco408_prepare,  \
+        .attach = dco408_attach, .process = dco408_process, .sync = NULL, .nmt = NULL,      \
+        .reset = NULL, .detach = NULL,                                                      \
     }
 
 static const device_entry_t devices[] = {
@@ -71,6 +88,10 @@ static const device_entry_t devices[] = {
           co402_dev_anagate_motion_bl, "AnaGate Motion BL, 2 brushless axes (CiA 402)"),
     DRIVE("anagate-motion-400vac", anagate_motion_400vac, ANAGATE_MOTION_400VAC_N_HOOKS,
           co402_dev_anagate_motion_400vac, "AnaGate Motion 400 Vac, 2 axes (CiA 402)"),
+    VALVE("cia408", cia408, CIA408_N_HOOKS, co408_dev_cia408,
+          "CiA 408 proportional valve on a simulated valve: vpoc and vprc closed loop"),
+    VALVE("wandfluh-dsv", wandfluh_dsv, WANDFLUH_DSV_N_HOOKS, co408_dev_wandfluh_dsv,
+          "WANDFLUH DSV valve electronics (CiA DSP-408), 2 channels, on simulated valves"),
 };
 
 size_t device_count(void)

@@ -17,6 +17,7 @@
 #include "co_lx/nvfile.h"
 #include "co_lx/port.h"
 #include "co_lx/trace.h"
+#include "dev_eds.h"
 #include "device_registry.h"
 #include "options.h"
 
@@ -37,6 +38,7 @@ typedef struct dnode {
     co_lx_port_t port;
     co_lx_nv_t nv;
     int has_nv;
+    dev_eds_t eds;          /* a device built from an EDS/DCF (--eds) */
     uint32_t serial;        /* 0x1018 sub 4 (--serial), when serial_given */
     bool serial_given;
     char tag[64];
@@ -210,7 +212,7 @@ static int start_node(dnode_t *d, const opt_node_t *spec, const char *iface)
     char err[256];
     co_result_t e;
 
-    d->dev = device_find(spec->device);
+    d->dev = (spec->eds != NULL) ? &d->eds.entry : device_find(spec->device);
     d->serial = spec->serial;
     d->serial_given = spec->serial_given;
     set_tag(d, spec->id);
@@ -301,24 +303,70 @@ static void stop_node(dnode_t *d)
     free(d->pdo);
     free(d->pdo_rx);
     free(d->app);
+    dev_eds_close(&d->eds);
+}
+
+/* The nodes' EDS/DCF files, loaded before anything starts: a bad one is a
+ * usage error (one line naming file, line and entry; exit status 2). */
+static int load_eds(dnode_t *nodes, const options_t *o)
+{
+    char err[320];
+
+    for (size_t i = 0U; i < o->n_nodes; i++) {
+        if (o->nodes[i].eds == NULL) {
+            continue;
+        }
+        if (dev_eds_open(&nodes[i].eds, o->nodes[i].eds, err, sizeof err) != 0) {
+            (void)fprintf(stderr, PROG ": %s\n", err);
+            return 2;
+        }
+        {
+            const char *w = eds_warnings(nodes[i].eds.eds);
+            while (*w != '\0') {
+                const char *eol = strchr(w, '\n');
+                int n = (eol != NULL) ? (int)(eol - w) : (int)strlen(w);
+                log_line(NULL, CO_LX_WARN, "%.*s", n, w);
+                w += n + ((eol != NULL) ? 1 : 0);
+            }
+        }
+        log_line(NULL, CO_LX_INFO, "%s: %s", o->nodes[i].eds, eds_summary(nodes[i].eds.eds));
+    }
+    return 0;
 }
 
 static int export_eds(const options_t *o)
 {
-    const device_entry_t *dev = device_find(o->nodes[0].device);
-    size_t len = strlen((const char *)dev->eds);
+    dev_eds_t loaded;
+    const device_entry_t *dev;
+    size_t len;
+    char err[320];
+    int rc = 0;
+
+    (void)memset(&loaded, 0, sizeof loaded);
+    if (o->nodes[0].eds != NULL) {
+        if (dev_eds_open(&loaded, o->nodes[0].eds, err, sizeof err) != 0) {
+            (void)fprintf(stderr, PROG ": %s\n", err);
+            return 2;
+        }
+        dev = &loaded.entry;
+    } else {
+        dev = device_find(o->nodes[0].device);
+    }
+    len = strlen((const char *)dev->eds);
     int to_stdout = (strcmp(o->export_path, "-") == 0);
     FILE *f = to_stdout ? stdout : fopen(o->export_path, "w");
 
     if (f == NULL) {
         (void)fprintf(stderr, PROG ": %s: %s\n", o->export_path, strerror(errno));
-        return 1;
-    }
-    if ((fwrite(dev->eds, 1U, len, f) != len) | (to_stdout ? fflush(f) : fclose(f))) {
+        rc = 1;
+    } else if ((fwrite(dev->eds, 1U, len, f) != len) | (to_stdout ? fflush(f) : fclose(f))) {
         (void)fprintf(stderr, PROG ": %s: write failed\n", o->export_path);
-        return 1;
+        rc = 1;
+    } else {
+        /* written */
     }
-    return 0;
+    dev_eds_close(&loaded);
+    return rc;
 }
 
 static int run(const options_t *o)
@@ -355,6 +403,15 @@ static int run(const options_t *o)
         free(nodes);
         free(members);
         return 1;
+    }
+    rc = load_eds(nodes, o);
+    if (rc != 0) {
+        for (size_t i = 0U; i < o->n_nodes; i++) {
+            dev_eds_close(&nodes[i].eds);
+        }
+        free(nodes);
+        free(members);
+        return rc;
     }
     if (o->trace != NULL) {
         co_lx_can_fail_t why = CO_LX_CAN_OK;

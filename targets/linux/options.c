@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "dev_eds.h"
 #include "device_registry.h"
 
 const char options_usage[] =
@@ -23,6 +24,8 @@ const char options_usage[] =
     "                       (default: the device description's, 1 for generic-301, cia402)\n"
     "  --node [ID]:[DEVICE[:PATH[:SERIAL]]]\n"
     "                       one more node in this process (repeatable; no ID: LSS)\n"
+    "  --eds FILE           the device an EDS or DCF describes, built at start-up\n"
+    "                       (also: --device FILE.eds, --node ID:FILE.eds)\n"
     "  --trace FILE|-       write every frame on the bus in candump -L format\n"
     "  --log-level LEVEL    error, warn, info (default) or debug; messages go to stderr\n"
     "  --export-eds PATH    write the EDS of --device to PATH ('-': stdout) and exit\n"
@@ -31,7 +34,7 @@ const char options_usage[] =
     "  --version            show the version and exit\n"
     "\n"
     "SIGTERM or SIGINT stop the daemon cleanly (exit 0). Exit 1: the interface or a\n"
-    "file cannot be used; exit 2: usage error.\n"
+    "file cannot be used; exit 2: usage error or a bad EDS (file:line: [section] key).\n"
     "A virtual bus: ip link add dev vcan0 type vcan; ip link set up vcan0\n";
 
 enum { O_NONE, O_ARG, O_FLAG };
@@ -42,7 +45,7 @@ typedef struct opt_def {
 } opt_def_t;
 
 static const opt_def_t defs[] = {
-    {"iface", O_ARG},        {"node-id", O_ARG},      {"device", O_ARG},
+    {"iface", O_ARG},        {"node-id", O_ARG},      {"device", O_ARG},      {"eds", O_ARG},
     {"storage", O_ARG},      {"node", O_ARG},         {"trace", O_ARG},
     {"log-level", O_ARG},    {"export-eds", O_ARG},   {"list-devices", O_FLAG},
     {"help", O_FLAG},        {"version", O_FLAG},     {"serial", O_ARG},
@@ -109,10 +112,12 @@ static int parse_node(char *spec, opt_node_t *n, char *err, size_t cap)
 
     n->device = "generic-301";
     n->storage = NULL;
+    n->eds = NULL;
     n->id_given = (*spec != '\0');
     n->serial_given = false;
     if ((dev != NULL) && (*dev != '\0')) {
         n->device = dev;
+        n->eds = dev_eds_is_file(dev) ? dev : NULL;
     }
     if ((path != NULL) && (*path != '\0')) {
         n->storage = path;
@@ -135,10 +140,11 @@ static int parse_node(char *spec, opt_node_t *n, char *err, size_t cap)
  * none. */
 static int resolve_id(opt_node_t *n, uint8_t def, char *err, size_t cap)
 {
-    const co_dev_t *dev = device_find(n->device)->dev;
-    bool lss = (dev->options & CO_OPT_LSS) != 0U;
+    const device_entry_t *e = (n->eds != NULL) ? NULL : device_find(n->device);
+    uint32_t opts = (e != NULL) ? e->dev->options : 0U; /* an EDS device: no LSS */
+    bool lss = (opts & CO_OPT_LSS) != 0U;
 
-    if (n->id_given && ((dev->options & CO_OPT_LSS_ONLY) != 0U)) {
+    if (n->id_given && ((opts & CO_OPT_LSS_ONLY) != 0U)) {
         return fail(err, cap, "%s takes its node-ID only through LSS: start it without one%s",
                     n->device, "");
     }
@@ -166,7 +172,7 @@ static int set_level(options_t *o, const char *v)
 
 int options_parse(options_t *o, int argc, char **argv, char *err, size_t cap)
 {
-    opt_node_t primary = {1U, "generic-301", NULL, 0U, false, false};
+    opt_node_t primary = {1U, "generic-301", NULL, NULL, 0U, false, false};
     bool primary_given = false;
     bool device_given = false;
     bool want_help = false;
@@ -232,8 +238,12 @@ int options_parse(options_t *o, int argc, char **argv, char *err, size_t cap)
             }
             primary.serial_given = true;
             primary_given = true;
-        } else if (strcmp(d->name, "device") == 0) {
+        } else if ((strcmp(d->name, "device") == 0) || (strcmp(d->name, "eds") == 0)) {
+            if ((d->name[0] == 'e') && !dev_eds_is_file(val) && (val[0] == '\0')) {
+                return fail(err, cap, "--eds needs a file name%s%s", "", "");
+            }
             primary.device = val;
+            primary.eds = ((d->name[0] == 'e') || dev_eds_is_file(val)) ? val : NULL;
             device_given = true;
         } else if (strcmp(d->name, "storage") == 0) {
             if (val[0] == '\0') {
@@ -280,7 +290,7 @@ int options_parse(options_t *o, int argc, char **argv, char *err, size_t cap)
         o->mode = want_help ? OPT_HELP : (want_version ? OPT_VERSION : OPT_LIST);
         return 0;
     }
-    if (device_find(primary.device) == NULL) {
+    if ((primary.eds == NULL) && (device_find(primary.device) == NULL)) {
         return fail(err, cap, "unknown device '%s' (see --list-devices)%s", primary.device, "");
     }
     if (resolve_id(&primary, 1U, err, cap) != 0) {
@@ -295,7 +305,7 @@ int options_parse(options_t *o, int argc, char **argv, char *err, size_t cap)
         o->nodes[o->n_nodes++] = primary;
     }
     for (size_t k = 0U; k < extra; k++) {
-        if (device_find(extras[k].device) == NULL) {
+        if ((extras[k].eds == NULL) && (device_find(extras[k].device) == NULL)) {
             return fail(err, cap, "unknown device '%s' (see --list-devices)%s", extras[k].device,
                         "");
         }

@@ -1,12 +1,14 @@
 /*
  * Command line of canopen-device.
  *
- *   canopen-device [--iface IF] [--node-id N] [--device NAME] [--storage PATH]
+ *   canopen-device [--iface IF] [--node-id N] [--device NAME | --eds FILE] [--storage PATH]
  *                  [--serial N] [--node [ID]:[DEVICE[:PATH[:SERIAL]]]]... [--trace FILE|-]
  *                  [--log-level error|warn|info|debug]
  *   canopen-device --export-eds PATH [--device NAME]
  *   canopen-device --list-devices | --help | --version
  *
+ * --eds FILE runs the device an EDS or DCF describes (as does a --device or
+ * --node DEVICE ending in .eds / .dcf).
  * --node-id/--device/--storage/--serial describe one node (the default node:
  * generic-301, no storage); each --node adds one more node on the same
  * interface. With --node only, the default node is not started unless
@@ -38,6 +40,7 @@ typedef struct opt_node {
     uint8_t id;           /**< 1..127; 0xFF: unconfigured (LSS devices) */
     const char *device;   /**< registry name */
     const char *storage;  /**< parameter file, NULL for none */
+    const char *eds;      /**< EDS/DCF file the device is built from, or NULL */
     uint32_t serial;      /**< 0x1018 sub 4, when serial_given */
     bool id_given;
     bool serial_given;

@@ -45,7 +45,9 @@ def readable(var) -> bool:
 def is_statusword(device: str, od, index: int) -> bool:
     """0x6041 of a running axis (0x6041 + 0x800 n) of a CiA 402 device."""
     n, rest = divmod(index - 0x6041, 0x800)
-    return (index >= 0x6041 and rest == 0 and n < AXES.get(device, 1) and 0x6040 in od)
+    cia402 = (od[0x1000].default & 0xFFFF) == 402   # a CiA 408 valve's status word is its own
+    return (cia402 and index >= 0x6041 and rest == 0 and n < AXES.get(device, 1)
+            and 0x6040 in od)
 
 
 @pytest.mark.parametrize("device", devices())

@@ -6,8 +6,10 @@ followed by the program).
 
 The trace must show the move: the position rises to the first set-point's
 way, turns, ends at 4000 with statusword bit 10 (target reached) and the
-set-point acknowledge (bit 12) seen on the way. The PNG must be a valid
-960x720 RGB image with the position, velocity and statusword colours in it.
+set-point acknowledge (bit 12) seen on the way. The PNG must be written by
+matplotlib with the position, demand, velocity and statusword colours in it;
+the SVG must carry the title, the axis labels with their units and the legend
+as text.
 """
 from __future__ import annotations
 
@@ -16,6 +18,9 @@ import struct
 import subprocess
 import sys
 import zlib
+
+# the series colours tools/plot-trace draws with
+POS, DEMAND, VEL, BIT = (0x1f, 0x61, 0xc4), (0xe6, 0x78, 0x14), (0x19, 0x96, 0x46), (0x78, 0x3c, 0xaa)
 
 
 def check_trace(path: str) -> None:
@@ -34,8 +39,7 @@ def check_trace(path: str) -> None:
     assert sw[-1] & 0x0400 and (sw[-1] & 0x006F) == 0x0027, hex(sw[-1])
 
 
-def check_png(path: str) -> None:
-    data = open(path, "rb").read()
+def png_chunks(data: bytes) -> dict[bytes, bytes]:
     assert data[:8] == b"\x89PNG\r\n\x1a\n", "PNG signature"
     pos, chunks = 8, {}
     while pos < len(data):
@@ -43,20 +47,45 @@ def check_png(path: str) -> None:
         body = data[pos + 8:pos + 8 + n]
         crc, = struct.unpack(">I", data[pos + 8 + n:pos + 12 + n])
         assert zlib.crc32(tag + body) == crc, f"CRC of {tag!r}"
-        chunks.setdefault(tag, b"")
-        chunks[tag] += body
+        chunks[tag] = chunks.get(tag, b"") + body
         pos += 12 + n
-    w, h, depth, ctype = struct.unpack(">IIBB", chunks[b"IHDR"][:10])
-    assert (w, h, depth, ctype) == (960, 720, 8, 2), (w, h, depth, ctype)
-    raw = zlib.decompress(chunks[b"IDAT"])
-    assert len(raw) == h * (1 + 3 * w)
-    colours = set()
-    for y in range(h):
-        row = raw[y * (1 + 3 * w):(y + 1) * (1 + 3 * w)]
-        assert row[0] == 0
-        colours.update(bytes(row[1 + 3 * x:4 + 3 * x]) for x in range(0, w, 1))
-    for c in ((31, 97, 196), (230, 120, 20), (25, 150, 70), (120, 60, 170)):
-        assert bytes(c) in colours, f"colour {c} drawn"
+    return chunks
+
+
+def near(pixels, rgb: tuple[int, int, int], tol: int = 6) -> int:
+    """Number of pixels within tol (per channel) of the colour."""
+    import numpy as np
+    d = np.abs(pixels[:, :, :3].astype(int) - np.array(rgb)).max(axis=2)
+    return int((d <= tol).sum())
+
+
+def check_png(path: str) -> None:
+    import matplotlib.image
+    chunks = png_chunks(open(path, "rb").read())
+    assert b"Software" in chunks.get(b"tEXt", b"") and b"matplotlib" in chunks[b"tEXt"], \
+        "written by matplotlib"
+    w, h = struct.unpack(">II", chunks[b"IHDR"][:8])
+    assert w >= 1000 and h >= 800, (w, h)
+    img = (matplotlib.image.imread(path) * 255).round().astype("uint8")
+    assert img.shape[:2] == (h, w), img.shape
+    # every series drawn: position, demand, velocity lines, statusword bars
+    for name, c, least in (("position", POS, 300), ("demand", DEMAND, 100),
+                           ("velocity", VEL, 1000), ("statusword bits", BIT, 20000)):
+        assert near(img, c) >= least, f"{name} colour {c}: {near(img, c)} pixels"
+    # mostly white background: the plot is not one block of colour
+    assert near(img, (255, 255, 255), 0) > w * h // 2
+
+
+def check_svg(path: str, title: str) -> None:
+    import xml.etree.ElementTree as ET
+    root = ET.parse(path).getroot()
+    texts = {"".join(e.itertext()).strip() for e in root.iter("{http://www.w3.org/2000/svg}text")}
+    for want in (title, "position [inc]", "velocity [inc/s]", "time [s]",
+                 "statusword (0x6041) bit", "10 target reached", "position actual (0x6064)",
+                 "position demand (0x6062)", "velocity actual (0x606C)"):
+        assert want in texts, f"SVG text {want!r} missing (have {sorted(texts)[:40]})"
+    paths = list(root.iter("{http://www.w3.org/2000/svg}path"))
+    assert len(paths) > 20, len(paths)
 
 
 def main() -> int:
@@ -65,10 +94,15 @@ def main() -> int:
     assert trace_cmd, "usage: check_plot.py PLOT PREFIX [EMULATOR...] TRACE"
     subprocess.run([*trace_cmd, prefix + ".csv"], check=True)
     check_trace(prefix + ".csv")
+    title = "cia402 profile position"
     subprocess.run([sys.executable, plot, prefix + ".csv", "-o", prefix + ".png",
-                    "--title", "cia402 profile position"], check=True)
+                    "-o", prefix + ".svg", "--title", title], check=True)
     check_png(prefix + ".png")
-    print(f"{prefix}.png: ok")
+    check_svg(prefix + ".svg", title)
+    bad = subprocess.run([sys.executable, plot, prefix + ".csv", "-o", prefix + ".gif"],
+                         capture_output=True, text=True)
+    assert bad.returncode == 2 and ".png or .svg" in bad.stderr, (bad.returncode, bad.stderr)
+    print(f"{prefix}.png, {prefix}.svg: ok")
     return 0
 
 

@@ -17,17 +17,6 @@
 #include "test_bus.h"
 #include "test_dev.h"
 
-extern const co_service_t co_svc_nmt;
-extern const co_service_t co_svc_sdo;
-extern const co_service_t co_svc_errctl;
-extern const co_service_t co_svc_emcy;
-extern const co_service_t co_svc_sync;
-extern const co_service_t co_svc_time;
-extern const co_service_t co_svc_pdo;
-extern const co_service_t co_svc_store;
-#if CO_LSS
-extern const co_service_t co_svc_lss;
-#endif
 
 static tb_bus_t bus;
 static td_node_t n;

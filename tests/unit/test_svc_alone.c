@@ -103,7 +103,6 @@ static const co_svc_hook_t rec_hooks[] = {
     {0x2000U, 0x2000U, CO_SVC_READ | CO_SVC_CHECK | CO_SVC_WRITTEN, rec_obj}};
 static const co_service_t rec_svc = {NULL, NULL, NULL, NULL, NULL, NULL, rec_hooks, 1U};
 
-extern const co_service_t co_svc_store;
 const co_service_t *const co_services[] = {&rec_svc, &co_svc_store};
 const uint8_t co_n_services = 2U;
 

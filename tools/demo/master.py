@@ -9,7 +9,8 @@ Steps: boot-ups, identity over SDO, NMT states, heartbeats watched, a PDO
 mapped and exchanged at SYNC, a parameter stored and read back after the
 device process restarts, and a CiA 402 drive (simulated motor) enabled,
 moved in profile position with its statusword, position and velocity
-sampled by TPDOs at SYNC and plotted to a PNG (tools/plot-trace), then homed. A step that fails is reported as FAILED with its
+sampled by TPDOs at SYNC and plotted to PNG and SVG (tools/plot-trace), then
+homed. A step that fails is reported as FAILED with its
 reason and the demo goes on; the exit status is 1 when any step failed.
 """
 from __future__ import annotations
@@ -31,9 +32,11 @@ import canopen.lss
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from cia402_master import Drive, Sample, state_of, write_csv  # noqa: E402
+from cia408_master import (ValveSample, rpdo, setup_closed_loop, valve_state,  # noqa: E402
+                           wait_sw, write_valve_csv)
 
 GENERIC_ID = 5
-DEFAULT_DEVICES = ("generic-301", "cia402")
+DEFAULT_DEVICES = ("generic-301", "cia402", "cia408")
 T0 = time.monotonic()
 
 
@@ -215,10 +218,13 @@ class Demo:
             sdo = node.sdo
             rows = [
                 ("0x1000 device type", f"0x{int.from_bytes(sdo.upload(0x1000, 0), 'little'):08X}"),
-                ("0x1008 device name", sdo.upload(0x1008, 0).decode("ascii")),
-                ("0x1009 hardware version", sdo.upload(0x1009, 0).decode("ascii")),
-                ("0x100A software version", sdo.upload(0x100A, 0).decode("ascii")),
             ]
+            for index, what in ((0x1008, "device name"), (0x1009, "hardware version"),
+                                (0x100A, "software version")):
+                try:
+                    rows.append((f"0x{index:04X} {what}", sdo.upload(index, 0).decode("ascii")))
+                except canopen.SdoAbortedError as e:   # optional (CiA 301)
+                    rows.append((f"0x{index:04X} {what}", f"- (abort 0x{e.code:08X})"))
             for sub, what in ((1, "vendor-ID"), (2, "product code"), (3, "revision"),
                               (4, "serial number")):
                 v = int.from_bytes(sdo.upload(0x1018, sub), "little")
@@ -392,11 +398,88 @@ class Demo:
         csv_path, png = self.out / "cia402-move.csv", self.out / "cia402-move.png"
         write_csv(csv_path, samples)
         subprocess.run([sys.executable, str(ROOT / "tools" / "plot-trace"), str(csv_path),
-                        "-o", str(png), "--title",
+                        "-o", str(png), "-o", str(png.with_suffix(".svg")), "--title",
                         f"cia402 node {nid}: profile position 0 to {target}"], check=True)
         say(f"trace {csv_path.relative_to(ROOT) if csv_path.is_relative_to(ROOT) else csv_path}"
             f", plot {png.relative_to(ROOT) if png.is_relative_to(ROOT) else png}")
         return f"target {target} reached ({state_of(end.statusword)}), plot {png.name}"
+
+    def valve_id(self) -> int:
+        return next(n for n, d in self.device_of.items() if d == "cia408")
+
+    def valve_step(self):
+        """vprc closed loop: set-point steps by RPDO2, the pressure by TPDO2."""
+        nid = self.valve_id()
+        node = self.nodes[nid]
+        setup_closed_loop(node)
+        t2 = node.tpdo[2].cob_id
+        say(f"node {nid}: control mode 4 (vprc closed loop), TPDO2 0x{t2:03X} := status word "
+            f"0x6041 + actual value 0x6381 + control deviation 0x63D0 (type 255, 5 ms inhibit)")
+        self.nmt(nid, "OPERATIONAL")
+        steps = [(0.0, 0), (0.1, 8192), (0.6, 4096), (1.0, -4096), (1.4, 0)]
+        m = self.watch.mark()
+        t0 = time.monotonic()
+        for at, sp in steps:
+            time.sleep(max(0.0, t0 + at - time.monotonic()))
+            cob, data = rpdo(nid, 0x0007, sp)
+            self.net.send_message(cob, data)
+            say(f"-> {cob:03X} {hexs(data)}   RPDO2: control word D, H, M; set-point {sp} "
+                f"({sp * 100 / 16384:+.0f} %)")
+        time.sleep(0.4)
+        # the set-point in force at each TPDO2: the last RPDO2 seen before it
+        # on the bus (one clock for both: the frames' receive times)
+        samples = []
+        tf = None
+        sp = 0
+        for f in self.watch.since(m):
+            d = bytes(f.data)
+            if f.arbitration_id == 0x300 + nid and len(d) >= 4:
+                sp = int.from_bytes(d[2:4], "little", signed=True)
+                tf = f.timestamp if tf is None else tf
+                last = samples[-1] if samples else ValveSample(0.0, 0, 0, 0, 0x000F)
+                samples.append(ValveSample(f.timestamp - tf, last.actual, sp, last.deviation,
+                                           last.statusword))
+            elif f.arbitration_id == t2 and len(d) >= 6 and tf is not None:
+                sw = int.from_bytes(d[0:2], "little")
+                act = int.from_bytes(d[2:4], "little", signed=True)
+                dev = int.from_bytes(d[4:6], "little", signed=True)
+                samples.append(ValveSample(f.timestamp - tf, act, sp, dev, sw))
+        if len(samples) < 20:
+            raise AssertionError(f"only {len(samples)} samples")
+        first = next((s for s in samples if s.setpoint == 8192 and s.statusword & 0x1000), None)
+        if first is None:
+            raise AssertionError("the pressure never reached the 50 % set-point's target window")
+        say(f"{len(samples)} samples from TPDO2; target window (bit 12) reached "
+            f"{(first.t - 0.1) * 1000:.0f} ms after the 50 % step, actual {first.actual}")
+        self.out.mkdir(parents=True, exist_ok=True)
+        csv_path, png = self.out / "cia408-step.csv", self.out / "cia408-step.png"
+        write_valve_csv(csv_path, samples)
+        subprocess.run([sys.executable, str(ROOT / "tools" / "plot-trace"), str(csv_path),
+                        "-o", str(png), "--title",
+                        f"cia408 node {nid}: vprc set-point steps (position = actual value, "
+                        f"demand = set-point, velocity = control deviation)"],
+                       check=True)
+        say(f"trace {csv_path.relative_to(ROOT) if csv_path.is_relative_to(ROOT) else csv_path}"
+            f", plot {png.relative_to(ROOT) if png.is_relative_to(ROOT) else png}")
+        # NMT stop forces the fault reaction; the EMCY 0x8100 when it may go out
+        m = self.watch.mark()
+        self.nmt(nid, "STOPPED")
+        time.sleep(0.1)
+        self.nmt(nid, "PRE-OPERATIONAL")
+        f, _ = self.watch.wait(lambda f: f.arbitration_id == 0x80 + nid, 1.0, m)
+        if f is None:
+            raise TimeoutError("no EMCY 0x8100 after the stop")
+        say(f"<- {f.arbitration_id:03X} {hexs(f.data)}   EMCY 0x8100: NMT stop forced the "
+            f"fault reaction")
+        sw = wait_sw(node, lambda s: s & 0xF in (0x1, 0x3), 1.0)
+        say(f"status word 0x{sw:04X}: {valve_state(sw)}")
+        node.sdo.download(0x6040, 0, (0x0003).to_bytes(2, "little"))
+        node.sdo.download(0x6040, 0, (0x000B).to_bytes(2, "little"))
+        sw = wait_sw(node, lambda s: s & 0xF == 0xB, 1.0)
+        say(f"fault reset (control word bit 3 rising): status word 0x{sw:04X}, {valve_state(sw)}")
+        if sw & 0xF != 0xB:
+            raise AssertionError(f"fault reset: status word 0x{sw:04X}")
+        return f"plot {png.name}; NMT stop -> EMCY 0x8100, {valve_state(sw)} after the reset"
 
     def drive_homing(self):
         nid = self.drive_id()
@@ -450,6 +533,9 @@ class Demo:
         if "cia402" in self.devices:
             self.step("CiA 402 drive: enable, profile-position move, plot", self.drive_move)
             self.step("CiA 402 drive: homing", self.drive_homing)
+        if "cia408" in self.devices:
+            self.step("CiA 408 valve: set-point steps by RPDO, closed loop, plot; NMT stop",
+                      self.valve_step)
         self.step("stop", self.shutdown)
         return self.summary()
 
@@ -477,7 +563,7 @@ def main() -> int:
     ap.add_argument("--daemon", default=str(ROOT / "build" / "host" / "bin" / "canopen-device"))
     ap.add_argument("--iface", default="vcan0")
     ap.add_argument("--out", default=str(ROOT / "build" / "demo"),
-                    help="where the move trace (CSV) and its plot (PNG) go")
+                    help="where the move trace (CSV) and its plot (PNG, SVG) go")
     ap.add_argument("--devices", nargs="+", metavar="NAME",
                     help="devices to bring up (default: generic-301 cia402; 'all': every "
                          "device of canopen-device --list-devices)")

@@ -16,7 +16,13 @@ from pathlib import Path
 
 from model import Device, DescError
 
-CONFIG_HEADER = Path(__file__).resolve().parents[2] / "stack" / "include" / "co" / "co_config.h"
+# in the source tree (tools/odgen -> stack/include) or installed
+# (share/canopen-stack/odgen -> include/canopen-stack)
+_HERE = Path(__file__).resolve()
+CONFIG_HEADER = next((p for p in (
+    _HERE.parents[2] / "stack" / "include" / "co" / "co_config.h",
+    _HERE.parents[3] / "include" / "canopen-stack" / "co" / "co_config.h") if p.exists()),
+    _HERE.parents[2] / "stack" / "include" / "co" / "co_config.h")
 
 
 def _value(text: str) -> int | None:
@@ -44,11 +50,24 @@ def parse(defs: list[str]) -> dict[str, int]:
     for d in defs:
         for item in re.split(r"[;,]", d):
             name, sep, val = item.partition("=")
+            if name == "CO_CONFIG_HEADER":
+                continue  # the header's options come with --build-header
             if sep and name.startswith("CO_"):
                 v = _value(val)
                 if v is None:
                     raise DescError(f"build option {item!r}: not a number")
                 out[name] = v
+    return out
+
+
+def header_options(path: Path) -> dict[str, int]:
+    """The `#define CO_X VALUE` lines of a configuration header (CO_CONFIG_HEADER)."""
+    out = {}
+    for m in re.finditer(r"^\s*#\s*define\s+(CO_\w+)\s+([^\n]+)", path.read_text(encoding="utf-8"),
+                         re.M):
+        v = _value(re.sub(r"/\*.*?\*/|//.*", "", m.group(2)))
+        if v is not None:
+            out[m.group(1)] = v
     return out
 
 

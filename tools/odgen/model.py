@@ -58,7 +58,13 @@ FLAG_NAMES = [
     (F_HOOKIO, "CO_SUB_HOOKIO"), (F_NODEID, "CO_SUB_NODEID"), (F_LIMIT, "CO_SUB_LIMIT"),
 ]
 
-CORE_HEADER = Path(__file__).resolve().parents[2] / "stack" / "include" / "co" / "co_node.h"
+# co_node.h: in the source tree (tools/odgen -> stack/include), or installed
+# (share/canopen-stack/odgen -> include/canopen-stack).
+_HERE = Path(__file__).resolve()
+CORE_HEADER = next((p for p in (
+    _HERE.parents[2] / "stack" / "include" / "co" / "co_node.h",
+    _HERE.parents[3] / "include" / "canopen-stack" / "co" / "co_node.h") if p.exists()),
+    _HERE.parents[2] / "stack" / "include" / "co" / "co_node.h")
 
 
 def core_options(header: Path = CORE_HEADER) -> dict[str, int]:

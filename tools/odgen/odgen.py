@@ -48,12 +48,18 @@ def main(argv: list[str] | None = None) -> int:
                     help="a build-time option of the core the device is built with "
                          "(co_config.h; ',' or ';'-separated lists too): a device that needs "
                          "a service or option the build leaves out is refused")
+    ap.add_argument("--build-header", default="", metavar="PATH",
+                    help="the core's configuration header (CO_CONFIG_HEADER): its "
+                         "#define CO_X VALUE lines are build options as well")
     args = ap.parse_args(argv)
     every = not (args.c or args.eds or args.md)
     src = args.toml
     try:
         dev = load(src, args.base)
-        build.check(dev, build.parse(args.build))
+        opts = build.parse(args.build)
+        if args.build_header:
+            opts.update(build.header_options(Path(args.build_header)))
+        build.check(dev, opts)
         name = Path(src).name
         out = Path(args.out)
         products = {}

@@ -10,6 +10,14 @@
 #ifndef CO_CONFIG_H
 #define CO_CONFIG_H
 
+/* The user's configuration header (CMake: -DCO_CONFIG_HEADER=path/my_co_config.h,
+ * which defines CO_CONFIG_HEADER="my_co_config.h" for the core and its users):
+ * its #defines of the options below win over the defaults, like lwIP's
+ * lwipopts.h. Options given with -D and in the header must not overlap. */
+#ifdef CO_CONFIG_HEADER
+#include CO_CONFIG_HEADER
+#endif
+
 /* ---- services a device may not need (1: in, 0: left out); more below */
 
 #ifndef CO_LSS

@@ -1,0 +1,264 @@
+/*
+ * The EDS/DCF loader of the daemon (targets/linux/eds_load.c): a dictionary
+ * built in memory from the text, run by the core on the in-memory bus with
+ * exact frames: identity, $NODEID defaults, a DCF ParameterValue over the
+ * default, limits, CompactSubObj with [xxxxValue], 24-bit, REAL32, strings,
+ * heartbeat, a TPDO at SYNC and an RPDO; then every kind of bad file with
+ * the one-line message naming file, line, section and key, and the objects
+ * left out with a warning.
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "eds_load.h"
+#include "test_bus.h"
+
+static const char EDS[] =
+    "; a device for the loader's test\r\n"
+    "[FileInfo]\r\n"
+    "FileName=t.eds\r\n"
+    "[DeviceInfo]\r\n"
+    "ProductName=loader test\r\n"
+    "[1000]\r\nParameterName=Device type\r\nObjectType=0x7\r\nDataType=0x0007\r\n"
+    "AccessType=ro\r\nDefaultValue=0x00020191\r\n"
+    "[1001]\r\nDataType=0x0005\r\nAccessType=ro\r\n"
+    "[1014]\r\nDataType=0x0007\r\nAccessType=rw\r\nDefaultValue=$NODEID+0x80\r\n"
+    "[1017]\r\nDataType=0x0006\r\nAccessType=rw\r\nDefaultValue=100\r\n"
+    "[1018]\r\nObjectType=0x9\r\nSubNumber=2\r\n"
+    "[1018sub0]\r\nDataType=0x0005\r\nAccessType=ro\r\nDefaultValue=1\r\n"
+    "[1018sub1]\r\nDataType=0x0007\r\nAccessType=ro\r\nDefaultValue=0x12345678\r\n"
+    "[1005]\r\nDataType=0x0007\r\nAccessType=rw\r\nDefaultValue=0x80\r\n"
+    "[1400]\r\nObjectType=0x9\r\n"
+    "[1400sub0]\r\nDataType=0x0005\r\nAccessType=const\r\nDefaultValue=2\r\n"
+    "[1400sub1]\r\nDataType=0x0007\r\nAccessType=rw\r\nDefaultValue=0x200+$NODEID\r\n"
+    "[1400sub2]\r\nDataType=0x0005\r\nAccessType=rw\r\nDefaultValue=255\r\n"
+    "[1600]\r\nObjectType=0x9\r\n"
+    "[1600sub0]\r\nDataType=0x0005\r\nAccessType=rw\r\nDefaultValue=1\r\n"
+    "[1600sub1]\r\nDataType=0x0007\r\nAccessType=rw\r\nDefaultValue=0x20020010\r\n"
+    "[1800]\r\nObjectType=0x9\r\n"
+    "[1800sub0]\r\nDataType=0x0005\r\nAccessType=const\r\nDefaultValue=2\r\n"
+    "[1800sub1]\r\nDataType=0x0007\r\nAccessType=rw\r\nDefaultValue=$NODEID+0x180\r\n"
+    "[1800sub2]\r\nDataType=0x0005\r\nAccessType=rw\r\nDefaultValue=1\r\n"
+    "[1A00]\r\nObjectType=0x9\r\n"
+    "[1A00sub0]\r\nDataType=0x0005\r\nAccessType=rw\r\nDefaultValue=1\r\n"
+    "[1A00sub1]\r\nDataType=0x0007\r\nAccessType=rw\r\nDefaultValue=0x20010008\r\n"
+    "[2001]\r\nDataType=0x0005\r\nAccessType=rw\r\nPDOMapping=1\r\nDefaultValue=1\r\n"
+    "ParameterValue=7\r\n"
+    "[2002]\r\nDataType=0x0006\r\naccesstype=RW\r\nPDOMapping=1\r\nDefaultValue=20\r\n"
+    "LowLimit=10\r\nHighLimit=100\r\n"
+    "[2003]\r\nObjectType=0x8\r\nCompactSubObj=3\r\nDataType=0x0006\r\nAccessType=rw\r\n"
+    "DefaultValue=0x11\r\n"
+    "[2003Value]\r\nNrOfEntries=1\r\n2=0x22\r\n"
+    "[2004]\r\nDataType=0x0010\r\nAccessType=ro\r\nDefaultValue=-1\r\n"
+    "[2005]\r\nDataType=0x0008\r\nAccessType=rw\r\nDefaultValue=1.5\r\n"
+    "[2006]\r\nDataType=0x0009\r\nAccessType=ro\r\nDefaultValue=abc\r\n"
+    "[2007]\r\nDataType=0x000A\r\nAccessType=ro\r\nDefaultValue=DE AD\r\n"
+    "[2008]\r\nDataType=0x0003\r\nAccessType=rw\r\nDefaultValue=0xFFFE\r\n"
+    "LowLimit=-5\r\nHighLimit=0x0005\r\n";
+
+typedef struct fx {
+    tb_bus_t bus;
+    eds_dev_t *eds;
+    co_node_t node;
+    void *ram;
+    co_pdo_t pdo[4];
+    co_pdo_slot_t slot[4];
+} fx_t;
+
+static int setup(void **state)
+{
+    fx_t *f = calloc(1U, sizeof *f);
+    char err[256] = "";
+    co_node_config_t cfg;
+
+    assert_non_null(f);
+    f->eds = eds_load_text("t.eds", EDS, err, sizeof err);
+    assert_string_equal(err, "");
+    assert_non_null(f->eds);
+    f->ram = calloc(1U, eds_device(f->eds)->ram_size);
+    tb_init(&f->bus);
+    (void)memset(&cfg, 0, sizeof cfg);
+    cfg.dev = eds_device(f->eds);
+    cfg.hal = tb_hal(&f->bus, 0U);
+    cfg.node_id = 5U;
+    cfg.ram = f->ram;
+    cfg.pdo = f->pdo;
+    cfg.pdo_rx = f->slot;
+    assert_int_equal(co_node_init(&f->node, &cfg, 0U), CO_RESULT_OK);
+    tb_attach(&f->bus, 0U, &f->node);
+    tb_expect(&f->bus, "705 00");
+    tb_expect_none(&f->bus);
+    *state = f;
+    return 0;
+}
+
+static int teardown(void **state)
+{
+    fx_t *f = *state;
+    eds_free(f->eds);
+    free(f->ram);
+    free(f);
+    return 0;
+}
+
+static void the_device(void **state)
+{
+    fx_t *f = *state;
+    const co_dev_t *d = eds_device(f->eds);
+
+    assert_int_equal(d->n_rpdo, 1);
+    assert_int_equal(d->n_tpdo, 1);
+    assert_string_equal(eds_summary(f->eds), "loader test: 18 objects, 1 RPDOs, 1 TPDOs");
+    assert_string_equal(eds_warnings(f->eds), "");
+    assert_non_null(strstr(eds_text(f->eds), "ProductName=loader test"));
+}
+
+static void values_over_sdo(void **state)
+{
+    tb_bus_t *b = &((fx_t *)*state)->bus;
+
+    tb_xfer(b, "605 40 00 10 00 00 00 00 00", "585 43 00 10 00 91 01 02 00");
+    tb_xfer(b, "605 40 18 10 01 00 00 00 00", "585 43 18 10 01 78 56 34 12");
+    /* $NODEID+0x80, 0x200+$NODEID */
+    tb_xfer(b, "605 40 14 10 00 00 00 00 00", "585 43 14 10 00 85 00 00 00");
+    tb_xfer(b, "605 40 00 14 01 00 00 00 00", "585 43 00 14 01 05 02 00 00");
+    /* DCF: ParameterValue 7 over DefaultValue 1 */
+    tb_xfer(b, "605 40 01 20 00 00 00 00 00", "585 4F 01 20 00 07 00 00 00");
+    /* CompactSubObj=3: NrOfObjects, the default, the [2003Value] entry */
+    tb_xfer(b, "605 40 03 20 00 00 00 00 00", "585 4F 03 20 00 03 00 00 00");
+    tb_xfer(b, "605 40 03 20 01 00 00 00 00", "585 4B 03 20 01 11 00 00 00");
+    tb_xfer(b, "605 40 03 20 02 00 00 00 00", "585 4B 03 20 02 22 00 00 00");
+    tb_xfer(b, "605 40 03 20 04 00 00 00 00", "585 80 03 20 04 11 00 09 06");
+    /* INTEGER24 -1, REAL32 1.5, VISIBLE_STRING, OCTET_STRING, INTEGER16 0xFFFE = -2 */
+    tb_xfer(b, "605 40 04 20 00 00 00 00 00", "585 47 04 20 00 FF FF FF 00");
+    tb_xfer(b, "605 40 05 20 00 00 00 00 00", "585 43 05 20 00 00 00 C0 3F");
+    tb_xfer(b, "605 40 06 20 00 00 00 00 00", "585 47 06 20 00 61 62 63 00");
+    tb_xfer(b, "605 40 07 20 00 00 00 00 00", "585 4B 07 20 00 DE AD 00 00");
+    tb_xfer(b, "605 40 08 20 00 00 00 00 00", "585 4B 08 20 00 FE FF 00 00");
+    /* ro and const refuse writes; a missing object */
+    tb_xfer(b, "605 23 00 10 00 00 00 00 00", "585 80 00 10 00 02 00 01 06");
+    tb_xfer(b, "605 2F 00 14 00 03 00 00 00", "585 80 00 14 00 02 00 01 06");
+    tb_xfer(b, "605 40 09 20 00 00 00 00 00", "585 80 09 20 00 00 00 02 06");
+}
+
+static void limits(void **state)
+{
+    tb_bus_t *b = &((fx_t *)*state)->bus;
+
+    tb_xfer(b, "605 2B 02 20 00 09 00 00 00", "585 80 02 20 00 32 00 09 06");
+    tb_xfer(b, "605 2B 02 20 00 65 00 00 00", "585 80 02 20 00 31 00 09 06");
+    tb_xfer(b, "605 2B 02 20 00 64 00 00 00", "585 60 02 20 00 00 00 00 00");
+    tb_xfer(b, "605 40 02 20 00 00 00 00 00", "585 4B 02 20 00 64 00 00 00");
+    /* signed limits -5..5 (HighLimit in hex) */
+    tb_xfer(b, "605 2B 08 20 00 FA FF 00 00", "585 80 08 20 00 32 00 09 06");
+    tb_xfer(b, "605 2B 08 20 00 06 00 00 00", "585 80 08 20 00 31 00 09 06");
+    tb_xfer(b, "605 2B 08 20 00 FB FF 00 00", "585 60 08 20 00 00 00 00 00");
+}
+
+static void heartbeat_and_pdos(void **state)
+{
+    tb_bus_t *b = &((fx_t *)*state)->bus;
+
+    tb_advance(b, 100000U);
+    tb_expect(b, "705 7F");
+    tb_expect_none(b);
+    tb_send(b, "000 01 05");
+    tb_flush(b);
+    tb_send(b, "080");
+    tb_expect(b, "185 07");
+    tb_expect_none(b);
+    /* RPDO1 (0x205) writes 0x2002 */
+    tb_send(b, "205 32 00");
+    tb_xfer(b, "605 40 02 20 00 00 00 00 00", "585 4B 02 20 00 32 00 00 00");
+}
+
+typedef struct bad {
+    const char *text;
+    const char *err;
+} bad_t;
+
+static void bad_files(void **state)
+{
+    static const bad_t cases[] = {
+        {"[1000]\nDataType=0x0007\nAccessType=ro\nDefaultValue=0x1G\n",
+         "b.eds:4: [1000] DefaultValue: '0x1G' is not a value of data type 0x0007"},
+        {"[1000]\nDataType=0x0005\nAccessType=ro\nDefaultValue=256\n",
+         "b.eds:4: [1000] DefaultValue: '256' is not a value of data type 0x0005"},
+        {"[1000]\nDataType=0x0007\nAccessType=rx\n",
+         "b.eds:3: [1000] AccessType: unknown access type 'rx' (ro, wo, rw, rwr, rww, const)"},
+        {"[1000]\nDataType=0x0007\n", "b.eds:1: [1000]: AccessType missing"},
+        {"[1000]\nAccessType=ro\n", "b.eds:1: [1000]: DataType missing"},
+        {"[1000]\nDataType=0x0007\nAccessType=ro\n[2000]\nObjectType=0x4\n",
+         "b.eds:5: [2000] ObjectType: object type 0x4 (VAR 7, DOMAIN 2, ARRAY 8, RECORD 9)"},
+        {"[2000]\nDataType=0x001B\nAccessType=rw\nDefaultValue=$NODEID+1\n",
+         "b.eds:4: [2000] DefaultValue: $NODEID in a 8-byte value (8, 16 or 32 bits only)"},
+        {"[1000]\nDataType=0x0007\nAccessType=ro\n[1000]\nDataType=0x0007\nAccessType=ro\n",
+         "b.eds:4: [1000]: object 0x1000 given twice"},
+        {"[2000]\nDataType=0x000A\nAccessType=ro\nDefaultValue=ABC\n",
+         "b.eds:4: [2000] DefaultValue: 'ABC' is not hex bytes"},
+        {"[2000]\nDataType=0x0005\nAccessType=ro\nLowLimit=x\n",
+         "b.eds:4: [2000] LowLimit: 'x' is not a value of the object's data type"},
+        {"[2000\nDataType=0x0005\n", "b.eds:1: [[2000]: section name without ']'"},
+        {"[2000]\nDataType 5\n", "b.eds:2: [2000] DataType 5: a line without '='"},
+        {"DataType=5\n", "b.eds:1: [] DataType=5: a key before the first section"},
+        {"[FileInfo]\nFileName=x\n", "b.eds: no objects (is this an EDS?)"},
+        {"[2000]\nObjectType=0x8\nCompactSubObj=300\nDataType=0x0005\nAccessType=ro\n",
+         "b.eds:3: [2000] CompactSubObj: '300' is not a number of sub-entries (1..254)"},
+    };
+    (void)state;
+    for (size_t i = 0U; i < sizeof cases / sizeof cases[0]; i++) {
+        char err[256] = "";
+        eds_dev_t *d = eds_load_text("b.eds", cases[i].text, err, sizeof err);
+        if (d != NULL || strcmp(err, cases[i].err) != 0) {
+            print_error("case %zu: got '%s'\n", i, err);
+        }
+        assert_null(d);
+        assert_string_equal(err, cases[i].err);
+    }
+}
+
+static void objects_left_out(void **state)
+{
+    char err[256] = "";
+    eds_dev_t *d = eds_load_text(
+        "w.eds",
+        "[1000]\nDataType=0x0007\nAccessType=ro\n"
+        "[2000]\nDataType=0x0040\nAccessType=rw\n"
+        "[2001]\nObjectType=0x8\nSubNumber=0\n"
+        "[2002]\nDataType=0x000F\nAccessType=rw\nDefaultValue=@AB\n"
+        "[0040]\nObjectType=0x6\nSubNumber=1\n",
+        err, sizeof err);
+
+    (void)state;
+    assert_non_null(d);
+    assert_string_equal(eds_warnings(d),
+                        "w.eds:5: [2000] DataType: object 0x2000 skipped: data type 0x0040 is "
+                        "not a CiA 301 basic type\n"
+                        "w.eds:7: [2001]: object 0x2001 skipped: an ARRAY/RECORD without "
+                        "sub-entries\n"
+                        "w.eds:13: [2002] DefaultValue: '@AB' is not hex bytes: taken as the "
+                        "text's bytes\n");
+    assert_int_equal(eds_device(d)->od_count, 2);
+    assert_int_equal(eds_device(d)->od[1].index, 0x2002);
+    assert_int_equal(eds_device(d)->od[1].subs[0].size, 3);
+    eds_free(d);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test_setup_teardown(the_device, setup, teardown),
+        cmocka_unit_test_setup_teardown(values_over_sdo, setup, teardown),
+        cmocka_unit_test_setup_teardown(limits, setup, teardown),
+        cmocka_unit_test_setup_teardown(heartbeat_and_pdos, setup, teardown),
+        cmocka_unit_test(bad_files),
+        cmocka_unit_test(objects_left_out),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

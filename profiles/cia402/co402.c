@@ -166,13 +166,26 @@ static int64_t div_floor(int64_t a, int64_t b)
     return q;
 }
 
-/* user * num / den as Q16, without overflow for 32-bit operands */
+static int64_t sat_q16(int64_t v)
+{
+    if (v > CO402_Q16_MAX) {
+        return CO402_Q16_MAX;
+    }
+    return (v < -CO402_Q16_MAX) ? -CO402_Q16_MAX : v;
+}
+
+/* user * num / den as Q16, saturated to +-CO402_Q16_MAX; @p user within
+ * +-2^32 (32-bit objects, times a sign): user * num fits 64 bits, and a
+ * quotient beyond INT32_MAX saturates before it is shifted into Q16. */
 static int64_t scale_in(int64_t user, uint32_t num, uint32_t den)
 {
     int64_t x = user * (int64_t)num;
     int64_t q = x / (int64_t)den;
     int64_t r = x % (int64_t)den;
-    return (q * CO402_Q16) + ((r * CO402_Q16) / (int64_t)den);
+    if ((q > (int64_t)INT32_MAX) || (q < -(int64_t)INT32_MAX)) {
+        return (q > 0) ? CO402_Q16_MAX : -CO402_Q16_MAX;
+    }
+    return sat_q16((q * CO402_Q16) + ((r * CO402_Q16) / (int64_t)den));
 }
 
 /* Q16 -> user units, rounded to the nearest */
@@ -300,7 +313,10 @@ uint32_t co402_counts_per_rev(const co402_axis_t *ax)
     int64_t rev = co402_get(ax, O_ENC_REV, 1);
 
     if ((inc > 0) && (rev > 0)) {
-        return sat32(inc / rev);
+        /* fewer increments than revolutions (both legal): at least 1, so
+         * that every division by it is defined */
+        uint32_t c = sat32(inc / rev);
+        return (c != 0U) ? c : 1U;
     }
     return (ax->cfg.counts_per_rev != 0U) ? ax->cfg.counts_per_rev : 4096U;
 }
@@ -1226,6 +1242,12 @@ static uint32_t op_process(void *inst, uint32_t now_us)
 
     if (!ax->attached) {
         return CO_NO_DEADLINE;
+    }
+    if ((int32_t)(ax->next_tick - now_us) > (int32_t)(CO402_IDLE_US + tick)) {
+        /* the next tick is never more than a tick (or the rest period) ahead:
+         * the caller's clock jumped by 2^31 us or more (a stall), which the
+         * wrap-safe comparison takes for a time 35 minutes back */
+        ax->next_tick = now_us;
     }
     while ((int32_t)(now_us - ax->next_tick) >= 0) {
         int8_t m = (int8_t)co402_get(ax, O_MODE, ax->mode);

@@ -7,6 +7,9 @@
 #include <string.h>
 
 #define SIM_US_PER_S 1000000LL
+#define SIM_E_MAX (INT64_C(1) << 40) /* Q16 increments/s: 2^24 increments/s */
+#define SIM_CATCHUP_US 1000000UL     /* at most this much simulated time per update */
+#define SIM_STEP_BACK_US 1000000UL   /* a time this much before the plant's: a step back */
 
 static int64_t sim_floor_div(int64_t a, int64_t b)
 {
@@ -149,9 +152,12 @@ static void step(co402_sim_t *s, uint32_t dt)
         int64_t e;
         if (s->d.kind == (uint8_t)CO402_DEMAND_POSITION) {
             int64_t pd = s->d.pos + (((s->d.vel + (dv / 2)) * tau) / SIM_US_PER_S);
-            vcmd += (int64_t)c->kp * (pd - s->p);
+            /* a position error beyond the 32-bit range saturates */
+            vcmd += (int64_t)c->kp * clamp64(pd - s->p, CO402_Q16_MAX);
         }
-        e = vcmd - s->v;
+        /* the velocity loop's error saturates at SIM_E_MAX (far beyond any
+         * speed), so that the gains' products stay within 64 bits */
+        e = clamp64(vcmd - s->v, SIM_E_MAX);
         acc = (int64_t)s->d.acc + (((int64_t)c->kv * e) / CO402_Q16) + s->vi;
         if (((acc < a_lim) || (e < 0)) && ((acc > -a_lim) || (e > 0))) {
             /* integrate only while the torque is not at its limit (no wind-up) */
@@ -200,6 +206,14 @@ static void sim_update(void *ctx, uint32_t now_us, co402_feedback_t *fb)
     co402_sim_t *s = (co402_sim_t *)ctx;
     uint32_t h = (s->cfg.step_us != 0U) ? s->cfg.step_us : 250U;
 
+    uint32_t gap = now_us - s->t;
+
+    if ((gap > SIM_CATCHUP_US) && (gap < (0xFFFFFFFFUL - SIM_STEP_BACK_US))) {
+        /* the caller was stopped (a stall, perhaps beyond 2^31 us, where the
+         * wrap-safe comparison would freeze the plant for up to 35
+         * minutes): the plant catches up on the last second only */
+        s->t = now_us - (uint32_t)SIM_CATCHUP_US;
+    }
     while ((int32_t)(now_us - s->t) > 0) {
         uint32_t dt = now_us - s->t;
         step(s, (dt < h) ? dt : h);
@@ -222,6 +236,10 @@ static void sim_command(void *ctx, const co402_demand_t *d)
 {
     co402_sim_t *s = (co402_sim_t *)ctx;
     s->d = *d;
+    /* a demand beyond the 32-bit range (in Q16) saturates, so that the
+     * loops' products stay within 64 bits */
+    s->d.pos = clamp64(d->pos, CO402_Q16_MAX);
+    s->d.vel = clamp64(d->vel, CO402_Q16_MAX);
     s->t_cmd = s->t;
 }
 

@@ -7,6 +7,7 @@
 #include <errno.h>
 #include <signal.h>
 #include <stdarg.h>
+#include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -43,6 +44,8 @@ typedef struct dnode {
     int has_nv;
     uint8_t id;
     dev_eds_t eds;          /* a device built from an EDS/DCF (--eds) */
+    uint32_t serial;        /* 0x1018 sub 4 (--serial), when serial_given */
+    bool serial_given;
     char tag[64];
 } dnode_t;
 
@@ -113,11 +116,38 @@ static void cb_nmt_state(void *ctx, co_node_t *node, co_nmt_state_t state)
     log_line(d->tag, CO_LX_INFO, "NMT %s", state_name(state));
 }
 
+/* "node 5 (generic-301)", "node - (generic-301)" while unconfigured. */
+static void set_tag(dnode_t *d, uint8_t id)
+{
+    if (id == CO_NODE_ID_UNCONFIGURED) {
+        (void)snprintf(d->tag, sizeof d->tag, "node - (%s)", d->dev->name);
+    } else {
+        (void)snprintf(d->tag, sizeof d->tag, "node %u (%s)", (unsigned)id, d->dev->name);
+    }
+}
+
+/* The instance's serial number (a RAM value a node reset sets back to the
+ * description's default). */
+static void set_serial(dnode_t *d, co_node_t *node)
+{
+    if (d->serial_given &&
+        (co_od_write(node, 0x1018U, 4U, &d->serial, 4U, true) != CO_OK)) {
+        log_line(d->tag, CO_LX_WARN, "--serial: 0x1018 sub 4 of %s cannot be set",
+                 d->dev->name);
+    }
+}
+
 static void cb_nmt_reset(void *ctx, co_node_t *node, co_reset_t kind)
 {
     dnode_t *d = (dnode_t *)ctx;
 
-    (void)node;
+    if (co_node_id(node) != CO_NODE_ID_UNCONFIGURED) {
+        set_tag(d, co_node_id(node)); /* LSS may have given it another */
+    }
+    if (kind == CO_RESET_NODE) {
+        set_serial(d, node);
+    }
+
     log_line(d->tag, CO_LX_INFO, "NMT reset %s",
              (kind == CO_RESET_NODE) ? "node" : "communication");
 }
@@ -184,7 +214,9 @@ static int start_node(dnode_t *d, const opt_node_t *spec, const char *iface)
 
     d->dev = (spec->eds != NULL) ? &d->eds.entry : co_device_find(spec->device);
     d->id = spec->id;
-    (void)snprintf(d->tag, sizeof d->tag, "node %u (%s)", (unsigned)spec->id, d->dev->name);
+    d->serial = spec->serial;
+    d->serial_given = spec->serial_given;
+    set_tag(d, spec->id);
     mem_size = co_device_mem_size(d->dev, true);
     d->ram = calloc(1U, d->dev->dev->ram_size);
     d->hooks = (co_od_hook_t *)calloc((d->dev->dev->n_hooks != 0U) ? d->dev->dev->n_hooks : 1U,
@@ -237,6 +269,8 @@ static int start_node(dnode_t *d, const opt_node_t *spec, const char *iface)
         log_line(d->tag, CO_LX_ERROR, "co_node_init failed: result %d", (int)e);
         return -1;
     }
+    set_tag(d, co_node_id(&d->node)); /* an LSS-stored node-ID */
+    set_serial(d, &d->node);
     co_lx_port_attach(&d->port, &d->node);
     {
         co_err_t ae = co_device_attach(&d->run, &d->node, co_lx_now_us());
@@ -247,6 +281,13 @@ static int start_node(dnode_t *d, const opt_node_t *spec, const char *iface)
     }
     log_line(d->tag, CO_LX_INFO, "up on %s%s%s", iface, d->has_nv ? ", parameters in " : "",
              d->has_nv ? spec->storage : "");
+    if (co_node_id(&d->node) == CO_NODE_ID_UNCONFIGURED) {
+        uint32_t sn = 0U;
+        uint32_t len = 0U;
+        (void)co_od_read(&d->node, 0x1018U, 4U, &sn, 4U, &len);
+        log_line(d->tag, CO_LX_INFO, "unconfigured: waiting for LSS (serial number %lu)",
+                 (unsigned long)sn);
+    }
     return 0;
 }
 

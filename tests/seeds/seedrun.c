@@ -47,6 +47,19 @@ void sr_start(seedrun_t *s, const co_device_t *d, co_node_config_t *cfg, co_node
     tb_attach(&s->bus, 0, node);
     assert_int_equal(co_node_init(node, cfg, s->bus.now), CO_RESULT_OK);
     assert_int_equal(co_device_attach(&s->run, node, s->bus.now), CO_OK);
+    if ((cfg->dev->options & CO_OPT_LSS_ONLY) != 0U) {
+        /* the node-ID only through LSS (FAULHABER quick start, digest 1.5):
+         * unconfigured and silent; switch global, configure node-ID, back to
+         * waiting: the node initialises at once */
+        char conf[40];
+        tb_expect_none(&s->bus);
+        tb_send(&s->bus, "7E5 04 01 00 00 00 00 00 00");
+        tb_expect_none(&s->bus);
+        snprintf(conf, sizeof conf, "7E5 11 %02X 00 00 00 00 00 00", (unsigned)id);
+        tb_send(&s->bus, conf);
+        tb_expect(&s->bus, "7E4 11 00 00 00 00 00 00 00");
+        tb_send(&s->bus, "7E5 04 00 00 00 00 00 00 00");
+    }
     snprintf(boot, sizeof boot, "%03X 00", 0x700U + id);
     tb_expect(&s->bus, boot);
 }

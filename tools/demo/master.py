@@ -30,6 +30,7 @@ from pathlib import Path
 
 import can
 import canopen
+import canopen.lss
 
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(Path(__file__).resolve().parent))
@@ -118,6 +119,7 @@ class Demo:
         self.eds: dict[str, Path] = {}
         self.nodes: dict[int, canopen.RemoteNode] = {}
         self.device_of: dict[int, str] = {}
+        self.lss_only: set[str] = set()
 
     # ------------------------------------------------------------ helpers
     def step(self, title: str, fn) -> None:
@@ -136,14 +138,18 @@ class Demo:
             self.results.append((title, False, reason))
 
     def start_device(self, node_id: int, device: str, storage: bool = False) -> None:
-        args = [str(self.daemon), "--iface", self.iface, "--node-id", str(node_id),
-                "--device", device, "--log-level", "error",
-                "--control", str(self.tmp / f"node{node_id}.sock")]
+        lss = device in self.lss_only       # its node-ID only through LSS (FAULHABER)
+        args = [str(self.daemon), "--iface", self.iface, "--device", device,
+                "--log-level", "error"]
+        args += ["--serial", str(0x100 + node_id)] if lss else ["--node-id", str(node_id)]
+        args += ["--control", str(self.tmp / f"node{node_id}.sock")]
         if storage:
             args += ["--storage", str(self.tmp / f"node{node_id}.params")]
         m = self.watch.mark()
         say("start  " + " ".join(a if a != str(self.daemon) else "canopen-device" for a in args))
         self.procs[node_id] = subprocess.Popen(args)
+        if lss:
+            m = self.lss_assign(node_id, device, 0x100 + node_id)
         f, _ = self.watch.wait(lambda f: f.arbitration_id == 0x700 + node_id, 5.0, m)
         if f is None or bytes(f.data) != b"\x00":
             raise TimeoutError(f"no boot-up from node {node_id}")
@@ -154,6 +160,28 @@ class Demo:
         node.sdo.RESPONSE_TIMEOUT = 2.0
         self.nodes[node_id] = node
         self.device_of[node_id] = device
+
+    def lss_assign(self, node_id: int, device: str, serial: int) -> int:
+        """LSS as the drive's quick start: select it by its LSS address (the
+        revision is not compared), configure the node-ID, back to waiting.
+        Returns the watch mark before the switch (the boot-up follows it)."""
+        od = canopen.import_od(str(self.eds[device]))
+        vendor, product = od[0x1018][1].default, od[0x1018][2].default
+        end = time.monotonic() + 5.0
+        while True:
+            try:
+                if self.net.lss.send_switch_state_selective(vendor, product, 0, serial):
+                    break
+            except canopen.lss.LssError:
+                pass
+            if time.monotonic() > end:
+                raise TimeoutError(f"no LSS answer from {device} (serial {serial:#x})")
+        self.net.lss.configure_node_id(node_id)
+        say(f"-> 7E5 LSS selective {vendor:#x}/{product:#x}/-/{serial:#x}, "
+            f"configure node-ID {node_id}, switch to waiting")
+        m = self.watch.mark()
+        self.net.lss.send_switch_state_global(self.net.lss.WAITING_STATE)
+        return m
 
     def stop_device(self, node_id: int) -> int:
         p = self.procs.pop(node_id)
@@ -531,6 +559,8 @@ class Demo:
         listing = subprocess.run([str(self.daemon), "--list-devices"], check=True,
                                  capture_output=True, text=True).stdout
         known = [ln.split()[0] for ln in listing.splitlines() if ln.strip()]
+        self.lss_only = {ln.split()[0] for ln in listing.splitlines()
+                         if ln.strip() and ln.split()[1] == "LSS-only"}
         wanted = known if self.wanted == ["all"] else (self.wanted or list(DEFAULT_DEVICES))
         unknown = [d for d in wanted if d not in known]
         if unknown:

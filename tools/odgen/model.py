@@ -744,11 +744,16 @@ def _device_objects(dev: dict, what: str) -> list[Obj]:
         for k, (key, name) in enumerate(zip(ids, ("Vendor-ID", "Product code",
                                                    "Revision number", "Serial number")), 1):
             t = {"sub": k, "name": name, "type": "UNSIGNED32", "access": "ro"}
-            if key in dev:
+            if key in dev and not (key == "serial" and dev.get("lss") is True):
                 t["default"] = dev[key]
                 t["rom"] = True
             else:
-                t["storage"] = "none"  # filled in by the application at run time
+                # filled in by the application at run time; an LSS slave's serial
+                # number is the instance's (distinct LSS addresses), its default
+                # the description's
+                t["storage"] = "none"
+                if key in dev:
+                    t["default"] = dev[key]
             subs.append(t)
         o.subs = [make_sub(0x1018, t, None, f"{what}") for t in subs]
         out.append(o)
@@ -766,6 +771,8 @@ EDS_KEYS = {"file_version", "file_revision", "date", "time", "author", "descript
             "simple_boot_up_slave", "granularity", "dynamic_channels_supported", "compact_pdo",
             "group_messaging", "nr_of_rxpdo", "nr_of_txpdo"}
 BAUDRATES = (10, 20, 50, 125, 250, 500, 800, 1000)
+# kbit/s -> index of the CiA 305 bit-timing table (LSS configure bit timing)
+LSS_BIT_TIMING = {1000: 0, 800: 1, 500: 2, 250: 3, 125: 4, 50: 6, 20: 7, 10: 8}
 
 
 def _assign_fields(obj: Obj) -> None:
@@ -1075,6 +1082,13 @@ def loads(text: str, path: str | Path = "<description>", base: str | None = None
         "baudrates": rates,
         "lss": _flag(dev.get("lss", False), "[device] lss"),
     }
+    # [device] lss = true: the device is an LSS slave (core option LSS; EDS LSS_Supported)
+    if info["lss"] and "LSS" not in opts:
+        opts = list(opts) + ["LSS"]
+        bits |= known["LSS"]
+    if not info["lss"] and any(o.startswith("LSS") for o in opts):
+        raise DescError("[device] the LSS options need lss = true")
+    info["lss_bit_timings"] = sum(1 << LSS_BIT_TIMING[r] for r in rates)
     for k in ("vendor_id", "product_code", "revision"):
         info[k] = _uint(dev.get(k, 0), f"[device] {k}")
     # DeviceInfo numbers: the identity unless the EDS states other ones

@@ -100,7 +100,11 @@ int co_lx_loop_run(co_lx_loop_t *l)
 
         for (size_t i = 0U; i < l->n_members; i++) {
             fds[i].fd = l->members[i].port->fd;
-            fds[i].events = (short)(POLLIN | (l->members[i].port->tx_blocked ? POLLOUT : 0));
+            /* never POLLOUT: SocketCAN keeps a raw socket writable while the
+             * interface queue is full or the interface is down, so the loop
+             * would spin at 100 % CPU; a held-back frame is retried at the
+             * core's deadline (1 ms) instead */
+            fds[i].events = (short)POLLIN;
             fds[i].revents = 0;
         }
         for (size_t i = 0U; i < l->n_tracers; i++) {

@@ -6,9 +6,11 @@
  * and says when it wants to run again; the loop then sleeps in ppoll() until
  * a socket has a frame or the earliest of those deadlines comes. No busy
  * loop and no fixed tick: an idle node with a 1 s heartbeat wakes the
- * process once a second. A node whose TX path is full is woken when its
- * socket is writable or by the core's 1 ms retry deadline, whichever comes
- * first; timers of every node keep running meanwhile.
+ * process once a second. A node whose TX path is full is woken by the core's
+ * 1 ms retry deadline, never by the socket's writability (a SocketCAN raw
+ * socket stays writable while the interface queue is full or the interface
+ * is down: polling for it would spin); timers of every node keep running
+ * meanwhile.
  *
  * Signals: the caller blocks SIGTERM/SIGINT and passes the mask to sleep
  * with (@c sleep_mask, normally the mask from before blocking); a handler

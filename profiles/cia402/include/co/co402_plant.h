@@ -18,6 +18,10 @@
 #include <stdint.h>
 
 #define CO402_Q16 65536
+/** Largest magnitude of a position (Q16 increments) or velocity (Q16
+ *  increments/s) the profile hands on: the range of a 32-bit object in Q16.
+ *  Unit scaling saturates to it, so no later product overflows 64 bits. */
+#define CO402_Q16_MAX ((int64_t)INT32_MAX * CO402_Q16)
 
 /** What the plant shall do until the next demand. */
 typedef enum co402_demand_kind {

@@ -9,9 +9,6 @@
 #include "anagate_motion.h"
 #include "anagate_motion_400vac.h"
 #include "anagate_motion_bl.h"
-#include "co402_devices.h"
-
-#define ANAGATE_OPTIONS (CO402_OPT_VELOCITY_RAMP | CO402_OPT_VOLTAGE_WHEN_ON | CO402_OPT_NO_REMOTE_BIT)
 
 void anagate_motion_set_inputs(co_node_t *node, const uint8_t bytes[8])
 {
@@ -32,12 +29,12 @@ static co_err_t vac_attach(void *inst, co_node_t *node, uint32_t now_us)
 
 static uint32_t vac_process(void *inst, uint32_t now_us)
 {
-    co402_drive_t *drv = (co402_drive_t *)inst;
-    co_node_t *node = co402_drive_node(drv);
+    co_device_run_t *drv = (co_device_run_t *)inst;
+    co_node_t *node = co_device_node(drv);
     const co402_axis_t *ax;
 
     (void)now_us;
-    for (uint8_t i = 0U; (ax = co402_drive_axis(drv, i)) != NULL; i++) {
+    for (uint8_t i = 0U; (ax = co402_device_axis(drv, i)) != NULL; i++) {
         uint16_t *cur = (uint16_t *)co_od_value_ptr(node, (uint16_t)(0x6078U + (0x800U * i)), 0U);
         bool on = (co402_state(ax) == CO402_OPERATION_ENABLED) && (co402_velocity(ax) != 0);
         if (cur != NULL) {
@@ -48,38 +45,9 @@ static uint32_t vac_process(void *inst, uint32_t now_us)
 }
 
 static const co_profile_ops_t vac_ops = {
-    "anagate-motion-400vac", vac_attach, vac_process, NULL, NULL, NULL, NULL, NULL,
-};
-
-const co402_device_t co402_dev_anagate_motion = {
-    .name = "anagate-motion",
-    .dev = &anagate_motion_dev,
-    .axes = 4U,
-    .options = ANAGATE_OPTIONS,
-    .full_speed = ANAGATE_FULL_SPEED,
-};
-
-const co402_device_t co402_dev_anagate_motion_bt2 = {
-    .name = "anagate-motion-bt2",
-    .dev = &anagate_motion_dev,
-    .axes = 2U,
-    .options = ANAGATE_OPTIONS,
-    .full_speed = ANAGATE_FULL_SPEED,
-};
-
-const co402_device_t co402_dev_anagate_motion_bl = {
-    .name = "anagate-motion-bl",
-    .dev = &anagate_motion_bl_dev,
-    .axes = 2U,
-    .options = ANAGATE_OPTIONS,
-    .full_speed = ANAGATE_FULL_SPEED,
-};
-
-const co402_device_t co402_dev_anagate_motion_400vac = {
     .name = "anagate-motion-400vac",
-    .dev = &anagate_motion_400vac_dev,
-    .axes = 2U,
-    .options = ANAGATE_OPTIONS,
-    .full_speed = ANAGATE_FULL_SPEED,
-    .plugin = &vac_ops,
+    .attach = vac_attach,
+    .process = vac_process,
 };
+
+const co_device_plugin_t anagate_motion_400vac_plugin = {.ops = &vac_ops};

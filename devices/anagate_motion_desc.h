@@ -1,6 +1,6 @@
 /*
  * anagate-motion: the AnaGate Motion motor modules (devices/anagate-motion*.toml)
- * as CiA 402 devices (co402_devices.h).
+ * as devices (co_devices.h, generated from the descriptions).
  *
  * Every motor is a CiA 402 axis at +0x800 * (motor - 1) whose one mode is
  * the velocity ramp (CO402_OPT_VELOCITY_RAMP: 0x6080 per mille of full
@@ -8,10 +8,10 @@
  * power stage is on and bit 9 unused. Full speed (1000 per mille) is 3000
  * rpm of the simulated motor (4096 increments per revolution).
  *
- *   co402_dev_anagate_motion        "anagate-motion"        BT, variant B: 4 motors
- *   co402_dev_anagate_motion_bt2    "anagate-motion-bt2"    BT, variant A: 2 motors
- *   co402_dev_anagate_motion_bl     "anagate-motion-bl"     BL: 2 motors
- *   co402_dev_anagate_motion_400vac "anagate-motion-400vac" 400 Vac: 2 motors, on/off,
+ *   co_device_anagate_motion        "anagate-motion"        BT, variant B: 4 motors
+ *   co_device_anagate_motion_bt2    "anagate-motion-bt2"    BT, variant A: 2 motors
+ *   co_device_anagate_motion_bl     "anagate-motion-bl"     BL: 2 motors
+ *   co_device_anagate_motion_400vac "anagate-motion-400vac" 400 Vac: 2 motors, on/off,
  *                                   phase currents in 0x6078 (a device plug-in)
  * A module with fewer motors keeps the objects of all four (the PDOs carry
  * four); the missing motors read 0 and ignore their controlword.

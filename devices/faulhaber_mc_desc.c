@@ -3,7 +3,6 @@
  */
 #include "faulhaber_mc_desc.h"
 
-#include "co402_devices.h"
 
 #include <string.h>
 
@@ -43,9 +42,9 @@ static const fh_error_t errors[] = {
 
 /* ------------------------------------------------------------ helpers */
 
-static faulhaber_mc_state_t *state(const co402_drive_t *r)
+static faulhaber_mc_state_t *state(const co_device_run_t *r)
 {
-    return (faulhaber_mc_state_t *)co402_drive_state(r);
+    return (faulhaber_mc_state_t *)co_device_state(r);
 }
 
 static uint16_t u16_at(co_node_t *node, uint16_t index, uint8_t sub)
@@ -81,36 +80,36 @@ static uint8_t bit_no(uint16_t bit)
 
 /* Report error @p e: 0x2320, EMCY with 0x2320 in bytes 3-4 (emergency
  * mask), Fault (fault mask). */
-static void report(co402_drive_t *r, const fh_error_t *e)
+static void report(co_device_run_t *r, const fh_error_t *e)
 {
     faulhaber_mc_state_t *st = state(r);
-    uint16_t reg = (uint16_t)(u16_at(co402_drive_node(r), 0x2320U, 0U) | e->bit);
+    uint16_t reg = (uint16_t)(u16_at(co_device_node(r), 0x2320U, 0U) | e->bit);
     uint16_t code = e->code;
     uint8_t mfr[5] = {(uint8_t)(reg & 0xFFU), (uint8_t)(reg >> 8U), 0U, 0U, 0U};
-    const int8_t *mode = (const int8_t *)co_od_value_ptr(co402_drive_node(r), 0x6061U, 0U);
+    const int8_t *mode = (const int8_t *)co_od_value_ptr(co_device_node(r), 0x6061U, 0U);
 
     if ((e->bit == FAULHABER_ERR_DEVIATION) && (mode != NULL) && (*mode == CO402_MODE_PV)) {
         code = 0x8611U; /* as printed: 0x8611 in pv, 0x8400 in pp */
     }
     st->code[bit_no(e->bit)] = code;
-    set_u16(co402_drive_node(r), 0x2320U, 0U, reg);
-    if ((u16_at(co402_drive_node(r), 0x2321U, 1U) & e->bit) != 0U) {
-        co_emcy_raise(co402_drive_node(r), code, e->reg, mfr);
+    set_u16(co_device_node(r), 0x2320U, 0U, reg);
+    if ((u16_at(co_device_node(r), 0x2321U, 1U) & e->bit) != 0U) {
+        co_emcy_raise(co_device_node(r), code, e->reg, mfr);
     }
-    if (((u16_at(co402_drive_node(r), 0x2321U, 2U) & e->bit) != 0U) && (co402_drive_axis(r, 0U) != NULL)) {
-        co402_fault_raise(co402_drive_axis(r, 0U), code);
+    if (((u16_at(co_device_node(r), 0x2321U, 2U) & e->bit) != 0U) && (co402_device_axis(r, 0U) != NULL)) {
+        co402_fault_raise(co402_device_axis(r, 0U), code);
     }
 }
 
-static void withdraw(co402_drive_t *r, const fh_error_t *e)
+static void withdraw(co_device_run_t *r, const fh_error_t *e)
 {
     faulhaber_mc_state_t *st = state(r);
     uint16_t code = st->code[bit_no(e->bit)];
 
-    set_u16(co402_drive_node(r), 0x2320U, 0U, (uint16_t)(u16_at(co402_drive_node(r), 0x2320U, 0U) & ~e->bit));
-    co_emcy_clear(co402_drive_node(r), code);
-    if (co402_drive_axis(r, 0U) != NULL) {
-        co402_fault_clear(co402_drive_axis(r, 0U), code);
+    set_u16(co_device_node(r), 0x2320U, 0U, (uint16_t)(u16_at(co_device_node(r), 0x2320U, 0U) & ~e->bit));
+    co_emcy_clear(co_device_node(r), code);
+    if (co402_device_axis(r, 0U) != NULL) {
+        co402_fault_clear(co402_device_axis(r, 0U), code);
     }
 }
 
@@ -118,11 +117,11 @@ static void withdraw(co402_drive_t *r, const fh_error_t *e)
  * goes (not the sticky ones) and the fault condition with it; with @p react,
  * the fault mask puts the axis into Fault once for each that lasts (not
  * inside the core's call: the fault raises an EMCY). */
-static void core_errors(co402_drive_t *r, bool react)
+static void core_errors(co_device_run_t *r, bool react)
 {
     faulhaber_mc_state_t *st = state(r);
-    co_node_t *node = co402_drive_node(r);
-    co402_axis_t *ax = co402_drive_axis(r, 0U);
+    co_node_t *node = co_device_node(r);
+    co402_axis_t *ax = co402_device_axis(r, 0U);
 
     for (size_t i = 0U; i < N_ERRORS; i++) {
         const fh_error_t *e = &errors[i];
@@ -154,8 +153,8 @@ static void core_errors(co402_drive_t *r, bool react)
  * first). Its fault-mask reaction follows in op_process. */
 static void op_emcy_mfr(void *inst, uint16_t code, uint8_t mfr[5])
 {
-    co402_drive_t *r = (co402_drive_t *)inst;
-    co_node_t *node = co402_drive_node(r);
+    co_device_run_t *r = (co_device_run_t *)inst;
+    co_node_t *node = co_device_node(r);
     uint16_t reg;
 
     core_errors(r, false);
@@ -170,7 +169,7 @@ static void op_emcy_mfr(void *inst, uint16_t code, uint8_t mfr[5])
     mfr[1] = (uint8_t)(reg >> 8U);
 }
 
-void faulhaber_mc_error(co402_drive_t *r, uint16_t bit, bool on)
+void faulhaber_mc_error(co_device_run_t *r, uint16_t bit, bool on)
 {
     faulhaber_mc_state_t *st = state(r);
 
@@ -180,10 +179,10 @@ void faulhaber_mc_error(co402_drive_t *r, uint16_t bit, bool on)
         }
         if (on && ((st->present & bit) == 0U)) {
             st->present |= bit;
-            st->since[bit_no(bit)] = co402_drive_node(r)->now;
+            st->since[bit_no(bit)] = co_device_node(r)->now;
         } else if (!on && ((st->present & bit) != 0U)) {
             st->present &= (uint16_t)~bit;
-            if ((u16_at(co402_drive_node(r), 0x2320U, 0U) & bit) != 0U) {
+            if ((u16_at(co_device_node(r), 0x2320U, 0U) & bit) != 0U) {
                 withdraw(r, &errors[i]);
             }
         } else {
@@ -206,14 +205,14 @@ static uint64_t gcd64(uint64_t a, uint64_t b)
 
 /* 0x6093 = encoder resolution x gear ratio / feed constant, with one value
  * replaced by the one being written (@p index, @p sub, @p v). */
-static co_err_t factor(co402_drive_t *r, uint16_t index, uint8_t sub, uint32_t v, bool commit)
+static co_err_t factor(co_device_run_t *r, uint16_t index, uint8_t sub, uint32_t v, bool commit)
 {
-    uint64_t inc = u32_at(co402_drive_node(r), 0x608FU, 1U);
-    uint64_t mrev = u32_at(co402_drive_node(r), 0x608FU, 2U);
-    uint64_t gm = (index == 0x6091U && sub == 1U) ? v : u32_at(co402_drive_node(r), 0x6091U, 1U);
-    uint64_t gs = (index == 0x6091U && sub == 2U) ? v : u32_at(co402_drive_node(r), 0x6091U, 2U);
-    uint64_t feed = (index == 0x6092U && sub == 1U) ? v : u32_at(co402_drive_node(r), 0x6092U, 1U);
-    uint64_t fs = (index == 0x6092U && sub == 2U) ? v : u32_at(co402_drive_node(r), 0x6092U, 2U);
+    uint64_t inc = u32_at(co_device_node(r), 0x608FU, 1U);
+    uint64_t mrev = u32_at(co_device_node(r), 0x608FU, 2U);
+    uint64_t gm = (index == 0x6091U && sub == 1U) ? v : u32_at(co_device_node(r), 0x6091U, 1U);
+    uint64_t gs = (index == 0x6091U && sub == 2U) ? v : u32_at(co_device_node(r), 0x6091U, 2U);
+    uint64_t feed = (index == 0x6092U && sub == 1U) ? v : u32_at(co_device_node(r), 0x6092U, 1U);
+    uint64_t fs = (index == 0x6092U && sub == 2U) ? v : u32_at(co_device_node(r), 0x6092U, 2U);
     uint64_t num;
     uint64_t den;
     uint64_t g;
@@ -234,11 +233,11 @@ static co_err_t factor(co402_drive_t *r, uint16_t index, uint8_t sub, uint32_t v
     num /= g;
     den /= g;
     if (commit) {
-        p = (uint32_t *)co_od_value_ptr(co402_drive_node(r), 0x6093U, 1U);
+        p = (uint32_t *)co_od_value_ptr(co_device_node(r), 0x6093U, 1U);
         if (p != NULL) {
             *p = (uint32_t)num;
         }
-        p = (uint32_t *)co_od_value_ptr(co402_drive_node(r), 0x6093U, 2U);
+        p = (uint32_t *)co_od_value_ptr(co_device_node(r), 0x6093U, 2U);
         if (p != NULL) {
             *p = (uint32_t)den;
         }
@@ -250,9 +249,9 @@ static co_err_t factor(co402_drive_t *r, uint16_t index, uint8_t sub, uint32_t v
 
 static co_err_t hook_guard_time(void *ctx, co_od_io_t *io)
 {
-    co402_drive_t *r = (co402_drive_t *)ctx;
+    co_device_run_t *r = (co_device_run_t *)ctx;
 
-    if ((co_get_u16(io->buf) != 0U) && (u16_at(co402_drive_node(r), 0x1017U, 0U) != 0U)) {
+    if ((co_get_u16(io->buf) != 0U) && (u16_at(co_device_node(r), 0x1017U, 0U) != 0U)) {
         return CO_ERR_STORE; /* guarding and heartbeat exclude each other */
     }
     return CO_OK;
@@ -260,11 +259,11 @@ static co_err_t hook_guard_time(void *ctx, co_od_io_t *io)
 
 static co_err_t hook_heartbeat(void *ctx, co_od_io_t *io)
 {
-    co402_drive_t *r = (co402_drive_t *)ctx;
+    co_device_run_t *r = (co_device_run_t *)ctx;
 
     if (co_get_u16(io->buf) != 0U) {
-        uint8_t *life = (uint8_t *)co_od_value_ptr(co402_drive_node(r), 0x100DU, 0U);
-        set_u16(co402_drive_node(r), 0x100CU, 0U, 0U);
+        uint8_t *life = (uint8_t *)co_od_value_ptr(co_device_node(r), 0x100DU, 0U);
+        set_u16(co_device_node(r), 0x100CU, 0U, 0U);
         if (life != NULL) {
             *life = 0U;
         }
@@ -274,10 +273,10 @@ static co_err_t hook_heartbeat(void *ctx, co_od_io_t *io)
 
 static co_err_t hook_restore(void *ctx, co_od_io_t *io)
 {
-    co402_drive_t *r = (co402_drive_t *)ctx;
+    co_device_run_t *r = (co_device_run_t *)ctx;
 
-    if ((io->desc->sub >= 1U) && (io->desc->sub <= 3U) && (co402_drive_axis(r, 0U) != NULL) &&
-        (co402_state(co402_drive_axis(r, 0U)) != CO402_SWITCH_ON_DISABLED)) {
+    if ((io->desc->sub >= 1U) && (io->desc->sub <= 3U) && (co402_device_axis(r, 0U) != NULL) &&
+        (co402_state(co402_device_axis(r, 0U)) != CO402_SWITCH_ON_DISABLED)) {
         return CO_ERR_STORE_STATE; /* factory values only while disabled */
     }
     return CO_OK;
@@ -285,8 +284,8 @@ static co_err_t hook_restore(void *ctx, co_od_io_t *io)
 
 static co_err_t hook_inputs(void *ctx, co_od_io_t *io)
 {
-    co402_drive_t *r = (co402_drive_t *)ctx;
-    const int8_t *mode = (const int8_t *)co_od_value_ptr(co402_drive_node(r), 0x6061U, 0U);
+    co_device_run_t *r = (co_device_run_t *)ctx;
+    const int8_t *mode = (const int8_t *)co_od_value_ptr(co_device_node(r), 0x6061U, 0U);
 
     (void)io;
     if ((mode != NULL) && (*mode == CO402_MODE_HM)) {
@@ -297,22 +296,22 @@ static co_err_t hook_inputs(void *ctx, co_od_io_t *io)
 
 static co_err_t hook_masks(void *ctx, co_od_io_t *io)
 {
-    co402_drive_t *r = (co402_drive_t *)ctx;
+    co_device_run_t *r = (co_device_run_t *)ctx;
 
     if (io->desc->sub == 2U) {
         /* the fault mask's bits are set in the emergency mask too */
-        set_u16(co402_drive_node(r), 0x2321U, 1U, (uint16_t)(u16_at(co402_drive_node(r), 0x2321U, 1U) | co_get_u16(io->buf)));
+        set_u16(co_device_node(r), 0x2321U, 1U, (uint16_t)(u16_at(co_device_node(r), 0x2321U, 1U) | co_get_u16(io->buf)));
     }
     return CO_OK;
 }
 
 static co_err_t hook_target_internal(void *ctx, co_od_io_t *io)
 {
-    co402_drive_t *r = (co402_drive_t *)ctx;
+    co_device_run_t *r = (co_device_run_t *)ctx;
     int64_t inc = (int64_t)(int32_t)co_get_u32(io->buf);
-    int64_t num = (int64_t)u32_at(co402_drive_node(r), 0x6093U, 1U);
-    int64_t den = (int64_t)u32_at(co402_drive_node(r), 0x6093U, 2U);
-    int32_t *target = (int32_t *)co_od_value_ptr(co402_drive_node(r), 0x607AU, 0U);
+    int64_t num = (int64_t)u32_at(co_device_node(r), 0x6093U, 1U);
+    int64_t den = (int64_t)u32_at(co_device_node(r), 0x6093U, 2U);
+    int32_t *target = (int32_t *)co_od_value_ptr(co_device_node(r), 0x607AU, 0U);
 
     if ((num == 0) || (den == 0) || (target == NULL)) {
         return CO_ERR_DEV_INCOMPAT;
@@ -323,7 +322,7 @@ static co_err_t hook_target_internal(void *ctx, co_od_io_t *io)
 
 static co_err_t hook_factor(void *ctx, co_od_io_t *io)
 {
-    co402_drive_t *r = (co402_drive_t *)ctx;
+    co_device_run_t *r = (co_device_run_t *)ctx;
 
     return factor(r, io->entry->index, io->desc->sub, co_get_u32(io->buf), true);
 }
@@ -332,7 +331,7 @@ static co_err_t hook_factor(void *ctx, co_od_io_t *io)
 
 static co_err_t op_attach(void *inst, co_node_t *node, uint32_t now_us)
 {
-    co402_drive_t *r = (co402_drive_t *)inst;
+    co_device_run_t *r = (co_device_run_t *)inst;
     static const struct {
         uint16_t index;
         co_err_t (*write)(void *ctx, co_od_io_t *io);
@@ -343,7 +342,7 @@ static co_err_t op_attach(void *inst, co_node_t *node, uint32_t now_us)
     };
 
     (void)now_us;
-    if (co402_drive_state(r) == NULL) {
+    if (co_device_state(r) == NULL) {
         return CO_ERR_VALUE;
     }
     for (size_t i = 0U; i < (sizeof hooks / sizeof hooks[0]); i++) {
@@ -358,11 +357,11 @@ static co_err_t op_attach(void *inst, co_node_t *node, uint32_t now_us)
 
 static uint32_t op_process(void *inst, uint32_t now_us)
 {
-    co402_drive_t *r = (co402_drive_t *)inst;
+    co_device_run_t *r = (co_device_run_t *)inst;
     faulhaber_mc_state_t *st = state(r);
-    uint32_t delay = (uint32_t)u16_at(co402_drive_node(r), 0x2322U, 1U) * 10000U; /* 1/100 s */
+    uint32_t delay = (uint32_t)u16_at(co_device_node(r), 0x2322U, 1U) * 10000U; /* 1/100 s */
     uint32_t next = CO_NO_DEADLINE;
-    uint16_t reg = u16_at(co402_drive_node(r), 0x2320U, 0U);
+    uint16_t reg = u16_at(co_device_node(r), 0x2320U, 0U);
 
     for (size_t i = 0U; i < N_ERRORS; i++) {
         const fh_error_t *e = &errors[i];
@@ -372,7 +371,7 @@ static uint32_t op_process(void *inst, uint32_t now_us)
         }
         if ((int32_t)(now_us - due) >= 0) {
             report(r, e);
-            reg = u16_at(co402_drive_node(r), 0x2320U, 0U);
+            reg = u16_at(co_device_node(r), 0x2320U, 0U);
         } else if ((next == CO_NO_DEADLINE) || ((int32_t)(due - next) < 0)) {
             next = due;
         } else {
@@ -380,14 +379,14 @@ static uint32_t op_process(void *inst, uint32_t now_us)
         }
     }
     core_errors(r, true);
-    if (co402_drive_axis(r, 0U) != NULL) {
+    if (co402_device_axis(r, 0U) != NULL) {
         /* 0x2562: last demand in increments; 0x2361: speed, unfiltered */
-        int32_t *demand = (int32_t *)co_od_value_ptr(co402_drive_node(r), 0x2562U, 0U);
-        int16_t *raw = (int16_t *)co_od_value_ptr(co402_drive_node(r), 0x2361U, 0U);
-        const int32_t *user = (const int32_t *)co_od_value_ptr(co402_drive_node(r), 0x6062U, 0U);
-        const int32_t *rpm = (const int32_t *)co_od_value_ptr(co402_drive_node(r), 0x606CU, 0U);
-        int64_t num = (int64_t)u32_at(co402_drive_node(r), 0x6093U, 1U);
-        int64_t den = (int64_t)u32_at(co402_drive_node(r), 0x6093U, 2U);
+        int32_t *demand = (int32_t *)co_od_value_ptr(co_device_node(r), 0x2562U, 0U);
+        int16_t *raw = (int16_t *)co_od_value_ptr(co_device_node(r), 0x2361U, 0U);
+        const int32_t *user = (const int32_t *)co_od_value_ptr(co_device_node(r), 0x6062U, 0U);
+        const int32_t *rpm = (const int32_t *)co_od_value_ptr(co_device_node(r), 0x606CU, 0U);
+        int64_t num = (int64_t)u32_at(co_device_node(r), 0x6093U, 1U);
+        int64_t den = (int64_t)u32_at(co_device_node(r), 0x6093U, 2U);
         if ((demand != NULL) && (user != NULL) && (num != 0) && (den != 0)) {
             *demand = (int32_t)(((int64_t)*user * num) / den);
         }
@@ -400,44 +399,26 @@ static uint32_t op_process(void *inst, uint32_t now_us)
 
 static void op_reset(void *inst, co_reset_t kind, uint32_t now_us)
 {
-    co402_drive_t *r = (co402_drive_t *)inst;
+    co_device_run_t *r = (co_device_run_t *)inst;
 
     (void)now_us;
     if (kind == CO_RESET_NODE) {
-        (void)memset(co402_drive_state(r), 0, sizeof(faulhaber_mc_state_t)); /* 0x2320 is back at 0 */
+        (void)memset(co_device_state(r), 0, sizeof(faulhaber_mc_state_t)); /* 0x2320 is back at 0 */
     }
     (void)factor(r, 0U, 0U, 0U, true);
 }
 
 const co_profile_ops_t faulhaber_mc_ops = {
-    "faulhaber-mc", op_attach, op_process, NULL, NULL, op_reset, NULL, op_emcy_mfr,
+    .name = "faulhaber-mc",
+    .attach = op_attach,
+    .process = op_process,
+    .reset = op_reset,
+    .emcy_mfr = op_emcy_mfr,
 };
 
 /* ---------------------------------------------------------------- device */
 
-void faulhaber_mc_sim(co402_sim_config_t *c)
-{
-    c->counts_per_rev = 3000U;     /* BL: Hall sensors, 3000 increments/rev */
-    c->speed_max = 600000U;        /* 12000 rpm */
-    c->accel_rated = 30000000U;    /* 10000 1/s^2 at rated torque (3x: 30000 1/s^2) */
-    c->switches = CO402_IN_HOME;   /* a home switch at the positive end */
-    c->home_lo = 30000;
-    c->home_hi = INT32_MAX;
-}
-
-const co402_device_t co402_dev_faulhaber_mc = {
-    .name = "faulhaber-mc",
-    .dev = &faulhaber_mc_dev,
-    .axes = 1U,
-    .options = CO402_OPT_ONE_TRANSITION | CO402_OPT_NMT_OPERATIONAL | CO402_OPT_NO_VOLTAGE_BIT |
-               CO402_OPT_NO_REMOTE_BIT | CO402_OPT_PP_ALWAYS_NOW | CO402_OPT_PP_TR_AFTER_MOVE |
-               CO402_OPT_HM_BIT4_CLEARS | CO402_OPT_FAULT_HOLDS_ZERO | CO402_OPT_TPDO_ON_SW |
-               CO402_OPT_QS_STAY | CO402_OPT_FR_SLOW,
-    .vel_num = 3000U, /* rpm: 3000 increments / 60 s */
-    .vel_den = 60U,
-    .acc_num = 3000U, /* 1/s^2: 3000 increments / s^2 */
-    .acc_den = 1U,
-    .sim_config = faulhaber_mc_sim,
-    .plugin = &faulhaber_mc_ops,
+const co_device_plugin_t faulhaber_mc_plugin = {
+    .ops = &faulhaber_mc_ops,
     .state_size = sizeof(faulhaber_mc_state_t),
 };

@@ -1,6 +1,6 @@
 /*
  * faulhaber-mc: the FAULHABER Motion Controller (devices/faulhaber-mc.toml)
- * as a CiA 402 device (co402_dev_faulhaber_mc in co402_devices.h) and its
+ * as a CiA 402 device (co_device_faulhaber_mc in co_devices.h) and its
  * device plug-in.
  *
  * One CiA 402 axis with FAULHABER's deviations as profile options and its
@@ -48,7 +48,7 @@
 #define FAULHABER_ERR_PDO_SHORT    0x4000U /**< EMCY 0x8210 */
 
 /** State of the FAULHABER plug-in (the caller allocates it and gives it with
- *  co402_drive_set_state). */
+ *  co_device_init: the block holds it). */
 typedef struct faulhaber_mc_state {
     uint32_t since[16];      /* when each present condition arose */
     uint16_t code[16];       /* EMCY code each reported error was raised with */
@@ -57,16 +57,13 @@ typedef struct faulhaber_mc_state {
     uint16_t faulted;        /* ... of those, the ones whose fault-mask reaction ran */
 } faulhaber_mc_state_t;
 
-/** The plug-in (instance: the co402_drive_t), for devices of other
+/** The plug-in (instance: the co_device_run_t), for devices of other
  *  FAULHABER variants. */
 extern const co_profile_ops_t faulhaber_mc_ops;
 
-/** Plant parameters of the simulated BL motor (3000 increments/rev). */
-void faulhaber_mc_sim(co402_sim_config_t *c);
-
 /** A drive error condition (@p bit of 0x2320) arises (@p on) or ends. It is
  *  reported after the error delay 0x2322.01 (over-current, deviation,
- *  over-voltage) or at once, at the next co402_drive_process. */
-void faulhaber_mc_error(co402_drive_t *r, uint16_t bit, bool on);
+ *  over-voltage) or at once, at the next co_device_process. */
+void faulhaber_mc_error(co_device_run_t *r, uint16_t bit, bool on);
 
 #endif /* FAULHABER_MC_DESC_H */

@@ -29,55 +29,18 @@
  * The simulated motor: 2^20 increments per revolution (PRBASE 20, as 0x6063
  * and 0x608F say), one index pulse per revolution, 100 rev/s top speed.
  */
-#include "co402_devices.h"
+#include "co/co402_device.h"
 #include "kollmorgen_s300_s700.h"
-
-/* D6.9: the methods the drive accepts. Not simulated (refused with
- * 0x06090030): -8 (absolute SSI position), -7/-6 (mechanical stop found by
- * the following error), -3 (mechanical stop with zero mark): the simulated
- * axis has no hard stop and no SSI encoder. -1 (within one revolution,
- * direction by distance) runs as 34 (next index pulse, positive). */
-static const co402_hm_method_t hm_methods[] = {
-    {-2, 35, 0U}, {-1, 34, 0U}, {1, 1, 0U},   {2, 2, 0U},   {8, 8, 0U},   {12, 12, 0U},
-    {17, 17, 0U}, {18, 18, 0U}, {24, 24, 0U}, {28, 28, 0U}, {33, 33, 0U}, {34, 34, 0U},
-    {35, 35, 0U},
-};
-
-#define CUR  (CO_ERREG_CURRENT)
-#define VOLT (CO_ERREG_VOLTAGE)
-#define TEMP (CO_ERREG_TEMPERATURE)
-#define COMM (CO_ERREG_COMM)
-#define PROF (CO_ERREG_PROFILE)
-#define MFR  (CO_ERREG_MANUFACTURER)
-#define CAT(n) {(n), 0U, 0U, 0U, 0U}
-
-/* D2.8: the EMCY codes with their error category (byte 3): 1 reset / cold
- * start, 2 fault reset, 3 PDO, 4 not remediable, 5 operating error. The
- * register bits follow the code's class (the manual gives none per code). */
-static const co402_error_t errors[] = {
-    {0x1080U, 0U, CAT(5U)},   {0x2330U, CUR, CAT(2U)},  {0x2380U, CUR, CAT(1U)},
-    {0x3100U, VOLT, CAT(2U)}, {0x3110U, VOLT, CAT(2U)}, {0x3120U, VOLT, CAT(2U)},
-    {0x3130U, VOLT, CAT(2U)}, {0x4110U, TEMP, CAT(2U)}, {0x4210U, TEMP, CAT(1U)},
-    {0x4310U, TEMP, CAT(1U)}, {0x5111U, 0U, CAT(1U)},   {0x5380U, 0U, CAT(1U)},
-    {0x5400U, 0U, CAT(1U)},   {0x5420U, 0U, CAT(1U)},   {0x5441U, 0U, CAT(1U)},
-    {0x5530U, 0U, CAT(1U)},   {0x6320U, 0U, CAT(3U)},   {0x7111U, 0U, CAT(1U)},
-    {0x7122U, 0U, CAT(1U)},   {0x7181U, 0U, CAT(5U)},   {0x7303U, 0U, CAT(1U)},
-    {0x7305U, 0U, CAT(1U)},   {0x8182U, COMM, CAT(1U)}, {0x8331U, PROF, CAT(2U)},
-    {0x8480U, PROF, CAT(2U)}, {0x8611U, PROF, CAT(2U)}, {0x8681U, PROF, CAT(5U)},
-    {0xFF01U, MFR, CAT(1U)},  {0xFF02U, MFR, CAT(3U)},  {0xFF04U, MFR, CAT(1U)},
-    {0xFF05U, MFR, CAT(1U)},  {0xFF06U, MFR, CAT(2U)},  {0xFF07U, MFR, CAT(2U)},
-    {0xFF08U, MFR, CAT(2U)},  {0xFF11U, MFR, CAT(2U)},
-};
 
 /* 0x2000 bit 3, warning n04 "response monitoring": set while the axis
  * holds a connection loss (CO402_OPT_LOSS_WARN_STOP), i.e. from the loss
  * until the fault reset. */
 #define WARN_N04 ((uint32_t)0x00000008U)
 
-static void show_n04(co402_drive_t *r)
+static void show_n04(co_device_run_t *r)
 {
-    uint32_t *warnings = (uint32_t *)co_od_value_ptr(co402_drive_node(r), 0x2000U, 0U);
-    const co402_axis_t *ax = co402_drive_axis(r, 0U);
+    uint32_t *warnings = (uint32_t *)co_od_value_ptr(co_device_node(r), 0x2000U, 0U);
+    const co402_axis_t *ax = co402_device_axis(r, 0U);
 
     if ((warnings != NULL) && (ax != NULL)) {
         *warnings = co402_connection_lost(ax) ? (*warnings | WARN_N04) : (*warnings & (uint32_t)~WARN_N04);
@@ -88,14 +51,14 @@ static co_err_t op_attach(void *inst, co_node_t *node, uint32_t now_us)
 {
     (void)node;
     (void)now_us;
-    show_n04((co402_drive_t *)inst);
+    show_n04((co_device_run_t *)inst);
     return CO_OK;
 }
 
 static uint32_t op_process(void *inst, uint32_t now_us)
 {
     (void)now_us;
-    show_n04((co402_drive_t *)inst);
+    show_n04((co_device_run_t *)inst);
     return CO_NO_DEADLINE;
 }
 
@@ -105,31 +68,14 @@ static void op_error_control(void *inst, co_hb_event_t ev, uint8_t id, uint32_t 
     (void)ev;
     (void)id;
     (void)now_us;
-    show_n04((co402_drive_t *)inst);
+    show_n04((co_device_run_t *)inst);
 }
 
 static const co_profile_ops_t kollmorgen_ops = {
-    "kollmorgen-s300-s700", op_attach, op_process, NULL, NULL, NULL, op_error_control, NULL,
-};
-
-static void sim_config(co402_sim_config_t *c)
-{
-    c->counts_per_rev = 1048576U;   /* 2^20 */
-    c->speed_max = 104857600U;      /* 100 rev/s */
-    c->accel_rated = 524288000U;    /* top speed in 0.2 s at rated torque */
-}
-
-const co402_device_t co402_dev_kollmorgen_s300_s700 = {
     .name = "kollmorgen-s300-s700",
-    .dev = &kollmorgen_s300_s700_dev,
-    .axes = 1U,
-    .options = CO402_OPT_VOLTAGE_WHEN_ON | CO402_OPT_BIT7_DONT_CARE | CO402_OPT_QS_STAY |
-               CO402_OPT_QS_CLEARS_TARGET | CO402_OPT_UNITS_FROM_POS | CO402_OPT_HM_TARGET_FIRST |
-               CO402_OPT_PV_NO_SPEED_BIT | CO402_OPT_LOSS_WARN_STOP,
-    .hm_methods = hm_methods,
-    .n_hm_methods = (uint8_t)(sizeof hm_methods / sizeof hm_methods[0]),
-    .errors = errors,
-    .n_errors = (uint8_t)(sizeof errors / sizeof errors[0]),
-    .sim_config = sim_config,
-    .plugin = &kollmorgen_ops,
+    .attach = op_attach,
+    .process = op_process,
+    .error_control = op_error_control,
 };
+
+const co_device_plugin_t kollmorgen_s300_s700_plugin = {.ops = &kollmorgen_ops};

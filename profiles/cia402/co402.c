@@ -1353,5 +1353,11 @@ static void op_error_control(void *inst, co_hb_event_t ev, uint8_t id, uint32_t 
 }
 
 const co_profile_ops_t co402_profile_ops = {
-    "cia402", op_attach, op_process, op_sync, op_nmt_state, op_reset, op_error_control, NULL,
+    .name = "cia402",
+    .attach = op_attach,
+    .process = op_process,
+    .sync = op_sync,
+    .nmt_state = op_nmt_state,
+    .reset = op_reset,
+    .error_control = op_error_control,
 };

@@ -1,109 +1,98 @@
 /*
- * CiA 402 devices: a device's axes on the plug-in host (co/co402_device.h).
+ * CiA 402 as a part of a device (co/co402_device.h).
  */
 #include "co/co402_device.h"
 
 #include <stddef.h>
 #include <string.h>
 
-void co402_device_axis_config(const co402_device_t *device, uint8_t axis, co402_plant_t plant,
+void co402_params_axis_config(const co402_params_t *params, uint8_t axis, co402_plant_t plant,
                               co402_config_t *cfg)
 {
     (void)memset(cfg, 0, sizeof *cfg);
     cfg->axis = axis;
-    cfg->options = device->options;
+    cfg->options = params->options;
     cfg->plant = plant;
-    cfg->modes = device->modes;
-    cfg->counts_per_rev = device->counts_per_rev;
-    cfg->hm_methods = device->hm_methods;
-    cfg->n_hm_methods = device->n_hm_methods;
-    cfg->errors = device->errors;
-    cfg->n_errors = device->n_errors;
-    cfg->vel_num = device->vel_num;
-    cfg->vel_den = device->vel_den;
-    cfg->acc_num = device->acc_num;
-    cfg->acc_den = device->acc_den;
-    cfg->full_speed = device->full_speed;
+    cfg->modes = params->modes;
+    cfg->counts_per_rev = params->counts_per_rev;
+    cfg->hm_methods = params->hm_methods;
+    cfg->n_hm_methods = params->n_hm_methods;
+    cfg->errors = params->errors;
+    cfg->n_errors = params->n_errors;
+    cfg->vel_num = params->vel_num;
+    cfg->vel_den = params->vel_den;
+    cfg->acc_num = params->acc_num;
+    cfg->acc_den = params->acc_den;
+    cfg->full_speed = params->full_speed;
 }
 
-void co402_device_sim_config(const co402_device_t *device, co402_sim_config_t *c)
+void co402_params_sim_config(const co402_params_t *params, co402_sim_config_t *c)
 {
     co402_sim_defaults(c);
-    if (device->sim_config != NULL) {
-        device->sim_config(c);
+    if ((params != NULL) && (params->sim_config != NULL)) {
+        params->sim_config(c);
     }
 }
 
-co_err_t co402_drive_init(co402_drive_t *drv, const co402_device_t *device,
-                          const co402_plant_t *plants, const co_node_callbacks_t *app)
+static co_err_t part_init(void *inst, const void *config, uint8_t n, const void *plant)
 {
-    (void)memset(drv, 0, sizeof *drv);
-    if ((device->axes == 0U) || (device->axes > CO402_DRIVE_AXES_MAX) || (plants == NULL)) {
+    co402_config_t cfg;
+
+    if (n >= 8U) {
         return CO_ERR_VALUE;
     }
-    drv->device = device;
-    co_profile_host_init(&drv->host, drv->slots, (uint8_t)(CO402_DRIVE_AXES_MAX + 1U), app);
-    for (uint8_t n = 0U; n < device->axes; n++) {
-        co402_config_t cfg;
-        co_err_t err;
-        co402_device_axis_config(device, n, plants[n], &cfg);
-        co402_init(&drv->axis[n], &cfg);
-        err = co_profile_add(&drv->host, &co402_profile_ops, &drv->axis[n]);
-        if (err != CO_OK) {
-            return err;
-        }
-    }
-    if (device->plugin != NULL) {
-        return co_profile_add(&drv->host, device->plugin, drv);
-    }
+    co402_params_axis_config((const co402_params_t *)config, n, *(const co402_plant_t *)plant,
+                             &cfg);
+    co402_init((co402_axis_t *)inst, &cfg);
     return CO_OK;
 }
 
-void co402_drive_set_state(co402_drive_t *drv, void *state)
+static void part_sim_init(void *sim, const void *config, uint8_t n, uint32_t now_us, void *plant)
 {
-    drv->state = state;
-    if ((state != NULL) && (drv->device != NULL)) {
-        (void)memset(state, 0, drv->device->state_size);
+    co402_sim_config_t sc;
+
+    (void)n;
+    co402_params_sim_config((const co402_params_t *)config, &sc);
+    co402_sim_init((co402_sim_t *)sim, &sc, now_us);
+    *(co402_plant_t *)plant = co402_sim_plant((co402_sim_t *)sim);
+}
+
+const co_part_kind_t co402_part = {
+    .name = "cia402",
+    .ops = &co402_profile_ops,
+    .inst_size = sizeof(co402_axis_t),
+    .plant_size = sizeof(co402_plant_t),
+    .sim_size = sizeof(co402_sim_t),
+    .init = part_init,
+    .sim_init = part_sim_init,
+};
+
+const co402_params_t *co402_device_params(const co_device_t *device)
+{
+    const co_device_impl_t *impl = device->impl;
+
+    for (uint8_t p = 0U; (impl != NULL) && (p < impl->n_parts); p++) {
+        if (impl->parts[p].kind == &co402_part) {
+            return (const co402_params_t *)impl->parts[p].config;
+        }
     }
+    return NULL;
 }
 
-co_node_callbacks_t co402_drive_callbacks(co402_drive_t *drv)
+co402_axis_t *co402_device_axis(const co_device_run_t *run, uint8_t n)
 {
-    return co_profile_host_callbacks(&drv->host);
+    return (co402_axis_t *)co_device_instance(run, &co402_part, n);
 }
 
-co_err_t co402_drive_attach(co402_drive_t *drv, co_node_t *node, uint32_t now_us)
+uint8_t co402_device_axes(const co_device_t *device)
 {
-    co_err_t err;
+    const co_device_impl_t *impl = device->impl;
+    uint8_t n = 0U;
 
-    if ((drv->device == NULL) || ((drv->device->state_size != 0U) && (drv->state == NULL))) {
-        return CO_ERR_VALUE;
+    for (uint8_t p = 0U; (impl != NULL) && (p < impl->n_parts); p++) {
+        if (impl->parts[p].kind == &co402_part) {
+            n = (uint8_t)(n + impl->parts[p].count);
+        }
     }
-    drv->node = node;
-    err = co_profile_host_attach(&drv->host, node, now_us);
-
-    if ((err == CO_OK) && (drv->device->powered_on != NULL)) {
-        drv->device->powered_on(node, now_us);
-    }
-    return err;
-}
-
-uint32_t co402_drive_process(co402_drive_t *drv, uint32_t now_us)
-{
-    return co_profile_host_process(&drv->host, now_us);
-}
-
-co402_axis_t *co402_drive_axis(co402_drive_t *drv, uint8_t n)
-{
-    return ((drv->device != NULL) && (n < drv->device->axes)) ? &drv->axis[n] : NULL;
-}
-
-co_node_t *co402_drive_node(const co402_drive_t *drv)
-{
-    return drv->node;
-}
-
-void *co402_drive_state(const co402_drive_t *drv)
-{
-    return drv->state;
+    return n;
 }

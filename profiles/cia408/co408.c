@@ -594,5 +594,9 @@ co408_state_t co408_state(const co408_valve_t *v)
 }
 
 const co_profile_ops_t co408_profile_ops = {
-    "cia408", op_attach, op_process, NULL, op_nmt_state, op_reset, NULL, NULL,
+    .name = "cia408",
+    .attach = op_attach,
+    .process = op_process,
+    .nmt_state = op_nmt_state,
+    .reset = op_reset,
 };

@@ -61,3 +61,43 @@ co408_valve_t *co408_unit_valve(co408_unit_t *u, uint8_t n)
 {
     return ((u->device != NULL) && (n < u->device->channels)) ? &u->valve[n] : NULL;
 }
+
+/* ---- CiA 408 as a part of a device (co/co_device.h): one valve per channel,
+ * configured by the co408_device_t, on its simulated valve. */
+
+static co_err_t part_init(void *inst, const void *config, uint8_t n, const void *plant)
+{
+    const co408_device_t *device = (const co408_device_t *)config;
+    co408_config_t cfg;
+
+    if (n >= CO408_UNIT_CHANNELS_MAX) {
+        return CO_ERR_VALUE;
+    }
+    (void)memset(&cfg, 0, sizeof cfg);
+    cfg.channel = n;
+    cfg.plant = *(const co408_plant_t *)plant;
+    cfg.modes = device->modes[n];
+    cfg.n_modes = device->n_modes[n];
+    cfg.bad_value = device->bad_value;
+    co408_init((co408_valve_t *)inst, &cfg);
+    return CO_OK;
+}
+
+static void part_sim_init(void *sim, const void *config, uint8_t n, uint32_t now_us, void *plant)
+{
+    co408_sim_config_t sc;
+
+    co408_device_sim_config((const co408_device_t *)config, n, &sc);
+    co408_sim_init((co408_sim_t *)sim, &sc, now_us);
+    *(co408_plant_t *)plant = co408_sim_plant((co408_sim_t *)sim);
+}
+
+const co_part_kind_t co408_part = {
+    .name = "cia408",
+    .ops = &co408_profile_ops,
+    .inst_size = sizeof(co408_valve_t),
+    .plant_size = sizeof(co408_plant_t),
+    .sim_size = sizeof(co408_sim_t),
+    .init = part_init,
+    .sim_init = part_sim_init,
+};

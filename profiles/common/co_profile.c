@@ -4,6 +4,7 @@
  */
 #include "co/co_profile.h"
 
+#include <stdbool.h>
 #include <stddef.h>
 #include <string.h>
 
@@ -122,6 +123,80 @@ static void cb_emcy_mfr(void *ctx, co_node_t *node, uint16_t code, uint8_t mfr[5
     }
 }
 
+static void cb_rpdo(void *ctx, co_node_t *node, uint16_t n)
+{
+    co_profile_host_t *h = (co_profile_host_t *)ctx;
+
+    if (h->node == node) {
+        for (uint8_t i = 0U; i < h->n; i++) {
+            if (h->slots[i].ops->rpdo != NULL) {
+                h->slots[i].ops->rpdo(h->slots[i].inst, n, event_time(node));
+            }
+        }
+    }
+    if (h->app.rpdo != NULL) {
+        h->app.rpdo(h->app.ctx, node, n);
+    }
+}
+
+static bool cb_tpdo_event(void *ctx, co_node_t *node, uint16_t n, const uint8_t last[8],
+                          const uint8_t now[8])
+{
+    co_profile_host_t *h = (co_profile_host_t *)ctx;
+    uint8_t changed[8];
+    uint8_t any = 0U;
+
+    for (uint8_t b = 0U; b < 8U; b++) {
+        changed[b] = (uint8_t)(last[b] ^ now[b]);
+    }
+    if (h->node == node) {
+        for (uint8_t i = 0U; i < h->n; i++) {
+            if (h->slots[i].ops->tpdo_event != NULL) {
+                h->slots[i].ops->tpdo_event(h->slots[i].inst, n, last, now, changed);
+            }
+        }
+    }
+    for (uint8_t b = 0U; b < 8U; b++) {
+        any |= changed[b];
+    }
+    if ((any != 0U) && (h->app.tpdo_event != NULL)) {
+        return h->app.tpdo_event(h->app.ctx, node, n, last, now);
+    }
+    return any != 0U;
+}
+
+static void cb_nmt_command(void *ctx, co_node_t *node, uint8_t cs)
+{
+    co_profile_host_t *h = (co_profile_host_t *)ctx;
+
+    if (h->node == node) {
+        for (uint8_t i = 0U; i < h->n; i++) {
+            if (h->slots[i].ops->nmt_command != NULL) {
+                h->slots[i].ops->nmt_command(h->slots[i].inst, cs, event_time(node));
+            }
+        }
+    }
+    if (h->app.nmt_command != NULL) {
+        h->app.nmt_command(h->app.ctx, node, cs);
+    }
+}
+
+static void cb_error_class(void *ctx, co_node_t *node, uint8_t sub)
+{
+    co_profile_host_t *h = (co_profile_host_t *)ctx;
+
+    if (h->node == node) {
+        for (uint8_t i = 0U; i < h->n; i++) {
+            if (h->slots[i].ops->error_class != NULL) {
+                h->slots[i].ops->error_class(h->slots[i].inst, sub, event_time(node));
+            }
+        }
+    }
+    if (h->app.error_class != NULL) {
+        h->app.error_class(h->app.ctx, node, sub);
+    }
+}
+
 static void cb_time(void *ctx, co_node_t *node, uint32_t ms, uint16_t days)
 {
     const co_profile_host_t *h = (const co_profile_host_t *)ctx;
@@ -143,6 +218,10 @@ co_node_callbacks_t co_profile_host_callbacks(co_profile_host_t *h)
     cb.sync = cb_sync;
     cb.time = cb_time;
     cb.emcy_mfr = cb_emcy_mfr;
+    cb.rpdo = cb_rpdo;
+    cb.tpdo_event = cb_tpdo_event;
+    cb.nmt_command = cb_nmt_command;
+    cb.error_class = cb_error_class;
     return cb;
 }
 

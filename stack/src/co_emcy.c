@@ -55,8 +55,9 @@ static void send(co_node_t *node, const uint8_t *d)
 {
     uint32_t cob = cob_id(node);
 
-    if ((node->nmt == (uint8_t)CO_NMT_STOPPED) || ((cob & 0x80000000UL) != 0U)) {
-        return; /* no EMCY in Stopped; not valid */
+    if ((node->nmt == (uint8_t)CO_NMT_STOPPED) || ((cob & 0x80000000UL) != 0U) ||
+        (node->node_id == CO_NODE_ID_UNCONFIGURED)) {
+        return; /* no EMCY in Stopped; not valid; nothing while unconfigured */
     }
     if ((node->emcy.n_q > 0U) || inhibited(node)) {
         if (node->emcy.n_q < CO_EMCY_QUEUE_LEN) {

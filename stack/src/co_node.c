@@ -126,6 +126,12 @@ void co_rx_add(co_node_t *node, uint16_t cob, uint8_t svc, uint8_t arg)
     node->rx_fc |= (uint16_t)(1U << (cob >> 7U));
 }
 
+/* The rows of co_services[] that run: all, or only LSS while unconfigured. */
+static uint8_t services_running(const co_node_t *node)
+{
+    return (node->node_id == CO_NODE_ID_UNCONFIGURED) ? CO_SVC_UNCONFIGURED_ROWS : co_n_services;
+}
+
 /* Until the table is rebuilt, every frame passes the filter and finds no
  * slot: the first one rebuilds it (co_rx_dispatch). */
 void co_rx_invalidate(co_node_t *node)
@@ -145,7 +151,7 @@ void co_rx_rebuild(co_node_t *node)
     node->rx_fc = 0U;
     node->pdo.fc = 0U;
     (void)memset(node->rx_filter, 0, sizeof node->rx_filter);
-    for (uint8_t k = 0U; k < co_n_services; k++) {
+    for (uint8_t k = 0U; k < services_running(node); k++) {
         if (co_services[k]->rx_slots != NULL) {
             co_services[k]->rx_slots(node, k);
         }
@@ -284,6 +290,9 @@ CO_NOINLINE void co_node_stalled(co_node_t *node, uint32_t now_us)
     node->sync.last = now_us - (uint32_t)CO_HORIZON_US; /* the SYNC window is long closed */
     node->emcy.next = now_us;
     node->sdo.deadline = now_us;
+#if CO_LSS
+    node->lss.switch_at = now_us;
+#endif
     for (uint8_t k = 0U; k < node->errctl.n_hb_cons; k++) {
         node->errctl.hbc[k].deadline = now_us;
     }
@@ -300,7 +309,7 @@ uint32_t co_node_process(co_node_t *node, uint32_t now_us)
     co_node_clock(node, now_us);
     co_rx_settle(node); /* COB-IDs the application changed since */
     tx_drain(node);
-    for (uint8_t k = 0U; k < co_n_services; k++) {
+    for (uint8_t k = 0U; k < services_running(node); k++) {
         if (co_services[k]->process != NULL) {
             next = co_services[k]->process(node, next);
         }
@@ -351,6 +360,9 @@ static void boot(co_node_t *node)
     node->nmt = (uint8_t)CO_NMT_INITIALISING;
     services_reset(node, CO_SVC_START);
     co_rx_invalidate(node);
+    if (node->node_id == CO_NODE_ID_UNCONFIGURED) {
+        return; /* LSS init: no boot-up, no NMT until a valid node-ID */
+    }
     if (!co_opt(node, CO_OPT_NO_BOOTUP)) {
         static const uint8_t bootup = 0x00U;
         co_tx(node, 0x700UL + node->node_id, &bootup, 1U);
@@ -371,7 +383,9 @@ static bool take_nodeid(co_node_t *node)
     if ((v == NULL) || (*v < 1U) || (*v > 127U) || (*v == node->node_id)) {
         return false;
     }
+    node->cob_base = co_node_cob_base_for(node, *v);
     node->node_id = *v;
+    node->pending_id = *v;
     return true;
 }
 
@@ -382,8 +396,11 @@ static bool take_nodeid(co_node_t *node)
  * node-ID object takes its node-ID from it first ($NODEID defaults follow
  * it); after a node reset that object has its stored value, so the image is
  * restored again if the node-ID changes. */
-static void reset(co_node_t *node, co_reset_t kind)
+static void reset(co_node_t *node, co_reset_t kind_asked)
 {
+    /* a new node-ID (LSS, co_node_set_id) takes effect here (CiA 305) */
+    co_reset_t kind = co_node_take_id(node, kind_asked);
+
     if (kind == CO_RESET_COMMUNICATION) {
         (void)take_nodeid(node);
         services_reset(node, (uint8_t)kind);
@@ -399,9 +416,39 @@ static void reset(co_node_t *node, co_reset_t kind)
     boot(node);
 }
 
+/* The application's notice before NMT command @p cs is executed: only
+ * when it changes the state or resets. */
+void co_node_nmt_notice(co_node_t *node, uint8_t cs)
+{
+    bool change;
+
+    switch (cs) {
+    case CO_NMT_CMD_START:
+        change = (node->nmt != (uint8_t)CO_NMT_OPERATIONAL);
+        break;
+    case CO_NMT_CMD_STOP:
+        change = (node->nmt != (uint8_t)CO_NMT_STOPPED);
+        break;
+    case CO_NMT_CMD_PRE_OPERATIONAL:
+        change = (node->nmt != (uint8_t)CO_NMT_PRE_OPERATIONAL);
+        break;
+    case CO_NMT_CMD_RESET_NODE:
+    case CO_NMT_CMD_RESET_COMMUNICATION:
+        change = true;
+        break;
+    default:
+        change = false;
+        break;
+    }
+    if (change && (node->cb.nmt_command != NULL)) {
+        node->cb.nmt_command(node->cb.ctx, node, cs);
+    }
+}
+
 void co_node_nmt_command(co_node_t *node, uint8_t cs, uint32_t now_us)
 {
     co_node_clock(node, now_us);
+    co_node_nmt_notice(node, cs);
     switch (cs) {
     case CO_NMT_CMD_START:
         co_node_set_state(node, CO_NMT_OPERATIONAL);
@@ -451,12 +498,18 @@ static co_result_t bind_services(co_node_t *node)
         return CO_RESULT_DEV_INCOMPAT;
     }
 #endif
+#if !CO_LSS
+    if ((node->dev->options & CO_OPT_LSS) != 0U) {
+        return CO_RESULT_DEV_INCOMPAT;
+    }
+#endif
     return CO_RESULT_OK;
 }
 
 co_result_t co_node_init(co_node_t *node, const co_node_config_t *cfg, uint32_t now_us)
 {
     co_result_t r;
+    uint8_t id;
 
     if ((cfg == NULL) || (cfg->dev == NULL) || (cfg->ram == NULL) || (cfg->hal.ops == NULL) ||
         (cfg->hal.ops->send == NULL) || (cfg->dev->od == NULL)) {
@@ -466,7 +519,9 @@ co_result_t co_node_init(co_node_t *node, const co_node_config_t *cfg, uint32_t 
         ((cfg->dev->pdo == NULL) || (cfg->pdo == NULL) || (cfg->pdo_rx == NULL))) {
         return CO_RESULT_BAD_CONFIG;
     }
-    if ((cfg->node_id < 1U) || (cfg->node_id > 127U)) {
+    id = ((cfg->dev->options & CO_OPT_LSS_ONLY) != 0U) ? CO_NODE_ID_UNCONFIGURED : cfg->node_id;
+    if (((id < 1U) || (id > 127U)) &&
+        ((id != CO_NODE_ID_UNCONFIGURED) || ((cfg->dev->options & CO_OPT_LSS) == 0U))) {
         return CO_RESULT_BAD_NODE_ID;
     }
     (void)memset(node, 0, sizeof *node);
@@ -478,7 +533,9 @@ co_result_t co_node_init(co_node_t *node, const co_node_config_t *cfg, uint32_t 
         (void)memset(node->hooks, 0, (size_t)cfg->dev->n_hooks * sizeof node->hooks[0]);
     }
     node->cb = cfg->cb;
-    node->node_id = cfg->node_id;
+    node->node_id = id;
+    node->pending_id = id;
+    node->cob_base = id;
     node->sdo.timeout_us = (cfg->sdo_timeout_us != 0U) ? cfg->sdo_timeout_us : 1000000UL;
     node->pdo.p = cfg->pdo;
     node->pdo.rx = cfg->pdo_rx;
@@ -487,6 +544,7 @@ co_result_t co_node_init(co_node_t *node, const co_node_config_t *cfg, uint32_t 
     if (r != CO_RESULT_OK) {
         return r;
     }
+    co_lss_init(node); /* an LSS-stored node-ID replaces cfg->node_id */
     services_reset(node, (uint8_t)CO_RESET_NODE); /* defaults, then the stored set */
     if (take_nodeid(node)) {
         services_reset(node, (uint8_t)CO_RESET_NODE); /* the stored node-ID: its $NODEID defaults */
@@ -504,4 +562,57 @@ co_nmt_state_t co_node_nmt_state(const co_node_t *node)
 uint32_t co_node_now(const co_node_t *node)
 {
     return node->now;
+}
+
+uint8_t co_node_id(const co_node_t *node)
+{
+    return node->node_id;
+}
+
+static bool id_valid(const co_node_t *node, uint8_t id)
+{
+    return ((id >= 1U) && (id <= 127U)) ||
+           ((id == CO_NODE_ID_UNCONFIGURED) && co_lss_enabled(node));
+}
+
+co_err_t co_node_set_id(co_node_t *node, uint8_t id, uint32_t now_us)
+{
+    if (!id_valid(node, id)) {
+        return CO_ERR_VALUE;
+    }
+    co_node_clock(node, now_us);
+    node->pending_id = id;
+    if ((node->node_id == CO_NODE_ID_UNCONFIGURED) && (id != CO_NODE_ID_UNCONFIGURED)) {
+        reset(node, CO_RESET_NODE); /* out of LSS init: initialise now */
+        co_rx_settle(node);
+    }
+    return CO_OK;
+}
+
+uint8_t co_node_cob_base_for(const co_node_t *node, uint8_t id)
+{
+    if ((id == CO_NODE_ID_UNCONFIGURED) || (node->node_id == CO_NODE_ID_UNCONFIGURED) ||
+        !co_opt(node, CO_OPT_LSS_KEEP_COBS)) {
+        return id; /* CiA 305: the COB-IDs follow the node-ID */
+    }
+    return node->cob_base; /* valid to valid: the PDO and EMCY COB-IDs stay */
+}
+
+co_reset_t co_node_take_id(co_node_t *node, co_reset_t kind)
+{
+    uint8_t from = node->node_id;
+    uint8_t to = node->pending_id;
+
+    if (from == to) {
+        return kind;
+    }
+    node->cob_base = co_node_cob_base_for(node, to);
+    node->node_id = to;
+    if ((from != CO_NODE_ID_UNCONFIGURED) || (to == CO_NODE_ID_UNCONFIGURED)) {
+        return kind;
+    }
+    if (co_opt(node, CO_OPT_LSS_KEEP_COBS)) {
+        co_store_forget_comm(node); /* the communication settings start from defaults */
+    }
+    return CO_RESET_NODE; /* the node was never initialised with an ID */
 }

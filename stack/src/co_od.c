@@ -519,6 +519,16 @@ co_err_t co_od_write_part(co_node_t *node, const co_od_entry_t *e, const co_od_s
     return CO_OK;
 }
 
+/* The COB-ID of a PDO (communication parameter sub 1) or of the EMCY: its
+ * $NODEID default uses the node's COB-ID base (CO_OPT_LSS_KEEP_COBS). */
+static bool is_pdo_emcy_cob(uint16_t index, uint8_t sub)
+{
+    bool pdo = ((index >= 0x1400U) && (index <= 0x15FFU)) ||
+               ((index >= 0x1800U) && (index <= 0x19FFU));
+
+    return (pdo && (sub == 1U)) || (index == 0x1014U);
+}
+
 void co_od_restore(co_node_t *node, uint16_t from, uint16_t to)
 {
     const co_dev_t *dev = node->dev;
@@ -537,18 +547,19 @@ void co_od_restore(co_node_t *node, uint16_t from, uint16_t to)
                 (s->off >= from) && (s->off < to)) {
                 uint8_t n = co_type_len(s->type);
                 uint8_t *p = &node->ram[s->off];
+                uint8_t id = is_pdo_emcy_cob(e->index, s->sub) ? node->cob_base : node->node_id;
                 /* 16/32-bit values are native integers in RAM */
                 if (n == 1U) {
-                    p[0] = (uint8_t)(p[0] + node->node_id);
+                    p[0] = (uint8_t)(p[0] + id);
                 } else if (n == 2U) {
                     uint16_t v;
                     (void)memcpy(&v, p, 2U);
-                    v = (uint16_t)(v + node->node_id);
+                    v = (uint16_t)(v + id);
                     (void)memcpy(p, &v, 2U);
                 } else if (n == 4U) {
                     uint32_t v;
                     (void)memcpy(&v, p, 4U);
-                    v += node->node_id;
+                    v += id;
                     (void)memcpy(p, &v, 4U);
                 } else {
                     /* $NODEID only makes sense on 8/16/32-bit values */

@@ -36,7 +36,8 @@ enum {
     CO_RX_GUARD,
     CO_RX_HB,
     CO_RX_SYNC,
-    CO_RX_TIME
+    CO_RX_TIME,
+    CO_RX_LSS
 };
 
 /* A personality option of the node's device; options this build leaves out
@@ -211,6 +212,8 @@ void co_rx_dispatch(co_node_t *node, const co_frame_t *f, uint16_t cob, uint32_t
 /* Change the NMT state: the services' nmt entries in table order, then the
  * application's callback. */
 void co_node_set_state(co_node_t *node, co_nmt_state_t st);
+/* Tell the application that NMT command @p cs is about to be executed. */
+void co_node_nmt_notice(co_node_t *node, uint8_t cs);
 
 /* ---- the services (co_services.c): the node's dispatch table */
 
@@ -274,6 +277,9 @@ extern const co_service_t co_svc_sync;
 extern const co_service_t co_svc_time;
 extern const co_service_t co_svc_pdo;
 extern const co_service_t co_svc_store;
+#if CO_LSS
+extern const co_service_t co_svc_lss;
+#endif
 
 /* ---- object dictionary internals (co_od.c) */
 #define CO_TYPE_SIZES 0x1CU
@@ -363,6 +369,41 @@ static inline bool co_sync_window(const co_node_t *node)
 
     return (w == 0U) || ((uint32_t)(node->now - node->sync.last) <= w);
 }
+
+/* ---- node-ID (co_node.c) */
+/* The $NODEID base the PDO and EMCY COB-IDs would have with node-ID @p id. */
+uint8_t co_node_cob_base_for(const co_node_t *node, uint8_t id);
+/* At a reset: make the pending node-ID the active one; returns the reset
+ * to do (a node leaving the unconfigured state initialises completely). */
+co_reset_t co_node_take_id(co_node_t *node, co_reset_t kind);
+
+/* ---- LSS slave (co_lss.c) */
+#define CO_LSS_REC     16U               /* bytes of one stored LSS record */
+#define CO_LSS_NV_SIZE (2U * CO_LSS_REC) /* NV behind the parameter banks */
+/* NV address of the LSS records (co_store.c). */
+uint32_t co_store_lss_base(const co_dev_t *dev);
+/* Rows at the head of co_services[] that run while the node is unconfigured
+ * (the LSS service); the others wait for a valid node-ID. */
+#define CO_SVC_UNCONFIGURED_ROWS ((uint8_t)(CO_LSS))
+#if CO_LSS
+bool co_lss_enabled(const co_node_t *node);
+/* At init: the stored configuration (node-ID, COB-ID base, bit timing). */
+void co_lss_init(co_node_t *node);
+#else
+static inline bool co_lss_enabled(const co_node_t *node)
+{
+    (void)node;
+    return false;
+}
+static inline void co_lss_init(co_node_t *node)
+{
+    (void)node;
+}
+#endif
+
+/* Drop the communication group of the stored set (a node leaving the
+ * unconfigured state with CO_OPT_LSS_KEEP_COBS; co_store.c). */
+void co_store_forget_comm(co_node_t *node);
 
 /* ---- what one service asks of another (no cycles: tools/core-callgraph) */
 /* A serious error of 0x1029 class @p sub: the NMT reaction it configures

@@ -64,6 +64,9 @@ static void apply(co_node_t *node, uint16_t i, const uint8_t *data, uint8_t dlc)
     } else {
         co_pdo_store(node, i, data, dlc);
     }
+    if (node->cb.rpdo != NULL) {
+        node->cb.rpdo(node->cb.ctx, node, i);
+    }
     if (co_opt(node, CO_OPT_TPDO_AFTER_RPDO) && (i < node->dev->n_tpdo) &&
         (co_pdo_type(node, (uint16_t)(node->dev->n_rpdo + i)) == 255U)) {
         (void)co_tpdo_request(node, i); /* with the data the RPDO has just changed */

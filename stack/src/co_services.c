@@ -8,6 +8,9 @@
 #include "co_priv.h"
 
 const co_service_t *const co_services[] = {
+#if CO_LSS
+    &co_svc_lss,    /* LSS slave, CiA 305 (alone while unconfigured: CO_SVC_UNCONFIGURED_ROWS) */
+#endif
     &co_svc_nmt,    /* NMT command, 0x1029 */
     &co_svc_sdo,    /* SDO server */
     &co_svc_errctl, /* heartbeat, node / life guarding: 0x100C, 0x100D, 0x1016, 0x1017 */

@@ -85,6 +85,16 @@ static uint32_t bank_size(const co_dev_t *dev)
 
 uint32_t co_store_nv_size(const co_dev_t *dev)
 {
+    uint32_t size = 2U * bank_size(dev);
+
+    if ((dev->options & CO_OPT_LSS) != 0U) {
+        size += CO_LSS_NV_SIZE; /* the LSS records (co_lss.c) */
+    }
+    return size;
+}
+
+uint32_t co_store_lss_base(const co_dev_t *dev)
+{
     return 2U * bank_size(dev);
 }
 
@@ -259,6 +269,15 @@ static co_err_t command(co_node_t *node, uint16_t index, uint8_t sub, const uint
         c.drop = grp;
     }
     return commit(node, &c);
+}
+
+void co_store_forget_comm(co_node_t *node)
+{
+    store_change_t c = {0U, GRP_COMM, 0U, 0U};
+
+    if (has_nv(node)) {
+        (void)commit(node, &c);
+    }
 }
 
 static void store_reset(co_node_t *node, uint8_t kind)

@@ -268,7 +268,10 @@ static uint32_t event_driven(co_node_t *node, uint16_t i, uint32_t next)
         if (((p->flags & CO_PDO_F_SENT) == 0U) ||
             ((memcmp(now, p->data, 8U) != 0) &&
              (!co_opt(node, CO_OPT_TPDO_MASK_254 | CO_OPT_TPDO_MASK_255) ||
-              masked_change(node, i, now)))) {
+              masked_change(node, i, now)) &&
+             ((node->cb.tpdo_event == NULL) ||
+              node->cb.tpdo_event(node->cb.ctx, node, (uint16_t)(i - node->dev->n_rpdo),
+                                  p->data, now)))) {
             p->flags |= CO_PDO_F_EVENT;
         }
     }

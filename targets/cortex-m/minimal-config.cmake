@@ -1,7 +1,7 @@
 # Build-time options (stack/include/co/co_config.h) of the minimal slave's
 # core: it leaves out what the device (minimal-slave.toml) does not use: no
 # 0x1010/0x1011, no TIME, no SYNC producer, no error behaviour 0x1029, no
-# value limits, no personality options, 4 heartbeat consumers. The Cortex-M3 image and tests/unit/test_lean.c use it.
+# value limits, no personality options, no LSS, 4 heartbeat consumers. The Cortex-M3 image and tests/unit/test_lean.c use it.
 set(CO_MINIMAL_CONFIG
   CO_STORAGE=0
   CO_TIME=0
@@ -9,4 +9,5 @@ set(CO_MINIMAL_CONFIG
   CO_ERROR_BEHAVIOUR=0
   CO_LIMITS=0
   CO_OPTIONS=0U
+  CO_LSS=0
   CO_HB_CONSUMERS_MAX=4U)

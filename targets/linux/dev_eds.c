@@ -16,8 +16,6 @@ int dev_eds_open(dev_eds_t *e, const char *path, char *err, size_t errcap)
         e->entry.name = dev->name;
         e->entry.summary = eds_summary(e->eds);
         e->entry.dev = dev;
-        e->entry.ram_size = dev->ram_size;
-        e->entry.n_hooks = dev->n_hooks;
         e->entry.eds = (const unsigned char *)eds_text(e->eds);
     }
     return 0;

@@ -8,11 +8,11 @@
 
 #include <stddef.h>
 
-#include "device_registry.h"
+#include "co/co_device.h"
 #include "eds_load.h"
 
 typedef struct dev_eds {
-    device_entry_t entry;
+    co_device_t entry;
     eds_dev_t *eds;
 } dev_eds_t;
 

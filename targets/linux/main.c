@@ -1,11 +1,13 @@
 /*
  * canopen-device: simulated CANopen devices on a SocketCAN interface.
- * Options in options.h, devices in device_registry.h, the loop in
+ * Options in options.h, devices in co_devices.h (generated from devices/),
+ * each run by the device layer (co/co_device.h) on simulated plants, the loop in
  * port/linux (co_lx/loop.h).
  */
 #include <errno.h>
 #include <signal.h>
 #include <stdarg.h>
+#include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -16,8 +18,10 @@
 #include "co_lx/nvfile.h"
 #include "co_lx/port.h"
 #include "co_lx/trace.h"
+#include "co/co_device.h"
+#include "co_devices.h"
+#include "control.h"
 #include "dev_eds.h"
-#include "device_registry.h"
 #include "options.h"
 
 #ifndef CO_VERSION
@@ -27,19 +31,29 @@
 #define PROG "canopen-device"
 
 typedef struct dnode {
-    const device_entry_t *dev;
+    const co_device_t *dev;
+    co_device_run_t run;
     co_node_t node;
     void *ram;
     co_od_hook_t *hooks;
     co_pdo_t *pdo;          /* the device's RPDOs then TPDOs */
     co_pdo_slot_t *pdo_rx;
-    void *app;
+    void *mem;              /* the device's instances, plants and plug-in state */
     co_lx_port_t port;
     co_lx_nv_t nv;
     int has_nv;
+    uint8_t id;
     dev_eds_t eds;          /* a device built from an EDS/DCF (--eds) */
+    uint32_t serial;        /* 0x1018 sub 4 (--serial), when serial_given */
+    bool serial_given;
     char tag[64];
 } dnode_t;
+
+/* What the control interface acts on (control.h). */
+typedef struct ctl_nodes {
+    dnode_t *nodes;
+    size_t n;
+} ctl_nodes_t;
 
 static co_lx_level_t log_level = CO_LX_INFO;
 static volatile sig_atomic_t stop_flag;
@@ -98,9 +112,28 @@ static void cb_nmt_state(void *ctx, co_node_t *node, co_nmt_state_t state)
 {
     dnode_t *d = (dnode_t *)ctx;
 
+    (void)node;
     log_line(d->tag, CO_LX_INFO, "NMT %s", state_name(state));
-    if (d->dev->nmt != NULL) {
-        d->dev->nmt(d->app, node, state);
+}
+
+/* "node 5 (generic-301)", "node - (generic-301)" while unconfigured. */
+static void set_tag(dnode_t *d, uint8_t id)
+{
+    if (id == CO_NODE_ID_UNCONFIGURED) {
+        (void)snprintf(d->tag, sizeof d->tag, "node - (%s)", d->dev->name);
+    } else {
+        (void)snprintf(d->tag, sizeof d->tag, "node %u (%s)", (unsigned)id, d->dev->name);
+    }
+}
+
+/* The instance's serial number (a RAM value a node reset sets back to the
+ * description's default). */
+static void set_serial(dnode_t *d, co_node_t *node)
+{
+    if (d->serial_given &&
+        (co_od_write(node, 0x1018U, 4U, &d->serial, 4U, true) != CO_OK)) {
+        log_line(d->tag, CO_LX_WARN, "--serial: 0x1018 sub 4 of %s cannot be set",
+                 d->dev->name);
     }
 }
 
@@ -108,11 +141,15 @@ static void cb_nmt_reset(void *ctx, co_node_t *node, co_reset_t kind)
 {
     dnode_t *d = (dnode_t *)ctx;
 
+    if (co_node_id(node) != CO_NODE_ID_UNCONFIGURED) {
+        set_tag(d, co_node_id(node)); /* LSS may have given it another */
+    }
+    if (kind == CO_RESET_NODE) {
+        set_serial(d, node);
+    }
+
     log_line(d->tag, CO_LX_INFO, "NMT reset %s",
              (kind == CO_RESET_NODE) ? "node" : "communication");
-    if (d->dev->reset != NULL) {
-        d->dev->reset(d->app, node, kind);
-    }
 }
 
 static void cb_hb_event(void *ctx, co_node_t *node, co_hb_event_t ev, uint8_t id,
@@ -128,20 +165,12 @@ static void cb_hb_event(void *ctx, co_node_t *node, co_hb_event_t ev, uint8_t id
              "%s (producer %u, %s)", names[(unsigned)ev % 6U], (unsigned)id, state_name(state));
 }
 
-static void cb_sync(void *ctx, co_node_t *node, uint8_t counter)
-{
-    dnode_t *d = (dnode_t *)ctx;
-
-    if (d->dev->sync != NULL) {
-        d->dev->sync(d->app, node, counter);
-    }
-}
-
 static uint32_t tick(void *ctx, co_node_t *node, uint32_t now_us)
 {
     dnode_t *d = (dnode_t *)ctx;
 
-    return (d->dev->process != NULL) ? d->dev->process(d->app, node, now_us) : CO_NO_DEADLINE;
+    (void)node;
+    return co_device_process(&d->run, now_us);
 }
 
 /* ---------------------------------------------------- start and stop */
@@ -181,23 +210,24 @@ static int start_node(dnode_t *d, const opt_node_t *spec, const char *iface)
     char err[256];
     co_result_t e;
 
-    d->dev = (spec->eds != NULL) ? &d->eds.entry : device_find(spec->device);
-    (void)snprintf(d->tag, sizeof d->tag, "node %u (%s)", (unsigned)spec->id, d->dev->name);
-    if ((d->dev->ram_size != d->dev->dev->ram_size) ||
-        (d->dev->n_hooks < d->dev->dev->n_hooks)) {
-        log_line(d->tag, CO_LX_ERROR, "registry entry does not fit the dictionary");
-        return -1;
-    }
-    d->ram = calloc(1U, d->dev->ram_size);
-    d->hooks = (co_od_hook_t *)calloc((d->dev->n_hooks != 0U) ? d->dev->n_hooks : 1U,
+    size_t mem_size;
+
+    d->dev = (spec->eds != NULL) ? &d->eds.entry : co_device_find(spec->device);
+    d->id = spec->id;
+    d->serial = spec->serial;
+    d->serial_given = spec->serial_given;
+    set_tag(d, spec->id);
+    mem_size = co_device_mem_size(d->dev, true);
+    d->ram = calloc(1U, d->dev->dev->ram_size);
+    d->hooks = (co_od_hook_t *)calloc((d->dev->dev->n_hooks != 0U) ? d->dev->dev->n_hooks : 1U,
                                       sizeof *d->hooks);
     {
         size_t n_pdo = (size_t)d->dev->dev->n_rpdo + d->dev->dev->n_tpdo;
         d->pdo = (co_pdo_t *)calloc((n_pdo != 0U) ? n_pdo : 1U, sizeof *d->pdo);
         d->pdo_rx = (co_pdo_slot_t *)calloc((n_pdo != 0U) ? n_pdo : 1U, sizeof *d->pdo_rx);
     }
-    d->app = calloc(1U, (d->dev->app_size != 0U) ? d->dev->app_size : 1U);
-    if ((d->ram == NULL) || (d->hooks == NULL) || (d->app == NULL) || (d->pdo == NULL) ||
+    d->mem = calloc(1U, (mem_size != 0U) ? mem_size : 1U);
+    if ((d->ram == NULL) || (d->hooks == NULL) || (d->mem == NULL) || (d->pdo == NULL) ||
         (d->pdo_rx == NULL)) {
         log_line(d->tag, CO_LX_ERROR, "out of memory");
         return -1;
@@ -227,31 +257,42 @@ static int start_node(dnode_t *d, const opt_node_t *spec, const char *iface)
     cfg.cb.nmt_state = cb_nmt_state;
     cfg.cb.nmt_reset = cb_nmt_reset;
     cfg.cb.hb_event = cb_hb_event;
-    cfg.cb.sync = cb_sync;
-    if ((d->dev->prepare != NULL) && (d->dev->prepare(d->app, d->dev, &cfg, co_lx_now_us()) != 0)) {
-        log_line(d->tag, CO_LX_ERROR, "device application failed to prepare");
+    /* the device's instances first, then the daemon's own callbacks (logging) */
+    if (co_device_init(&d->run, d->dev, d->mem, mem_size, NULL, &cfg.cb, co_lx_now_us()) !=
+        CO_OK) {
+        log_line(d->tag, CO_LX_ERROR, "device failed to prepare");
         return -1;
     }
+    cfg.cb = co_device_callbacks(&d->run);
     e = co_node_init(&d->node, &cfg, co_lx_now_us());
     if (e != CO_RESULT_OK) {
         log_line(d->tag, CO_LX_ERROR, "co_node_init failed: result %d", (int)e);
         return -1;
     }
+    set_tag(d, co_node_id(&d->node)); /* an LSS-stored node-ID */
+    set_serial(d, &d->node);
     co_lx_port_attach(&d->port, &d->node);
-    if ((d->dev->attach != NULL) && (d->dev->attach(d->app, &d->node) != 0)) {
-        log_line(d->tag, CO_LX_ERROR, "device application failed to start");
-        return -1;
+    {
+        co_err_t ae = co_device_attach(&d->run, &d->node, co_lx_now_us());
+        if (ae != CO_OK) {
+            log_line(d->tag, CO_LX_ERROR, "device failed to start: 0x%08lX", (unsigned long)ae);
+            return -1;
+        }
     }
     log_line(d->tag, CO_LX_INFO, "up on %s%s%s", iface, d->has_nv ? ", parameters in " : "",
              d->has_nv ? spec->storage : "");
+    if (co_node_id(&d->node) == CO_NODE_ID_UNCONFIGURED) {
+        uint32_t sn = 0U;
+        uint32_t len = 0U;
+        (void)co_od_read(&d->node, 0x1018U, 4U, &sn, 4U, &len);
+        log_line(d->tag, CO_LX_INFO, "unconfigured: waiting for LSS (serial number %lu)",
+                 (unsigned long)sn);
+    }
     return 0;
 }
 
 static void stop_node(dnode_t *d)
 {
-    if ((d->dev != NULL) && (d->dev->detach != NULL) && (d->port.node != NULL)) {
-        d->dev->detach(d->app, &d->node);
-    }
     co_lx_port_close(&d->port);
     if (d->has_nv) {
         co_lx_nv_close(&d->nv);
@@ -260,8 +301,81 @@ static void stop_node(dnode_t *d)
     free(d->hooks);
     free(d->pdo);
     free(d->pdo_rx);
-    free(d->app);
+    free(d->mem);
     dev_eds_close(&d->eds);
+}
+
+/* ---------------------------------------------------- control interface */
+
+static int is_signed(uint8_t type)
+{
+    return ((type >= (uint8_t)CO_INTEGER8) && (type <= (uint8_t)CO_INTEGER32)) ||
+           ((type >= (uint8_t)CO_INTEGER24) && (type <= (uint8_t)CO_INTEGER64) &&
+            (type != (uint8_t)CO_REAL64));
+}
+
+static void ctl_get(dnode_t *d, const ctl_cmd_t *cmd, char *reply, size_t cap)
+{
+    const co_dev_t *dev = d->node.dev;
+    const co_od_entry_t *e = co_od_find(dev->od, dev->od_count, cmd->index);
+    const co_od_sub_t *sd = (e != NULL) ? co_od_find_sub(e, cmd->sub) : NULL;
+    uint8_t b[64];
+    uint32_t len = 0U;
+    co_err_t err = co_od_read(&d->node, cmd->index, cmd->sub, b, sizeof b, &len);
+
+    if (err != CO_OK) {
+        (void)snprintf(reply, cap, "error 0x%08lX", (unsigned long)err);
+    } else if ((sd != NULL) && ((sd->type == (uint8_t)CO_VISIBLE_STRING) || (len > 8U))) {
+        (void)snprintf(reply, cap, "ok %.*s", (int)len, (const char *)b);
+    } else {
+        uint64_t u = 0U;
+        for (uint32_t k = 0U; k < len; k++) {
+            u |= (uint64_t)b[k] << (8U * k);
+        }
+        if ((sd != NULL) && is_signed(sd->type) && (len > 0U) && (len < 8U) &&
+            ((b[len - 1U] & 0x80U) != 0U)) {
+            u |= ~(uint64_t)0U << (8U * len); /* sign-extend */
+        }
+        if ((sd != NULL) && is_signed(sd->type)) {
+            (void)snprintf(reply, cap, "ok %lld", (long long)(int64_t)u);
+        } else {
+            (void)snprintf(reply, cap, "ok %llu", (unsigned long long)u);
+        }
+    }
+}
+
+static void ctl_exec(void *ctx, const ctl_cmd_t *cmd, char *reply, size_t cap)
+{
+    const ctl_nodes_t *c = (const ctl_nodes_t *)ctx;
+    dnode_t *d = NULL;
+
+    for (size_t i = 0U; (i < c->n) && (d == NULL); i++) {
+        if ((cmd->node_id < 0) || (c->nodes[i].id == (uint8_t)cmd->node_id)) {
+            d = &c->nodes[i];
+        }
+    }
+    if (cmd->op == CTL_HELP) {
+        (void)snprintf(reply, cap, "ok [@ID] set INDEX SUB VALUE | [@ID] get INDEX SUB | nodes | help");
+    } else if (cmd->op == CTL_NODES) {
+        size_t at = (size_t)snprintf(reply, cap, "ok");
+        for (size_t i = 0U; (i < c->n) && (at < cap); i++) {
+            at += (size_t)snprintf(&reply[at], cap - at, " %u:%s", (unsigned)c->nodes[i].id,
+                                   c->nodes[i].dev->name);
+        }
+    } else if (d == NULL) {
+        (void)snprintf(reply, cap, "error no node %d", cmd->node_id);
+    } else if (cmd->op == CTL_GET) {
+        ctl_get(d, cmd, reply, cap);
+    } else {
+        co_err_t err = co_device_set(&d->run, cmd->index, cmd->sub, cmd->value);
+        if (err == CO_OK) {
+            log_line(d->tag, CO_LX_DEBUG, "control: set 0x%04X %u %lld", (unsigned)cmd->index,
+                     (unsigned)cmd->sub, (long long)cmd->value);
+            (void)snprintf(reply, cap, "ok");
+        } else {
+            (void)snprintf(reply, cap, "error 0x%08lX", (unsigned long)err);
+        }
+    }
 }
 
 /* The nodes' EDS/DCF files, loaded before anything starts: a bad one is a
@@ -295,7 +409,7 @@ static int load_eds(dnode_t *nodes, const options_t *o)
 static int export_eds(const options_t *o)
 {
     dev_eds_t loaded;
-    const device_entry_t *dev;
+    const co_device_t *dev;
     size_t len;
     char err[320];
     int rc = 0;
@@ -308,7 +422,7 @@ static int export_eds(const options_t *o)
         }
         dev = &loaded.entry;
     } else {
-        dev = device_find(o->nodes[0].device);
+        dev = co_device_find(o->nodes[0].device);
     }
     len = strlen((const char *)dev->eds);
     int to_stdout = (strcmp(o->export_path, "-") == 0);
@@ -336,6 +450,8 @@ static int run(const options_t *o)
     co_lx_member_t *members;
     dnode_t *nodes;
     co_lx_loop_t loop;
+    ctl_t ctl;
+    ctl_nodes_t ctl_nodes;
     FILE *trace_out = NULL;
     size_t started = 0U;
     int rc = 0;
@@ -354,6 +470,7 @@ static int run(const options_t *o)
 
     tracer.fd = -1;
     tracer.out = NULL;
+    ctl.lfd = -1;
     nodes = (dnode_t *)calloc(o->n_nodes, sizeof *nodes);
     members = (co_lx_member_t *)calloc(o->n_nodes, sizeof *members);
     if ((nodes == NULL) || (members == NULL)) {
@@ -392,8 +509,22 @@ static int run(const options_t *o)
         members[i].tick_ctx = &nodes[i];
         started = i + 1U;
     }
+    if ((rc == 0) && (o->control != NULL)) {
+        char err[160];
+        ctl_nodes.nodes = nodes;
+        ctl_nodes.n = o->n_nodes;
+        if (ctl_open(&ctl, o->control, ctl_exec, &ctl_nodes, err, sizeof err) != 0) {
+            (void)fprintf(stderr, PROG ": --control %s\n", err);
+            rc = 1;
+        }
+    }
     if (rc == 0) {
         (void)memset(&loop, 0, sizeof loop);
+        if (ctl.lfd >= 0) {
+            loop.extra_fds = ctl_fds;
+            loop.extra_ready = ctl_ready;
+            loop.extra_ctx = &ctl;
+        }
         loop.members = members;
         loop.n_members = o->n_nodes;
         loop.tracers = &tracer;
@@ -405,6 +536,9 @@ static int run(const options_t *o)
         rc = (co_lx_loop_run(&loop) == 0) ? 0 : 1;
         log_line(NULL, CO_LX_INFO, "%s after %llu loop rounds", rc == 0 ? "stopped" : "failed",
                  (unsigned long long)loop.rounds);
+    }
+    if (ctl.lfd >= 0) {
+        ctl_close(&ctl);
     }
     for (size_t i = 0U; i < started; i++) {
         stop_node(&nodes[i]);
@@ -441,8 +575,12 @@ int main(int argc, char **argv)
         (void)printf(PROG " %s\n", CO_VERSION);
         break;
     case OPT_LIST:
-        for (size_t i = 0U; i < device_count(); i++) {
-            (void)printf("%-22s %s\n", device_at(i)->name, device_at(i)->summary);
+        /* the default device first, then the others in name order */
+        (void)printf("%-22s %s\n", OPT_DEFAULT_DEVICE, co_device_find(OPT_DEFAULT_DEVICE)->summary);
+        for (size_t i = 0U; i < co_device_count(); i++) {
+            if (strcmp(co_device_at(i)->name, OPT_DEFAULT_DEVICE) != 0) {
+                (void)printf("%-22s %s\n", co_device_at(i)->name, co_device_at(i)->summary);
+            }
         }
         break;
     case OPT_EXPORT_EDS:

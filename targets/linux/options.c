@@ -7,22 +7,27 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "co_devices.h"
 #include "dev_eds.h"
-#include "device_registry.h"
 
 const char options_usage[] =
     "Usage: canopen-device [OPTION]...\n"
     "Run simulated CANopen devices (CiA 301 slaves) on a SocketCAN interface.\n"
     "\n"
     "  --iface IF           CAN interface (default vcan0)\n"
-    "  --node-id N          node-ID 1..127 (default 1)\n"
+    "  --node-id N          node-ID 1..127 (default: unconfigured, waiting for LSS, for a\n"
+    "                       device with LSS; 1 for one without; none for an LSS-only one)\n"
     "  --device NAME        device type (default generic-301; see --list-devices)\n"
+    "  --storage PATH       parameter file for 0x1010/0x1011 and the LSS-stored node-ID and\n"
+    "                       bit timing (default: none, store refused)\n"
+    "  --serial N           serial number 0x1018 sub 4 of this node, its LSS address\n"
+    "                       (default: the device description's, 1 for generic-301, cia402)\n"
+    "  --node [ID]:[DEVICE[:PATH[:SERIAL]]]\n"
+    "                       one more node in this process (repeatable; no ID: LSS)\n"
     "  --eds FILE           the device an EDS or DCF describes, built at start-up\n"
     "                       (also: --device FILE.eds, --node ID:FILE.eds)\n"
-    "  --storage PATH       parameter file for 0x1010/0x1011 (default: none, store refused)\n"
-    "  --node ID[:DEVICE[:PATH]]\n"
-    "                       one more node in this process (repeatable)\n"
     "  --trace FILE|-       write every frame on the bus in candump -L format\n"
+    "  --control PATH       serve line commands on a Unix socket (set/get INDEX SUB ...)\n"
     "  --log-level LEVEL    error, warn, info (default) or debug; messages go to stderr\n"
     "  --export-eds PATH    write the EDS of --device to PATH ('-': stdout) and exit\n"
     "  --list-devices       list the device types and exit\n"
@@ -43,8 +48,9 @@ typedef struct opt_def {
 static const opt_def_t defs[] = {
     {"iface", O_ARG},        {"node-id", O_ARG},      {"device", O_ARG},      {"eds", O_ARG},
     {"storage", O_ARG},      {"node", O_ARG},         {"trace", O_ARG},
-    {"log-level", O_ARG},    {"export-eds", O_ARG},   {"list-devices", O_FLAG},
-    {"help", O_FLAG},        {"version", O_FLAG},
+    {"control", O_ARG},      {"log-level", O_ARG},    {"export-eds", O_ARG},
+    {"list-devices", O_FLAG}, {"help", O_FLAG},       {"version", O_FLAG},
+    {"serial", O_ARG},
 };
 
 static int fail(char *err, size_t cap, const char *fmt, const char *a, const char *b)
@@ -70,33 +76,85 @@ static int parse_id(const char *s, uint8_t *id)
     return 0;
 }
 
-/* ID[:DEVICE[:PATH]], split in place */
+static int parse_u32(const char *s, uint32_t *v)
+{
+    char *end = NULL;
+    unsigned long long x;
+
+    if ((s[0] < '0') || (s[0] > '9')) {
+        return -1;
+    }
+    errno = 0;
+    x = strtoull(s, &end, 0);
+    if ((errno != 0) || (end == s) || (*end != '\0') || (x > 0xFFFFFFFFULL)) {
+        return -1;
+    }
+    *v = (uint32_t)x;
+    return 0;
+}
+
+/* Cut @p s at the next ':'; the rest, or NULL. */
+static char *cut(char *s)
+{
+    char *c = (s != NULL) ? strchr(s, ':') : NULL;
+
+    if (c != NULL) {
+        *c = '\0';
+        c++;
+    }
+    return c;
+}
+
+/* [ID]:[DEVICE[:PATH[:SERIAL]]], split in place */
 static int parse_node(char *spec, opt_node_t *n, char *err, size_t cap)
 {
-    char *dev = strchr(spec, ':');
-    char *path = NULL;
+    char *dev = cut(spec);
+    char *path = cut(dev);
+    char *serial = cut(path);
 
-    n->device = "generic-301";
+    n->device = OPT_DEFAULT_DEVICE;
     n->storage = NULL;
     n->eds = NULL;
-    if (dev != NULL) {
-        *dev = '\0';
-        dev++;
-        path = strchr(dev, ':');
-        if (path != NULL) {
-            *path = '\0';
-            path++;
-        }
-        if (*dev != '\0') {
-            n->device = dev;
-        }
+    n->id_given = (*spec != '\0');
+    n->serial_given = false;
+    if ((dev != NULL) && (*dev != '\0')) {
+        n->device = dev;
         n->eds = dev_eds_is_file(dev) ? dev : NULL;
-        if ((path != NULL) && (*path != '\0')) {
-            n->storage = path;
-        }
     }
-    if (parse_id(spec, &n->id) != 0) {
+    if ((path != NULL) && (*path != '\0')) {
+        n->storage = path;
+    }
+    if (n->id_given && (parse_id(spec, &n->id) != 0)) {
         return fail(err, cap, "--node: node-ID must be 1..127, got '%s'%s", spec, "");
+    }
+    if ((serial != NULL) && (*serial != '\0')) {
+        if (parse_u32(serial, &n->serial) != 0) {
+            return fail(err, cap, "--node: serial number must be 0..0xFFFFFFFF, got '%s'%s",
+                        serial, "");
+        }
+        n->serial_given = true;
+    }
+    return 0;
+}
+
+/* The node-ID of a node by its device's LSS: none given is unconfigured
+ * with LSS, else @p def (0: a node-ID is needed); an LSS-only device takes
+ * none. */
+static int resolve_id(opt_node_t *n, uint8_t def, char *err, size_t cap)
+{
+    const co_device_t *e = (n->eds != NULL) ? NULL : co_device_find(n->device);
+    uint32_t opts = (e != NULL) ? e->dev->options : 0U; /* an EDS device: no LSS */
+    bool lss = (opts & CO_OPT_LSS) != 0U;
+
+    if (n->id_given && ((opts & CO_OPT_LSS_ONLY) != 0U)) {
+        return fail(err, cap, "%s takes its node-ID only through LSS: start it without one%s",
+                    n->device, "");
+    }
+    if (!n->id_given && !lss && (def == 0U)) {
+        return fail(err, cap, "--node: node-ID must be 1..127, got ''%s%s", "", "");
+    }
+    if (!n->id_given) {
+        n->id = lss ? CO_NODE_ID_UNCONFIGURED : def;
     }
     return 0;
 }
@@ -116,7 +174,7 @@ static int set_level(options_t *o, const char *v)
 
 int options_parse(options_t *o, int argc, char **argv, char *err, size_t cap)
 {
-    opt_node_t primary = {1U, "generic-301", NULL, NULL};
+    opt_node_t primary = {1U, OPT_DEFAULT_DEVICE, NULL, NULL, 0U, false, false};
     bool primary_given = false;
     bool device_given = false;
     bool want_help = false;
@@ -174,6 +232,13 @@ int options_parse(options_t *o, int argc, char **argv, char *err, size_t cap)
             if (parse_id(val, &primary.id) != 0) {
                 return fail(err, cap, "--node-id must be 1..127, got '%s'%s", val, "");
             }
+            primary.id_given = true;
+            primary_given = true;
+        } else if (strcmp(d->name, "serial") == 0) {
+            if (parse_u32(val, &primary.serial) != 0) {
+                return fail(err, cap, "--serial must be 0..0xFFFFFFFF, got '%s'%s", val, "");
+            }
+            primary.serial_given = true;
             primary_given = true;
         } else if ((strcmp(d->name, "device") == 0) || (strcmp(d->name, "eds") == 0)) {
             if ((d->name[0] == 'e') && !dev_eds_is_file(val) && (val[0] == '\0')) {
@@ -201,6 +266,11 @@ int options_parse(options_t *o, int argc, char **argv, char *err, size_t cap)
                 return fail(err, cap, "--trace needs a file name or '-'%s%s", "", "");
             }
             o->trace = val;
+        } else if (strcmp(d->name, "control") == 0) {
+            if (val[0] == '\0') {
+                return fail(err, cap, "--control needs a socket path%s%s", "", "");
+            }
+            o->control = val;
         } else if (strcmp(d->name, "log-level") == 0) {
             if (set_level(o, val) != 0) {
                 return fail(err, cap,
@@ -227,8 +297,11 @@ int options_parse(options_t *o, int argc, char **argv, char *err, size_t cap)
         o->mode = want_help ? OPT_HELP : (want_version ? OPT_VERSION : OPT_LIST);
         return 0;
     }
-    if ((primary.eds == NULL) && (device_find(primary.device) == NULL)) {
+    if ((primary.eds == NULL) && (co_device_find(primary.device) == NULL)) {
         return fail(err, cap, "unknown device '%s' (see --list-devices)%s", primary.device, "");
+    }
+    if (resolve_id(&primary, 1U, err, cap) != 0) {
+        return -1;
     }
     if (o->mode == OPT_EXPORT_EDS) {
         o->nodes[0] = primary;
@@ -239,12 +312,15 @@ int options_parse(options_t *o, int argc, char **argv, char *err, size_t cap)
         o->nodes[o->n_nodes++] = primary;
     }
     for (size_t k = 0U; k < extra; k++) {
-        if ((extras[k].eds == NULL) && (device_find(extras[k].device) == NULL)) {
+        if ((extras[k].eds == NULL) && (co_device_find(extras[k].device) == NULL)) {
             return fail(err, cap, "unknown device '%s' (see --list-devices)%s", extras[k].device,
                         "");
         }
+        if (resolve_id(&extras[k], 0U, err, cap) != 0) {
+            return -1;
+        }
         for (size_t j = 0U; j < o->n_nodes; j++) {
-            if (o->nodes[j].id == extras[k].id) {
+            if ((o->nodes[j].id == extras[k].id) && (extras[k].id != CO_NODE_ID_UNCONFIGURED)) {
                 char id[8];
                 (void)snprintf(id, sizeof id, "%u", (unsigned)extras[k].id);
                 return fail(err, cap, "node-ID %s given twice%s", id, "");

@@ -2,27 +2,32 @@
  * Command line of canopen-device.
  *
  *   canopen-device [--iface IF] [--node-id N] [--device NAME | --eds FILE] [--storage PATH]
- *                  [--node ID[:DEVICE[:PATH]]]... [--trace FILE|-]
- *                  [--log-level error|warn|info|debug]
+ *                  [--serial N] [--node [ID]:[DEVICE[:PATH[:SERIAL]]]]... [--trace FILE|-]
+ *                  [--control PATH] [--log-level error|warn|info|debug]
  *   canopen-device --export-eds PATH [--device NAME]
  *   canopen-device --list-devices | --help | --version
  *
  * --eds FILE runs the device an EDS or DCF describes (as does a --device or
  * --node DEVICE ending in .eds / .dcf).
- * --node-id/--device/--storage describe one node (the default node: id 1,
+ * --node-id/--device/--storage/--serial describe one node (the default node:
  * generic-301, no storage); each --node adds one more node on the same
  * interface. With --node only, the default node is not started unless
- * --node-id is given.
+ * --node-id is given. A device with LSS starts unconfigured (node-ID 0xFF,
+ * LSS only) without a node-ID (an LSS-stored one in its --storage wins);
+ * a device without LSS defaults to node-ID 1; a device whose node-ID comes
+ * only through LSS (faulhaber-mc) takes none.
  */
 #ifndef OPTIONS_H
 #define OPTIONS_H
 
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 
 #include "co_lx/port.h"
 
 #define OPT_NODES_MAX 127U
+#define OPT_DEFAULT_DEVICE "generic-301" /**< --device without the option; listed first */
 
 typedef enum opt_mode {
     OPT_RUN,
@@ -33,16 +38,20 @@ typedef enum opt_mode {
 } opt_mode_t;
 
 typedef struct opt_node {
-    uint8_t id;
+    uint8_t id;           /**< 1..127; 0xFF: unconfigured (LSS devices) */
     const char *device;   /**< registry name */
     const char *storage;  /**< parameter file, NULL for none */
     const char *eds;      /**< EDS/DCF file the device is built from, or NULL */
+    uint32_t serial;      /**< 0x1018 sub 4, when serial_given */
+    bool id_given;
+    bool serial_given;
 } opt_node_t;
 
 typedef struct options {
     opt_mode_t mode;
     const char *iface;
     const char *trace;        /**< NULL: no trace; "-": stdout */
+    const char *control;      /**< --control socket path, NULL: none */
     const char *export_path;
     co_lx_level_t log_level;
     size_t n_nodes;

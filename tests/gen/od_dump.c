@@ -65,7 +65,7 @@ static int nv_write(void *ctx, uint32_t addr, const uint8_t *buf, uint32_t len)
     return 0;
 }
 
-static const co_hal_ops_t ops = {count_send, nv_read, nv_write};
+static const co_hal_ops_t ops = {count_send, nv_read, nv_write, NULL};
 
 static void hex(const uint8_t *p, uint32_t n)
 {
@@ -111,6 +111,12 @@ int main(int argc, char **argv)
     res = co_node_init(node, &cfg, 0U);
     if (res != CO_RESULT_OK) {
         fprintf(stderr, "od_dump: co_node_init: %d\n", (int)res);
+        return 1;
+    }
+    if ((co_node_id(node) == CO_NODE_ID_UNCONFIGURED) &&
+        (co_node_set_id(node, (uint8_t)id, 0U) != CO_OK)) {
+        /* an LSS-only device (FAULHABER) starts unconfigured: give it the ID */
+        fprintf(stderr, "od_dump: co_node_set_id\n");
         return 1;
     }
     printf("{\"name\": \"%s\", \"node_id\": %lu, \"ram_size\": %u, \"comm_end\": %u, "

@@ -13,6 +13,7 @@ every frame with the kernel's timestamp, for exact frames and timing.
 """
 from __future__ import annotations
 
+import itertools
 import os
 import signal
 import socket
@@ -24,6 +25,7 @@ from pathlib import Path
 
 import can
 import canopen
+import canopen.lss
 import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -208,23 +210,61 @@ def network():
 
 NODE_ID = 5
 
-# Axes the CiA 402 devices run (devices/co402_devices.c; 1 when not listed).
+# Axes the CiA 402 devices run (their co_device_impl_t in devices/*.c; 1 when
+# not listed).
 # A dictionary may hold more: anagate-motion-bt2 is the 4-axis module with 2
 # motors fitted.
 AXES = {"anagate-motion": 4, "anagate-motion-bt2": 2, "anagate-motion-bl": 2,
         "anagate-motion-400vac": 2}
 
 
+def lss_modes() -> dict[str, str]:
+    """Device name -> "LSS", "LSS-only" or "-" (canopen-device --list-devices)."""
+    out = subprocess.run([str(DAEMON), "--list-devices"], check=True, capture_output=True,
+                         text=True).stdout
+    return {ln.split()[0]: ln.split()[1] for ln in out.splitlines() if ln.strip()}
+
+
+_serials = itertools.count(0x5E000)
+
+
+def lss_select(network, vendor: int, product: int, revision: int, serial: int,
+               timeout: float = BOOT_TIMEOUT) -> None:
+    """Switch state selective to the node with that LSS address, retrying
+    until its process listens (an unconfigured node sends no boot-up)."""
+    end = time.monotonic() + timeout
+    while True:
+        try:
+            if network.lss.send_switch_state_selective(vendor, product, revision, serial):
+                return
+        except canopen.lss.LssError:
+            pass
+        assert time.monotonic() < end, f"no LSS answer from serial {serial:#x}"
+
+
 def start_device(device: str, node_id: int, network, daemons, sniffer, tmp_path,
                  *extra: str):
     """Export `device`'s EDS, start it as `node_id` (with the daemon options
-    `extra`) and wait for its boot-up; its python-canopen RemoteNode."""
+    `extra`) and wait for its boot-up; its python-canopen RemoteNode. A
+    device whose node-ID comes only through LSS (faulhaber-mc) starts
+    unconfigured with a serial number of its own and gets `node_id` the way
+    its manual's quick start gives it: LSS selective, configure node-ID,
+    back to waiting."""
     eds = tmp_path / f"{device}.eds"
     subprocess.run([str(DAEMON), "--device", device, "--export-eds", str(eds)], check=True)
-    node = network.add_node(node_id, canopen.import_od(str(eds), node_id=node_id))
+    od = canopen.import_od(str(eds), node_id=node_id)
+    node = network.add_node(node_id, od)
     node.sdo.RESPONSE_TIMEOUT = SDO_TIMEOUT
     m = sniffer.mark()
-    daemons.start("--node-id", str(node_id), "--device", device, *extra)
+    if lss_modes()[device] == "LSS-only":
+        serial = next(_serials)
+        daemons.start("--device", device, "--serial", str(serial), *extra)
+        lss_select(network, od[0x1018][1].default, od[0x1018][2].default, 0, serial)
+        network.lss.configure_node_id(node_id)
+        m = sniffer.mark()
+        network.lss.send_switch_state_global(network.lss.WAITING_STATE)
+    else:
+        daemons.start("--node-id", str(node_id), "--device", device, *extra)
     assert sniffer.wait_cob(0x700 + node_id, BOOT_TIMEOUT, m, b"\x00") is not None, "no boot-up"
     return node
 

@@ -30,6 +30,12 @@ BAD = [
     (["stray"], "unexpected argument 'stray'"),
     (["--iface", "a-very-long-interface-name"], "--iface: bad interface name"),
     (["--storage", "/tmp/a", "--node", "7::/tmp/a"], "share the parameter file"),
+    (["--device", "faulhaber-mc", "--node-id", "3"],
+     "faulhaber-mc takes its node-ID only through LSS"),
+    (["--node", "4:faulhaber-mc"], "faulhaber-mc takes its node-ID only through LSS"),
+    (["--node", ":kollmorgen-s300-s700"], "--node: node-ID must be 1..127"),
+    (["--serial", "0x100000000"], "--serial must be 0..0xFFFFFFFF"),
+    (["--node", "5:generic-301::x"], "--node: serial number must be"),
 ]
 
 
@@ -49,6 +55,9 @@ def test_help_version_list():
     assert r.returncode == 0 and r.stdout.startswith("canopen-device 0.")
     r = run("--list-devices")
     assert r.returncode == 0 and r.stdout.split()[0] == "generic-301"
+    lss = {ln.split()[0]: ln.split()[1] for ln in r.stdout.splitlines()}
+    assert lss["generic-301"] == "LSS" and lss["cia402"] == "LSS"
+    assert lss["faulhaber-mc"] == "LSS-only" and lss["ssd-630"] == "-"
 
 
 def test_missing_interface_names_it_and_how_to_create_it():

@@ -23,7 +23,7 @@ from pathlib import Path
 import canopen
 import pytest
 
-from conftest import AXES, DAEMON, start_device
+from conftest import AXES, DAEMON, lss_modes, start_device
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "gen"))
 from compare import decode, eds_vars, expected  # noqa: E402  (tests/gen/compare.py)
@@ -43,7 +43,8 @@ def readable(var) -> bool:
 
 
 def is_statusword(device: str, od, index: int) -> bool:
-    """0x6041 of a running axis (0x6041 + 0x800 n) of a CiA 402 device."""
+    """0x6041 of a running axis (0x6041 + 0x800 n) of a CiA 402 device (not
+    the device status word of a CiA 408 valve, device type 0x....0198)."""
     n, rest = divmod(index - 0x6041, 0x800)
     cia402 = (od[0x1000].default & 0xFFFF) == 402   # a CiA 408 valve's status word is its own
     return (cia402 and index >= 0x6041 and rest == 0 and n < AXES.get(device, 1)
@@ -58,6 +59,7 @@ def test_every_readable_object_holds_its_eds_default(device, network, daemons, s
                         "--storage", str(tmp_path / "params"))
     od = node.object_dictionary
     checked = 0
+    wanted = sum(1 for var in eds_vars(od).values() if readable(var))
     for (index, sub), var in sorted(eds_vars(od).items()):
         where = f"{device} 0x{index:04X} sub {sub} ({var.name})"
         if not readable(var):
@@ -72,6 +74,8 @@ def test_every_readable_object_holds_its_eds_default(device, network, daemons, s
             assert 0 <= int.from_bytes(data, "little") <= time.monotonic() - started + 2, where
         elif device == "generic-301" and (index, sub) == (0x2300, 0):
             assert data == b"", where
+        elif (index, sub) == (0x1018, 4) and lss_modes()[device] == "LSS-only":
+            pass  # the instance's serial number: start_device gave it one (--serial)
         elif is_statusword(device, od, index):
             sw = int.from_bytes(data, "little")
             assert sw & 0x4F == 0x40, f"{where}: 0x{sw:04X} is not Switch on disabled"
@@ -83,4 +87,4 @@ def test_every_readable_object_holds_its_eds_default(device, network, daemons, s
             want = expected(var, len(data))
             assert value == want, f"{where}: device {value!r}, EDS {want!r}"
         checked += 1
-    assert checked >= 90, checked
+    assert checked == wanted >= 50, (checked, wanted)

@@ -24,6 +24,7 @@ typedef struct rec {
     co_err_t attach_err;
     uint32_t last_time;
     int id;
+    uint8_t clear[8];   /* tpdo_event: the changed bits this instance masks */
 } rec_t;
 
 static char order[1024];
@@ -94,9 +95,55 @@ static void p_emcy_mfr(void *inst, uint16_t code, uint8_t mfr[5])
     }
 }
 
-static const co_profile_ops_t ops = {"rec",   p_attach, p_process, p_sync, p_nmt,
-                                     p_reset, p_errctl, p_emcy_mfr};
-static const co_profile_ops_t ops_min = {"min", p_attach, NULL, NULL, NULL, NULL, NULL, NULL};
+static void p_rpdo(void *inst, uint16_t n, uint32_t now)
+{
+    char b[16];
+    snprintf(b, sizeof b, "rpdo%u", (unsigned)n);
+    note((rec_t *)inst, b, now);
+}
+
+static void p_tpdo_event(void *inst, uint16_t n, const uint8_t last[8], const uint8_t now[8],
+                         uint8_t changed[8])
+{
+    rec_t *r = (rec_t *)inst;
+    char b[16];
+    snprintf(b, sizeof b, "tpdo%u:%02X>%02X", (unsigned)n, last[1], now[1]);
+    note(r, b, r->node->now);
+    for (unsigned k = 0; k < 8U; k++) {
+        changed[k] = (uint8_t)(changed[k] & ~r->clear[k]);
+    }
+}
+
+static void p_nmt_cmd(void *inst, uint8_t cs, uint32_t now)
+{
+    rec_t *r = (rec_t *)inst;
+    char b[16];
+    snprintf(b, sizeof b, "cmd%02X/%02X", cs, (unsigned)co_node_nmt_state(r->node));
+    note(r, b, now);
+}
+
+static void p_err_class(void *inst, uint8_t sub, uint32_t now)
+{
+    char b[16];
+    snprintf(b, sizeof b, "err%u", sub);
+    note((rec_t *)inst, b, now);
+}
+
+static const co_profile_ops_t ops = {
+    .name = "rec",
+    .attach = p_attach,
+    .process = p_process,
+    .sync = p_sync,
+    .nmt_state = p_nmt,
+    .reset = p_reset,
+    .error_control = p_errctl,
+    .emcy_mfr = p_emcy_mfr,
+    .rpdo = p_rpdo,
+    .tpdo_event = p_tpdo_event,
+    .nmt_command = p_nmt_cmd,
+    .error_class = p_err_class,
+};
+static const co_profile_ops_t ops_min = {.name = "min", .attach = p_attach};
 
 static void a_sync(void *ctx, co_node_t *node, uint8_t counter)
 {
@@ -111,6 +158,30 @@ static void a_nmt(void *ctx, co_node_t *node, co_nmt_state_t st)
     (void)node;
     (void)st;
     strncat(order, "app:nmt ", sizeof order - strlen(order) - 1U);
+}
+
+static void a_rpdo(void *ctx, co_node_t *node, uint16_t n)
+{
+    (void)ctx;
+    (void)node;
+    (void)n;
+    strncat(order, "app:rpdo ", sizeof order - strlen(order) - 1U);
+}
+
+static void a_nmt_cmd(void *ctx, co_node_t *node, uint8_t cs)
+{
+    (void)ctx;
+    (void)node;
+    (void)cs;
+    strncat(order, "app:cmd ", sizeof order - strlen(order) - 1U);
+}
+
+static void a_err_class(void *ctx, co_node_t *node, uint8_t sub)
+{
+    (void)ctx;
+    (void)node;
+    (void)sub;
+    strncat(order, "app:err ", sizeof order - strlen(order) - 1U);
 }
 
 static void a_emcy_mfr(void *ctx, co_node_t *node, uint16_t code, uint8_t mfr[5])
@@ -148,6 +219,9 @@ static void start(bool with_app)
     app.sync = a_sync;
     app.nmt_state = a_nmt;
     app.emcy_mfr = a_emcy_mfr;
+    app.rpdo = a_rpdo;
+    app.nmt_command = a_nmt_cmd;
+    app.error_class = a_err_class;
     co_profile_host_init(&fx.host, fx.slots, 2, with_app ? &app : NULL);
     assert_int_equal(co_profile_add(&fx.host, &ops, &fx.a), CO_OK);
     assert_int_equal(co_profile_add(&fx.host, &ops, &fx.b), CO_OK);
@@ -188,14 +262,16 @@ static void attach_in_order_then_fan_out(void **state)
     memset(order, 0, sizeof order);
     fx.bus.now = 7000;
     tb_send(&fx.bus, "000 01 03");
-    assert_string_equal(order, "1:nmt05 2:nmt05 app:nmt ");
+    assert_string_equal(order, "1:cmd01/7F 2:cmd01/7F app:cmd 1:nmt05 2:nmt05 app:nmt ");
     assert_int_equal(fx.b.last_time, 7000);
     memset(order, 0, sizeof order);
     tb_send(&fx.bus, "000 81 00");
-    assert_string_equal(order, "1:reset-node 2:reset-node 1:nmt7F 2:nmt7F app:nmt ");
+    assert_string_equal(order, "1:cmd81/05 2:cmd81/05 app:cmd 1:reset-node 2:reset-node "
+                               "1:nmt7F 2:nmt7F app:nmt ");
     memset(order, 0, sizeof order);
     tb_send(&fx.bus, "000 82 03");
-    assert_string_equal(order, "1:reset-comm 2:reset-comm 1:nmt7F 2:nmt7F app:nmt ");
+    assert_string_equal(order, "1:cmd82/7F 2:cmd82/7F app:cmd 1:reset-comm 2:reset-comm "
+                               "1:nmt7F 2:nmt7F app:nmt ");
     /* heartbeat consumer of node 0x20, 100 ms: started, then lost */
     tb_flush(&fx.bus);
     tb_xfer(&fx.bus, "603 23 16 10 01 64 00 20 00", "583 60 16 10 01 00 00 00 00");
@@ -257,6 +333,57 @@ static void earliest_deadline(void **state)
     assert_string_equal(order, "1:sync0 2:sync0 ");
 }
 
+/* The operations for I/O and valve devices: an RPDO after its objects are
+ * written, the change of an event-driven TPDO filtered by the instances'
+ * masks, the notice before an NMT command (still in the old state) and a
+ * serious error reported by co_node_error_behaviour. generic-301: RPDO1
+ * maps 0x2100 (8), 0x2101 (16), 0x2102 (32); TPDO1 (type 255) 0x1001 (8),
+ * 0x2100 (8), 0x2101 (16), 0x2104 (32). */
+static void io_operations_fanned_out(void **state)
+{
+    (void)state;
+    start(true);
+    assert_int_equal(co_profile_host_attach(&fx.host, &fx.n.node, fx.bus.now), CO_OK);
+    memset(order, 0, sizeof order);
+    tb_send(&fx.bus, "000 01 03");
+    assert_string_equal(order, "1:cmd01/7F 2:cmd01/7F app:cmd 1:nmt05 2:nmt05 app:nmt ");
+    memset(order, 0, sizeof order);
+    tb_send(&fx.bus, "000 01 03"); /* no change: no notice */
+    tb_send(&fx.bus, "000 03 03"); /* no command */
+    assert_string_equal(order, "");
+    tb_advance(&fx.bus, 1000);
+    tb_expect(&fx.bus, "183 00 00 00 00 00 00 00 00"); /* first in Operational: not asked */
+    tb_flush(&fx.bus); /* TPDO2..4 */
+    assert_string_equal(order, "");
+    /* RPDO1: the instances after the objects are written, then the application */
+    tb_send(&fx.bus, "203 11 00 00 44 55 66 77");
+    assert_string_equal(order, "1:rpdo0 2:rpdo0 app:rpdo ");
+    assert_int_equal(*(uint8_t *)co_od_value_ptr(&fx.n.node, 0x2100U, 0U), 0x11U);
+    /* 0x2100 changed (TPDO byte 1): instance 1 masks byte 1, so no TPDO */
+    fx.a.clear[1] = 0xFFU;
+    memset(order, 0, sizeof order);
+    tb_advance(&fx.bus, 1000);
+    tb_expect_none(&fx.bus);
+    /* asked at every process while the data differs from what was sent */
+    assert_int_equal(strncmp(order, "1:tpdo0:00>11 2:tpdo0:00>11 ", 28), 0);
+    /* a change instance 1 does not mask (0x2101, bytes 2..3) sends all */
+    tb_send(&fx.bus, "203 11 23 00 44 55 66 77");
+    tb_advance(&fx.bus, 1000);
+    tb_expect(&fx.bus, "183 00 11 23 00 00 00 00 00");
+    /* a serious error of class 1 (bus-off as the port reports it) */
+    memset(order, 0, sizeof order);
+    co_node_error_behaviour(&fx.n.node, CO_ERRBEH_COMM, fx.bus.now);
+    assert_string_equal(order, "1:err1 2:err1 app:err ");
+    /* stop: the notice comes while the node is still Operational */
+    memset(order, 0, sizeof order);
+    tb_send(&fx.bus, "000 02 00");
+    assert_string_equal(order, "1:cmd02/05 2:cmd02/05 app:cmd 1:nmt04 2:nmt04 app:nmt ");
+    memset(order, 0, sizeof order);
+    tb_send(&fx.bus, "000 81 03");
+    assert_string_equal(order, "1:cmd81/04 2:cmd81/04 app:cmd 1:reset-node 2:reset-node "
+                               "1:nmt7F 2:nmt7F app:nmt ");
+}
+
 static void attach_error_stops(void **state)
 {
     co_profile_host_t h;
@@ -289,6 +416,7 @@ int main(void)
         cmocka_unit_test(attach_in_order_then_fan_out),
         cmocka_unit_test(emcy_mfr_fanned_out),
         cmocka_unit_test(earliest_deadline),
+        cmocka_unit_test(io_operations_fanned_out),
         cmocka_unit_test(attach_error_stops),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

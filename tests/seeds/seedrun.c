@@ -12,32 +12,54 @@
 #include "co/co_endian.h"
 #include "test_frames.h"
 
-void sr_start(seedrun_t *s, const co402_device_t *d, co_node_config_t *cfg, co_node_t *node,
-              void *state, uint8_t id)
+void sr_start(seedrun_t *s, const co_device_t *d, co_node_config_t *cfg, co_node_t *node,
+              const co402_sim_config_t *sim, uint8_t id)
 {
-    co402_plant_t plants[CO402_DRIVE_AXES_MAX];
+    co402_plant_t plants[SR_AXES_MAX];
+    const void *pl[SR_AXES_MAX];
+    uint8_t axes = co402_device_axes(d);
     char boot[16];
 
     memset(s, 0, sizeof *s);
     tb_init(&s->bus);
     s->id = id;
     s->node = node;
-    assert_true((d->axes > 0U) && (d->axes <= CO402_DRIVE_AXES_MAX));
-    for (uint8_t i = 0U; i < d->axes; i++) {
+    assert_true(axes <= SR_AXES_MAX);
+    for (uint8_t i = 0U; i < axes; i++) {
         co402_sim_config_t sc;
-        co402_device_sim_config(d, &sc);
+        if (sim != NULL) {
+            sc = *sim;
+        } else {
+            co402_params_sim_config(co402_device_params(d), &sc);
+        }
         co402_sim_init(&s->sim[i], &sc, s->bus.now);
         plants[i] = co402_sim_plant(&s->sim[i]);
+        pl[i] = &plants[i];
     }
-    assert_int_equal(co402_drive_init(&s->drv, d, plants, NULL), CO_OK);
-    co402_drive_set_state(&s->drv, state);
+    assert_true(co_device_mem_size(d, axes == 0U) <= sizeof s->mem);
+    assert_int_equal(co_device_init(&s->run, d, s->mem, sizeof s->mem,
+                                    (axes != 0U) ? pl : NULL, NULL, s->bus.now),
+                     CO_OK);
     cfg->hal = tb_hal(&s->bus, 0);
     cfg->node_id = id;
-    cfg->cb = co402_drive_callbacks(&s->drv);
+    cfg->cb = co_device_callbacks(&s->run);
     /* the node memory must be attached to the bus before init sends boot-up */
     tb_attach(&s->bus, 0, node);
     assert_int_equal(co_node_init(node, cfg, s->bus.now), CO_RESULT_OK);
-    assert_int_equal(co402_drive_attach(&s->drv, node, s->bus.now), CO_OK);
+    assert_int_equal(co_device_attach(&s->run, node, s->bus.now), CO_OK);
+    if ((cfg->dev->options & CO_OPT_LSS_ONLY) != 0U) {
+        /* the node-ID only through LSS (FAULHABER quick start, digest 1.5):
+         * unconfigured and silent; switch global, configure node-ID, back to
+         * waiting: the node initialises at once */
+        char conf[40];
+        tb_expect_none(&s->bus);
+        tb_send(&s->bus, "7E5 04 01 00 00 00 00 00 00");
+        tb_expect_none(&s->bus);
+        snprintf(conf, sizeof conf, "7E5 11 %02X 00 00 00 00 00 00", (unsigned)id);
+        tb_send(&s->bus, conf);
+        tb_expect(&s->bus, "7E4 11 00 00 00 00 00 00 00");
+        tb_send(&s->bus, "7E5 04 00 00 00 00 00 00 00");
+    }
     snprintf(boot, sizeof boot, "%03X 00", 0x700U + id);
     tb_expect(&s->bus, boot);
 }
@@ -45,7 +67,7 @@ void sr_start(seedrun_t *s, const co402_device_t *d, co_node_config_t *cfg, co_n
 void sr_poll(seedrun_t *s)
 {
     /* the axes and the plug-in first: what their tick changed goes out now */
-    (void)co402_drive_process(&s->drv, s->bus.now);
+    (void)co_device_process(&s->run, s->bus.now);
     (void)co_node_process(s->node, s->bus.now);
 }
 

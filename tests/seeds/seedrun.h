@@ -1,7 +1,8 @@
 /*
- * Test fixture for the FAULHABER and AnaGate seed tests: one node of a CiA 402
- * device (co402_devices.h: generated dictionary + co402_device_t, its axes
- * each on its own simulated plant, its device plug-in) on the in-memory bus,
+ * Test fixture for the FAULHABER and AnaGate seed tests: one node of a device
+ * (co_devices.h: generated dictionary + co_device_t, its CiA 402 axes each on
+ * a simulated plant of the fixture, other parts on the device's own
+ * simulation, its device plug-in) on the in-memory bus,
  * time pushed in 1 ms steps (the device's axes and plug-in run before the
  * node), SDO and frame helpers in the manuals' notation.
  */
@@ -12,22 +13,27 @@
 #include <stdint.h>
 
 #include "co/co402_device.h"
+#include "co/co_device.h"
 #include "co/co402_sim.h"
 #include "test_bus.h"
 
+#define SR_AXES_MAX 4U
+#define SR_MEM (64U * 1024U) /* instances, plants and plug-in state */
+
 typedef struct seedrun {
     tb_bus_t bus;
-    co402_drive_t drv;
-    co402_sim_t sim[CO402_DRIVE_AXES_MAX];
+    co_device_run_t run;
+    co402_sim_t sim[SR_AXES_MAX];
+    uint64_t mem[SR_MEM / 8U];
     co_node_t *node;
     uint8_t id;
 } seedrun_t;
 
 /** Start @p d as node @p id: @p cfg comes from the device's <cname>_config()
- *  and points at @p node's storage; @p state: the device plug-in's state
- *  (d->state_size bytes, NULL if none). Expects the boot-up frame. */
-void sr_start(seedrun_t *s, const co402_device_t *d, co_node_config_t *cfg, co_node_t *node,
-              void *state, uint8_t id);
+ *  and points at @p node's storage; @p sim: the plant of every CiA 402 axis
+ *  (NULL: the device's simulated motor). Expects the boot-up frame. */
+void sr_start(seedrun_t *s, const co_device_t *d, co_node_config_t *cfg, co_node_t *node,
+              const co402_sim_config_t *sim, uint8_t id);
 
 /** Process node and plug-ins at the present time (frames a write caused). */
 void sr_poll(seedrun_t *s);

@@ -29,7 +29,7 @@
 #include "anagate_motion_400vac.h"
 #include "anagate_motion_bl.h"
 #include "anagate_motion_desc.h"
-#include "co402_devices.h"
+#include "co_devices.h"
 #include "seedrun.h"
 
 static seedrun_t fx;
@@ -48,7 +48,7 @@ static int setup_bt4(void **state)
     co_node_config_t cfg;
 
     anagate_motion_config(&node.bt, &cfg);
-    sr_start(S, &co402_dev_anagate_motion, &cfg, &node.bt.node, NULL, 2);
+    sr_start(S, &co_device_anagate_motion, &cfg, &node.bt.node, NULL, 2);
     sr_run(S, 10);
     tb_expect_none(&S->bus);
     return 0;
@@ -60,7 +60,7 @@ static int setup_bt2(void **state)
     co_node_config_t cfg;
 
     anagate_motion_config(&node.bt, &cfg);
-    sr_start(S, &co402_dev_anagate_motion_bt2, &cfg, &node.bt.node, NULL, 2);
+    sr_start(S, &co_device_anagate_motion_bt2, &cfg, &node.bt.node, NULL, 2);
     sr_run(S, 10);
     return 0;
 }
@@ -71,7 +71,7 @@ static int setup_bl(void **state)
     co_node_config_t cfg;
 
     anagate_motion_bl_config(&node.bl, &cfg);
-    sr_start(S, &co402_dev_anagate_motion_bl, &cfg, &node.bl.node, NULL, 2);
+    sr_start(S, &co_device_anagate_motion_bl, &cfg, &node.bl.node, NULL, 2);
     sr_run(S, 10);
     return 0;
 }
@@ -82,7 +82,7 @@ static int setup_400vac(void **state)
     co_node_config_t cfg;
 
     anagate_motion_400vac_config(&node.vac, &cfg);
-    sr_start(S, &co402_dev_anagate_motion_400vac, &cfg, &node.vac.node, NULL, 2);
+    sr_start(S, &co_device_anagate_motion_400vac, &cfg, &node.vac.node, NULL, 2);
     sr_run(S, 10);
     return 0;
 }
@@ -127,7 +127,7 @@ static void lua_example(void **state)
     assert_int_equal(sw_of(1) & 0x6F, 0x21);
     for (uint8_t m = 2; m <= 4; m++) {
         /* motors 2-4 untouched (a motor the module lacks reads 0) */
-        assert_int_equal(sw_of(m), (co402_drive_axis(&S->drv, (uint8_t)(m - 1U)) != NULL) ? 0x0040 : 0x0000);
+        assert_int_equal(sw_of(m), (co402_device_axis(&S->run, (uint8_t)(m - 1U)) != NULL) ? 0x0040 : 0x0000);
     }
     sr_run(S, 20);
     /* 7: Switch on */
@@ -170,7 +170,7 @@ static void lua_example(void **state)
     sr_between(speed_of(1), -100, 100); /* the motor has followed */
     /* 15: the node stays Operational, motor 1 in Operation enabled */
     assert_int_equal(co_node_nmt_state(S->node), CO_NMT_OPERATIONAL);
-    assert_int_equal(co402_state(co402_drive_axis(&S->drv, 0U)), CO402_OPERATION_ENABLED);
+    assert_int_equal(co402_state(co402_device_axis(&S->run, 0U)), CO402_OPERATION_ENABLED);
     tb_expect_none(&S->bus);
 }
 
@@ -257,7 +257,7 @@ static void fault_reset_by_rpdo(void **state)
     tb_send(&S->bus, "202 07 00");
     tb_send(&S->bus, "202 0F 00");
     sr_run(S, 5);
-    co402_fault_raise(co402_drive_axis(&S->drv, 0U), 0x2310);
+    co402_fault_raise(co402_device_axis(&S->run, 0U), 0x2310);
     sr_expect(S, "082 10 23 03 00 00 00 00 00");
     sr_run(S, 200);
     assert_int_equal(sw_of(1) & 0x4F, 0x08);
@@ -269,7 +269,7 @@ static void fault_reset_by_rpdo(void **state)
     tb_send(&S->bus, "202 80 00");
     sr_run(S, 1);
     assert_int_equal(sw_of(1) & 0x4F, 0x08);
-    co402_fault_clear(co402_drive_axis(&S->drv, 0U), 0x2310);
+    co402_fault_clear(co402_device_axis(&S->run, 0U), 0x2310);
     /* the last controlword had bit 7 = 1: no edge, the axis stays in Fault */
     tb_send(&S->bus, "202 80 00");
     sr_run(S, 1);

@@ -1,6 +1,6 @@
 /*
  * FAULHABER Motion Controller (devices/faulhaber-mc.toml as the CiA 402
- * device co402_dev_faulhaber_mc with its plug-in): the manual's worked examples from the digest
+ * device co_device_faulhaber_mc with its plug-in): the manual's worked examples from the digest
  * (/work/shared/spec/seed-001-faulhaber-motion-controller.md, section 7 and
  * the sections named below) replayed frame by frame on the in-memory bus,
  * against the real device description, the CiA 402 profile and the
@@ -27,23 +27,20 @@
 
 #include <cmocka.h>
 
-#include "co402_devices.h"
+#include "co_devices.h"
 #include "faulhaber_mc_desc.h"
 #include "seedrun.h"
 
 static seedrun_t fx;
 static faulhaber_mc_node_t node;
-static faulhaber_mc_state_t st;
 #define S (&fx)
 
 /* The unit of the manual's trace (section 7.1) stood at 13011 increments. */
 static void trace_sim(co402_sim_config_t *c)
 {
-    faulhaber_mc_sim(c);
+    co402_params_sim_config(co402_device_params(&co_device_faulhaber_mc), c);
     c->start_pos = 13011;
 }
-
-static co402_device_t trace_device;
 
 static int setup(void **state)
 {
@@ -51,7 +48,7 @@ static int setup(void **state)
     co_node_config_t cfg;
 
     faulhaber_mc_config(&node, &cfg);
-    sr_start(S, &co402_dev_faulhaber_mc, &cfg, &node.node, &st, 2);
+    sr_start(S, &co_device_faulhaber_mc, &cfg, &node.node, NULL, 2);
     sr_run(S, 10);
     tb_expect_none(&S->bus);
     return 0;
@@ -62,10 +59,11 @@ static int setup_trace(void **state)
     (void)state;
     co_node_config_t cfg;
 
-    trace_device = co402_dev_faulhaber_mc;
-    trace_device.sim_config = trace_sim;
+    co402_sim_config_t sc;
+
+    trace_sim(&sc);
     faulhaber_mc_config(&node, &cfg);
-    sr_start(S, &trace_device, &cfg, &node.node, &st, 2);
+    sr_start(S, &co_device_faulhaber_mc, &cfg, &node.node, &sc, 2);
     sr_run(S, 10);
     tb_expect_none(&S->bus);
     return 0;
@@ -498,7 +496,7 @@ static void fault_and_emcy_example(void **state)
     expect_sw_pdos(0x0027, 0, 0);
     /* the continuous current limit is exceeded; the error delay 0x2322.01
      * = 200 (2 s) passes before it is reported */
-    faulhaber_mc_error(&S->drv, FAULHABER_ERR_OVERCURRENT, true);
+    faulhaber_mc_error(&S->run, FAULHABER_ERR_OVERCURRENT, true);
     sr_run(S, 1999);
     tb_expect_none(&S->bus);
     sr_run(S, 1);
@@ -522,7 +520,7 @@ static void fault_and_emcy_example(void **state)
     sr_poll(S);
     tb_expect_none(&S->bus);
     /* the condition ends: EMCY 0x0000 */
-    faulhaber_mc_error(&S->drv, FAULHABER_ERR_OVERCURRENT, false);
+    faulhaber_mc_error(&S->run, FAULHABER_ERR_OVERCURRENT, false);
     sr_expect(S, "082 00 00 00 00 00 00 00 00");
     /* 7.4 fault reset sequence: 0x0080 (a rising edge), 6, 7, F */
     sr_sdo_write(S, 0x6040, 0, 0x0000, 2);
@@ -547,14 +545,14 @@ static void errors_do_not_fault_by_default(void **state)
 {
     (void)state;
     start_node();
-    faulhaber_mc_error(&S->drv, FAULHABER_ERR_TEMPERATURE, true);
+    faulhaber_mc_error(&S->run, FAULHABER_ERR_TEMPERATURE, true);
     sr_poll(S);
     sr_expect(S, "082 10 43 09 08 00 00 00 00");
     sr_sdo(S, "40 41 60 00 00 00 00 00", "4B 41 60 00 40 00 00 00");
-    faulhaber_mc_error(&S->drv, FAULHABER_ERR_TEMPERATURE, false);
+    faulhaber_mc_error(&S->run, FAULHABER_ERR_TEMPERATURE, false);
     sr_expect(S, "082 00 00 00 00 00 00 00 00");
     sr_sdo_write(S, 0x2321, 1, 0xFFF7, 2);
-    faulhaber_mc_error(&S->drv, FAULHABER_ERR_TEMPERATURE, true);
+    faulhaber_mc_error(&S->run, FAULHABER_ERR_TEMPERATURE, true);
     sr_run(S, 10);
     tb_expect_none(&S->bus);
     sr_sdo(S, "40 20 23 00 00 00 00 00", "4B 20 23 00 08 00 00 00");
@@ -569,7 +567,7 @@ static void enable(void)
     sr_sdo_write(S, 0x6040, 0, 0x0006, 2);
     sr_sdo_write(S, 0x6040, 0, 0x0007, 2);
     sr_sdo_write(S, 0x6040, 0, 0x000F, 2);
-    assert_int_equal(co402_state(co402_drive_axis(&S->drv, 0U)), CO402_OPERATION_ENABLED);
+    assert_int_equal(co402_state(co402_device_axis(&S->run, 0U)), CO402_OPERATION_ENABLED);
 }
 
 /* Section 7.5.3: relative move of 10000 increments with controlword

@@ -21,7 +21,7 @@
 
 #include <cmocka.h>
 
-#include "co402_devices.h"
+#include "co_devices.h"
 #include "kollmorgen_s300_s700.h"
 #include "test_frames.h"
 #include "tseed.h"
@@ -37,7 +37,7 @@ static void start_with(unsigned k, uint8_t id, const co402_sim_config_t *sim)
     co_node_config_t cfg;
 
     kollmorgen_s300_s700_config(&kn[k], &cfg);
-    tseed_start(&fx, k, &co402_dev_kollmorgen_s300_s700, &cfg, &kn[k].node, id, sim);
+    tseed_start(&fx, k, &co_device_kollmorgen_s300_s700, &cfg, &kn[k].node, id, sim);
     tseed_expectf(BUS, "%03X 00", 0x700U + id); /* boot-up */
 }
 
@@ -64,7 +64,7 @@ static void dl(uint8_t id, const char *data)
 
 static void sim_cfg(co402_sim_config_t *c)
 {
-    co402_device_sim_config(&co402_dev_kollmorgen_s300_s700, c);
+    co402_params_sim_config(co402_device_params(&co_device_kollmorgen_s300_s700), c);
 }
 
 /* ------------------------------------------------------------ identity */

@@ -19,7 +19,7 @@
 
 #include <cmocka.h>
 
-#include "co402_devices.h"
+#include "co_devices.h"
 #include "ssd_630.h"
 #include "test_frames.h"
 #include "tseed.h"
@@ -36,14 +36,14 @@ static void power_on(unsigned k, uint8_t id, const co402_sim_config_t *sim)
     co_node_config_t cfg;
 
     ssd_630_config(&sn[k], &cfg);
-    tseed_start(&fx, k, &co402_dev_ssd_630, &cfg, &sn[k].node, id, sim);
+    tseed_start(&fx, k, &co_device_ssd_630, &cfg, &sn[k].node, id, sim);
     tseed_expectf(BUS, "%03X 00", 0x700U + id);
     tseed_expectf(BUS, "%03X 00 00 00 56 38 31 39 64", 0x80U + id);
 }
 
 static void sim_at(co402_sim_config_t *c, int32_t start)
 {
-    co402_device_sim_config(&co402_dev_ssd_630, c);
+    co402_params_sim_config(co402_device_params(&co_device_ssd_630), c);
     c->start_pos = start;
 }
 

@@ -25,28 +25,32 @@ void tseed_init(tseed_t *f)
     tb_init(&f->bus);
 }
 
-void tseed_start(tseed_t *f, unsigned k, const co402_device_t *dev, co_node_config_t *cfg,
+void tseed_start(tseed_t *f, unsigned k, const co_device_t *dev, co_node_config_t *cfg,
                  co_node_t *node, uint8_t id, const co402_sim_config_t *sim)
 {
     tseed_node_t *n = &f->n[k];
     co402_plant_t plant;
+    const void *plants[1];
 
     assert_true(k < TSEED_NODES);
     if (sim != NULL) {
         n->simcfg = *sim;
     } else {
-        co402_device_sim_config(dev, &n->simcfg);
+        co402_params_sim_config(co402_device_params(dev), &n->simcfg);
     }
     co402_sim_init(&n->sim, &n->simcfg, f->bus.now);
     plant = co402_sim_plant(&n->sim);
-    assert_int_equal(co402_drive_init(&n->drv, dev, &plant, NULL), CO_OK);
+    plants[0] = &plant;
+    assert_int_equal(co402_device_axes(dev), 1U);
+    assert_int_equal(co_device_init(&n->run, dev, n->mem, sizeof n->mem, plants, NULL, f->bus.now),
+                     CO_OK);
     cfg->hal = tb_hal(&f->bus, (uint8_t)k);
     cfg->node_id = id;
-    cfg->cb = co402_drive_callbacks(&n->drv);
+    cfg->cb = co_device_callbacks(&n->run);
     n->node = node;
     tb_attach(&f->bus, (uint8_t)k, node);
     assert_int_equal(co_node_init(node, cfg, f->bus.now), CO_RESULT_OK);
-    assert_int_equal(co402_drive_attach(&n->drv, node, f->bus.now), CO_OK);
+    assert_int_equal(co_device_attach(&n->run, node, f->bus.now), CO_OK);
     if (f->count <= k) {
         f->count = k + 1U;
     }
@@ -62,7 +66,7 @@ void tseed_run(tseed_t *f, uint32_t us)
         for (unsigned k = 0U; k < f->count; k++) {
             if (f->n[k].node != NULL) {
                 (void)co_node_process(f->n[k].node, f->bus.now);
-                (void)co402_drive_process(&f->n[k].drv, f->bus.now);
+                (void)co_device_process(&f->n[k].run, f->bus.now);
             }
         }
     }
@@ -128,7 +132,7 @@ uint16_t tseed_sw(tseed_t *f, unsigned k)
 
 co402_axis_t *tseed_axis(tseed_t *f, unsigned k)
 {
-    return co402_drive_axis(&f->n[k].drv, 0U);
+    return co402_device_axis(&f->n[k].run, 0U);
 }
 
 void tseed_expectf_at(tb_bus_t *bus, const char *file, int line, const char *fmt, ...)

@@ -1,6 +1,6 @@
 /*
  * Test fixture for the seed devices: nodes of a CiA 402 device (generated
- * dictionary + co402_device_t) on the in-memory bus, each axis on its own
+ * dictionary + co_device_t, co_devices.h) on the in-memory bus, each axis on its own
  * simulated plant, time pushed in 1 ms steps.
  */
 #ifndef TSEED_H
@@ -10,13 +10,15 @@
 
 #include "co/co402.h"
 #include "co/co402_device.h"
+#include "co/co_device.h"
 #include "co/co402_sim.h"
 #include "test_bus.h"
 
 #define TSEED_NODES 2U
 
 typedef struct tseed_node {
-    co402_drive_t drv;
+    co_device_run_t run;
+    uint64_t mem[2048];      /* the device's instance and plug-in state */
     co402_sim_t sim;
     co402_sim_config_t simcfg;
     co_node_t *node;
@@ -39,7 +41,7 @@ void tseed_init(tseed_t *f);
  *  comes from the device's <cname>_config() and points at @p node's storage;
  *  @p sim: the plant (NULL: the device's simulated motor). The boot frames
  *  are left on the bus for the test to expect. */
-void tseed_start(tseed_t *f, unsigned k, const co402_device_t *dev, co_node_config_t *cfg,
+void tseed_start(tseed_t *f, unsigned k, const co_device_t *dev, co_node_config_t *cfg,
                  co_node_t *node, uint8_t id, const co402_sim_config_t *sim);
 
 /** Push time by @p us in 1 ms steps (every node and its axes). */

@@ -26,19 +26,26 @@ static int tb_hal_send(void *ctx, const co_frame_t *f)
     return 0;
 }
 
+static uint8_t *nv_of(const tb_port_t *p)
+{
+    return (p->idx == 0U) ? p->bus->nv : p->bus->nv_port[p->idx - 1U];
+}
+
 static int tb_nv_read(void *ctx, uint32_t addr, uint8_t *buf, uint32_t len)
 {
     tb_bus_t *bus = ((tb_port_t *)ctx)->bus;
+    const uint8_t *nv = nv_of((tb_port_t *)ctx);
     if ((addr > TB_NV_SIZE) || (len > TB_NV_SIZE - addr) || bus->nv_fail_read) {
         return -1;
     }
-    memcpy(buf, &bus->nv[addr], len);
+    memcpy(buf, &nv[addr], len);
     return 0;
 }
 
 static int tb_nv_write(void *ctx, uint32_t addr, const uint8_t *buf, uint32_t len)
 {
     tb_bus_t *bus = ((tb_port_t *)ctx)->bus;
+    uint8_t *nv = nv_of((tb_port_t *)ctx);
     if ((addr > TB_NV_SIZE) || (len > TB_NV_SIZE - addr) || bus->nv_fail_write) {
         return -1;
     }
@@ -50,21 +57,31 @@ static int tb_nv_write(void *ctx, uint32_t addr, const uint8_t *buf, uint32_t le
         if (bus->nv_cut_armed && (bus->nv_budget == 0U)) {
             bus->nv_cut = true;
             if (bus->nv_tear) {
-                bus->nv[addr + i] = (uint8_t)((buf[i] & 0xF0U) | (bus->nv[addr + i] & 0x0FU));
+                nv[addr + i] = (uint8_t)((buf[i] & 0xF0U) | (nv[addr + i] & 0x0FU));
             }
             return -1;
         }
         if (bus->nv_cut_armed) {
             bus->nv_budget--;
         }
-        bus->nv[addr + i] = buf[i];
+        nv[addr + i] = buf[i];
         bus->nv_written++;
     }
     return 0;
 }
 
-const co_hal_ops_t tb_hal_ops = {tb_hal_send, tb_nv_read, tb_nv_write};
-const co_hal_ops_t tb_hal_ops_no_nv = {tb_hal_send, NULL, NULL};
+static int tb_bit_timing(void *ctx, uint8_t index)
+{
+    tb_port_t *p = (tb_port_t *)ctx;
+
+    p->bus->bit_timing[p->idx] = index;
+    p->bus->bit_timing_calls++;
+    p->bus->bit_timing_at = p->bus->now;
+    return 0;
+}
+
+const co_hal_ops_t tb_hal_ops = {tb_hal_send, tb_nv_read, tb_nv_write, tb_bit_timing};
+const co_hal_ops_t tb_hal_ops_no_nv = {tb_hal_send, NULL, NULL, tb_bit_timing};
 
 void tb_nv_cut(tb_bus_t *bus, uint32_t n, bool tear)
 {
@@ -84,6 +101,8 @@ void tb_init(tb_bus_t *bus)
 {
     memset(bus, 0, sizeof *bus);
     memset(bus->nv, 0xFF, sizeof bus->nv);
+    memset(bus->nv_port, 0xFF, sizeof bus->nv_port);
+    memset(bus->bit_timing, 0xFF, sizeof bus->bit_timing);
     bus->now = 1000U;
 }
 

@@ -44,7 +44,12 @@ struct tb_bus {
     uint32_t now;
     unsigned refuse;           /**< refuse this many send() calls (TX full) */
     unsigned refused;          /**< how many were refused */
-    uint8_t nv[TB_NV_SIZE];
+    uint8_t nv[TB_NV_SIZE];        /**< NV of port 0 */
+    uint8_t nv_port[TB_NODES_MAX - 1U][TB_NV_SIZE]; /**< NV of ports 1.. */
+    /* LSS bit timing (HAL bit_timing): last index per port, calls, time */
+    uint8_t bit_timing[TB_NODES_MAX];
+    unsigned bit_timing_calls;
+    uint32_t bit_timing_at;
     /* NV fault injection (see tb_nv_cut) */
     uint32_t nv_written;       /**< bytes written to NV so far (all writes) */
     uint32_t nv_budget;        /**< bytes still written before the power cut */
@@ -55,6 +60,8 @@ struct tb_bus {
     bool nv_fail_read;         /**< nv_read fails */
 };
 
+/** Every port has NV of its own (port 0: bus->nv) and records the LSS
+ *  bit-timing switches. */
 extern const co_hal_ops_t tb_hal_ops;
 /** The same bus without non-volatile memory (nv_read/nv_write NULL). */
 extern const co_hal_ops_t tb_hal_ops_no_nv;

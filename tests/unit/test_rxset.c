@@ -79,18 +79,18 @@ static void set_follows_the_configuration(void **state)
     char text[512];
     assert_int_equal(FX->notices, 1U); /* at init */
     set_text(NODE, text);
-    /* NMT, SYNC, TPDO1/2 (RTR), RPDO1/2, SDO, guarding */
-    assert_string_equal(text, "000 080 185 205 285 305 605 705");
+    /* NMT, SYNC, TPDO1/2 (RTR), RPDO1/2, SDO, guarding, LSS (generic-301 is an LSS slave) */
+    assert_string_equal(text, "000 080 185 205 285 305 605 705 7E5");
     /* heartbeat consumer of node 9: 0x709 joins */
     tb_xfer(BUS, "605 23 16 10 01 E8 03 09 00", "585 60 16 10 01 00 00 00 00");
     assert_int_equal(FX->notices, 2U);
     set_text(NODE, text);
-    assert_string_equal(text, "000 080 185 205 285 305 605 705 709");
+    assert_string_equal(text, "000 080 185 205 285 305 605 705 709 7E5");
     /* RPDO2 not valid: 0x305 leaves */
     tb_xfer(BUS, "605 23 01 14 01 05 03 00 80", "585 60 01 14 01 00 00 00 00");
     assert_true(FX->notices >= 3U);
     set_text(NODE, text);
-    assert_string_equal(text, "000 080 185 205 285 605 705 709");
+    assert_string_equal(text, "000 080 185 205 285 605 705 709 7E5");
 }
 
 int main(void)

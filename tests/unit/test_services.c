@@ -35,7 +35,11 @@ static int setup(void **state)
 
 static void test_table_order(void **state)
 {
-    const co_service_t *const want[] = {&co_svc_nmt,  &co_svc_sdo,  &co_svc_errctl,
+    const co_service_t *const want[] = {
+#if CO_LSS
+                                        &co_svc_lss, /* first: alone while unconfigured */
+#endif
+                                        &co_svc_nmt,  &co_svc_sdo,  &co_svc_errctl,
                                         &co_svc_emcy, &co_svc_sync, &co_svc_time,
                                         &co_svc_pdo,  &co_svc_store};
 

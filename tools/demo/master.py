@@ -10,13 +10,16 @@ mapped and exchanged at SYNC, a parameter stored and read back after the
 device process restarts, and a CiA 402 drive (simulated motor) enabled,
 moved in profile position with its statusword, position and velocity
 sampled by TPDOs at SYNC and plotted to PNG and SVG (tools/plot-trace), then
-homed. A step that fails is reported as FAILED with its
+homed; next to it a CiA 401 I/O module (loopback simulation): outputs set by
+RPDO come back as inputs by TPDO, an input set through the daemon's control
+interface sends its TPDO, a masked input change sends none. A step that fails is reported as FAILED with its
 reason and the demo goes on; the exit status is 1 when any step failed.
 """
 from __future__ import annotations
 
 import argparse
 import signal
+import socket
 import subprocess
 import sys
 import tempfile
@@ -27,6 +30,7 @@ from pathlib import Path
 
 import can
 import canopen
+import canopen.lss
 
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(Path(__file__).resolve().parent))
@@ -35,7 +39,7 @@ from cia408_master import (ValveSample, rpdo, setup_closed_loop, valve_state,  #
                            wait_sw, write_valve_csv)
 
 GENERIC_ID = 5
-DEFAULT_DEVICES = ("generic-301", "cia402", "cia408")
+DEFAULT_DEVICES = ("generic-301", "cia402", "cia408", "cia401")
 T0 = time.monotonic()
 
 
@@ -115,6 +119,7 @@ class Demo:
         self.eds: dict[str, Path] = {}
         self.nodes: dict[int, canopen.RemoteNode] = {}
         self.device_of: dict[int, str] = {}
+        self.lss_only: set[str] = set()
 
     # ------------------------------------------------------------ helpers
     def step(self, title: str, fn) -> None:
@@ -133,13 +138,18 @@ class Demo:
             self.results.append((title, False, reason))
 
     def start_device(self, node_id: int, device: str, storage: bool = False) -> None:
-        args = [str(self.daemon), "--iface", self.iface, "--node-id", str(node_id),
-                "--device", device, "--log-level", "error"]
+        lss = device in self.lss_only       # its node-ID only through LSS (FAULHABER)
+        args = [str(self.daemon), "--iface", self.iface, "--device", device,
+                "--log-level", "error"]
+        args += ["--serial", str(0x100 + node_id)] if lss else ["--node-id", str(node_id)]
+        args += ["--control", str(self.tmp / f"node{node_id}.sock")]
         if storage:
             args += ["--storage", str(self.tmp / f"node{node_id}.params")]
         m = self.watch.mark()
         say("start  " + " ".join(a if a != str(self.daemon) else "canopen-device" for a in args))
         self.procs[node_id] = subprocess.Popen(args)
+        if lss:
+            m = self.lss_assign(node_id, device, 0x100 + node_id)
         f, _ = self.watch.wait(lambda f: f.arbitration_id == 0x700 + node_id, 5.0, m)
         if f is None or bytes(f.data) != b"\x00":
             raise TimeoutError(f"no boot-up from node {node_id}")
@@ -150,6 +160,28 @@ class Demo:
         node.sdo.RESPONSE_TIMEOUT = 2.0
         self.nodes[node_id] = node
         self.device_of[node_id] = device
+
+    def lss_assign(self, node_id: int, device: str, serial: int) -> int:
+        """LSS as the drive's quick start: select it by its LSS address (the
+        revision is not compared), configure the node-ID, back to waiting.
+        Returns the watch mark before the switch (the boot-up follows it)."""
+        od = canopen.import_od(str(self.eds[device]))
+        vendor, product = od[0x1018][1].default, od[0x1018][2].default
+        end = time.monotonic() + 5.0
+        while True:
+            try:
+                if self.net.lss.send_switch_state_selective(vendor, product, 0, serial):
+                    break
+            except canopen.lss.LssError:
+                pass
+            if time.monotonic() > end:
+                raise TimeoutError(f"no LSS answer from {device} (serial {serial:#x})")
+        self.net.lss.configure_node_id(node_id)
+        say(f"-> 7E5 LSS selective {vendor:#x}/{product:#x}/-/{serial:#x}, "
+            f"configure node-ID {node_id}, switch to waiting")
+        m = self.watch.mark()
+        self.net.lss.send_switch_state_global(self.net.lss.WAITING_STATE)
+        return m
 
     def stop_device(self, node_id: int) -> int:
         p = self.procs.pop(node_id)
@@ -307,6 +339,50 @@ class Demo:
             raise TimeoutError("no EMCY reset")
         say(f"<- {f.arbitration_id:03X} {hexs(f.data)}   EMCY 0x0000: error reset")
         node.sdo.download(0x1016, 1, bytes(4))
+
+    def control(self, node_id: int, line: str) -> str:
+        """One command of the daemon's control interface (docs/linux.md)."""
+        with socket.socket(socket.AF_UNIX, socket.SOCK_STREAM) as s:
+            s.settimeout(2.0)
+            s.connect(str(self.tmp / f"node{node_id}.sock"))
+            s.sendall((line + "\n").encode())
+            reply = s.makefile("r").readline().strip()
+        say(f"control: {line}  ->  {reply}")
+        return reply
+
+    def io_module(self):
+        nid = next(n for n, d in self.device_of.items() if d == "cia401")
+        node = self.nodes[nid]
+        tpdo1 = 0x180 + nid
+
+        def tpdo(m, what, data=None, timeout=2.0):
+            f, _ = self.watch.wait(lambda f: f.arbitration_id == tpdo1 and
+                                   (data is None or bytes(f.data) == data), timeout, m)
+            if f is None:
+                raise TimeoutError(f"no TPDO1 ({what})")
+            say(f"<- {f.arbitration_id:03X} {hexs(f.data)}   TPDO1 inputs 1..16: {what}")
+
+        m = self.watch.mark()
+        self.nmt(nid, "OPERATIONAL")
+        tpdo(m, "first transmission in Operational")
+        m = self.watch.mark()
+        self.net.send_message(0x200 + nid, bytes([0x0F, 0xF0]))
+        say(f"-> {0x200 + nid:03X} 0F F0   RPDO1 outputs 1..16")
+        tpdo(m, "the outputs looped back", bytes([0x0F, 0xF0]))
+        m = self.watch.mark()
+        if self.control(nid, "set 0x6000 1 0x8F") != "ok":
+            raise AssertionError("control interface refused the input")
+        tpdo(m, "input 8 set from outside", bytes([0x8F, 0xF0]))
+        node.sdo[0x6006][2].raw = 0x0F
+        say("SDO 0x6006:2 = 0x0F   interrupt mask: only inputs 9..12 send")
+        m = self.watch.mark()
+        self.net.send_message(0x200 + nid, bytes([0x8F, 0x00]))
+        say(f"-> {0x200 + nid:03X} 8F 00   RPDO1: outputs 13..16 off")
+        time.sleep(0.3)
+        if any(f.arbitration_id == tpdo1 for f in self.watch.since(m)):
+            raise AssertionError("a masked input change sent TPDO1")
+        say(f"   no TPDO1 within 0.3 s; {self.control(nid, 'get 0x6000 2')} (the input did change)")
+        return "outputs by RPDO, inputs by TPDO, control interface, interrupt mask"
 
     def drive_id(self) -> int:
         return next(n for n, d in self.device_of.items() if d == "cia402")
@@ -483,6 +559,8 @@ class Demo:
         listing = subprocess.run([str(self.daemon), "--list-devices"], check=True,
                                  capture_output=True, text=True).stdout
         known = [ln.split()[0] for ln in listing.splitlines() if ln.strip()]
+        self.lss_only = {ln.split()[0] for ln in listing.splitlines()
+                         if ln.strip() and ln.split()[1] == "LSS-only"}
         wanted = known if self.wanted == ["all"] else (self.wanted or list(DEFAULT_DEVICES))
         unknown = [d for d in wanted if d not in known]
         if unknown:
@@ -506,6 +584,8 @@ class Demo:
         if "cia408" in self.devices:
             self.step("CiA 408 valve: set-point steps by RPDO, closed loop, plot; NMT stop",
                       self.valve_step)
+        if "cia401" in self.devices:
+            self.step("CiA 401 I/O module: outputs, inputs, control interface", self.io_module)
         self.step("stop", self.shutdown)
         return self.summary()
 
@@ -535,7 +615,7 @@ def main() -> int:
     ap.add_argument("--out", default=str(ROOT / "build" / "demo"),
                     help="where the move trace (CSV) and its plot (PNG, SVG) go")
     ap.add_argument("--devices", nargs="+", metavar="NAME",
-                    help="devices to bring up (default: generic-301 cia402; 'all': every "
+                    help="devices to bring up (default: generic-301 cia402 cia401; 'all': every "
                          "device of canopen-device --list-devices)")
     a = ap.parse_args()
     demo = Demo(Path(a.daemon), a.iface, Path(a.out), a.devices)

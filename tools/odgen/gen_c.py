@@ -342,6 +342,7 @@ def generate(dev: Device, toml_name: str, warn=None) -> tuple[str, str]:
           f"    .n_rpdo = {len(pdos[0])}U,",
           f"    .n_tpdo = {len(pdos[1])}U,",
           f"    .tpdo_mask = {'tpdo_mask' if masks else 'NULL'},",
+          f"    .lss_bit_timings = 0x{dev.info['lss_bit_timings'] if dev.info['lss'] else 0:04X}U,",
           f"    .nodeid_index = 0x{(dev.nodeid_object or 0):04X}U,",
           "};", "",
           f"void {cn}_config({cn}_node_t *n, co_node_config_t *cfg)",

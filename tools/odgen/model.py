@@ -744,11 +744,16 @@ def _device_objects(dev: dict, what: str) -> list[Obj]:
         for k, (key, name) in enumerate(zip(ids, ("Vendor-ID", "Product code",
                                                    "Revision number", "Serial number")), 1):
             t = {"sub": k, "name": name, "type": "UNSIGNED32", "access": "ro"}
-            if key in dev:
+            if key in dev and not (key == "serial" and dev.get("lss") is True):
                 t["default"] = dev[key]
                 t["rom"] = True
             else:
-                t["storage"] = "none"  # filled in by the application at run time
+                # filled in by the application at run time; an LSS slave's serial
+                # number is the instance's (distinct LSS addresses), its default
+                # the description's
+                t["storage"] = "none"
+                if key in dev:
+                    t["default"] = dev[key]
             subs.append(t)
         o.subs = [make_sub(0x1018, t, None, f"{what}") for t in subs]
         out.append(o)
@@ -766,6 +771,8 @@ EDS_KEYS = {"file_version", "file_revision", "date", "time", "author", "descript
             "simple_boot_up_slave", "granularity", "dynamic_channels_supported", "compact_pdo",
             "group_messaging", "nr_of_rxpdo", "nr_of_txpdo"}
 BAUDRATES = (10, 20, 50, 125, 250, 500, 800, 1000)
+# kbit/s -> index of the CiA 305 bit-timing table (LSS configure bit timing)
+LSS_BIT_TIMING = {1000: 0, 800: 1, 500: 2, 250: 3, 125: 4, 50: 6, 20: 7, 10: 8}
 
 
 def _assign_fields(obj: Obj) -> None:
@@ -955,10 +962,10 @@ def _include(data: dict, path: Path) -> dict:
         raise DescError(f"include {inc!r}: TOML syntax: {e}") from None
     import personality  # noqa: PLC0415
 
-    _check_keys(base, {"device", "eds", "dcf", "object", *personality.TABLES},
+    _check_keys(base, {"device", "eds", "dcf", "object", "profile", *personality.TABLES},
                 f"include {inc!r}: top level")
     out: dict = {}
-    for key in ("device", "eds", "dcf", *personality.TABLES):
+    for key in ("device", "eds", "dcf", "profile", *personality.TABLES):
         a, b = base.get(key), data.get(key)
         if a is None or b is None:
             if a is not None or b is not None:
@@ -967,6 +974,10 @@ def _include(data: dict, path: Path) -> dict:
         if not isinstance(a, dict) or not isinstance(b, dict):
             raise DescError(f"[{key}] must be a table")
         out[key] = {**a, **b}
+        if key == "profile":   # one level deeper: [profile.cia402] keys
+            for k in set(a) & set(b):
+                if isinstance(a[k], dict) and isinstance(b[k], dict):
+                    out[key][k] = {**a[k], **b[k]}
     objs = base.get("object", [])
     mine = data.get("object", [])
     if not isinstance(objs, list) or not isinstance(mine, list):
@@ -983,6 +994,21 @@ def _include(data: dict, path: Path) -> dict:
     return out
 
 
+def load_raw(path: str | Path) -> dict:
+    """The description's tables with its include resolved (for the device
+    registry: tools/odgen/gen_registry.py reads [profile])."""
+    path = Path(path)
+    try:
+        data = tomllib.loads(path.read_text(encoding="utf-8"))
+    except OSError as e:
+        raise DescError(f"cannot read: {e.strerror}") from None
+    except tomllib.TOMLDecodeError as e:
+        raise DescError(f"TOML syntax: {e}") from None
+    if "include" in data:
+        data = _include(data, path)
+    return data
+
+
 def loads(text: str, path: str | Path = "<description>", base: str | None = None) -> Device:
     """Load a description from its text (path: for messages and the default base)."""
     import personality  # noqa: PLC0415 (it imports this module's DescError)
@@ -992,7 +1018,7 @@ def loads(text: str, path: str | Path = "<description>", base: str | None = None
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as e:
         raise DescError(f"TOML syntax: {e}") from None
-    _check_keys(data, {"include", "device", "eds", "dcf", "object", *personality.TABLES},
+    _check_keys(data, {"include", "device", "eds", "dcf", "object", "profile", *personality.TABLES},
                 "top level")
     if "include" in data:
         data = _include(data, path)
@@ -1056,6 +1082,13 @@ def loads(text: str, path: str | Path = "<description>", base: str | None = None
         "baudrates": rates,
         "lss": _flag(dev.get("lss", False), "[device] lss"),
     }
+    # [device] lss = true: the device is an LSS slave (core option LSS; EDS LSS_Supported)
+    if info["lss"] and "LSS" not in opts:
+        opts = list(opts) + ["LSS"]
+        bits |= known["LSS"]
+    if not info["lss"] and any(o.startswith("LSS") for o in opts):
+        raise DescError("[device] the LSS options need lss = true")
+    info["lss_bit_timings"] = sum(1 << LSS_BIT_TIMING[r] for r in rates)
     for k in ("vendor_id", "product_code", "revision"):
         info[k] = _uint(dev.get(k, 0), f"[device] {k}")
     # DeviceInfo numbers: the identity unless the EDS states other ones

@@ -4,6 +4,7 @@
     odgen.py [--base NAME] [--out DIR] [--c] [--eds] [--md] DEVICE.toml
     odgen.py import VENDOR.eds [-o DEVICE.toml] [--use-values]   (eds_import.py)
     odgen.py compare SOURCE.eds OTHER.eds                          (eds_compare.py)
+    odgen.py registry --out DIR DEVICE.toml...   co_devices.c/.h   (gen_registry.py)
 
 From devices/NAME.toml it writes into DIR (default: current directory)
   NAME_C.h / NAME_C.c   the const object dictionary for the core (NAME_C is
@@ -34,6 +35,9 @@ def main(argv: list[str] | None = None) -> int:
     if argv and argv[0] == "import":
         import eds_import
         return eds_import.main(argv[1:])
+    if argv and argv[0] == "registry":
+        import gen_registry
+        return gen_registry.main(argv[1:])
     if argv and argv[0] == "compare":
         import eds_compare
         return eds_compare.main(argv[1:])

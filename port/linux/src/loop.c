@@ -36,19 +36,19 @@ const struct timespec *co_lx_sleep_for(uint32_t deadline, uint32_t now, struct t
     return ts;
 }
 
-/* Run every node's timers and application; the earliest deadline. */
+/* Run every node's application and timers; the earliest deadline. The
+ * application first: what its tick changed (an input, a statusword) goes
+ * out in the same round. */
 static uint32_t run_timers(co_lx_loop_t *l, uint32_t now)
 {
     uint32_t next = CO_NO_DEADLINE;
 
     for (size_t i = 0U; i < l->n_members; i++) {
         co_lx_member_t *m = &l->members[i];
+        uint32_t a = (m->tick != NULL) ? m->tick(m->tick_ctx, m->node, now) : CO_NO_DEADLINE;
         uint32_t d = co_node_process(m->node, now);
 
-        if (m->tick != NULL) {
-            uint32_t a = m->tick(m->tick_ctx, m->node, now);
-            d = (d == CO_NO_DEADLINE) ? a : ((a == CO_NO_DEADLINE) ? d : co_lx_earlier(a, d, now));
-        }
+        d = (d == CO_NO_DEADLINE) ? a : ((a == CO_NO_DEADLINE) ? d : co_lx_earlier(a, d, now));
         if (d != CO_NO_DEADLINE) {
             next = (next == CO_NO_DEADLINE) ? d : co_lx_earlier(d, next, now);
         }
@@ -82,7 +82,8 @@ static int drain_member(const co_lx_loop_t *l, co_lx_member_t *m)
 int co_lx_loop_run(co_lx_loop_t *l)
 {
     size_t nfds = l->n_members + l->n_tracers;
-    struct pollfd *fds = (struct pollfd *)calloc((nfds != 0U) ? nfds : 1U, sizeof *fds);
+    struct pollfd *fds =
+        (struct pollfd *)calloc(nfds + CO_LX_EXTRA_FDS_MAX + 1U, sizeof *fds);
     int rc = 0;
 
     if (fds == NULL) {
@@ -111,9 +112,12 @@ int co_lx_loop_run(co_lx_loop_t *l)
             fds[l->n_members + i].events = POLLIN;
             fds[l->n_members + i].revents = 0;
         }
+        size_t n_extra = (l->extra_fds != NULL)
+                             ? l->extra_fds(l->extra_ctx, &fds[nfds], CO_LX_EXTRA_FDS_MAX)
+                             : 0U;
         tsp = co_lx_sleep_for(next, co_lx_now_us(), &ts);
         l->rounds++;
-        r = ppoll(fds, (nfds_t)nfds, tsp, l->sleep_mask);
+        r = ppoll(fds, (nfds_t)(nfds + n_extra), tsp, l->sleep_mask);
         if (r < 0) {
             if (errno != EINTR) {
                 loop_say(l, CO_LX_ERROR, "ppoll failed");
@@ -135,6 +139,9 @@ int co_lx_loop_run(co_lx_loop_t *l)
             for (size_t i = 0U; i < l->n_tracers; i++) {
                 (void)fflush(l->tracers[i].out);
             }
+        }
+        if ((rc == 0) && (n_extra != 0U) && (l->extra_ready != NULL)) {
+            l->extra_ready(l->extra_ctx, &fds[nfds], n_extra);
         }
     }
     free(fds);

@@ -65,8 +65,29 @@ static int port_nv_write(void *ctx, uint32_t addr, const uint8_t *buf, uint32_t 
     return r;
 }
 
-static const co_hal_ops_t ops_nv = {port_send, port_nv_read, port_nv_write};
-static const co_hal_ops_t ops_plain = {port_send, NULL, NULL};
+/* LSS switched the bit timing (CiA 305 table index): a SocketCAN
+ * interface's rate is set outside the daemon (ip link), so it is only
+ * reported. */
+static int port_bit_timing(void *ctx, uint8_t index)
+{
+    static const uint16_t kbit[10] = {1000U, 800U, 500U, 250U, 125U, 0U, 50U, 20U, 10U, 0U};
+    co_lx_port_t *p = (co_lx_port_t *)ctx;
+    char msg[128];
+
+    p->bit_timing = index;
+    if ((index < 10U) && (kbit[index] != 0U)) {
+        (void)snprintf(msg, sizeof msg, "LSS bit timing %u (%u kbit/s) on %s", (unsigned)index,
+                       (unsigned)kbit[index], p->iface);
+    } else {
+        (void)snprintf(msg, sizeof msg, "LSS bit timing %u (automatic) on %s", (unsigned)index,
+                       p->iface);
+    }
+    port_say(p, CO_LX_INFO, msg);
+    return 0;
+}
+
+static const co_hal_ops_t ops_nv = {port_send, port_nv_read, port_nv_write, port_bit_timing};
+static const co_hal_ops_t ops_plain = {port_send, NULL, NULL, port_bit_timing};
 
 int co_lx_port_open(co_lx_port_t *p, const char *iface, co_lx_nv_t *nv, co_lx_can_fail_t *why)
 {
@@ -76,6 +97,7 @@ int co_lx_port_open(co_lx_port_t *p, const char *iface, co_lx_nv_t *nv, co_lx_ca
     (void)memset(p, 0, sizeof *p);
     p->log = log;
     p->log_ctx = log_ctx;
+    p->bit_timing = 0xFFU;
     p->nv = nv;
     (void)snprintf(p->iface, sizeof p->iface, "%s", iface);
     p->fd = co_lx_can_open(iface, why);

@@ -18,6 +18,15 @@
 #include CO_CONFIG_HEADER
 #endif
 
+/* ---- services a device may not need (1: in, 0: left out); more below */
+
+#ifndef CO_LSS
+/** LSS slave, CiA 305 (co_lss.c): node-ID and bit timing over the bus,
+ *  unconfigured nodes, fastscan. Left out: a device with CO_OPT_LSS is
+ *  refused (configured node-IDs still change with co_node_set_id). */
+#define CO_LSS 1
+#endif
+
 /* ---- sizes of the node's fixed tables (co_node_t) */
 
 #ifndef CO_TXQ_LEN
@@ -35,9 +44,9 @@
                                     sub-entries beyond are not monitored) */
 #endif
 #ifndef CO_RX_SLOTS_MAX
-/** Receive table of the core's services: NMT, SDO, guarding, SYNC, TIME and
- *  the heartbeat consumers. */
-#define CO_RX_SLOTS_MAX (5U + CO_HB_CONSUMERS_MAX)
+/** Receive table of the core's services: NMT, SDO, guarding, SYNC, TIME,
+ *  LSS and the heartbeat consumers. */
+#define CO_RX_SLOTS_MAX (5U + (unsigned)(CO_LSS) + CO_HB_CONSUMERS_MAX)
 #endif
 #ifndef CO_SVC_HOOKS_MAX
 /** Object ranges the services compiled in hook (co_node_t.svc_hooks): the

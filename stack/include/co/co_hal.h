@@ -35,6 +35,11 @@ typedef struct co_hal_ops {
      *  non-zero on a failure (the save answers 0x06060000). The two halves
      *  of the range must not share an erase unit. Optional. */
     int (*nv_write)(void *ctx, uint32_t addr, const uint8_t *buf, uint32_t len);
+    /** LSS (CiA 305): switch the CAN controller to index @p index of the
+     *  CiA 305 bit-timing table (0 1000 .. 8 10 kbit/s, 9 automatic). Called
+     *  at co_node_init with an LSS-stored bit timing and when LSS activate
+     *  bit timing switches. Optional (NULL: the rate stays as it is). */
+    int (*bit_timing)(void *ctx, uint8_t index);
 } co_hal_ops_t;
 
 typedef struct co_hal {

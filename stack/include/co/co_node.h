@@ -39,6 +39,21 @@
 #define CO_OPT_RPDO_SHORT_OK           0x0400U /**< an RPDO shorter than its mapping writes the
                                                     entries it covers, no EMCY (AnaGate) */
 #define CO_OPT_EVENT_TIMER_100US       0x0800U /**< PDO event timer in 100 us, not ms (Kollmorgen) */
+/* LSS (CiA 305, co_lss.c; build option CO_LSS) from bit 12 */
+#define CO_OPT_LSS                     0x1000U /**< the device is an LSS slave ([device] lss) */
+#define CO_OPT_LSS_KEEP_COBS           0x2000U /**< a node-ID change from one valid ID to another
+                                                    keeps the PDO and EMCY COB-IDs (their
+                                                    $NODEID defaults stay on the ID the node had
+                                                    when it left the unconfigured state); from
+                                                    0xFF to valid the communication settings go
+                                                    back to their defaults, a stored
+                                                    communication set is dropped (FAULHABER) */
+#define CO_OPT_LSS_NO_REVISION         0x4000U /**< switch state selective ignores the revision
+                                                    number (FAULHABER) */
+#define CO_OPT_LSS_ONLY                0x8000U /**< the node-ID comes only through LSS: the
+                                                    node starts with its LSS-stored node-ID or
+                                                    unconfigured, co_node_config_t.node_id is
+                                                    not used (FAULHABER) */
 /* PDO options from bit 16 */
 #define CO_OPT_PDO_COBID_WHILE_VALID   0x00010000U /**< a PDO's CAN-ID may change while the
                                                         PDO is valid (Kollmorgen) */
@@ -138,6 +153,11 @@ typedef struct co_dev {
      *  bytes 0..3, of the second of bytes 4..7; a change of the mapped data
      *  sends the TPDO only if it touches a set bit. NULL: no masks. */
     const uint16_t *tpdo_mask;
+    /** With CO_OPT_LSS: the bit rates the device supports, bit k for index k
+     *  of the CiA 305 bit-timing table (0 1000, 1 800, 2 500, 3 250, 4 125,
+     *  6 50, 7 20, 8 10 kbit/s, 9 automatic detection); the generator makes
+     *  it from [device] baudrates. Configure bit timing refuses the others. */
+    uint16_t lss_bit_timings;
     /** A manufacturer object (UNSIGNED8) that holds the node-ID the node takes
      *  on at each Reset Communication (and at init), when it is 1..127; 0: none,
      *  the node-ID stays the one co_node_init was given (Wandfluh DSV 0x2000). */
@@ -174,6 +194,28 @@ typedef struct co_node_callbacks {
      *  updated, before the frame. It must not raise or clear errors. NULL:
      *  zeros (CiA 301 leaves the field to the manufacturer). */
     void (*emcy_mfr)(void *ctx, struct co_node *node, uint16_t code, uint8_t mfr[5]);
+    /** RPDO @p n (0-based) was received and all the mapped objects it
+     *  covers are written (asynchronous: at once; synchronous: at the SYNC
+     *  that applies it). A device applies its outputs here, all at once. */
+    void (*rpdo)(void *ctx, struct co_node *node, uint16_t n);
+    /** The mapped data of event-driven TPDO @p n (0-based) changed from
+     *  @p last (what it sent last) to @p now (8 bytes each, zero beyond the
+     *  mapping; the change masks of CO_OPT_TPDO_MASK_* passed): true lets
+     *  the change send it (asked at every co_node_process while the data
+     *  differs from what was sent). Not asked for the first transmission in
+     *  Operational, a request, the event timer or an RTR. NULL: every
+     *  change sends. */
+    bool (*tpdo_event)(void *ctx, struct co_node *node, uint16_t n, const uint8_t last[8],
+                       const uint8_t now[8]);
+    /** An NMT command @p cs (0x01 start, 0x02 stop, 0x80 pre-operational,
+     *  0x81 reset node, 0x82 reset communication; a 0x1029 reaction as its
+     *  command) is about to be executed: the node is still in its old state
+     *  (an EMCY may still go out). Only when it changes the state or resets. */
+    void (*nmt_command)(void *ctx, struct co_node *node, uint8_t cs);
+    /** A serious error of class @p sub was reported by co_node_error_behaviour
+     *  (CO_ERRBEH_COMM: the port's bus-off, ...), before the 0x1029 reaction.
+     *  (Heartbeat and life-guarding losses arrive through hb_event.) */
+    void (*error_class)(void *ctx, struct co_node *node, uint8_t sub);
     /** The set of CAN-IDs the node receives (co_node_rx_cob) was made anew:
      *  at init and whenever a COB-ID, a heartbeat consumer or a PDO's
      *  validity changed. A port with hardware filters reprograms them. */
@@ -184,7 +226,10 @@ typedef struct co_node_callbacks {
 typedef struct co_node_config {
     const co_dev_t *dev;
     co_hal_t hal;
-    uint8_t node_id;               /**< 1..127 */
+    /** 1..127; with CO_OPT_LSS also 0xFF (CO_NODE_ID_UNCONFIGURED): the node
+     *  starts unconfigured. An LSS slave uses the node-ID its LSS
+     *  configuration store holds instead, when the HAL's NV has one. */
+    uint8_t node_id;
     void *ram;                     /**< dev->ram_size bytes, suitably aligned */
     co_od_hook_t *hooks;           /**< dev->n_hooks slots (may be all NULL) */
     co_node_callbacks_t cb;
@@ -193,7 +238,23 @@ typedef struct co_node_config {
     co_pdo_slot_t *pdo_rx;         /**< dev->n_rpdo + dev->n_tpdo elements */
 } co_node_config_t;
 
+/** Node-ID of an unconfigured node (CiA 305): it sends nothing and answers
+ *  only LSS until it gets a valid node-ID. */
+#define CO_NODE_ID_UNCONFIGURED 0xFFU
+
 /* ---------------- private state (do not touch; here so callers can allocate) */
+
+/** LSS slave state (co_lss.c). */
+typedef struct co_lss {
+    uint32_t switch_at;   /**< activate bit timing: time of the switch */
+    uint8_t state;        /**< 0 waiting, 1 configuration */
+    uint8_t sel_step;     /**< switch state selective: LSS address parts matched */
+    uint8_t id_step;      /**< identify remote slave: parts matched */
+    uint8_t fs_pos;       /**< fastscan: LSS number part the slave compares next */
+    uint8_t bit_timing;   /**< configured (pending) bit-timing index, 0xFF none */
+    uint8_t active_bt;    /**< active bit-timing index, 0xFF none (the port's rate) */
+    uint8_t switching;    /**< 1: activate bit timing waits for switch_at */
+} co_lss_t;
 
 typedef struct co_rx_slot {
     uint16_t cob;
@@ -299,7 +360,10 @@ typedef struct co_node {
     co_od_hook_t *hooks;
     co_node_callbacks_t cb;
     uint32_t now;
-    uint8_t node_id;
+    uint8_t node_id;         /**< active node-ID, CO_NODE_ID_UNCONFIGURED while unconfigured */
+    uint8_t pending_id;      /**< node-ID from the next reset communication */
+    uint8_t cob_base;        /**< node-ID the $NODEID defaults of the PDO and EMCY
+                                  COB-IDs use (CO_OPT_LSS_KEEP_COBS; else node_id) */
     uint8_t nmt;             /**< co_nmt_state_t */
     /* the dispatcher's receive table (co_node.c), rebuilt when rx_dirty */
     uint8_t n_rx;
@@ -322,6 +386,9 @@ typedef struct co_node {
     co_sync_t sync;
     co_time_t time;
     co_pdo_svc_t pdo;
+#if CO_LSS
+    co_lss_t lss;
+#endif
 } co_node_t;
 
 /* ---------------- API ---------------- */
@@ -348,6 +415,17 @@ void co_node_rx(co_node_t *node, const co_frame_t *f, uint32_t now_us);
  *  which it wants to be called again, or CO_NO_DEADLINE. */
 uint32_t co_node_process(co_node_t *node, uint32_t now_us);
 
+/** The active node-ID (CO_NODE_ID_UNCONFIGURED while unconfigured). */
+uint8_t co_node_id(const co_node_t *node);
+
+/** Give the node another node-ID (1..127, or CO_NODE_ID_UNCONFIGURED on an
+ *  LSS slave): it takes effect at the next reset communication or reset node
+ *  (CiA 305), at once for an unconfigured node, which then initialises and
+ *  sends its boot-up. The $NODEID defaults follow the new ID (the PDO and
+ *  EMCY COB-IDs not with CO_OPT_LSS_KEEP_COBS). CO_ERR_VALUE for an ID out
+ *  of range. LSS configure node-ID does the same through the bus. */
+co_err_t co_node_set_id(co_node_t *node, uint8_t id, uint32_t now_us);
+
 /** NMT command specifiers (CiA 301 7.2.8.3.1), for co_node_nmt_command. */
 typedef enum co_nmt_cmd {
     CO_NMT_CMD_START = 0x01,
@@ -369,7 +447,8 @@ uint32_t co_node_now(const co_node_t *node);
 void co_node_tx_ready(co_node_t *node, uint32_t now_us);
 
 /** The @p i-th CAN-ID (11 bits, 0-based) of the frames the node acts on:
- *  NMT, its SDO and guarding RTR, SYNC, TIME, heartbeats it consumes, its
+ *  LSS (0x7E5; alone while unconfigured), NMT, its SDO and guarding RTR,
+ *  SYNC, TIME, heartbeats it consumes, its
  *  RPDOs, and its TPDOs (whose RTR it answers). For a controller's hardware
  *  filters; false past the last. The set changes only where the rx_set
  *  callback says so. */

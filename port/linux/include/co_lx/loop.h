@@ -38,6 +38,16 @@ typedef struct co_lx_member {
     void *tick_ctx;
 } co_lx_member_t;
 
+struct pollfd;
+
+/** Further descriptors the loop polls (a control socket): fill @p fds (at
+ *  most @p cap) and return how many; after the poll, serve what they
+ *  report. Runs in the loop's thread, before the next round's timers. */
+typedef size_t (*co_lx_fds_fn)(void *ctx, struct pollfd *fds, size_t cap);
+typedef void (*co_lx_ready_fn)(void *ctx, const struct pollfd *fds, size_t n);
+
+#define CO_LX_EXTRA_FDS_MAX 8U
+
 typedef struct co_lx_loop {
     co_lx_member_t *members;
     size_t n_members;
@@ -47,6 +57,9 @@ typedef struct co_lx_loop {
     const sigset_t *sleep_mask;   /**< signal mask while sleeping (NULL: unchanged) */
     co_lx_log_fn log;
     void *log_ctx;
+    co_lx_fds_fn extra_fds;       /**< NULL: none */
+    co_lx_ready_fn extra_ready;
+    void *extra_ctx;
     uint64_t rounds;              /**< statistics: loop rounds (wake-ups) */
 } co_lx_loop_t;
 

@@ -45,6 +45,7 @@ typedef struct co_lx_port {
     uint32_t tx_failed;      /**< frames lost to other send errors */
     uint32_t rx_frames;
     bool tx_blocked;         /**< the last send was not accepted */
+    uint8_t bit_timing;      /**< last LSS bit-timing index (0xFF: none) */
     co_lx_log_fn log;
     void *log_ctx;
 } co_lx_port_t;

@@ -20,6 +20,7 @@
 #include "co/co408.h"
 #include "co/co408_sim.h"
 #include "co/co_node.h"
+#include "co/co_device.h"
 #include "co/co_profile.h"
 
 #define CO408_UNIT_CHANNELS_MAX 2U
@@ -65,5 +66,9 @@ uint32_t co408_unit_process(co408_unit_t *u, uint32_t now_us);
 
 /** Channel @p n (NULL beyond the device's channels). */
 co408_valve_t *co408_unit_valve(co408_unit_t *u, uint8_t n);
+
+/** CiA 408 as a part of a device (co/co_device.h): config a co408_device_t,
+ *  one co408_valve_t per channel on its simulated valve (co408_sim). */
+extern const co_part_kind_t co408_part;
 
 #endif /* CO408_DEVICE_H */

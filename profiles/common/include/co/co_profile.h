@@ -33,7 +33,8 @@
 #include "co/co_err.h"
 #include "co/co_node.h"
 
-/** The operations of one kind of plug-in. Every pointer but attach may be NULL. */
+/** The operations of one kind of plug-in. Every pointer but attach may be NULL;
+ *  tables are written with designated initialisers (.attach = ...). */
 typedef struct co_profile_ops {
     const char *name;
     /** Bind to @p node (after co_node_init): find the objects, bind the
@@ -60,6 +61,24 @@ typedef struct co_profile_ops {
      *  3..7). The instances are asked in turn, then the application. Must
      *  not raise or clear errors. */
     void (*emcy_mfr)(void *inst, uint16_t code, uint8_t mfr[5]);
+    /** RPDO @p n (0-based) was received and its objects written (all it
+     *  covers, through the dictionary): apply them at once. */
+    void (*rpdo)(void *inst, uint16_t n, uint32_t now_us);
+    /** May this change send event-driven TPDO @p n (0-based)? @p last is
+     *  what it sent last, @p now its data now; @p changed (last ^ now on the
+     *  first call) comes with the bits of the instance's own objects whose
+     *  change is no event (masked, under a delta) cleared; an instance may
+     *  set a bit of its own objects for an event whose value is back where
+     *  it was sent. The TPDO goes out when some bit remains set after every
+     *  instance. */
+    void (*tpdo_event)(void *inst, uint16_t n, const uint8_t last[8], const uint8_t now[8],
+                       uint8_t changed[8]);
+    /** NMT command @p cs (co_node_callbacks_t.nmt_command) is about to be
+     *  executed; the node is still in its old state (an EMCY still goes out). */
+    void (*nmt_command)(void *inst, uint8_t cs, uint32_t now_us);
+    /** A serious error of class @p sub (CO_ERRBEH_COMM: bus-off, ...) was
+     *  reported through co_node_error_behaviour. */
+    void (*error_class)(void *inst, uint8_t sub, uint32_t now_us);
 } co_profile_ops_t;
 
 /** One instance: its operations and its context. */

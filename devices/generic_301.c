@@ -1,8 +1,9 @@
-/* The application part of generic-301 (see dev_generic_301.h). */
-#include "dev_generic_301.h"
+/* generic-301's device plug-in (see generic_301_desc.h). */
+#include "generic_301_desc.h"
 
 #include <string.h>
 
+#include "co/co_device.h"
 #include "co/co_endian.h"
 
 static co_err_t domain_read(void *ctx, co_od_io_t *io)
@@ -58,25 +59,27 @@ static co_err_t hooked_write(void *ctx, co_od_io_t *io)
     return CO_OK;
 }
 
-int g301_attach(void *app, co_node_t *node)
+static co_err_t g301_attach(void *inst, co_node_t *node, uint32_t now_us)
 {
-    g301_app_t *a = (g301_app_t *)app;
+    g301_app_t *a = (g301_app_t *)co_device_state((const co_device_run_t *)inst);
     co_od_hook_t dom = {domain_read, domain_write, a};
     co_od_hook_t veto = {NULL, hooked_write, a};
 
     a->domain_len = 0U;
     a->stage_len = 0U;
     a->restart = true;
-    if ((co_od_bind_hook(node, 0x2300U, &dom) != CO_RESULT_OK) ||
-        (co_od_bind_hook(node, 0x2200U, &veto) != CO_RESULT_OK)) {
-        return -1;
+    (void)now_us;
+    if (co_od_bind_hook(node, 0x2300U, &dom) != CO_RESULT_OK) {
+        return CO_ERR_OD_MISSING;
     }
-    return 0;
+    return (co_od_bind_hook(node, 0x2200U, &veto) == CO_RESULT_OK) ? CO_OK : CO_ERR_OD_MISSING;
 }
 
-uint32_t g301_process(void *app, co_node_t *node, uint32_t now_us)
+static uint32_t g301_process(void *inst, uint32_t now_us)
 {
-    g301_app_t *a = (g301_app_t *)app;
+    const co_device_run_t *run = (const co_device_run_t *)inst;
+    g301_app_t *a = (g301_app_t *)co_device_state(run);
+    co_node_t *node = co_device_node(run);
     uint32_t *uptime = (uint32_t *)co_od_value_ptr(node, 0x2024U, 0U);
 
     if (a->restart) {
@@ -93,14 +96,26 @@ uint32_t g301_process(void *app, co_node_t *node, uint32_t now_us)
     return a->next_tick;
 }
 
-void g301_reset(void *app, co_node_t *node, co_reset_t kind)
+static void g301_reset(void *inst, co_reset_t kind, uint32_t now_us)
 {
-    g301_app_t *a = (g301_app_t *)app;
+    g301_app_t *a = (g301_app_t *)co_device_state((const co_device_run_t *)inst);
 
-    (void)node;
+    (void)now_us;
     if (kind == CO_RESET_NODE) {
         a->domain_len = 0U;
         a->stage_len = 0U;
         a->restart = true;
     }
 }
+
+static const co_profile_ops_t g301_ops = {
+    .name = "generic-301",
+    .attach = g301_attach,
+    .process = g301_process,
+    .reset = g301_reset,
+};
+
+const co_device_plugin_t generic_301_plugin = {
+    .ops = &g301_ops,
+    .state_size = sizeof(g301_app_t),
+};

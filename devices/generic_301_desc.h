@@ -1,5 +1,5 @@
 /*
- * The application part of generic-301 in the daemon:
+ * generic-301's device plug-in (generic_301_impl, devices/generic_301.c):
  *   0x2300 "Large data": a DOMAIN of up to G301_DOMAIN_CAP bytes held in
  *          memory. A download is staged and becomes the value only when it
  *          completes (an aborted transfer leaves the old value); longer
@@ -10,8 +10,8 @@
  *   0x2024 "Uptime": seconds since start or the last reset node.
  * 0x1010/0x1011 keep their slots for the core's storage.
  */
-#ifndef DEV_GENERIC_301_H
-#define DEV_GENERIC_301_H
+#ifndef GENERIC_301_DESC_H
+#define GENERIC_301_DESC_H
 
 #include <stdbool.h>
 #include <stdint.h>
@@ -31,8 +31,6 @@ typedef struct g301_app {
     bool restart;         /**< take t0 at the next process */
 } g301_app_t;
 
-int g301_attach(void *app, co_node_t *node);
-uint32_t g301_process(void *app, co_node_t *node, uint32_t now_us);
-void g301_reset(void *app, co_node_t *node, co_reset_t kind);
+/* the plug-in state (co_device_impl_t.state_size) is a g301_app_t */
 
-#endif /* DEV_GENERIC_301_H */
+#endif /* GENERIC_301_DESC_H */

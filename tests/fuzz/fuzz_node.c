@@ -1,8 +1,8 @@
 /*
  * libFuzzer target: the frame entry points of one node (co_node_rx,
- * co_node_process, and the profile's processing), driven by a sequence of
+ * co_node_process, and the device layer's co_device_process), driven by a sequence of
  * frames, time steps and TX-path states taken from the input. Built twice:
- * a generic-301 node (the daemon's application part: DOMAIN and veto hooks)
+ * a generic-301 node (its plug-in devices/generic_301.c: DOMAIN and veto hooks)
  * and, with FUZZ_CIA402, a cia402 node with its CiA 402 profile on the
  * simulated plant. Beyond memory errors and undefined behaviour (ASan,
  * UBSan) every step checks the invariants below; a violation aborts with
@@ -35,17 +35,20 @@
 
 #include "co/co_node.h"
 
+#include "co/co_device.h"
+#include "co_devices.h"
+
 #ifdef FUZZ_CIA402
 #include "cia402.h"
-#include "co/co402.h"
-#include "co/co402_sim.h"
-#include "co/co_profile.h"
 #define NODE_ID 2U
+#define DEVICE co_device_cia402
+#define DEV_CONFIG cia402_config
 typedef cia402_node_t dev_node_t;
 #else
-#include "dev_generic_301.h"
 #include "generic_301.h"
 #define NODE_ID 5U
+#define DEVICE co_device_generic_301
+#define DEV_CONFIG generic_301_config
 typedef generic_301_node_t dev_node_t;
 #endif
 
@@ -54,14 +57,8 @@ typedef generic_301_node_t dev_node_t;
 
 typedef struct fz {
     dev_node_t n;
-#ifdef FUZZ_CIA402
-    co_profile_host_t host;
-    co_profile_t slots[2];
-    co402_axis_t ax;
-    co402_sim_t sim;
-#else
-    g301_app_t app;
-#endif
+    co_device_run_t run;        /* the device layer: profile parts on simulated plants, plug-in */
+    uint64_t mem[(320U * 1024U) / 8U]; /* generic-301: two DOMAINs of 128 KiB */
     uint32_t now;
     unsigned refuse;            /* TX path full for this many sends */
     unsigned sent;              /* frames the node sent */
@@ -258,11 +255,7 @@ static void process(void)
     if ((d != CO_NO_DEADLINE) && ((int32_t)(d - fz.now) <= 0)) {
         fail("co_node_process returned a deadline at or before its now");
     }
-#ifdef FUZZ_CIA402
-    (void)co_profile_host_process(&fz.host, fz.now);
-#else
-    (void)g301_process(&fz.app, &fz.n.node, fz.now);
-#endif
+    (void)co_device_process(&fz.run, fz.now);
 }
 
 static void deliver(const co_frame_t *f)
@@ -421,27 +414,12 @@ static void start(void)
     (void)memset(fz.nv, 0xFF, sizeof fz.nv);
     fz.now = 1000U;
     fz.trace = getenv("FUZZ_TRACE") != NULL;
-#ifdef FUZZ_CIA402
-    {
-        co402_sim_config_t simcfg;
-        co402_config_t ac;
-        co402_sim_defaults(&simcfg);
-        co402_sim_init(&fz.sim, &simcfg, fz.now);
-        (void)memset(&ac, 0, sizeof ac);
-        ac.plant = co402_sim_plant(&fz.sim);
-        co402_init(&fz.ax, &ac);
-        co_profile_host_init(&fz.host, fz.slots, 2U, NULL);
-        if (co_profile_add(&fz.host, &co402_profile_ops, &fz.ax) != CO_OK) {
-            abort();
-        }
-        cia402_config(&fz.n, &cfg);
-        cfg.cb = co_profile_host_callbacks(&fz.host);
+    if ((co_device_mem_size(&DEVICE, true) > sizeof fz.mem) ||
+        (co_device_init(&fz.run, &DEVICE, fz.mem, sizeof fz.mem, NULL, NULL, fz.now) != CO_OK)) {
+        abort();
     }
-#else
-    generic_301_config(&fz.n, &cfg);
-    cfg.cb.ctx = &fz.app;
-    cfg.cb.nmt_reset = g301_reset;
-#endif
+    DEV_CONFIG(&fz.n, &cfg);
+    cfg.cb = co_device_callbacks(&fz.run);
     cfg.hal.ops = &hal_ops;
     cfg.hal.ctx = &fz;
     cfg.node_id = NODE_ID;
@@ -451,15 +429,9 @@ static void start(void)
     if (co_node_init(&fz.n.node, &cfg, fz.now) != CO_OK) {
         abort();
     }
-#ifdef FUZZ_CIA402
-    if (co_profile_host_attach(&fz.host, &fz.n.node, fz.now) != CO_OK) {
+    if (co_device_attach(&fz.run, &fz.n.node, fz.now) != CO_OK) {
         abort();
     }
-#else
-    if (g301_attach(&fz.app, &fz.n.node) != 0) {
-        abort();
-    }
-#endif
     update_allowed();
     fz.snap_len = const_values(fz.snap, sizeof fz.snap);
 }

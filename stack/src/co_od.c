@@ -469,6 +469,38 @@ void co_od_commit(co_node_t *node, const co_od_sub_t *s, const uint8_t *data, ui
     }
 }
 
+/* The complete new value @p data (@p end bytes) of a string or DOMAIN held
+ * in RAM: the write hook may veto it (the value is unchanged then), else it
+ * replaces the value, the rest zero-filled. */
+static co_err_t commit_streamed(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
+                                const uint8_t *data, uint32_t end)
+{
+    co_od_hook_t *h = hook_of(node, e);
+    uint8_t *v = (uint8_t *)co_od_loc(node, s);
+
+    if ((h != NULL) && (h->write != NULL)) {
+        co_od_io_t io;
+        co_err_t err;
+        io_init(&io, node, e, s);
+        io.buf = (uint8_t *)(uintptr_t)data;
+        io.len = end;
+        io.total = end;
+        io.last = true;
+        err = h->write(h->ctx, &io);
+        if (err != CO_OK) {
+            return err;
+        }
+    }
+    if ((end > 0U) && (data != v)) {
+        (void)memmove(v, data, end);
+    }
+    if (end < s->size) {
+        (void)memset(&v[end], 0, s->size - end);
+    }
+    svc_written(node, svc_hook(node, e->index), e, s);
+    return CO_OK;
+}
+
 co_err_t co_od_write_part(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
                           uint32_t offset, const uint8_t *data, uint32_t len, uint32_t total,
                           bool last)
@@ -495,28 +527,18 @@ co_err_t co_od_write_part(co_node_t *node, const co_od_entry_t *e, const co_od_s
     if ((offset > s->size) || (len > (s->size - offset))) {
         return CO_ERR_TYPE_TOO_LONG;
     }
-    if (len > 0U) {
-        (void)memcpy(&v[offset], data, len);
+    if ((offset == 0U) && last) {
+        return commit_streamed(node, e, s, data, len); /* whole: nothing to gather */
     }
-    if (last) {
-        uint32_t end = offset + len;
-        if (end < s->size) {
-            (void)memset(&v[end], 0, s->size - end);
+    {
+        /* parts gather in the staging area (co_dev_t.stage) when it holds the
+         * value; without one they are written in place */
+        uint8_t *at = (node->dev->stage_size >= s->size) ? &node->ram[node->dev->stage] : v;
+        if (len > 0U) {
+            (void)memcpy(&at[offset], data, len);
         }
-        if ((h != NULL) && (h->write != NULL)) {
-            io_init(&io, node, e, s);
-            io.buf = v;
-            io.len = end;
-            io.total = end;
-            io.last = true;
-            co_err_t err = h->write(h->ctx, &io);
-            if (err != CO_OK) {
-                return err;
-            }
-        }
-        svc_written(node, svc_hook(node, e->index), e, s);
+        return last ? commit_streamed(node, e, s, at, offset + len) : CO_OK;
     }
-    return CO_OK;
 }
 
 /* The COB-ID of a PDO (communication parameter sub 1) or of the EMCY: its

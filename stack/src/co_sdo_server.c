@@ -3,9 +3,10 @@
  *
  * Nothing is copied that the dictionary already holds: uploads read from the
  * value by offset (block retransmission reads again), downloads of strings
- * and DOMAINs are written in place as they arrive. Only values of fixed size
- * (at most 8 bytes) are gathered first, so they are checked and committed
- * whole.
+ * and DOMAINs go to the dictionary as they arrive, which gathers them in the
+ * device's staging area and commits them whole (co_od_write_part). Values
+ * of fixed size (at most 8 bytes) are gathered here, so they are checked and
+ * committed whole too: a rejected or aborted download leaves the old value.
  */
 #include <string.h>
 

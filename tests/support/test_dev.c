@@ -215,6 +215,8 @@ const co_dev_t td_dev = {
     .n_hooks = TD_N_HOOKS,
     .options = 0U,
     .boot_emcy_data = NULL,
+    .stage = F(stage),
+    .stage_size = (uint16_t)sizeof(((td_ram_t *)0)->stage),
 };
 
 void td_start_cb(td_node_t *n, tb_bus_t *bus, uint8_t idx, uint8_t id, const co_dev_t *dev,

@@ -247,6 +247,62 @@ static void stall_pdo_timers(void **state)
     tb_expect_none(&pfx.bus);
 }
 
+/* The value of 0x2012 (VISIBLE_STRING[32], "hello") as the dictionary holds it. */
+static void expect_vstr(const char *text)
+{
+    char v[40] = {0};
+    uint32_t len = 0;
+
+    assert_int_equal(co_od_read(NODE, 0x2012, 0, v, sizeof v, &len), CO_OK);
+    assert_int_equal(len, strlen(text));
+    assert_memory_equal(v, text, len);
+}
+
+/* Item 4: a string download that is rejected, aborted or times out leaves
+ * the old value; the new one appears only when the transfer is complete. */
+static void rejected_download_leaves_old_value(void **state)
+{
+    (void)state;
+    expect_vstr("hello");
+    /* segmented, 14 bytes announced; the client aborts after 7 */
+    tb_xfer(BUS, "605 21 12 20 00 0E 00 00 00", "585 60 12 20 00 00 00 00 00");
+    tb_xfer(BUS, "605 00 59 59 59 59 59 59 59", "585 20 00 00 00 00 00 00 00");
+    expect_vstr("hello"); /* the application never sees a half value */
+    tb_send(BUS, "605 80 12 20 00 00 00 04 05");
+    tb_expect_none(BUS);
+    expect_vstr("hello");
+    /* the same, ended by a length error (more than announced) */
+    tb_xfer(BUS, "605 21 12 20 00 0A 00 00 00", "585 60 12 20 00 00 00 00 00");
+    tb_xfer(BUS, "605 00 59 59 59 59 59 59 59", "585 20 00 00 00 00 00 00 00");
+    tb_xfer(BUS, "605 11 59 59 59 59 59 59 59", "585 80 12 20 00 12 00 07 06");
+    expect_vstr("hello");
+    /* ... by a timeout */
+    tb_xfer(BUS, "605 21 12 20 00 0E 00 00 00", "585 60 12 20 00 00 00 00 00");
+    tb_xfer(BUS, "605 00 59 59 59 59 59 59 59", "585 20 00 00 00 00 00 00 00");
+    tb_advance(BUS, 1000000U);
+    tb_expect(BUS, "585 80 12 20 00 00 00 04 05");
+    tb_expect_none(BUS);
+    expect_vstr("hello");
+    /* ... by a block download whose CRC is wrong */
+    tb_xfer(BUS, "605 C6 12 20 00 0E 00 00 00", "585 A4 12 20 00 7F 00 00 00");
+    tb_send(BUS, "605 01 59 59 59 59 59 59 59");
+    tb_expect_none(BUS);
+    tb_xfer(BUS, "605 82 20 43 69 41 20 33 30", "585 A2 02 7F 00 00 00 00 00");
+    expect_vstr("hello");
+    tb_xfer(BUS, "605 C1 00 00 00 00 00 00 00", "585 80 12 20 00 04 00 04 05");
+    expect_vstr("hello");
+    /* a complete transfer replaces it */
+    tb_xfer(BUS, "605 21 12 20 00 0E 00 00 00", "585 60 12 20 00 00 00 00 00");
+    tb_xfer(BUS, "605 00 59 59 59 59 59 59 59", "585 20 00 00 00 00 00 00 00");
+    tb_xfer(BUS, "605 11 20 43 69 41 20 33 30", "585 30 00 00 00 00 00 00 00");
+    expect_vstr("YYYYYYY CiA 30");
+    /* the next one shorter: the rest is cleared, no old bytes show */
+    tb_xfer(BUS, "605 21 12 20 00 08 00 00 00", "585 60 12 20 00 00 00 00 00");
+    tb_xfer(BUS, "605 00 61 62 63 64 65 66 67", "585 20 00 00 00 00 00 00 00");
+    tb_xfer(BUS, "605 1D 68 00 00 00 00 00 00", "585 30 00 00 00 00 00 00 00");
+    expect_vstr("abcdefgh");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -257,6 +313,7 @@ int main(void)
         cmocka_unit_test_setup(client_abort_is_never_answered, setup),
         cmocka_unit_test_setup(stall_beyond_horizon, setup),
         cmocka_unit_test(stall_pdo_timers),
+        cmocka_unit_test_setup(rejected_download_leaves_old_value, setup),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -12,7 +12,7 @@ from __future__ import annotations
 import struct
 from dataclasses import dataclass, field
 
-from model import FLAG_NAMES, DescError, Device, Sub, encoded_default
+from model import F_W, FLAG_NAMES, DescError, Device, Sub, encoded_default
 
 REGIONS = (("comm", "communication parameters (stored)"),
            ("app", "application values (stored)"),
@@ -181,6 +181,15 @@ def generate(dev: Device, toml_name: str, warn=None) -> tuple[str, str]:
     rom = sort_region(fields, "rom")
     if not ram:
         ram = [Field(name="unused", ctype="uint8_t", dims=[], align=1, size=1, region="none")]
+    # SDO downloads of strings and DOMAINs held in RAM arrive in parts: they
+    # gather in this staging area (not stored) and replace the value only
+    # when complete and accepted, so a rejected transfer leaves the old one
+    stage = max([sub.size for o in dev.objects for sub in o.subs
+                 if sub.field and sub.fixed == 0 and not sub.rom and not sub.hookio
+                 and (sub.flags & F_W)], default=0)
+    if stage:
+        ram.append(Field(name="sdo_stage", ctype="uint8_t", dims=[stage], align=1, size=stage,
+                         region="none"))
     ram_size = layout(ram)
     if ram_size > 0xFFFF:
         raise DescError(f"RAM image is {ram_size} bytes; the core addresses at most 65535 "
@@ -206,6 +215,9 @@ def generate(dev: Device, toml_name: str, warn=None) -> tuple[str, str]:
             continue
         h.append(f"    /* {title} */")
         for f in sel:
+            if not f.subs:
+                h.append(f"    {f.decl()}; /* SDO download staging (not an object) */")
+                continue
             s0 = f.subs[0]
             if f.subs[0].elem == 0:
                 where = f"0x{s0.index:04X}:{s0.sub:02X}..{f.subs[-1].sub:02X}"
@@ -344,6 +356,8 @@ def generate(dev: Device, toml_name: str, warn=None) -> tuple[str, str]:
           f"    .tpdo_mask = {'tpdo_mask' if masks else 'NULL'},",
           f"    .lss_bit_timings = 0x{dev.info['lss_bit_timings'] if dev.info['lss'] else 0:04X}U,",
           f"    .nodeid_index = 0x{(dev.nodeid_object or 0):04X}U,",
+          f"    .stage = {'F(sdo_stage)' if stage else '0U'},",
+          f"    .stage_size = {stage}U,",
           "};", "",
           f"void {cn}_config({cn}_node_t *n, co_node_config_t *cfg)",
           "{",

@@ -162,6 +162,14 @@ typedef struct co_dev {
      *  on at each Reset Communication (and at init), when it is 1..127; 0: none,
      *  the node-ID stays the one co_node_init was given (Wandfluh DSV 0x2000). */
     uint16_t nodeid_index;
+    /** RAM offset and size of the SDO download staging area (not stored):
+     *  a string or DOMAIN held in RAM that arrives in parts gathers there and
+     *  replaces the value only when complete and accepted, so a rejected or
+     *  aborted transfer leaves the old value. The generator sizes it to the
+     *  largest such writable value. 0: none (values of more than one part
+     *  are then written in place as they arrive). */
+    uint16_t stage;
+    uint16_t stage_size;
 } co_dev_t;
 
 struct co_node;

@@ -106,9 +106,11 @@ typedef struct co_od_io {
  * at the stored value (native integers for 16/32/64-bit types).
  * write: for a stored value, called with the complete new value (already
  *   checked against type, size and limits) before it is committed: any error
- *   vetoes the write. Strings and DOMAINs written in segments are stored as
- *   they arrive and the hook is called once with the whole value. With
- *   CO_SUB_HOOKIO called for every chunk.
+ *   vetoes the write. Strings and DOMAINs written in segments gather in the
+ *   device's staging area (co_dev_t.stage) and the hook is called once with
+ *   the whole new value in io->buf (io->value still holds the old one); the
+ *   value changes only when the hook accepts it. With CO_SUB_HOOKIO called
+ *   for every chunk (the hook stages them itself until io->last).
  */
 typedef struct co_od_hook {
     co_err_t (*read)(void *ctx, co_od_io_t *io);

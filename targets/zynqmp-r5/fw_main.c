@@ -19,8 +19,9 @@
 #include "co/co_canstate.h"
 #include "co/co_node.h"
 #include "co_xcan/xcan.h"
-#include "dev_generic_301.h"
+#include "co/co_device.h"
 #include "generic_301.h"
+#include "generic_301_desc.h"
 #include "semihost.h"
 
 #ifndef FW_CYCLES_PER_US
@@ -219,7 +220,24 @@ static fw_clock_t clk;
 static fw_nv_t nv;
 static co_xcan_t can;
 static generic_301_node_t g301;
-static g301_app_t app;
+
+/* generic-301 on the device layer: its dictionary and its plug-in
+ * (devices/generic_301.c); no embedded EDS in the image. */
+extern const co_device_plugin_t generic_301_plugin;
+static const co_device_impl_t g301_impl = {.plugin = &generic_301_plugin};
+static const co_device_t g301_device = {
+    .name = "generic-301",
+    .summary = "generic-301 as Cortex-R5 firmware",
+    .dev = &generic_301_dev,
+    .eds = NULL,
+    .impl = &g301_impl,
+};
+static co_device_run_t run;
+/* the plug-in's state (a g301_app_t, co_device_mem_size's only part) */
+static union {
+    g301_app_t app;
+    uint64_t align;
+} run_mem;
 
 /* The hal's ctx is the CAN driver; the NV functions need the nv state:
  * one wrapper context holds both. */
@@ -243,11 +261,6 @@ static int hal_nv_write(void *ctx, uint32_t addr, const uint8_t *buf, uint32_t l
 static const co_hal_ops_t hal_plain = {hal_send, NULL, NULL, NULL};
 static const co_hal_ops_t hal_ops_nv = {hal_send, hal_nv_read, hal_nv_write, NULL};
 static fw_hal_ctx_t hal_ctx;
-
-static void cb_reset(void *ctx, co_node_t *node, co_reset_t kind)
-{
-    g301_reset(ctx, node, kind);
-}
 
 static void fail(const char *msg)
 {
@@ -279,8 +292,11 @@ void fw_main(void)
     }
     generic_301_config(&g301, &cfg);
     cfg.node_id = args.node_id;
-    cfg.cb.ctx = &app;
-    cfg.cb.nmt_reset = cb_reset;
+    if (co_device_init(&run, &g301_device, &run_mem, sizeof run_mem, NULL, NULL,
+                       clock_us(&clk)) != CO_OK) {
+        fail("device start failed");
+    }
+    cfg.cb = co_device_callbacks(&run);
     hal_ctx.can = &can;
     hal_ctx.nv = &nv;
     cfg.hal.ctx = &hal_ctx;
@@ -292,7 +308,7 @@ void fw_main(void)
         cfg.hal.ops = &hal_ops_nv;
     }
     if ((co_node_init(&g301.node, &cfg, clock_us(&clk)) != CO_RESULT_OK) ||
-        (g301_attach(&app, &g301.node) != 0)) {
+        (co_device_attach(&run, &g301.node, clock_us(&clk)) != CO_OK)) {
         fail("node start failed");
     }
     deadline = clock_us(&clk);
@@ -315,7 +331,7 @@ void fw_main(void)
         }
         if ((got != 0) || due(now, deadline)) {
             uint32_t d1 = co_node_process(&g301.node, now);
-            uint32_t d2 = g301_process(&app, &g301.node, now);
+            uint32_t d2 = co_device_process(&run, now);
 
             deadline = ((d2 != CO_NO_DEADLINE) && ((d1 == CO_NO_DEADLINE) ||
                                                    ((int32_t)(d2 - d1) < 0))) ? d2 : d1;

@@ -38,7 +38,10 @@ static fx_t fx;
 /* The application keeps the serial number (a RAM value a node reset clears). */
 static void set_serial(co_node_t *node, uint32_t serial)
 {
-    assert_int_equal(co_od_write(node, 0x1018U, 4U, &serial, 4U, true), CO_OK);
+    uint8_t b[4];
+
+    co_put_u32(b, serial); /* co_od_write takes wire bytes (little-endian) */
+    assert_int_equal(co_od_write(node, 0x1018U, 4U, b, 4U, true), CO_OK);
 }
 
 static void on_reset(void *ctx, co_node_t *node, co_reset_t kind)

@@ -552,6 +552,16 @@ static int run(const options_t *o)
     return rc;
 }
 
+/* One line of --list-devices: name, LSS column (LSS, LSS-only or -), summary. */
+static void list_device(const co_device_t *d)
+{
+    uint32_t opt = d->dev->options;
+    const char *lss = ((opt & CO_OPT_LSS_ONLY) != 0U) ? "LSS-only"
+                      : ((opt & CO_OPT_LSS) != 0U) ? "LSS" : "-";
+
+    (void)printf("%-22s %-8s %s\n", d->name, lss, d->summary);
+}
+
 int main(int argc, char **argv)
 {
     options_t *o = (options_t *)calloc(1U, sizeof *o);
@@ -576,10 +586,10 @@ int main(int argc, char **argv)
         break;
     case OPT_LIST:
         /* the default device first, then the others in name order */
-        (void)printf("%-22s %s\n", OPT_DEFAULT_DEVICE, co_device_find(OPT_DEFAULT_DEVICE)->summary);
+        list_device(co_device_find(OPT_DEFAULT_DEVICE));
         for (size_t i = 0U; i < co_device_count(); i++) {
             if (strcmp(co_device_at(i)->name, OPT_DEFAULT_DEVICE) != 0) {
-                (void)printf("%-22s %s\n", co_device_at(i)->name, co_device_at(i)->summary);
+                list_device(co_device_at(i));
             }
         }
         break;

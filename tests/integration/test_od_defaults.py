@@ -46,7 +46,9 @@ def is_statusword(device: str, od, index: int) -> bool:
     """0x6041 of a running axis (0x6041 + 0x800 n) of a CiA 402 device (not
     the device status word of a CiA 408 valve, device type 0x....0198)."""
     n, rest = divmod(index - 0x6041, 0x800)
-    cia402 = (od[0x1000].default & 0xFFFF) == 402   # a CiA 408 valve's status word is its own
+    # a CiA 408 valve's status word is its own; a drive's 0x1000 need not say 402
+    # (Kollmorgen prints 0x00002192, the AnaGate modules 0)
+    cia402 = (od[0x1000].default & 0xFFFF) != 408
     return (cia402 and index >= 0x6041 and rest == 0 and n < AXES.get(device, 1)
             and 0x6040 in od)
 

@@ -56,8 +56,15 @@ class SimulatedDevice:
         self._own_dir = workdir is None
         self.workdir = Path(workdir) if workdir else Path(tempfile.mkdtemp(prefix="codev-"))
         self.log_path = self.workdir / f"node{self.node_id}.log"
-        self.control_path = (self.workdir / f"node{self.node_id}.sock"
-                             if control and self.has_control(self.daemon) else None)
+        self.control_path = None
+        self._sock_dir: Path | None = None
+        if control and self.has_control(self.daemon):
+            self.control_path = self.workdir / f"node{self.node_id}.sock"
+            if len(os.fsencode(self.control_path)) > 100:
+                # a Unix socket path has room for about 100 bytes (sun_path);
+                # pytest's tmp_path can be longer: a short directory of its own
+                self._sock_dir = Path(tempfile.mkdtemp(prefix="codev-"))
+                self.control_path = self._sock_dir / f"node{self.node_id}.sock"
         self.proc: subprocess.Popen | None = None
         self.returncode: int | None = None
         self._log = None
@@ -160,6 +167,9 @@ class SimulatedDevice:
         if self._log is not None:
             self._log.close()
             self._log = None
+        if self._sock_dir is not None:
+            shutil.rmtree(self._sock_dir, ignore_errors=True)
+            self._sock_dir = None
         if check and self.returncode not in (None, 0):
             raise DeviceError(f"node {self.node_id}: exit status {self.returncode}\n"
                               f"{self.stderr()}")

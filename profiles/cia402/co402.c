@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "co/co_endian.h"
+#include "co/co_pobj.h"
 #include "co402_priv.h"
 
 typedef char co402_obj_count_matches[(O_COUNT == CO402_OBJ_COUNT) ? 1 : -1];
@@ -41,23 +42,6 @@ static const obj_ref_t obj_refs[O_COUNT] = {
 static uint16_t axis_index(const co402_axis_t *ax, uint16_t index)
 {
     return (uint16_t)(index + (0x800U * ax->cfg.axis));
-}
-
-static uint8_t int_size(uint8_t type)
-{
-    switch (type) {
-    case (uint8_t)CO_INTEGER8:
-    case (uint8_t)CO_UNSIGNED8:
-        return 1U;
-    case (uint8_t)CO_INTEGER16:
-    case (uint8_t)CO_UNSIGNED16:
-        return 2U;
-    case (uint8_t)CO_INTEGER32:
-    case (uint8_t)CO_UNSIGNED32:
-        return 4U;
-    default:
-        return 0U;
-    }
 }
 
 bool co402_has(const co402_axis_t *ax, uint8_t id)
@@ -113,7 +97,7 @@ void co402_put(co402_axis_t *ax, uint8_t id, int64_t v)
     if ((p == NULL) || ((ax->obj_type[id] & OBJ_CONST) != 0U)) {
         return;
     }
-    switch (int_size(ax->obj_type[id])) {
+    switch (co_pobj_int_size(ax->obj_type[id])) {
     case 1U: {
         uint8_t b = (uint8_t)((uint64_t)v & 0xFFU);
         (void)memcpy(p, &b, 1U);
@@ -142,7 +126,7 @@ static void bind_objects(co402_axis_t *ax)
         const co_od_sub_t *s = (e != NULL) ? co_od_find_sub(e, obj_refs[i].sub) : NULL;
         ax->obj[i] = NULL;
         ax->obj_type[i] = 0U;
-        if ((s == NULL) || (int_size(s->type) == 0U) || ((s->flags & CO_SUB_HOOKIO) != 0U)) {
+        if ((s == NULL) || (co_pobj_int_size(s->type) == 0U) || ((s->flags & CO_SUB_HOOKIO) != 0U)) {
             /* absent, or not an integer the axis can keep */
         } else if ((s->flags & CO_SUB_ROM) != 0U) {
             /* a constant (0x6502 ...): read it where the device keeps it, never write */

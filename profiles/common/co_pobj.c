@@ -6,7 +6,7 @@
 #include <stddef.h>
 #include <string.h>
 
-static uint8_t int_size(uint8_t type)
+uint8_t co_pobj_int_size(uint8_t type)
 {
     switch (type) {
     case (uint8_t)CO_INTEGER8:
@@ -31,7 +31,7 @@ void co_pobj_bind(co_pobj_t *o, co_node_t *node, uint16_t index, uint8_t sub)
 
     o->p = NULL;
     o->type = 0U;
-    if ((s == NULL) || (int_size(s->type) == 0U) || ((s->flags & CO_SUB_HOOKIO) != 0U)) {
+    if ((s == NULL) || (co_pobj_int_size(s->type) == 0U) || ((s->flags & CO_SUB_HOOKIO) != 0U)) {
         return;
     }
     if ((s->flags & CO_SUB_ROM) != 0U) {
@@ -92,7 +92,7 @@ void co_pobj_put(const co_pobj_t *o, int64_t v)
     if ((o->p == NULL) || ((o->type & CO_POBJ_CONST) != 0U)) {
         return;
     }
-    switch (int_size(o->type)) {
+    switch (co_pobj_int_size(o->type)) {
     case 1U: {
         uint8_t b = (uint8_t)((uint64_t)v & 0xFFU);
         (void)memcpy(o->p, &b, 1U);

@@ -26,6 +26,10 @@ typedef struct co_pobj {
  *  leaves @p o empty. */
 void co_pobj_bind(co_pobj_t *o, co_node_t *node, uint16_t index, uint8_t sub);
 
+/** Bytes of an integer of CiA 301 data type @p type (1, 2 or 4); 0 for any
+ *  other type. */
+uint8_t co_pobj_int_size(uint8_t type);
+
 /** True when the device has the object. */
 bool co_pobj_has(const co_pobj_t *o);
 

@@ -193,7 +193,7 @@ int ctl_open(ctl_t *c, const char *path, ctl_exec_fn exec, void *ctx, char *err,
     c->exec = exec;
     c->exec_ctx = ctx;
     if (strlen(path) >= sizeof a.sun_path) {
-        (void)snprintf(err, errcap, "%s: path too long for a socket", path);
+        (void)snprintf(err, errcap, "%.80s: path too long for a socket", path);
         return -1;
     }
     (void)memset(&a, 0, sizeof a);

@@ -435,6 +435,12 @@ uint8_t co_node_id(const co_node_t *node);
  *  of range. LSS configure node-ID does the same through the bus. */
 co_err_t co_node_set_id(co_node_t *node, uint8_t id, uint32_t now_us);
 
+/** The CiA 305 bit-timing index LSS put in force (activate bit timing, or
+ *  the stored one at init: 0 1000 ... 8 10 kbit/s), 0xFF when none (the
+ *  port's own rate; a device with automatic detection shows that). Always
+ *  0xFF without LSS. */
+uint8_t co_node_bit_timing(const co_node_t *node);
+
 /** NMT command specifiers (CiA 301 7.2.8.3.1), for co_node_nmt_command. */
 typedef enum co_nmt_cmd {
     CO_NMT_CMD_START = 0x01,

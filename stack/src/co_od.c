@@ -76,7 +76,8 @@ co_err_t co_od_lookup(const co_node_t *node, uint16_t index, uint8_t sub,
 {
     *e = find(node->dev->od, node->dev->od_count, index);
     if (*e == NULL) {
-        return co_opt(node, CO_OPT_UNKNOWN_INDEX_NO_ACCESS) ? CO_ERR_NO_ACCESS : CO_ERR_NO_OBJECT;
+        return (CO_SET(node, sdo.unknown_object) == CO_SDO_ABORT_NO_ACCESS) ? CO_ERR_NO_ACCESS
+                                                                         : CO_ERR_NO_OBJECT;
     }
     *s = find_sub(*e, sub);
     return (*s == NULL) ? CO_ERR_NO_SUB : CO_OK;
@@ -86,7 +87,8 @@ co_err_t co_od_check_access(const co_node_t *node, const co_od_sub_t *s, bool wr
 {
     if (write) {
         if (((s->flags & CO_SUB_W) == 0U) || ((s->flags & (CO_SUB_CONST | CO_SUB_ROM)) != 0U)) {
-            return co_opt(node, CO_OPT_READ_ONLY_NO_ACCESS) ? CO_ERR_NO_ACCESS : CO_ERR_READ_ONLY;
+            return (CO_SET(node, sdo.read_only) == CO_SDO_ABORT_NO_ACCESS) ? CO_ERR_NO_ACCESS
+                                                                        : CO_ERR_READ_ONLY;
         }
     } else if ((s->flags & CO_SUB_R) == 0U) {
         return CO_ERR_WRITE_ONLY;
@@ -542,7 +544,7 @@ co_err_t co_od_write_part(co_node_t *node, const co_od_entry_t *e, const co_od_s
 }
 
 /* The COB-ID of a PDO (communication parameter sub 1) or of the EMCY: its
- * $NODEID default uses the node's COB-ID base (CO_OPT_LSS_KEEP_COBS). */
+ * $NODEID default uses the node's COB-ID base (CO_LSS_COBS_KEEP). */
 static bool is_pdo_emcy_cob(uint16_t index, uint8_t sub)
 {
     bool pdo = ((index >= 0x1400U) && (index <= 0x15FFU)) ||

@@ -208,11 +208,18 @@ static void open_upload(co_sdo_srv_t *t, const co_od_entry_t *e, const co_od_sub
     t->seqno = 0U;
 }
 
+/* The server offers expedited transfers only (segmented upload refused:
+ * then segmented download and block are too, co_settings.h). */
+static bool expedited_only(const co_node_t *node)
+{
+    return (CO_SET(node, sdo.refused) & CO_SDO_XFER_SEG_UPLOAD) != 0U;
+}
+
 /* The whole value is staged and fits an expedited answer (an empty one only
- * with CO_OPT_SDO_EXPEDITED_ONLY). */
+ * when the server offers expedited transfers only). */
 static bool fits_expedited(const co_node_t *node, bool last, uint32_t size)
 {
-    return last && (size <= 4U) && ((size > 0U) || co_opt(node, CO_OPT_SDO_EXPEDITED_ONLY));
+    return last && (size <= 4U) && ((size > 0U) || expedited_only(node));
 }
 
 /* Expedited upload answer with the @p size bytes staged in t->buf. */
@@ -287,12 +294,12 @@ CO_NOINLINE static void initiate_download(co_node_t *node, const uint8_t *d, uin
         reply(node, 0x60U, index, sub, 0U);
         return;
     }
-    if (co_opt(node, CO_OPT_SDO_EXPEDITED_ONLY)) {
+    if (expedited_only(node)) {
         abort_at(node, index, sub, CO_ERR_CMD);
         return;
     }
     err = open_download(node, index, sub, size_ind, co_get_u32(&d[4]));
-    if ((err == CO_OK) && co_opt(node, CO_OPT_SDO_NO_SEG_DOWNLOAD)) {
+    if ((err == CO_OK) && ((CO_SET(node, sdo.refused) & CO_SDO_XFER_SEG_DOWNLOAD) != 0U)) {
         err = CO_ERR_NO_ACCESS; /* the object's own errors come first */
     }
     if (err != CO_OK) {
@@ -315,7 +322,7 @@ static void respond_upload(co_node_t *node, bool last)
         send_expedited(node, index, sub, size);
         return;
     }
-    if (co_opt(node, CO_OPT_SDO_EXPEDITED_ONLY)) {
+    if (expedited_only(node)) {
         abort_at(node, index, sub, CO_ERR_NO_ACCESS);
         return;
     }
@@ -700,7 +707,7 @@ static void idle_request(co_node_t *node, const uint8_t *d)
     uint8_t sub = d[3];
     uint8_t ccs = (uint8_t)(d[0] >> 5U);
 #if CO_SDO_BLOCK
-    bool blocks = !co_opt(node, CO_OPT_SDO_NO_BLOCK | CO_OPT_SDO_EXPEDITED_ONLY);
+    bool blocks = ((CO_SET(node, sdo.refused) & CO_SDO_XFER_BLOCK) == 0U) && !expedited_only(node);
 #endif
 
     switch (ccs) {

@@ -213,7 +213,6 @@ const co_dev_t td_dev = {
     .rom = (const uint8_t *)&rom,
     .limits = limits,
     .n_hooks = TD_N_HOOKS,
-    .options = 0U,
     .boot_emcy_data = NULL,
     .stage = F(stage),
     .stage_size = (uint16_t)sizeof(((td_ram_t *)0)->stage),

@@ -106,10 +106,10 @@ static void refuses_what_is_left_out(void **state)
     co_node_config_t cfg;
     (void)state;
     /* a personality option */
-    dev.options = CO_OPT_SDO_NO_BLOCK;
+    dev.set = (co_settings_t){.sdo.refused = CO_SDO_XFER_BLOCK};
     assert_int_equal(start(&dev), CO_RESULT_DEV_INCOMPAT);
     tb_expect_none(BUS);
-    dev.options = 0U;
+    dev.set = (co_settings_t){0};
     /* value limits */
     dev.limits = limits;
     assert_int_equal(start(&dev), CO_RESULT_DEV_INCOMPAT);

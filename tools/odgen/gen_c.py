@@ -12,6 +12,7 @@ from __future__ import annotations
 import struct
 from dataclasses import dataclass, field
 
+import personality
 from model import F_W, FLAG_NAMES, DescError, Device, Sub, encoded_default
 
 REGIONS = (("comm", "communication parameters (stored)"),
@@ -324,7 +325,7 @@ def generate(dev: Device, toml_name: str, warn=None) -> tuple[str, str]:
 
     masks = mask_table(dev, len(pdos[1]))
     if masks:
-        c += ["/* Change masks of the TPDOs (CO_OPT_TPDO_MASK_*): where sub 1 of each lives. */",
+        c += ["/* Change masks of the TPDOs (set.tpdo.change_mask): where sub 1 of each lives. */",
               "static const uint16_t tpdo_mask[] = {"]
         c += [f"    {off_expr(m)}, /* 0x{m.index:04X} */" for m in masks]
         c += ["};", ""]
@@ -336,7 +337,6 @@ def generate(dev: Device, toml_name: str, warn=None) -> tuple[str, str]:
                 return f"F({sel[0].name})"
         return f"(uint16_t)sizeof({cn}_ram_t)"
 
-    opts = " | ".join(f"CO_OPT_{o}" for o in dev.options)
     c += [f"const co_dev_t {cn}_dev = {{",
           f'    .name = "{dev.name}",',
           "    .od = od,",
@@ -348,7 +348,7 @@ def generate(dev: Device, toml_name: str, warn=None) -> tuple[str, str]:
           f"    .rom = {'(const uint8_t *)&rom' if rom else 'NULL'},",
           f"    .limits = {'limits' if dev.limits else 'NULL'},",
           f"    .n_hooks = {up}_N_HOOKS,",
-          f"    .options = {('(uint32_t)(' + opts + ')') if opts else '0U'},",
+          *personality.settings_c(dev.options),
           f"    .boot_emcy_data = {'boot_emcy' if dev.boot_emcy_data is not None else 'NULL'},",
           f"    .pdo = {'pdo' if n_pdo else 'NULL'},",
           f"    .n_rpdo = {len(pdos[0])}U,",

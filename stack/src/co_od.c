@@ -107,10 +107,12 @@ uint32_t co_od_data_size(const co_node_t *node, const co_od_sub_t *s)
         return 0U;
     }
     if (s->type == (uint8_t)CO_VISIBLE_STRING) {
-        const void *nul = memchr(v, 0, n);
-        if (nul != NULL) {
-            n = (uint32_t)((const uint8_t *)nul - v);
+        /* the text ends at the first NUL (a loop: memchr costs more flash) */
+        uint32_t i = 0U;
+        while ((i < n) && (v[i] != 0U)) {
+            i++;
         }
+        n = i;
     } else if (s->type == (uint8_t)CO_UNICODE_STRING) {
         /* UTF-16 units: the text ends at the first zero unit */
         uint32_t i = 0U;
@@ -558,10 +560,23 @@ void co_od_restore(co_node_t *node, uint16_t from, uint16_t to)
     const co_dev_t *dev = node->dev;
     const uint8_t *def = (const uint8_t *)dev->defaults;
 
-    if ((to <= from) || (def == NULL)) {
+    if ((to <= from) || ((def == NULL) && (dev->default_at == NULL))) {
         return;
     }
-    (void)memcpy(&node->ram[from], &def[from], (size_t)to - from);
+    if (dev->default_at == NULL) {
+        (void)memcpy(&node->ram[from], &def[from], (size_t)to - from);
+    } else {
+        /* sparse: zeros, then the values that are not */
+        uint32_t at = 0U;
+        (void)memset(&node->ram[from], 0, (size_t)to - from);
+        for (uint16_t i = 0U; i < dev->n_defaults; i++) {
+            const co_od_default_t *d = &dev->default_at[i];
+            if ((d->off >= from) && (d->off < to)) {
+                (void)memcpy(&node->ram[d->off], &def[at], d->size);
+            }
+            at += d->size;
+        }
+    }
     /* $NODEID-relative defaults inside the restored range. */
     for (uint16_t i = 0U; i < dev->od_count; i++) {
         const co_od_entry_t *e = &dev->od[i];

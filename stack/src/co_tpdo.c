@@ -123,6 +123,18 @@ static bool cyclic_due(co_node_t *node, uint16_t i, uint8_t type, uint8_t counte
     return true;
 }
 
+/* The sampled data differ from the last sent (a loop: the C library's
+ * memcmp costs more flash). */
+static bool changed(const uint8_t *now, const uint8_t *sent)
+{
+    uint8_t d = 0U;
+
+    for (uint8_t k = 0U; k < 8U; k++) {
+        d |= (uint8_t)(now[k] ^ sent[k]);
+    }
+    return d != 0U;
+}
+
 /* Acyclic (0): due at the SYNC after a change of the data or a request. */
 static bool acyclic_due(co_node_t *node, uint16_t i)
 {
@@ -131,7 +143,7 @@ static bool acyclic_due(co_node_t *node, uint16_t i)
 
     build(node, i, now);
     return ((p->flags & (CO_PDO_F_EVENT | CO_PDO_F_SENT)) != CO_PDO_F_SENT) ||
-           (memcmp(now, p->data, 8U) != 0);
+           changed(now, p->data);
 }
 
 void co_tpdo_sync(co_node_t *node, uint8_t counter)
@@ -266,7 +278,7 @@ static uint32_t event_driven(co_node_t *node, uint16_t i, uint32_t next)
         /* sample unless already due and waiting for the inhibit time anyway */
         build(node, i, now);
         if (((p->flags & CO_PDO_F_SENT) == 0U) ||
-            ((memcmp(now, p->data, 8U) != 0) &&
+            (changed(now, p->data) &&
              ((CO_SET(node, tpdo.change_mask) == 0U) ||
               masked_change(node, i, now)) &&
              ((node->cb.tpdo_event == NULL) ||

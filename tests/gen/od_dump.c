@@ -165,10 +165,12 @@ int main(int argc, char **argv)
             } else {
                 printf("null");
             }
+#if CO_LIMITS
             if ((s->flags & CO_SUB_LIMIT) != 0U) {
                 printf(", \"limit\": [%" PRId64 ", %" PRId64 "]", dev->limits[s->limit].min,
                        dev->limits[s->limit].max);
             }
+#endif
             printf("}%s\n", (k + 1U < e->nsubs) ? "," : "");
         }
         printf("  ]}%s\n", (i + 1U < dev->od_count) ? "," : "");

@@ -101,7 +101,7 @@ static int due(uint32_t now, uint32_t deadline)
 
 int main(void)
 {
-    static const co_hal_ops_t hal_ops = {co_bxcan_send, NULL, NULL, NULL};
+    static const co_hal_ops_t hal_ops = {.send = co_bxcan_send};
     co_node_config_t cfg;
     uint32_t deadline;
     co_can_state_t state = CO_CAN_ERROR_ACTIVE;

@@ -894,7 +894,9 @@ static uint32_t sdo_process(co_node_t *node, uint32_t next)
                 abort_cur(node, co_store_result(node));
             }
         }
-        return next; /* no timeout: the HAL's writing takes what it takes */
+        /* no timeout: the HAL's writing takes what it takes; look again
+         * in a millisecond (the storage service polls the HAL as often) */
+        return co_deadline_min(node->now, next, node->now + 1000U);
     }
     if (co_time_reached(node->now, t->deadline)) {
         abort_cur(node, CO_ERR_TIMEOUT);

@@ -355,7 +355,8 @@ static co_err_t start_command(co_node_t *node)
 
 /* An asynchronous HAL at work: poll it every millisecond (the bus is served
  * meanwhile); once the erase is done the set is written, once the set is
- * durable the command ends (the SDO server answers at the next round). */
+ * durable the command ends (the SDO server answers at its next round,
+ * within 1 ms). */
 static uint32_t store_process(co_node_t *node, uint32_t next)
 {
     uint32_t at = next;
@@ -381,7 +382,7 @@ static uint32_t store_process(co_node_t *node, uint32_t next)
     } else {
         (void)store_finish(node, CO_OK);
     }
-    return node->now; /* the SDO answer waits for this: at once */
+    return at;
 }
 
 bool co_store_is_command(const co_od_entry_t *e, const co_od_sub_t *s)

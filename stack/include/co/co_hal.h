@@ -48,7 +48,8 @@ typedef struct co_hal_ops {
      *  from co_node_process until it returns 0 (everything issued so far is
      *  durable) or a value other than CO_NV_BUSY (failed: the save answers
      *  0x06060000). The node serves the bus meanwhile, and the SDO answer to
-     *  the 0x1010 / 0x1011 write comes when the set is durable. */
+     *  the 0x1010 / 0x1011 write (the LSS answer to store configuration)
+     *  comes when the set (the record) is durable. */
     int (*nv_poll)(void *ctx);
     /** Erase [@p addr, @p addr + @p len) before it is written (flash);
      *  both are multiples of nv_erase_unit. Optional (NULL: memory that is
@@ -58,8 +59,9 @@ typedef struct co_hal_ops {
     int (*nv_erase)(void *ctx, uint32_t addr, uint32_t len);
     /** Erase granularity in bytes (a power of two; 0 or 1: none). Each of
      *  the two banks of the parameter storage starts on a multiple of it
-     *  and spans whole units, so the banks never share an erase unit
-     *  (co_store_nv_size_unit gives the size to provide). */
+     *  and spans whole units, so the banks never share an erase unit; each
+     *  LSS record has a unit of its own behind them (co_store_nv_size_unit
+     *  gives the size to provide). */
     uint32_t nv_erase_unit;
 } co_hal_ops_t;
 

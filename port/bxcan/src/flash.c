@@ -12,7 +12,7 @@
  * takes at most about 100 us; a poll is a few cycles) */
 #define PROGRAM_POLLS 200000UL
 
-static uint32_t rd(const co_bxcan_flash_t *fl, uint32_t off)
+static uint32_t flash_rd(const co_bxcan_flash_t *fl, uint32_t off)
 {
     if (fl->io != NULL) {
         return fl->io->reg_read(fl->io_ctx, off);
@@ -20,7 +20,7 @@ static uint32_t rd(const co_bxcan_flash_t *fl, uint32_t off)
     return *(volatile const uint32_t *)(fl->regs + off);
 }
 
-static void wr(const co_bxcan_flash_t *fl, uint32_t off, uint32_t v)
+static void flash_wr(const co_bxcan_flash_t *fl, uint32_t off, uint32_t v)
 {
     if (fl->io != NULL) {
         fl->io->reg_write(fl->io_ctx, off, v);
@@ -71,25 +71,25 @@ static uint32_t lock_bit(const co_bxcan_flash_t *fl)
 
 static void unlock(const co_bxcan_flash_t *fl)
 {
-    if ((rd(fl, CO_FLASH_CR) & lock_bit(fl)) != 0U) {
-        wr(fl, CO_FLASH_KEYR, CO_FLASH_KEY1);
-        wr(fl, CO_FLASH_KEYR, CO_FLASH_KEY2);
+    if ((flash_rd(fl, CO_FLASH_CR) & lock_bit(fl)) != 0U) {
+        flash_wr(fl, CO_FLASH_KEYR, CO_FLASH_KEY1);
+        flash_wr(fl, CO_FLASH_KEYR, CO_FLASH_KEY2);
     }
 }
 
 static void lock(const co_bxcan_flash_t *fl)
 {
-    wr(fl, CO_FLASH_CR, lock_bit(fl));
+    flash_wr(fl, CO_FLASH_CR, lock_bit(fl));
 }
 
 /* Clear EOP and the error flags (write 1 to clear) and report whether an
  * error was set. */
 static bool take_errors(const co_bxcan_flash_t *fl)
 {
-    uint32_t sr = rd(fl, CO_FLASH_SR);
+    uint32_t sr = flash_rd(fl, CO_FLASH_SR);
     uint32_t eop = f4(fl) ? CO_FLASH_F4_SR_EOP : CO_FLASH_F1_SR_EOP;
 
-    wr(fl, CO_FLASH_SR, sr & (errors(fl) | eop));
+    flash_wr(fl, CO_FLASH_SR, sr & (errors(fl) | eop));
     return (sr & errors(fl)) != 0U;
 }
 
@@ -98,7 +98,7 @@ static bool take_errors(const co_bxcan_flash_t *fl)
 static bool wait_idle(const co_bxcan_flash_t *fl, uint32_t polls)
 {
     for (uint32_t k = 0U; k < polls; k++) {
-        if ((rd(fl, CO_FLASH_SR) & bsy(fl)) == 0U) {
+        if ((flash_rd(fl, CO_FLASH_SR) & bsy(fl)) == 0U) {
             return true;
         }
     }
@@ -146,13 +146,13 @@ static void start_erase(const co_bxcan_flash_t *fl, uint32_t addr)
     unlock(fl);
     if (f4(fl)) {
         uint32_t snb = (uint32_t)fl->first_sector + (addr / fl->unit);
-        wr(fl, CO_FLASH_CR, CO_FLASH_F4_CR_SER | (snb << CO_FLASH_F4_CR_SNB_SHIFT));
-        wr(fl, CO_FLASH_CR,
+        flash_wr(fl, CO_FLASH_CR, CO_FLASH_F4_CR_SER | (snb << CO_FLASH_F4_CR_SNB_SHIFT));
+        flash_wr(fl, CO_FLASH_CR,
            CO_FLASH_F4_CR_SER | (snb << CO_FLASH_F4_CR_SNB_SHIFT) | CO_FLASH_F4_CR_STRT);
     } else {
-        wr(fl, CO_FLASH_CR, CO_FLASH_F1_CR_PER);
-        wr(fl, CO_FLASH_AR, fl->base + addr);
-        wr(fl, CO_FLASH_CR, CO_FLASH_F1_CR_PER | CO_FLASH_F1_CR_STRT);
+        flash_wr(fl, CO_FLASH_CR, CO_FLASH_F1_CR_PER);
+        flash_wr(fl, CO_FLASH_AR, fl->base + addr);
+        flash_wr(fl, CO_FLASH_CR, CO_FLASH_F1_CR_PER | CO_FLASH_F1_CR_STRT);
     }
 }
 
@@ -185,7 +185,7 @@ int co_bxcan_flash_poll(void *ctx)
     if (fl->erasing == 0U) {
         return 0; /* writes are complete when nv_write returns */
     }
-    if ((rd(fl, CO_FLASH_SR) & bsy(fl)) != 0U) {
+    if ((flash_rd(fl, CO_FLASH_SR) & bsy(fl)) != 0U) {
         return CO_NV_BUSY;
     }
     if (take_errors(fl)) {
@@ -208,9 +208,9 @@ static bool program(const co_bxcan_flash_t *fl, uint32_t at, uint32_t v, bool wo
 {
     if (f4(fl)) {
         uint32_t cr = CO_FLASH_F4_CR_PG | (word ? CO_FLASH_F4_CR_PSIZE32 : CO_FLASH_F4_CR_PSIZE16);
-        wr(fl, CO_FLASH_CR, cr);
+        flash_wr(fl, CO_FLASH_CR, cr);
     } else {
-        wr(fl, CO_FLASH_CR, CO_FLASH_F1_CR_PG);
+        flash_wr(fl, CO_FLASH_CR, CO_FLASH_F1_CR_PG);
     }
     if (word) {
         mem32(fl, at, v);

@@ -402,6 +402,10 @@ bool co_store_is_command(const co_od_entry_t *e, const co_od_sub_t *s);
 /* The result of the last command, once co_store_busy() is false (an
  * asynchronous HAL: the SDO server answers with it). */
 co_err_t co_store_result(const co_node_t *node);
+/* The newest parameter set found at the last reset was damaged (an older
+ * one or the defaults were loaded), and no save has written a whole one
+ * since: the EMCY service reports it (EMCY 0x5530). */
+bool co_store_damaged(const co_node_t *node);
 
 /* ---- what one service asks of another (no cycles: tools/core-callgraph) */
 /* A serious error of 0x1029 class @p sub: the NMT reaction it configures

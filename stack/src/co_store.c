@@ -300,16 +300,21 @@ static co_err_t commit(co_node_t *node)
 
 enum { STEP_IDLE = 0, STEP_ERASE, STEP_WRITE, STEP_DONE };
 
-/* A command's end: a set written whole ends the report of a damaged one. */
+/* A command's end: a set written whole ends the report of a damaged one
+ * (the EMCY service clears it, co_store_damaged). */
 static co_err_t store_finish(co_node_t *node, co_err_t err)
 {
     node->store.result = err;
     node->store.step = (uint8_t)STEP_DONE;
-    if ((err == CO_OK) && co_emcy_is_active(node, CO_EMCY_STORE_DAMAGED)) {
+    if (err == CO_OK) {
         node->store.damaged = 0U;
-        co_emcy_clear(node, CO_EMCY_STORE_DAMAGED);
     }
     return err;
+}
+
+bool co_store_damaged(const co_node_t *node)
+{
+    return node->store.damaged != 0U;
 }
 
 bool co_store_busy(const co_node_t *node)
@@ -462,7 +467,8 @@ static void store_reset(co_node_t *node, uint8_t kind)
         if ((grp != 0U) && !stream(node, (uint32_t)b.idx * bank_size(node), AT_RAM, grp, &crc)) {
             co_od_restore(node, 0U, end);
         }
-        /* reported after the boot-up (store_nmt): EMCY 0x5530, 0x1001, 0x1003 */
+        /* reported after the boot-up by the EMCY service (co_store_damaged):
+         * EMCY 0x5530, 0x1001, 0x1003 */
         node->store.damaged = damaged ? 1U : 0U;
     }
     /* What 0x1010 / 0x1011 read: the capability, whatever was written. */
@@ -497,15 +503,6 @@ static const co_svc_hook_t store_hooks[] = {
     {0x1010U, 0x1011U, CO_SVC_COMMIT, store_obj},
 };
 
-/* Leaving Initialising, after the boot-up frame: the newest parameter set
- * was damaged, an older one or the defaults were loaded (store_reset). */
-static void store_nmt(co_node_t *node, co_nmt_state_t from)
-{
-    if ((from == CO_NMT_INITIALISING) && (node->store.damaged != 0U)) {
-        co_emcy_raise(node, CO_EMCY_STORE_DAMAGED, 0U, NULL);
-    }
-}
-
 const co_service_t co_svc_store = {
-    NULL, store_reset, NULL, NULL, store_process, store_nmt, store_hooks, 1U,
+    NULL, store_reset, NULL, NULL, store_process, NULL, store_hooks, 1U,
 };

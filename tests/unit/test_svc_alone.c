@@ -106,29 +106,6 @@ static const co_service_t rec_svc = {NULL, NULL, NULL, NULL, NULL, NULL, rec_hoo
 const co_service_t *const co_services[] = {&rec_svc, &co_svc_store};
 const uint8_t co_n_services = 2U;
 
-/* Storage reports a damaged parameter set through the EMCY service, which
- * is not linked here: without NV nothing is ever reported. */
-bool co_emcy_is_active(const co_node_t *n, uint16_t code)
-{
-    (void)n;
-    (void)code;
-    return false;
-}
-void co_emcy_raise(co_node_t *n, uint16_t code, uint8_t reg_bits, const uint8_t *mfr)
-{
-    (void)n;
-    (void)code;
-    (void)reg_bits;
-    (void)mfr;
-    fail_msg("no NV: no damaged set to report");
-}
-void co_emcy_clear(co_node_t *n, uint16_t code)
-{
-    (void)n;
-    (void)code;
-    fail_msg("no NV: no report to end");
-}
-
 /* ---- the application's hook on 0x2000 */
 
 static co_err_t app_read(void *ctx, co_od_io_t *io)

@@ -342,6 +342,7 @@ typedef struct co_emcy {
     uint8_t hist_depth;
     uint8_t n_active;
     uint8_t n_q;
+    uint8_t store_report;    /**< EMCY 0x5530 raised for a damaged parameter set */
     co_emcy_active_t active[CO_EMCY_ACTIVE_MAX];
     co_emcy_pending_t q[CO_EMCY_QUEUE_LEN];
 } co_emcy_t;

@@ -207,7 +207,8 @@ int co_bxcan_flash_poll(void *ctx)
 static bool program(const co_bxcan_flash_t *fl, uint32_t at, uint32_t v, bool word)
 {
     if (f4(fl)) {
-        uint32_t cr = CO_FLASH_F4_CR_PG | (word ? CO_FLASH_F4_CR_PSIZE32 : CO_FLASH_F4_CR_PSIZE16);
+        uint32_t cr = CO_FLASH_F4_CR_PG;
+        cr |= word ? CO_FLASH_F4_CR_PSIZE32 : CO_FLASH_F4_CR_PSIZE16;
         flash_wr(fl, CO_FLASH_CR, cr);
     } else {
         flash_wr(fl, CO_FLASH_CR, CO_FLASH_F1_CR_PG);

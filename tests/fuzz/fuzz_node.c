@@ -10,7 +10,8 @@
  *
  *  1. No frame with DLC > 8, no extended or remote frame from the node.
  *  2. No frame on a restricted or foreign COB-ID: only the node's SDO
- *     (0x580+id) and error-control (0x700+id) identifiers, and the EMCY,
+ *     (0x580+id) and error-control (0x700+id) identifiers (for the node-ID
+ *     it starts with and the one LSS gives it), an LSS slave's 0x7E4, the EMCY,
  *     SYNC, TIME and TPDO identifiers its dictionary has configured for
  *     sending at some time during the run.
  *  3. Const values (CO_SUB_CONST, ROM) never change; a download to a
@@ -124,9 +125,21 @@ static void update_allowed(void)
     const co_node_t *nd = &fz.n.node;
     const co_dev_t *dev = nd->dev;
 
+    uint8_t id = co_node_id(nd);
+
     allow(0x580U + NODE_ID);
     allow(0x700U + NODE_ID);
     allow(0x080U + NODE_ID); /* EMCY default, while 0x1014 is absent */
+    if ((id >= 1U) && (id <= 127U)) {
+        /* LSS may give the node another node-ID (configure node-ID, then a
+         * reset communication): its SDO, error-control and EMCY identifiers */
+        allow(0x580U + id);
+        allow(0x700U + id);
+        allow(0x080U + id);
+    }
+    if (dev->set.lss.slave != 0U) {
+        allow(0x7E4U); /* LSS slave -> master (CiA 305) */
+    }
     if ((nd->emcy.cob != NULL) && ((*nd->emcy.cob & 0x80000000UL) == 0U)) {
         allow(*nd->emcy.cob);
     }

@@ -23,7 +23,7 @@ static int bench_send(void *ctx, const co_frame_t *f)
     return 0;
 }
 
-static const co_hal_ops_t ops = {bench_send, NULL, NULL, NULL};
+static const co_hal_ops_t ops = {.send = bench_send};
 static minimal_slave_node_t slave;
 static uint32_t now = 1000U;
 

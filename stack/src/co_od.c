@@ -149,6 +149,13 @@ static const co_svc_hook_t *svc_hook(const co_node_t *node, uint16_t index)
     return NULL;
 }
 
+uint8_t co_od_svc_ops(const co_node_t *node, uint16_t index)
+{
+    const co_svc_hook_t *h = svc_hook(node, index);
+
+    return (h != NULL) ? h->ops : 0U;
+}
+
 co_result_t co_od_register(co_node_t *node, const co_svc_hook_t *h)
 {
     uint8_t at = node->n_svc_hooks;

@@ -343,6 +343,8 @@ void co_od_restore(co_node_t *node, uint16_t from, uint16_t to);
  * overlaps one already registered, CO_RESULT_NO_MEMORY when the table
  * (CO_SVC_HOOKS_MAX) is full. */
 co_result_t co_od_register(co_node_t *node, const co_svc_hook_t *h);
+/* The CO_SVC_* operations the service owning @p index hooks (0: none). */
+uint8_t co_od_svc_ops(const co_node_t *node, uint16_t index);
 /* Store a checked value of @p s from wire bytes (the engine's commit). */
 void co_od_commit(co_node_t *node, const co_od_sub_t *s, const uint8_t *data, uint32_t len);
 
@@ -432,7 +434,30 @@ static inline void co_nmt_error(co_node_t *node, uint8_t sub)
 #define CO_PDO_F_STARTED   0x0400U /* TPDO: SYNC start value reached */
 #define CO_PDO_F_SAMPLED   0x0800U /* TPDO 252: data[] sampled at the last SYNC */
 #define CO_PDO_F_RTR       0x1000U /* TPDO: a remote request waits for an answer */
-#define CO_PDO_F_PLAIN     0x2000U /* every mapping entry is plain (co_pdo_plain) */
+
+/* Mapping entries resolved when the mapping is enabled (co_pdo_t.plain[k],
+ * the first CO_PDO_FAST_MAX entries): a RAM value the PDO copies directly
+ * between frame and RAM image, with the dictionary path's result, is coded
+ * as its RAM offset (bits 0..11), its type's size - 1 (bits 12..14) and
+ * whether it is signed (bit 15); CO_PDO_SLOW: through the dictionary;
+ * CO_PDO_DUMMY: a dummy entry. */
+#define CO_PDO_SLOW     0xFFFFU
+#define CO_PDO_DUMMY    0xFFFEU /* an RPDO's dummy entry: nothing to write */
+#define CO_PDO_OFF_MASK 0x0FFFU
+#define CO_PDO_OFF_END  0x0FFEU /* direct entries have offsets below */
+#define CO_PDO_SIGNED   0x8000U
+CO_INLINE uint16_t co_pdo_code(const co_pdo_t *p, uint8_t k)
+{
+#if CO_PDO_FAST_MAX > 0
+    if (k < CO_PDO_FAST_MAX) {
+        return p->plain[k];
+    }
+#else
+    (void)p;
+    (void)k;
+#endif
+    return CO_PDO_SLOW;
+}
 
 #define CO_PDO_COB_INVALID 0x80000000UL
 #define CO_PDO_COB_NO_RTR  0x40000000UL
@@ -454,21 +479,6 @@ CO_INLINE bool co_pdo_usable(const co_node_t *node, uint16_t i)
            ((node->pdo.p[i].flags & CO_PDO_F_MAP_OK) != 0U);
 }
 
-/* RAM offset of the value of mapping entry k of PDO p, which is plain
- * (CO_PDO_F_PLAIN; co_pdo_config.c decides). */
-static inline uint16_t co_pdo_plain(const co_pdo_t *p, uint8_t k)
-{
-#if CO_PDO_FAST_MAX > 0
-    if (k < CO_PDO_FAST_MAX) {
-        return p->plain[k];
-    }
-#else
-    (void)p;
-    (void)k;
-#endif
-    return 0U; /* not reached: no PDO is plain beyond CO_PDO_FAST_MAX entries */
-}
-
 /* Event timer of PDO i in us (0: off). */
 static inline uint32_t co_pdo_event_us(const co_node_t *node, uint16_t i)
 {
@@ -477,10 +487,11 @@ static inline uint32_t co_pdo_event_us(const co_node_t *node, uint16_t i)
 
     return (off == CO_PDO_NONE) ? 0U : co_dict_us(co_ram_u16(node, off), unit);
 }
-/* The mapped objects of PDO i through the dictionary (co_pdo_map.c): sample
- * them into @p out (8 bytes, zeroed by the caller; an object that cannot be
- * read is sent as zeros), or write them from @p data (@p dlc bytes; entries
- * the frame does not cover are skipped, a refused value is dropped). */
+/* The mapped objects of PDO i (co_pdo_map.c), the resolved entries
+ * directly, the others through the dictionary: sample them into @p out (8
+ * bytes, zeroed by the caller; an object that cannot be read is sent as
+ * zeros), or write them from @p data (@p dlc bytes; entries the frame does
+ * not cover are skipped, a refused value is dropped). */
 void co_pdo_sample(co_node_t *node, uint16_t i, uint8_t *out);
 void co_pdo_store(co_node_t *node, uint16_t i, const uint8_t *data, uint8_t dlc);
 void co_rpdo_rx(co_node_t *node, uint16_t i, const co_frame_t *f);

@@ -13,34 +13,11 @@
 
 #define RETRY_US 1000UL /* TX path full: try again this much later */
 
-/* Every entry of PDO p is a plain value (CO_PDO_F_PLAIN): copy them from
- * the RAM image into @p out, back to back. */
-static void build_plain(const co_node_t *node, const co_pdo_t *p, uint16_t map, uint8_t count,
-                        uint8_t *out)
-{
-    uint8_t at = 0U;
-    uint16_t entry = map;
-
-    for (uint8_t k = 0U; k < count; k++) {
-        uint8_t n = (uint8_t)((co_ram_u32(node, entry) & 0xFFU) >> 3U);
-        co_to_wire(&out[at], &node->ram[co_pdo_plain(p, k)], n);
-        at = (uint8_t)(at + n);
-        entry = (uint16_t)(entry + 4U);
-    }
-}
-
 /* Sample the mapped objects into @p out (8 bytes, zero-padded). */
 static void build(co_node_t *node, uint16_t i, uint8_t *out)
 {
-    const co_pdo_desc_t *d = &node->dev->pdo[i];
-    const co_pdo_t *p = &node->pdo.p[i];
-
     (void)memset(out, 0, 8U);
-    if ((p->flags & CO_PDO_F_PLAIN) != 0U) {
-        build_plain(node, p, d->map, co_ram_u8(node, d->count), out);
-    } else {
-        co_pdo_sample(node, i, out);
-    }
+    co_pdo_sample(node, i, out);
 }
 
 /* Send @p data (8 bytes, zero beyond the mapping) now, or not at all. */

@@ -78,11 +78,6 @@
 #define LSS_MAGIC  0x534C6F63UL /* "coLS" */
 #define LSS_FORMAT 1U
 
-bool co_lss_enabled(const co_node_t *node)
-{
-    return co_opt(node, CO_OPT_LSS);
-}
-
 static void answer(co_node_t *node, uint8_t cs, uint8_t b1, uint8_t b2)
 {
     uint8_t d[8] = {0};
@@ -183,7 +178,9 @@ static uint8_t lss_store(co_node_t *node)
                : ERR_STORE_MEDIA;
 }
 
-void co_lss_init(co_node_t *node)
+/* bind (co_node_init, before any reset): the stored configuration (node-ID,
+ * COB-ID base, bit timing); an LSS-stored node-ID replaces the configured one */
+static co_err_t lss_bind(co_node_t *node)
 {
     uint8_t d[3];
     uint32_t seq = 0U;
@@ -192,7 +189,7 @@ void co_lss_init(co_node_t *node)
     node->lss.bit_timing = BT_NONE;
     node->lss.active_bt = BT_NONE;
     if (!co_lss_enabled(node) || !lss_has_nv(node) || (rec_newest(node, &seq, d) == 2U)) {
-        return;
+        return CO_OK;
     }
     if (((d[0] >= 1U) && (d[0] <= 127U)) || (d[0] == CO_NODE_ID_UNCONFIGURED)) {
         node->node_id = d[0];
@@ -203,6 +200,7 @@ void co_lss_init(co_node_t *node)
         (node->hal.ops->bit_timing(node->hal.ctx, d[2]) == 0)) {
         node->lss.active_bt = d[2];
     }
+    return CO_OK;
 }
 
 static void lss_reset(co_node_t *node, uint8_t kind)
@@ -436,7 +434,7 @@ static void lss_rx_slots(co_node_t *node, uint8_t svc)
 }
 
 /* The first row of co_services[]: it alone runs while unconfigured. */
-const co_service_t co_svc_lss = {NULL, lss_reset, lss_rx_slots, lss_rx, lss_process, NULL,
+const co_service_t co_svc_lss = {lss_bind, lss_reset, lss_rx_slots, lss_rx, lss_process, NULL,
                                  NULL, 0U};
 
 #endif /* CO_LSS */

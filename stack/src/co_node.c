@@ -540,11 +540,10 @@ co_result_t co_node_init(co_node_t *node, const co_node_config_t *cfg, uint32_t 
     node->pdo.p = cfg->pdo;
     node->pdo.rx = cfg->pdo_rx;
     node->now = now_us;
-    r = bind_services(node);
+    r = bind_services(node); /* LSS first: an LSS-stored node-ID replaces cfg->node_id */
     if (r != CO_RESULT_OK) {
         return r;
     }
-    co_lss_init(node); /* an LSS-stored node-ID replaces cfg->node_id */
     services_reset(node, (uint8_t)CO_RESET_NODE); /* defaults, then the stored set */
     if (take_nodeid(node)) {
         services_reset(node, (uint8_t)CO_RESET_NODE); /* the stored node-ID: its $NODEID defaults */

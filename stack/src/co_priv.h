@@ -387,21 +387,11 @@ uint32_t co_store_lss_base(const co_dev_t *dev);
 /* Rows at the head of co_services[] that run while the node is unconfigured
  * (the LSS service); the others wait for a valid node-ID. */
 #define CO_SVC_UNCONFIGURED_ROWS ((uint8_t)(CO_LSS))
-#if CO_LSS
-bool co_lss_enabled(const co_node_t *node);
-/* At init: the stored configuration (node-ID, COB-ID base, bit timing). */
-void co_lss_init(co_node_t *node);
-#else
+/* The device is an LSS slave (and the build has LSS). */
 static inline bool co_lss_enabled(const co_node_t *node)
 {
-    (void)node;
-    return false;
+    return (CO_LSS != 0) && co_opt(node, CO_OPT_LSS);
 }
-static inline void co_lss_init(co_node_t *node)
-{
-    (void)node;
-}
-#endif
 
 /* Drop the communication group of the stored set (a node leaving the
  * unconfigured state with CO_OPT_LSS_KEEP_COBS; co_store.c). */

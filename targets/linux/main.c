@@ -12,6 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "co/co_endian.h"
 #include "co/co_node.h"
 #include "co_lx/clock.h"
 #include "co_lx/loop.h"
@@ -130,8 +131,10 @@ static void set_tag(dnode_t *d, uint8_t id)
  * description's default). */
 static void set_serial(dnode_t *d, co_node_t *node)
 {
-    if (d->serial_given &&
-        (co_od_write(node, 0x1018U, 4U, &d->serial, 4U, true) != CO_OK)) {
+    uint8_t b[4];
+
+    co_put_u32(b, d->serial); /* co_od_write takes wire bytes */
+    if (d->serial_given && (co_od_write(node, 0x1018U, 4U, b, 4U, true) != CO_OK)) {
         log_line(d->tag, CO_LX_WARN, "--serial: 0x1018 sub 4 of %s cannot be set",
                  d->dev->name);
     }

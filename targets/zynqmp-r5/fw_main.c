@@ -5,7 +5,8 @@
  *
  * Command line (semihosting, QEMU's -semihosting-config arg=...; tools/
  * run-firmware builds it):  canopen-fw --node-id N [--storage FILE]
- *   [--bitrate B]. Without --storage, 0x1010 answers 0x08000020 (no NV).
+ *   [--bitrate B] [--serial S]. --serial: 0x1018 sub 4 of this instance, its
+ *   LSS address (decimal; default the description's, 1). Without --storage, 0x1010 answers 0x08000020 (no NV).
  *
  * The loop polls: no interrupt reaches QEMU's R5 (its GIC serves the A53s),
  * so the core cannot sleep in WFI until the deadline co_node_process()
@@ -17,6 +18,7 @@
 #include <string.h>
 
 #include "co/co_canstate.h"
+#include "co/co_endian.h"
 #include "co/co_node.h"
 #include "co_xcan/xcan.h"
 #include "co/co_device.h"
@@ -139,6 +141,8 @@ typedef struct fw_args {
     uint8_t node_id;
     uint32_t bitrate;
     const char *storage;
+    uint32_t serial;
+    int serial_given;
 } fw_args_t;
 
 static char *next_word(char **p)
@@ -190,6 +194,7 @@ static int parse_args(char *line, fw_args_t *a)
     a->node_id = 0U;
     a->bitrate = 500000UL;
     a->storage = NULL;
+    a->serial_given = 0;
     (void)next_word(&p); /* program name */
     while ((w = next_word(&p)) != NULL) {
         if (strcmp(w, "--node-id") == 0) {
@@ -201,6 +206,11 @@ static int parse_args(char *line, fw_args_t *a)
             if (parse_u32(next_word(&p), &a->bitrate) != 0) {
                 return -1;
             }
+        } else if (strcmp(w, "--serial") == 0) {
+            if (parse_u32(next_word(&p), &a->serial) != 0) {
+                return -1;
+            }
+            a->serial_given = 1;
         } else if (strcmp(w, "--storage") == 0) {
             a->storage = next_word(&p);
             if (a->storage == NULL) {
@@ -262,6 +272,31 @@ static const co_hal_ops_t hal_plain = {hal_send, NULL, NULL, NULL};
 static const co_hal_ops_t hal_ops_nv = {hal_send, hal_nv_read, hal_nv_write, NULL};
 static fw_hal_ctx_t hal_ctx;
 
+/* --serial: written again at every reset node (0x1018 sub 4 is a RAM value
+ * the reset sets back to the description's default); wire bytes. */
+static fw_args_t args;
+static co_node_callbacks_t dev_cb;
+
+static void set_serial(co_node_t *node)
+{
+    uint8_t b[4];
+
+    if (args.serial_given != 0) {
+        co_put_u32(b, args.serial);
+        (void)co_od_write(node, 0x1018U, 4U, b, 4U, true);
+    }
+}
+
+static void fw_nmt_reset(void *ctx, co_node_t *node, co_reset_t kind)
+{
+    if (dev_cb.nmt_reset != NULL) {
+        dev_cb.nmt_reset(ctx, node, kind);
+    }
+    if (kind == CO_RESET_NODE) {
+        set_serial(node);
+    }
+}
+
 static void fail(const char *msg)
 {
     sh_puts("canopen-fw: ");
@@ -277,7 +312,6 @@ static int due(uint32_t now, uint32_t deadline)
 
 void fw_main(void)
 {
-    fw_args_t args;
     co_node_config_t cfg;
     uint32_t deadline;
     co_can_state_t can_state = CO_CAN_ERROR_ACTIVE;
@@ -285,7 +319,7 @@ void fw_main(void)
 
     clock_start(&clk);
     if ((sh_cmdline(cmdline, sizeof cmdline) != 0) || (parse_args(cmdline, &args) != 0)) {
-        fail("usage: canopen-fw --node-id 1..127 [--storage FILE] [--bitrate B]");
+        fail("usage: canopen-fw --node-id 1..127 [--storage FILE] [--bitrate B] [--serial S]");
     }
     if (co_xcan_init(&can, CO_XCAN0_BASE, NULL, NULL, FW_CAN_CLK_HZ, args.bitrate) != 0) {
         fail("CAN0 does not start (bit rate?)");
@@ -296,7 +330,9 @@ void fw_main(void)
                        clock_us(&clk)) != CO_OK) {
         fail("device start failed");
     }
-    cfg.cb = co_device_callbacks(&run);
+    dev_cb = co_device_callbacks(&run);
+    cfg.cb = dev_cb;
+    cfg.cb.nmt_reset = fw_nmt_reset;
     hal_ctx.can = &can;
     hal_ctx.nv = &nv;
     cfg.hal.ctx = &hal_ctx;
@@ -311,6 +347,7 @@ void fw_main(void)
         (co_device_attach(&run, &g301.node, clock_us(&clk)) != CO_OK)) {
         fail("node start failed");
     }
+    set_serial(&g301.node);
     deadline = clock_us(&clk);
     for (;;) {
         co_frame_t f;

@@ -30,6 +30,7 @@ import signal
 import subprocess
 from pathlib import Path
 
+import canopen.lss
 import pytest
 
 import test_errctl
@@ -77,10 +78,13 @@ def firmware_cases():
 
 
 class Firmware:
-    def __init__(self, log: Path, storage: Path | None = None, node_id: int = NODE_ID):
+    def __init__(self, log: Path, storage: Path | None = None, node_id: int = NODE_ID,
+                 serial: int | None = None):
         args = [str(RUN_FIRMWARE), "--iface", IFACE, "--node-id", str(node_id)]
         if storage is not None:
             args += ["--storage", str(storage)]
+        if serial is not None:
+            args += ["--serial", str(serial)]
         self._err = open(log, "w")
         self.log = log
         self.proc = subprocess.Popen(args, stdout=self._err, stderr=subprocess.STDOUT)
@@ -98,9 +102,9 @@ class Firmware:
 
 
 def boot(sniffer: Sniffer, log: Path, storage: Path | None = None,
-         node_id: int = NODE_ID) -> Firmware:
+         node_id: int = NODE_ID, serial: int | None = None) -> Firmware:
     m = sniffer.mark()
-    fw = Firmware(log, storage, node_id)
+    fw = Firmware(log, storage, node_id, serial)
     f = sniffer.wait_cob(0x700 + node_id, FW_BOOT_TIMEOUT, m, b"\x00")
     if f is None:
         fw.stop()
@@ -182,4 +186,50 @@ def test_storage_survives_an_emulator_restart(firmware, network, eds_path, sniff
     sniffer.send(0x000, bytes([0x81, nid]))
     assert sniffer.wait_cob(0x700 + nid, 10.0, m, b"\x00") is not None
     assert n.sdo.upload(0x1017, 0) == u16(0)
+    assert fw.stop() == 0
+
+
+def test_lss_node_id_stored_across_an_emulator_restart(firmware, network, eds_path, sniffer,
+                                                       tmp_path):
+    """The firmware is an LSS slave (generic-301 has [device] lss): python-canopen's
+    LssMaster selects it by its LSS address, inquires its identity and node-ID,
+    gives it another node-ID and stores it; the ID takes effect at reset
+    communication and, through the storage file, again after QEMU is stopped
+    and started with the old --node-id (CiA 305: the stored ID wins). Node 8:
+    the module's emulator (node 5, the description's serial 1) stays on the
+    bus and is not selected: --serial gives this one its own LSS address."""
+    old, new = NODE_ID + 3, NODE_ID + 4
+    store = tmp_path / "fw-lss.params"
+    n = network.add_node(old, str(eds_path))
+    n.sdo.RESPONSE_TIMEOUT = SDO_TIMEOUT
+    serial = 4242
+    fw = boot(sniffer, tmp_path / "fw1.log", store, old, serial)
+    ident = [int.from_bytes(n.sdo.upload(0x1018, s), "little") for s in (1, 2, 3, 4)]
+    lss = network.lss
+    lss.RESPONSE_TIMEOUT = 2.0          # an answer crosses the emulated controller
+    assert lss.send_switch_state_selective(*ident)
+    assert lss.inquire_lss_address(canopen.lss.CS_INQUIRE_VENDOR_ID) == ident[0]
+    assert lss.inquire_lss_address(canopen.lss.CS_INQUIRE_SERIAL_NUMBER) == ident[3]
+    assert ident[3] == serial
+    assert lss.inquire_node_id() == old
+    with pytest.raises(canopen.lss.LssError, match="LSS Error: 1"):
+        lss.configure_node_id(128)      # out of range: error code 1, the ID stays
+    lss.configure_node_id(new)
+    lss.store_configuration()
+    lss.send_switch_state_global(canopen.lss.LssMaster.WAITING_STATE)
+    # a configured node takes the new ID at reset communication
+    m = sniffer.mark()
+    sniffer.send(0x000, bytes([0x82, old]))
+    assert sniffer.wait_cob(0x700 + new, 10.0, m, b"\x00") is not None, "no boot-up at the new ID"
+    assert fw.stop() == 0
+    m = sniffer.mark()
+    fw = Firmware(tmp_path / "fw2.log", store, old, serial)
+    f = sniffer.wait_cob(0x700 + new, FW_BOOT_TIMEOUT, m, b"\x00")
+    if f is None:
+        fw.stop()
+        pytest.fail(f"no boot-up at the stored node-ID {new}:\n{fw.log.read_text()}")
+    assert not [x for x in sniffer.since(m) if x.id == 0x700 + old], "booted at the old ID too"
+    n2 = network.add_node(new, str(eds_path))
+    n2.sdo.RESPONSE_TIMEOUT = SDO_TIMEOUT
+    assert int.from_bytes(n2.sdo.upload(0x1018, 4), "little") == ident[3]
     assert fw.stop() == 0

@@ -327,6 +327,19 @@ static co_err_t hook_factor(void *ctx, co_od_io_t *io)
     return factor(r, io->entry->index, io->desc->sub, co_get_u32(io->buf), true);
 }
 
+/* 0x2400 "Baudrate set": the bit-timing index in force, 0xFF automatic
+ * detection (the factory state, seed-001 §1.4, §7.9) */
+static co_err_t hook_baudrate(void *ctx, co_od_io_t *io)
+{
+    co_device_run_t *r = (co_device_run_t *)ctx;
+    uint8_t *v = (uint8_t *)io->value;
+
+    if (v != NULL) {
+        *v = co_node_bit_timing(co_device_node(r));
+    }
+    return CO_OK;
+}
+
 /* ------------------------------------------------------------ plug-in */
 
 static co_err_t op_attach(void *inst, co_node_t *node, uint32_t now_us)
@@ -348,6 +361,12 @@ static co_err_t op_attach(void *inst, co_node_t *node, uint32_t now_us)
     for (size_t i = 0U; i < (sizeof hooks / sizeof hooks[0]); i++) {
         co_od_hook_t h = {NULL, hooks[i].write, r};
         if (co_od_bind_hook(node, hooks[i].index, &h) != CO_RESULT_OK) {
+            return CO_ERR_OD_MISSING;
+        }
+    }
+    {
+        co_od_hook_t h = {hook_baudrate, NULL, r};
+        if (co_od_bind_hook(node, 0x2400U, &h) != CO_RESULT_OK) {
             return CO_ERR_OD_MISSING;
         }
     }

@@ -92,6 +92,74 @@ static void part_sim_init(void *sim, const void *config, uint8_t n, uint32_t now
     *(co408_plant_t *)plant = co408_sim_plant((co408_sim_t *)sim);
 }
 
+/* Control interface (co_device_set, docs/profiles.md): the faults of a
+ * channel's simulated valve by their EMCY code as the index, the channel's
+ * inputs at CO408_SIM_INPUTS + channel; sub-index: the channel's number
+ * (faults: 0 or 1 channel 1, 2 channel 2) or the input. */
+static co_err_t sim_fault(co408_sim_t *s, uint16_t index, int64_t value)
+{
+    uint32_t clear;
+    uint32_t set;
+
+    switch (index) {
+    case CO408_ERR_SOLENOID1:
+        clear = CO408_SIM_SOL_A_OPEN | CO408_SIM_SOL_A_SHORT;
+        set = (value == 1) ? CO408_SIM_SOL_A_OPEN : CO408_SIM_SOL_A_SHORT;
+        break;
+    case CO408_ERR_SOLENOID2:
+        clear = CO408_SIM_SOL_B_OPEN | CO408_SIM_SOL_B_SHORT;
+        set = (value == 1) ? CO408_SIM_SOL_B_OPEN : CO408_SIM_SOL_B_SHORT;
+        break;
+    case CO408_ERR_SUPPLY:
+        clear = CO408_SIM_UNDERVOLT;
+        set = clear;
+        break;
+    default: /* CO408_ERR_SP_CABLE */
+        clear = CO408_SIM_SP_CABLE;
+        set = clear;
+        break;
+    }
+    if ((value < 0) || (value > ((clear == set) ? 1 : 2))) {
+        return CO_ERR_VALUE;
+    }
+    co408_sim_inject(s, (s->faults & ~clear) | ((value != 0) ? set : 0U));
+    return CO_OK;
+}
+
+static co_err_t part_sim_set(void *inst, void *sim, uint16_t index, uint8_t sub, int64_t value)
+{
+    co408_sim_t *s = (co408_sim_t *)sim;
+    uint8_t ch = ((const co408_valve_t *)inst)->cfg.channel;
+
+    if (s == NULL) {
+        return CO_ERR_NO_OBJECT;
+    }
+    if ((index == CO408_ERR_SOLENOID1) || (index == CO408_ERR_SOLENOID2) ||
+        (index == CO408_ERR_SUPPLY) || (index == CO408_ERR_SP_CABLE)) {
+        uint8_t want = (sub == 0U) ? 0U : (uint8_t)(sub - 1U);
+        return (want == ch) ? sim_fault(s, index, value) : CO_ERR_NO_OBJECT;
+    }
+    if (index != (uint16_t)(CO408_SIM_INPUTS + ch)) {
+        return CO_ERR_NO_OBJECT;
+    }
+    switch (sub) {
+    case CO408_SIM_IN_ENABLE:
+        if ((value < 0) || (value > 1)) {
+            return CO_ERR_VALUE;
+        }
+        co408_sim_set_input(s, CO408_IN_ENABLE, value != 0);
+        return CO_OK;
+    case CO408_SIM_IN_LOCAL_SP:
+        if ((value < -(int64_t)CO408_FULL) || (value > (int64_t)CO408_FULL)) {
+            return CO_ERR_VALUE;
+        }
+        co408_sim_set_local_sp(s, (int32_t)value);
+        return CO_OK;
+    default:
+        return CO_ERR_NO_SUB;
+    }
+}
+
 const co_part_kind_t co408_part = {
     .name = "cia408",
     .ops = &co408_profile_ops,
@@ -100,4 +168,5 @@ const co_part_kind_t co408_part = {
     .sim_size = sizeof(co408_sim_t),
     .init = part_init,
     .sim_init = part_sim_init,
+    .sim_set = part_sim_set,
 };

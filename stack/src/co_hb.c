@@ -202,7 +202,9 @@ static uint32_t errctl_process(co_node_t *node, uint32_t next)
         if (co_time_reached(now, node->errctl.hb_deadline)) {
             uint8_t st = node->nmt;
             uint32_t period = ms_to_us(*node->errctl.hb_prod);
-            co_tx(node, 0x700UL + node->node_id, &st, 1U);
+            if (node->errctl.hb_muted == 0U) {
+                co_tx(node, 0x700UL + node->node_id, &st, 1U);
+            }
             node->errctl.hb_deadline += period;
             if (co_time_reached(now, node->errctl.hb_deadline)) {
                 node->errctl.hb_deadline = now + period; /* fell behind: no burst */
@@ -237,6 +239,16 @@ static uint32_t errctl_process(co_node_t *node, uint32_t next)
         }
     }
     return next;
+}
+
+void co_node_hb_mute(co_node_t *node, bool muted, uint32_t now_us)
+{
+    bool was = (node->errctl.hb_muted != 0U);
+
+    node->errctl.hb_muted = muted ? 1U : 0U;
+    if (was && !muted) {
+        node->errctl.hb_deadline = now_us; /* the first heartbeat at once */
+    }
 }
 
 /* ------------------------------------------------------------ service */

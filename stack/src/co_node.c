@@ -568,6 +568,16 @@ uint8_t co_node_id(const co_node_t *node)
     return node->node_id;
 }
 
+uint8_t co_node_bit_timing(const co_node_t *node)
+{
+#if CO_LSS
+    return node->lss.active_bt;
+#else
+    (void)node;
+    return 0xFFU;
+#endif
+}
+
 static bool id_valid(const co_node_t *node, uint8_t id)
 {
     return ((id >= 1U) && (id <= 127U)) ||

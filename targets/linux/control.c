@@ -25,10 +25,86 @@ static int number(const char *s, int64_t *v)
     return 0;
 }
 
+/* An unsigned number in [0, max] into *out, else the message. */
+static int bounded(const char *w, int64_t max, const char *what, int64_t *out, char *err,
+                   size_t errcap)
+{
+    if ((number(w, out) != 0) || (*out < 0) || (*out > max)) {
+        (void)snprintf(err, errcap, "bad %s %s", what, w);
+        return -1;
+    }
+    return 0;
+}
+
+static int parse_setget(char *const *w, size_t n, ctl_cmd_t *cmd, char *err, size_t errcap)
+{
+    bool set = (w[0][0] == 's');
+    int64_t v;
+
+    if (n != (set ? 4U : 3U)) {
+        (void)snprintf(err, errcap, "usage: %s", set ? "set INDEX SUB VALUE" : "get INDEX SUB");
+        return -1;
+    }
+    if (bounded(w[1], 0xFFFF, "index", &v, err, errcap) != 0) {
+        return -1;
+    }
+    cmd->index = (uint16_t)v;
+    if (bounded(w[2], 0xFF, "sub-index", &v, err, errcap) != 0) {
+        return -1;
+    }
+    cmd->sub = (uint8_t)v;
+    cmd->op = set ? CTL_SET : CTL_GET;
+    if (set && (number(w[3], &cmd->value) != 0)) {
+        (void)snprintf(err, errcap, "bad value %s", w[3]);
+        return -1;
+    }
+    return 0;
+}
+
+/* emcy CODE [REG [B0 B1 B2 B3 B4]] | emcy clear CODE */
+static int parse_emcy(char *const *w, size_t n, ctl_cmd_t *cmd, char *err, size_t errcap)
+{
+    int64_t v;
+
+    if ((n == 3U) && (strcmp(w[1], "clear") == 0)) {
+        if (bounded(w[2], 0xFFFF, "error code", &v, err, errcap) != 0) {
+            return -1;
+        }
+        cmd->op = CTL_EMCY_CLEAR;
+        cmd->code = (uint16_t)v;
+        return 0;
+    }
+    if ((n != 2U) && (n != 3U) && (n != 8U)) {
+        (void)snprintf(err, errcap, "usage: emcy CODE [REG [B0 B1 B2 B3 B4]] | emcy clear CODE");
+        return -1;
+    }
+    if (bounded(w[1], 0xFFFF, "error code", &v, err, errcap) != 0) {
+        return -1;
+    }
+    if (v == 0) {
+        (void)snprintf(err, errcap, "error code 0 is not an error (emcy clear CODE)");
+        return -1;
+    }
+    cmd->op = CTL_EMCY_RAISE;
+    cmd->code = (uint16_t)v;
+    if ((n >= 3U) && (bounded(w[2], 0xFF, "error register bits", &v, err, errcap) != 0)) {
+        return -1;
+    }
+    cmd->reg = (n >= 3U) ? (uint8_t)v : 0U;
+    cmd->has_mfr = (n == 8U);
+    for (size_t k = 0U; k < 5U && cmd->has_mfr; k++) {
+        if (bounded(w[3U + k], 0xFF, "manufacturer byte", &v, err, errcap) != 0) {
+            return -1;
+        }
+        cmd->mfr[k] = (uint8_t)v;
+    }
+    return 0;
+}
+
 int ctl_parse(const char *line, ctl_cmd_t *cmd, char *err, size_t errcap)
 {
     char copy[CTL_LINE_MAX + 1U];
-    char *words[6];
+    char *words[CTL_WORDS_MAX + 1U];
     size_t n = 0U;
     size_t at = 0U;
     char *save = NULL;
@@ -39,7 +115,7 @@ int ctl_parse(const char *line, ctl_cmd_t *cmd, char *err, size_t errcap)
         return -1;
     }
     (void)strcpy(copy, line);
-    for (char *w = strtok_r(copy, " \t\r", &save); (w != NULL) && (n < 6U);
+    for (char *w = strtok_r(copy, " \t\r", &save); (w != NULL) && (n <= CTL_WORDS_MAX);
          w = strtok_r(NULL, " \t\r", &save)) {
         words[n++] = w;
     }
@@ -57,39 +133,51 @@ int ctl_parse(const char *line, ctl_cmd_t *cmd, char *err, size_t errcap)
         (void)snprintf(err, errcap, "empty command");
         return -1;
     }
-    if ((strcmp(words[at], "help") == 0) && (n == at + 1U)) {
-        cmd->op = CTL_HELP;
-        return 0;
+    if (n > CTL_WORDS_MAX) {
+        (void)snprintf(err, errcap, "too many words");
+        return -1;
     }
-    if ((strcmp(words[at], "nodes") == 0) && (n == at + 1U)) {
-        cmd->op = CTL_NODES;
-        return 0;
+    {
+        char *const *w = &words[at];
+        size_t k = n - at;
+        if ((strcmp(w[0], "help") == 0) && (k == 1U)) {
+            cmd->op = CTL_HELP;
+            return 0;
+        }
+        if ((strcmp(w[0], "nodes") == 0) && (k == 1U)) {
+            cmd->op = CTL_NODES;
+            return 0;
+        }
+        if ((strcmp(w[0], "set") == 0) || (strcmp(w[0], "get") == 0)) {
+            return parse_setget(w, k, cmd, err, errcap);
+        }
+        if (strcmp(w[0], "emcy") == 0) {
+            return parse_emcy(w, k, cmd, err, errcap);
+        }
+        if (strcmp(w[0], "heartbeat") == 0) {
+            if ((k == 2U) && ((strcmp(w[1], "stop") == 0) || (strcmp(w[1], "resume") == 0))) {
+                cmd->op = (w[1][0] == 's') ? CTL_HB_STOP : CTL_HB_RESUME;
+                return 0;
+            }
+            (void)snprintf(err, errcap, "usage: heartbeat stop|resume");
+            return -1;
+        }
+        if (strcmp(w[0], "offbus") == 0) {
+            if (k != 2U) {
+                (void)snprintf(err, errcap, "usage: offbus MS");
+                return -1;
+            }
+            if ((bounded(w[1], CTL_OFFBUS_MAX_MS, "time", &v, err, errcap) != 0) || (v == 0)) {
+                (void)snprintf(err, errcap, "bad time %s (1..%u ms)", w[1],
+                               (unsigned)CTL_OFFBUS_MAX_MS);
+                return -1;
+            }
+            cmd->op = CTL_OFFBUS;
+            cmd->ms = (uint32_t)v;
+            return 0;
+        }
+        (void)snprintf(err, errcap, "unknown command %s (help)", w[0]);
     }
-    if ((strcmp(words[at], "set") == 0) || (strcmp(words[at], "get") == 0)) {
-        bool set = (words[at][0] == 's');
-        size_t want = at + (set ? 4U : 3U);
-        if (n != want) {
-            (void)snprintf(err, errcap, "usage: %s", set ? "set INDEX SUB VALUE" : "get INDEX SUB");
-            return -1;
-        }
-        if ((number(words[at + 1U], &v) != 0) || (v < 0) || (v > 0xFFFF)) {
-            (void)snprintf(err, errcap, "bad index %s", words[at + 1U]);
-            return -1;
-        }
-        cmd->index = (uint16_t)v;
-        if ((number(words[at + 2U], &v) != 0) || (v < 0) || (v > 0xFF)) {
-            (void)snprintf(err, errcap, "bad sub-index %s", words[at + 2U]);
-            return -1;
-        }
-        cmd->sub = (uint8_t)v;
-        cmd->op = set ? CTL_SET : CTL_GET;
-        if (set && (number(words[at + 3U], &cmd->value) != 0)) {
-            (void)snprintf(err, errcap, "bad value %s", words[at + 3U]);
-            return -1;
-        }
-        return 0;
-    }
-    (void)snprintf(err, errcap, "unknown command %s (help)", words[at]);
     return -1;
 }
 
@@ -105,7 +193,7 @@ int ctl_open(ctl_t *c, const char *path, ctl_exec_fn exec, void *ctx, char *err,
     c->exec = exec;
     c->exec_ctx = ctx;
     if (strlen(path) >= sizeof a.sun_path) {
-        (void)snprintf(err, errcap, "%s: path too long for a socket", path);
+        (void)snprintf(err, errcap, "%.80s: path too long for a socket", path);
         return -1;
     }
     (void)memset(&a, 0, sizeof a);

@@ -10,8 +10,16 @@
  *                               (access not checked; limits and hooks are)
  *                               -> "ok" | "error 0xAAAAAAAA"
  *   [@ID] get INDEX SUB         read the object -> "ok VALUE" | "error 0x..."
+ *   [@ID] emcy CODE [REG [B0 B1 B2 B3 B4]]
+ *                               raise error CODE (EMCY, 0x1001 bits REG, the
+ *                               manufacturer bytes B0..B4) -> "ok"
+ *   [@ID] emcy clear CODE       clear it (EMCY 0x0000 after the last) -> "ok"
+ *   [@ID] heartbeat stop|resume stop / resume the heartbeat producer's
+ *                               frames (the node stays alive) -> "ok"
+ *   [@ID] offbus MS             off the bus for MS ms, back as after a
+ *                               bus-off (EMCY 0x8140) -> "ok"
  *   nodes                       -> "ok ID:DEVICE ..." (the nodes of the process)
- *   help                        -> "ok set|get|nodes|help"
+ *   help                        -> "ok ..." (the commands)
  *
  * Numbers are C literals (0x55, 85, -3); @ID picks the node by its
  * node-ID (default: the first node). Up to CTL_CLIENTS clients at once;
@@ -21,20 +29,29 @@
 #define CONTROL_H
 
 #include <poll.h>
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 
 #define CTL_CLIENTS 4U
 #define CTL_LINE_MAX 200U
 #define CTL_FDS (1U + CTL_CLIENTS)
+#define CTL_WORDS_MAX 9U /**< words of a command line, @ID included */
 
 /** One parsed command. */
 typedef enum ctl_op {
     CTL_SET,
     CTL_GET,
     CTL_NODES,
-    CTL_HELP
+    CTL_HELP,
+    CTL_EMCY_RAISE,
+    CTL_EMCY_CLEAR,
+    CTL_HB_STOP,
+    CTL_HB_RESUME,
+    CTL_OFFBUS
 } ctl_op_t;
+
+#define CTL_OFFBUS_MAX_MS 3600000U /**< offbus: at most an hour */
 
 typedef struct ctl_cmd {
     ctl_op_t op;
@@ -42,6 +59,11 @@ typedef struct ctl_cmd {
     uint16_t index;
     uint8_t sub;
     int64_t value;
+    uint16_t code;    /**< emcy: the error code */
+    uint8_t reg;      /**< emcy: 0x1001 bits */
+    bool has_mfr;     /**< emcy: manufacturer bytes given */
+    uint8_t mfr[5];
+    uint32_t ms;      /**< offbus */
 } ctl_cmd_t;
 
 /** Parse @p line (no newline). 0, or -1 with a reason in @p err. */

@@ -347,6 +347,37 @@ static void ctl_get(dnode_t *d, const ctl_cmd_t *cmd, char *reply, size_t cap)
     }
 }
 
+/* Fault injection through the stack's and the port's public interfaces. */
+static void ctl_fault(dnode_t *d, const ctl_cmd_t *cmd, char *reply, size_t cap)
+{
+    uint32_t now = co_lx_now_us();
+
+    (void)snprintf(reply, cap, "ok");
+    switch (cmd->op) {
+    case CTL_EMCY_RAISE:
+        co_emcy_raise(&d->node, cmd->code, cmd->reg, cmd->has_mfr ? cmd->mfr : NULL);
+        log_line(d->tag, CO_LX_INFO, "control: EMCY 0x%04X raised", (unsigned)cmd->code);
+        break;
+    case CTL_EMCY_CLEAR:
+        if (!co_emcy_is_active(&d->node, cmd->code)) {
+            (void)snprintf(reply, cap, "error 0x%04X is not active", (unsigned)cmd->code);
+        } else {
+            co_emcy_clear(&d->node, cmd->code);
+            log_line(d->tag, CO_LX_INFO, "control: EMCY 0x%04X cleared", (unsigned)cmd->code);
+        }
+        break;
+    case CTL_HB_STOP:
+    case CTL_HB_RESUME:
+        co_node_hb_mute(&d->node, cmd->op == CTL_HB_STOP, now);
+        log_line(d->tag, CO_LX_INFO, "control: heartbeats %s",
+                 (cmd->op == CTL_HB_STOP) ? "stopped" : "resumed");
+        break;
+    default: /* CTL_OFFBUS */
+        co_lx_port_off_bus(&d->port, cmd->ms, now);
+        break;
+    }
+}
+
 static void ctl_exec(void *ctx, const ctl_cmd_t *cmd, char *reply, size_t cap)
 {
     const ctl_nodes_t *c = (const ctl_nodes_t *)ctx;
@@ -358,7 +389,10 @@ static void ctl_exec(void *ctx, const ctl_cmd_t *cmd, char *reply, size_t cap)
         }
     }
     if (cmd->op == CTL_HELP) {
-        (void)snprintf(reply, cap, "ok [@ID] set INDEX SUB VALUE | [@ID] get INDEX SUB | nodes | help");
+        (void)snprintf(reply, cap,
+                       "ok [@ID] set INDEX SUB VALUE | [@ID] get INDEX SUB | "
+                       "[@ID] emcy CODE [REG [B0 B1 B2 B3 B4]] | [@ID] emcy clear CODE | "
+                       "[@ID] heartbeat stop|resume | [@ID] offbus MS | nodes | help");
     } else if (cmd->op == CTL_NODES) {
         size_t at = (size_t)snprintf(reply, cap, "ok");
         for (size_t i = 0U; (i < c->n) && (at < cap); i++) {
@@ -369,6 +403,8 @@ static void ctl_exec(void *ctx, const ctl_cmd_t *cmd, char *reply, size_t cap)
         (void)snprintf(reply, cap, "error no node %d", cmd->node_id);
     } else if (cmd->op == CTL_GET) {
         ctl_get(d, cmd, reply, cap);
+    } else if (cmd->op != CTL_SET) {
+        ctl_fault(d, cmd, reply, cap);
     } else {
         co_err_t err = co_device_set(&d->run, cmd->index, cmd->sub, cmd->value);
         if (err == CO_OK) {

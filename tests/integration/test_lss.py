@@ -129,6 +129,7 @@ def test_faulhaber_quick_start_and_cob_id_rules(lss, network, daemons, sniffer, 
     m = sniffer.mark()
     lss.send_switch_state_global(LSS.WAITING_STATE)
     boot(sniffer, 3, m)                      # answers at its new ID straight away
+    assert sdo_u32(network, 3, 0x2400, 0) == 0xFF  # stored, not in force: still auto-baud
     assert sdo_u32(network, 3, 0x1014, 0) == 0x83
     assert sdo_u32(network, 3, 0x1800, 1) == 0x183
     assert sdo_u32(network, 3, 0x1400, 1) == 0x203
@@ -151,6 +152,7 @@ def test_faulhaber_quick_start_and_cob_id_rules(lss, network, daemons, sniffer, 
     boot(sniffer, 4, m)
     assert sdo_u32(network, 4, 0x1800, 1) == 0x183
     assert "LSS bit timing 3 (250 kbit/s)" in d.stderr()
+    assert sdo_u32(network, 4, 0x2400, 0) == 3   # "Baudrate set": the index in force
     # to 0xFF first: silent at the reset; then 5: the pre-defined connection set of 5
     lss_select(network, vendor, product, 0, serial)
     lss.configure_node_id(0xFF)

@@ -3,9 +3,9 @@ brings each from INIT to DEVICE_MODE_ACTIVE, commands a set-point by RPDO
 and sees the actual value follow (on the Wandfluh the TPDO right after each
 RPDO, also when nothing changed), and sees NMT Stop force the fault
 reaction (the EMCY 0x8100 when the node leaves Stopped) and the fault
-reset. Faults of the simulated valve (EMCY 0x2311 ...) are injected in the
-unit and seed tests; the daemon has no way in for them yet (they wait for
-the control interface of the device layer)."""
+reset; a fault of the simulated valve injected through the daemon's control
+interface (--control: `set 0x2311 0 1`, co/co408_device.h) gives its EMCY
+and the fault reaction, and the reset once it is repaired."""
 from __future__ import annotations
 
 import time
@@ -13,6 +13,7 @@ import time
 import pytest
 
 from conftest import start_device
+from test_io import Control
 
 NODE = 0x21
 VALVES = ("cia408", "wandfluh-dsv")
@@ -96,3 +97,36 @@ def test_valve_nmt_stop_forces_fault(device, network, daemons, sniffer, tmp_path
     assert sw_of(node) == 0x000B                          # TR_11: HOLD
     f = sniffer.wait_cob(0x80 + NODE, 2.0, m)
     assert f is not None and f.data == bytes(8), f         # the error is over
+
+
+@pytest.mark.parametrize("device", VALVES)
+def test_valve_fault_injected_emcy_and_reset(device, network, daemons, sniffer, tmp_path):
+    """Solenoid-1 cable break in DEVICE_MODE_ACTIVE: EMCY 0x2311 (register
+    generic + current) and FAULT_HOLD; reset refused while the cause is
+    there; repaired and reset (R rising): HOLD and EMCY 0x0000."""
+    sock = tmp_path / "ctl"
+    node = start_device(device, NODE, network, daemons, sniffer, tmp_path, "--control", str(sock))
+    ctl = Control(sock)
+    try:
+        node.sdo.download(0x6040, 0, (0x0007).to_bytes(2, "little"))
+        assert sw_of(node) == 0x000F
+        m = sniffer.mark()
+        assert ctl("set 0x2311 0 1") == "ok"                 # solenoid 1: cable break
+        f = sniffer.wait_cob(0x80 + NODE, 2.0, m)
+        assert f is not None and f.data == bytes([0x11, 0x23, 0x03, 0, 0, 0, 0, 0]), f
+        assert wait_sw(node, lambda s: s == 0x0003) == 0x0003   # FAULT_HOLD (H set)
+        assert int.from_bytes(node.sdo.upload(0x1001, 0), "little") == 0x03
+        for cw in (0x0003, 0x000B):
+            node.sdo.download(0x6040, 0, cw.to_bytes(2, "little"))
+        assert sw_of(node) == 0x0003                         # the cause is still there
+        assert ctl("set 0x2311 0 0") == "ok"                 # repaired
+        time.sleep(0.05)
+        m = sniffer.mark()
+        for cw in (0x0003, 0x000B):
+            node.sdo.download(0x6040, 0, cw.to_bytes(2, "little"))
+        assert sw_of(node) == 0x000B                         # TR_11: HOLD
+        f = sniffer.wait_cob(0x80 + NODE, 2.0, m)
+        assert f is not None and f.data == bytes(8), f
+        assert ctl("set 0x2311 0 7").startswith("error 0x06090030")
+    finally:
+        ctl.close()

@@ -776,10 +776,34 @@ static void factor_group(void **state)
     tb_expect_none(&S->bus);
 }
 
+/* 0x2400 "Baudrate set" (§1.4, §7.9): 0xFF, automatic detection, until
+ * LSS puts a bit timing in force (configure 250 kbit/s, activate with a
+ * 10 ms switch delay), then its index. */
+static void baudrate_set_shows_the_lss_bit_timing(void **state)
+{
+    (void)state;
+    sr_sdo(S, "40 00 24 00 00 00 00 00", "4F 00 24 00 FF 00 00 00");
+    tb_send(&S->bus, "7E5 04 01 00 00 00 00 00 00"); /* switch state global: configuration */
+    sr_poll(S);
+    tb_expect_none(&S->bus);
+    tb_send(&S->bus, "7E5 13 00 03 00 00 00 00 00"); /* configure bit timing 250 kbit/s */
+    sr_poll(S);
+    tb_expect(&S->bus, "7E4 13 00 00 00 00 00 00 00");
+    sr_sdo(S, "40 00 24 00 00 00 00 00", "4F 00 24 00 FF 00 00 00"); /* not yet in force */
+    tb_send(&S->bus, "7E5 15 0A 00 00 00 00 00 00"); /* activate, switch delay 10 ms */
+    sr_poll(S);
+    sr_run(S, 30);
+    tb_send(&S->bus, "7E5 04 00 00 00 00 00 00 00"); /* back to waiting */
+    sr_poll(S);
+    tb_expect_none(&S->bus);
+    sr_sdo(S, "40 00 24 00 00 00 00 00", "4F 00 24 00 03 00 00 00");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_setup(sdo_examples, setup),
+        cmocka_unit_test_setup(baudrate_set_shows_the_lss_bit_timing, setup),
         cmocka_unit_test_setup(store_restore, setup),
         cmocka_unit_test_setup(factory_restore_only_when_disabled, setup),
         cmocka_unit_test_setup(trace_velocity_mode, setup_trace),

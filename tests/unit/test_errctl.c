@@ -142,6 +142,37 @@ static void heartbeat_producer_zero_stops(void **state)
     tb_expect_none(BUS);
 }
 
+/* Fault injection: muted, the node sends no heartbeat but still answers
+ * SDO (0x1017 unchanged) and sends its boot-up after a reset; resumed, the
+ * first heartbeat goes out at once, then one per period again. */
+static void heartbeat_muted_and_resumed(void **state)
+{
+    tb_xfer(BUS, "601 2B 17 10 00 64 00 00 00", "581 60 17 10 00 00 00 00 00");
+    tb_advance(BUS, 100000U);
+    tb_expect(BUS, "701 7F");
+    co_node_hb_mute(NODE, true, BUS->now);
+    tb_advance(BUS, 1000000U);
+    tb_expect_none(BUS);
+    tb_xfer(BUS, "601 40 17 10 00 00 00 00 00", "581 4B 17 10 00 64 00 00 00");
+    tb_send(BUS, "000 82 01");
+    tb_expect(BUS, "701 00");
+    tb_xfer(BUS, "601 2B 17 10 00 64 00 00 00", "581 60 17 10 00 00 00 00 00");
+    tb_advance(BUS, 500000U);
+    tb_expect_none(BUS);
+    tb_advance(BUS, 50000U);
+    co_node_hb_mute(NODE, false, BUS->now);
+    tb_advance(BUS, 0U);
+    tb_expect(BUS, "701 7F");
+    tb_advance(BUS, 99999U);
+    tb_expect_none(BUS);
+    tb_advance(BUS, 1U);
+    tb_expect(BUS, "701 7F");
+    /* muting twice and resuming twice change nothing more */
+    co_node_hb_mute(NODE, false, BUS->now);
+    tb_advance(BUS, 0U);
+    tb_expect_none(BUS);
+}
+
 /* -------------------------------------------------- heartbeat consumer */
 
 static void heartbeat_consumer_timeout_and_recovery(void **state)
@@ -742,6 +773,7 @@ int main(void)
         cmocka_unit_test_setup(heartbeat_producer_period, setup),
         cmocka_unit_test_setup(heartbeat_state_follows_nmt, setup),
         cmocka_unit_test_setup(heartbeat_producer_zero_stops, setup),
+        cmocka_unit_test_setup(heartbeat_muted_and_resumed, setup),
         cmocka_unit_test_setup(heartbeat_consumer_timeout_and_recovery, setup),
         cmocka_unit_test_setup(heartbeat_consumer_state_changes, setup),
         cmocka_unit_test_setup(heartbeat_consumer_two_producers_one_error, setup),

@@ -216,6 +216,7 @@ static void test_global_configure_store(void **state)
     tb_expect(&fx.bus, "705 00");
     assert_int_equal(fx.bus.bit_timing_calls, 1U);
     assert_int_equal(fx.bus.bit_timing[0], 3U);
+    assert_int_equal(co_node_bit_timing(&fx.n[0].node), 3U); /* the stored one */
     start(0, 9U, 7U);
     tb_expect(&fx.bus, "705 00");
     tb_expect_none(&fx.bus);
@@ -493,12 +494,14 @@ static void test_bit_timing(void **state)
     xfer("13 00 08", "13 00");
     xfer("13 00 02", "13 00");
     assert_int_equal(fx.bus.bit_timing_calls, 0U);
+    assert_int_equal(co_node_bit_timing(&fx.n[0].node), 0xFFU); /* configured, not active */
     silent("15 64 00"); /* 100 ms */
     tb_advance(&fx.bus, 99000U);
     assert_int_equal(fx.bus.bit_timing_calls, 0U);
     tb_advance(&fx.bus, 1000U);
     assert_int_equal(fx.bus.bit_timing_calls, 1U);
     assert_int_equal(fx.bus.bit_timing[0], 2U);
+    assert_int_equal(co_node_bit_timing(&fx.n[0].node), 2U);
     tb_advance(&fx.bus, 500000U);
     assert_int_equal(fx.bus.bit_timing_calls, 1U);
     /* not in waiting */

@@ -216,6 +216,53 @@ static void error_frames_become_emcy(void **state)
     EXPECT_OUT("");
 }
 
+/* Fault injection: off the bus for 50 ms as at bus-off. Nothing goes out
+ * and nothing is received meanwhile; in Operational the node falls to
+ * Pre-operational (0x1029 sub 1 = 0); back on the bus, the held frames
+ * leave: EMCY 0x8140 first (lowest CAN-ID), then its EMCY 0x0000, then the
+ * heartbeats that came due. */
+static void off_bus_and_back_as_after_bus_off(void **state)
+{
+    (void)state;
+    make_pair(0);
+    start_node(5);
+    EXPECT_OUT("705 00");
+    bus_send("605 2B 17 10 00 14 00 00 00"); /* heartbeat 20 ms */
+    assert_int_equal(co_lx_port_rx(&fx.port, 2000U), 1);
+    EXPECT_OUT("585 60 17 10 00 00 00 00 00");
+    co_node_nmt_command(&fx.n.node, 0x01U, 2000U);
+    assert_int_equal(co_lx_port_process(&fx.port, 2000U), CO_NO_DEADLINE);
+    co_lx_port_off_bus(&fx.port, 50U, 3000U);
+    assert_true(fx.port.off_bus);
+    assert_true(co_emcy_is_active(&fx.n.node, 0x8140U));
+    assert_int_equal(co_node_nmt_state(&fx.n.node), CO_NMT_PRE_OPERATIONAL);
+    /* an SDO request while off the bus is never seen */
+    bus_send("605 40 00 10 00 00 00 00 00");
+    assert_int_equal(co_lx_port_rx(&fx.port, 10000U), 1);
+    assert_int_equal(fx.port.rx_frames, 1U);
+    (void)co_node_process(&fx.n.node, 30000U);
+    EXPECT_OUT("");
+    assert_int_equal(co_lx_port_process(&fx.port, 52999U), 53000U);
+    EXPECT_OUT("");
+    assert_int_equal(co_lx_port_process(&fx.port, 53000U), CO_NO_DEADLINE);
+    assert_false(fx.port.off_bus);
+    EXPECT_OUT("085 40 81 11 00 00 00 00 00");
+    EXPECT_OUT("085 00 00 00 00 00 00 00 00");
+    EXPECT_OUT("705 7F");
+    assert_false(co_emcy_is_active(&fx.n.node, 0x8140U));
+    /* on the bus again: requests are answered (heartbeats aside) */
+    bus_send("605 40 00 10 00 00 00 00 00");
+    assert_int_equal(co_lx_port_rx(&fx.port, 54000U), 1);
+    {
+        char b[64];
+        const char *f = bus_next(b, sizeof b);
+        while (strcmp(f, "705 7F") == 0) {
+            f = bus_next(b, sizeof b);
+        }
+        assert_string_equal(f, "585 43 00 10 00 92 01 02 00");
+    }
+}
+
 /* ------------------------------------------------------------ error-frame table */
 
 static void canerr_table(void **state)
@@ -433,6 +480,7 @@ int main(void)
         cmocka_unit_test_teardown(boot_up_and_sdo_over_the_socket, teardown),
         cmocka_unit_test_teardown(full_tx_path_holds_frames_back_and_retries, teardown),
         cmocka_unit_test_teardown(error_frames_become_emcy, teardown),
+        cmocka_unit_test_teardown(off_bus_and_back_as_after_bus_off, teardown),
         cmocka_unit_test(canerr_table),
         cmocka_unit_test(trace_format_is_candump_log),
         cmocka_unit_test_setup_teardown(nv_file_round_trip, nv_setup, nv_teardown),

@@ -45,8 +45,11 @@ static uint32_t run_timers(co_lx_loop_t *l, uint32_t now)
 
     for (size_t i = 0U; i < l->n_members; i++) {
         co_lx_member_t *m = &l->members[i];
+        uint32_t pd = co_lx_port_process(m->port, now);
         uint32_t a = (m->tick != NULL) ? m->tick(m->tick_ctx, m->node, now) : CO_NO_DEADLINE;
         uint32_t d = co_node_process(m->node, now);
+
+        a = (pd == CO_NO_DEADLINE) ? a : ((a == CO_NO_DEADLINE) ? pd : co_lx_earlier(a, pd, now));
 
         d = (d == CO_NO_DEADLINE) ? a : ((a == CO_NO_DEADLINE) ? d : co_lx_earlier(a, d, now));
         if (d != CO_NO_DEADLINE) {

@@ -17,8 +17,12 @@ static void port_say(const co_lx_port_t *p, co_lx_level_t level, const char *msg
 static int port_send(void *ctx, const co_frame_t *f)
 {
     co_lx_port_t *p = (co_lx_port_t *)ctx;
-    int r = co_lx_can_send(p->fd, f);
+    int r;
 
+    if (p->off_bus) {
+        return 1; /* held back by the core until the controller is back */
+    }
+    r = co_lx_can_send(p->fd, f);
     if (r == 0) {
         if (p->tx_blocked) {
             p->tx_blocked = false;
@@ -150,6 +154,11 @@ int co_lx_port_rx(co_lx_port_t *p, uint32_t now_us)
     if (r <= 0) {
         return r;
     }
+    if (p->off_bus) {
+        p->dropped = dropped;
+        p->rx_ignored++;
+        return 1; /* off the bus: the controller sees nothing */
+    }
     if ((cf.can_id & CAN_ERR_FLAG) != 0U) {
         n = co_lx_canerr_frame(&p->err, cf.can_id, cf.data, act);
         apply(p, act, n, now_us);
@@ -164,6 +173,54 @@ int co_lx_port_rx(co_lx_port_t *p, uint32_t now_us)
         co_node_rx(p->node, &f, now_us);
     }
     return 1;
+}
+
+void co_lx_port_off_bus(co_lx_port_t *p, uint32_t ms, uint32_t now_us)
+{
+    bool was = p->off_bus;
+    char msg[96];
+
+    if (ms < 1U) {
+        ms = 1U;
+    } else if (ms > 3600000U) {
+        ms = 3600000U;
+    } else {
+        /* in range */
+    }
+    p->off_bus = true;
+    p->back_at = now_us + (ms * 1000U);
+    (void)snprintf(msg, sizeof msg, "%s: off the bus for %lu ms (as at bus-off)", p->iface,
+                   (unsigned long)ms);
+    port_say(p, CO_LX_WARN, msg);
+    if (!was && (p->node != NULL)) {
+        co_node_can_state(p->node, CO_CAN_BUS_OFF, now_us);
+    }
+}
+
+uint32_t co_lx_port_process(co_lx_port_t *p, uint32_t now_us)
+{
+    if (!p->off_bus) {
+        return CO_NO_DEADLINE;
+    }
+    if ((int32_t)(now_us - p->back_at) < 0) {
+        return p->back_at;
+    }
+    {
+        char msg[96];
+        (void)snprintf(msg, sizeof msg, "%s: back on the bus (%lu frames not seen)", p->iface,
+                       (unsigned long)p->rx_ignored);
+        port_say(p, CO_LX_INFO, msg);
+    }
+    p->rx_ignored = 0U;
+    if (p->node != NULL) {
+        /* error-active again: the EMCY 0x0000 joins the held frames behind
+         * 0x8140 (same CAN-ID, in order), then all leave, lowest CAN-ID first */
+        co_node_can_state(p->node, CO_CAN_ERROR_ACTIVE, now_us);
+        p->off_bus = false;
+        co_node_tx_ready(p->node, now_us);
+    }
+    p->off_bus = false;
+    return CO_NO_DEADLINE;
 }
 
 void co_lx_port_close(co_lx_port_t *p)

@@ -305,6 +305,7 @@ typedef struct co_errctl {
     uint8_t n_hb_cons;
     uint8_t guard_toggle;
     uint8_t guard_state;     /**< 0 off, 1 armed (first RTR seen), 2 lost */
+    uint8_t hb_muted;        /**< 1: heartbeats held back (co_node_hb_mute) */
     co_hb_consumer_t hbc[CO_HB_CONSUMERS_MAX];
 } co_errctl_t;
 
@@ -434,6 +435,12 @@ uint8_t co_node_id(const co_node_t *node);
  *  of range. LSS configure node-ID does the same through the bus. */
 co_err_t co_node_set_id(co_node_t *node, uint8_t id, uint32_t now_us);
 
+/** The CiA 305 bit-timing index LSS put in force (activate bit timing, or
+ *  the stored one at init: 0 1000 ... 8 10 kbit/s), 0xFF when none (the
+ *  port's own rate; a device with automatic detection shows that). Always
+ *  0xFF without LSS. */
+uint8_t co_node_bit_timing(const co_node_t *node);
+
 /** NMT command specifiers (CiA 301 7.2.8.3.1), for co_node_nmt_command. */
 typedef enum co_nmt_cmd {
     CO_NMT_CMD_START = 0x01,
@@ -536,6 +543,15 @@ bool co_sync_window_open(const co_node_t *node);
  *  CO_OPT_TPDO_NO_CHANGE_DETECT, whose application calls this for its
  *  events). */
 co_err_t co_tpdo_request(co_node_t *node, uint16_t n);
+
+/** Fault injection (a simulated device, a test of a master): @p muted true
+ *  stops the heartbeat producer's frames while everything else goes on as
+ *  before (0x1017 keeps its value, SDO, PDO, EMCY and the boot-up of a
+ *  reset still go out, guarding RTRs are answered as before), so that a
+ *  master's heartbeat consumer times out on a node that is still alive;
+ *  false resumes them, the first heartbeat at once, then every 0x1017 ms.
+ *  A reset does not end it. */
+void co_node_hb_mute(co_node_t *node, bool muted, uint32_t now_us);
 
 /** True while @p code is active. */
 bool co_emcy_is_active(const co_node_t *node, uint16_t code);

@@ -46,6 +46,9 @@ typedef struct co_lx_port {
     uint32_t rx_frames;
     bool tx_blocked;         /**< the last send was not accepted */
     uint8_t bit_timing;      /**< last LSS bit-timing index (0xFF: none) */
+    bool off_bus;            /**< co_lx_port_off_bus: no frames in or out */
+    uint32_t back_at;        /**< ... until this time (us) */
+    uint32_t rx_ignored;     /**< frames that arrived while off the bus */
     co_lx_log_fn log;
     void *log_ctx;
 } co_lx_port_t;
@@ -65,6 +68,24 @@ void co_lx_port_attach(co_lx_port_t *p, co_node_t *node);
  *  actions). Returns 1 when a frame was handled, 0 when none was waiting,
  *  -1 when the socket failed (interface gone). */
 int co_lx_port_rx(co_lx_port_t *p, uint32_t now_us);
+
+/** Fault injection: the controller leaves the bus for @p ms milliseconds
+ *  (1 .. 3600000) the way it does at bus-off, and comes back by itself as
+ *  after a bus-off recovery. Meanwhile no frame goes out (the core holds
+ *  its frames back, the lowest CAN-ID first, as for a full TX path) and
+ *  every frame that arrives is dropped unseen. The core is told through its
+ *  CAN-state policy (co/co_canstate.h): at the start CO_CAN_BUS_OFF (EMCY
+ *  0x8140 raised and held back; 0x1029 sub 1, the communication error
+ *  behaviour, applies), at the end CO_CAN_ERROR_ACTIVE, so that the held
+ *  frames go out (EMCY 0x8140 "recovered from bus-off" first, then its
+ *  EMCY 0x0000 when no other error remains). A second call while off the
+ *  bus moves the end to @p ms from now. */
+void co_lx_port_off_bus(co_lx_port_t *p, uint32_t ms, uint32_t now_us);
+
+/** The port's own timer (the loop calls it every round): brings an off-bus
+ *  controller back when its time has come. Returns the time it wants to be
+ *  called again (CO_NO_DEADLINE when on the bus). */
+uint32_t co_lx_port_process(co_lx_port_t *p, uint32_t now_us);
 
 void co_lx_port_close(co_lx_port_t *p);
 

@@ -67,6 +67,21 @@ uint32_t co408_unit_process(co408_unit_t *u, uint32_t now_us);
 /** Channel @p n (NULL beyond the device's channels). */
 co408_valve_t *co408_unit_valve(co408_unit_t *u, uint8_t n);
 
+/** The control interface's way into the simulated valve (co_device_set,
+ *  `canopen-device --control`: `set INDEX SUB VALUE`):
+ *    - faults by their EMCY code as the index, the channel as the sub-index
+ *      (0 or 1: channel 1, 2: channel 2): 0x2311 / 0x2312 solenoid 1 / 2
+ *      (1 cable break, 2 short circuit, 0 repaired), 0x3412 supply
+ *      under-voltage, 0x3422 set-point cable break (1 / 0);
+ *    - inputs at CO408_SIM_INPUTS + channel (0-based): sub 1 the enable
+ *      digital input (0 / 1), sub 2 the local set-point input (internal
+ *      resolution, +-CO408_FULL).
+ *  Other values answer 0x06090030 (value range). These indexes are not
+ *  objects of the dictionary; another index goes to the dictionary. */
+#define CO408_SIM_INPUTS      0x5F00U
+#define CO408_SIM_IN_ENABLE   1U
+#define CO408_SIM_IN_LOCAL_SP 2U
+
 /** CiA 408 as a part of a device (co/co_device.h): config a co408_device_t,
  *  one co408_valve_t per channel on its simulated valve (co408_sim). */
 extern const co_part_kind_t co408_part;

@@ -217,8 +217,10 @@ class SimulatedDevice:
         return answer.decode()
 
     def set(self, index: int, sub: int, value: int) -> None:
-        """Set a value as the device's world would (a simulated input, else an
-        application write)."""
+        """Set a value as the device's world would: an input or a fault of its
+        simulated plant (a CiA 401 input `set(0x6000, 1, 0x55)`, a CiA 408
+        solenoid cable break `set(0x2311, 0, 1)`), else an application write
+        of the object."""
         answer = self.control(f"@{self.node_id} set 0x{index:04X} {sub} {value}")
         if answer != "ok":
             raise DeviceError(f"set 0x{index:04X} sub {sub} = {value}: {answer}")
@@ -228,6 +230,50 @@ class SimulatedDevice:
         if not answer.startswith("ok "):
             raise DeviceError(f"get 0x{index:04X} sub {sub}: {answer}")
         return int(answer.split()[1], 0)
+
+    def _ok(self, line: str) -> None:
+        answer = self.control(f"@{self.node_id} {line}")
+        if answer != "ok":
+            raise DeviceError(f"{line}: {answer}")
+
+    # ------------------------------------------------------------ fault injection
+    def emcy(self, code: int, register: int = 0, data: bytes | None = None) -> None:
+        """Raise error `code`: the device sends its EMCY (error register
+        0x1001 = `register` bits + generic; `data`: the 5 manufacturer bytes)
+        and keeps it active (0x1001, 0x1003) until clear_emcy(code)."""
+        line = f"emcy 0x{code:04X}"
+        if register or data is not None:
+            line += f" 0x{register:02X}"
+        if data is not None:
+            if len(data) != 5:
+                raise ValueError("EMCY manufacturer data: 5 bytes")
+            line += "".join(f" 0x{b:02X}" for b in data)
+        self._ok(line)
+
+    def clear_emcy(self, code: int) -> None:
+        """Clear error `code` (the EMCY 0x0000 follows when it was the last)."""
+        self._ok(f"emcy clear 0x{code:04X}")
+
+    def stop_heartbeat(self, settle: float = 0.1) -> None:
+        """The node stops producing heartbeats but stays alive (SDO, PDO, EMCY
+        go on; 0x1017 unchanged), so the master's heartbeat consumer times
+        out. Returns `settle` seconds later, once a heartbeat that was already
+        on its way has arrived."""
+        self._ok("heartbeat stop")
+        time.sleep(settle)
+
+    def resume_heartbeat(self) -> None:
+        """Heartbeats again: the first at once, then every 0x1017 ms."""
+        self._ok("heartbeat resume")
+
+    def off_bus(self, ms: int, wait: bool = False) -> None:
+        """Drop off the bus for `ms` milliseconds as at bus-off: no frame in
+        or out, then back by itself with EMCY 0x8140 ("recovered from
+        bus-off") and its EMCY 0x0000 (docs/linux.md). With `wait`, returns
+        once the time is over."""
+        self._ok(f"offbus {int(ms)}")
+        if wait:
+            time.sleep(ms / 1000.0)
 
     def __repr__(self) -> str:
         return f"SimulatedDevice({self.device!r}, node_id={self.node_id}, {self.interface})"

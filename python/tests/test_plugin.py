@@ -1,7 +1,9 @@
 """The fixtures of pytest_canopen_device against the real daemon on vcan:
 boot-up seen before the test body runs, a built-in device and an EDS file,
 a bad EDS reported with the daemon's line, a device dropped off the bus,
-the control interface, a clean stop (exit 0), and the README's example."""
+the control interface and its fault injection (EMCY raised and cleared,
+heartbeats stopped and resumed, off the bus for a while, a simulated input
+set), a clean stop (exit 0), and the README's example."""
 from __future__ import annotations
 
 import re
@@ -91,6 +93,58 @@ def test_control_interface(simulated_device, canopen_device_path, network):
     node.sdo.download(0x1017, 0, (250).to_bytes(2, "little"))
     assert dev.get(0x1017, 0) == 250
     assert dev.control("help").startswith("ok")
+
+
+def frames(bus, seconds: float) -> list[tuple[int, bytes]]:
+    out, end = [], time.monotonic() + seconds
+    while time.monotonic() < end:
+        m = bus.recv(0.02)
+        if m is not None and not m.is_error_frame:
+            out.append((m.arbitration_id, bytes(m.data)))
+    return out
+
+
+def test_fault_injection_emcy_and_heartbeat(simulated_device, network, can_interface):
+    dev = simulated_device("generic-301", node_id=11)
+    node = network.add_node(11, str(dev.eds))
+    node.sdo.download(0x1017, 0, (50).to_bytes(2, "little"))
+    bus = can.Bus(interface="socketcan", channel=can_interface)
+    try:
+        dev.emcy(0x4210, register=0x08, data=b"\x01\x02\x03\x04\x05")
+        assert (0x8B, bytes([0x10, 0x42, 0x09, 1, 2, 3, 4, 5])) in frames(bus, 0.3)
+        assert node.sdo.upload(0x1001, 0) == b"\x09"
+        dev.clear_emcy(0x4210)
+        assert (0x8B, bytes(8)) in frames(bus, 0.3)
+        with pytest.raises(DeviceError, match="not active"):
+            dev.clear_emcy(0x4210)
+        dev.stop_heartbeat()
+        with pytest.raises(canopen.nmt.NmtError):        # the master's wait times out
+            node.nmt.wait_for_heartbeat(0.3)
+        assert node.sdo.upload(0x1017, 0) == (50).to_bytes(2, "little")   # still alive
+        dev.resume_heartbeat()
+        assert node.nmt.wait_for_heartbeat(1.0) == "PRE-OPERATIONAL"
+    finally:
+        bus.shutdown()
+
+
+def test_fault_injection_off_bus_and_inputs(simulated_device, network, can_interface):
+    dev = simulated_device("cia401", node_id=12)
+    node = network.add_node(12, str(dev.eds))
+    bus = can.Bus(interface="socketcan", channel=can_interface)
+    try:
+        dev.set(0x6000, 1, 0x5A)                         # a simulated input
+        assert node.sdo.upload(0x6000, 1) == b"\x5A"
+        while bus.recv(0.0) is not None:                 # what came before
+            pass
+        dev.off_bus(400)
+        got = frames(bus, 0.2)
+        assert not [f for f in got if f[0] & 0x7F == 12], got       # silent
+        got = frames(bus, 1.0)
+        emcys = [d for cob, d in got if cob == 0x8C]
+        assert emcys[:2] == [bytes([0x40, 0x81, 0x11, 0, 0, 0, 0, 0]), bytes(8)], got
+        assert node.sdo.upload(0x1018, 1) is not None    # answered again
+    finally:
+        bus.shutdown()
 
 
 def test_readme_example_passes(pytester):

@@ -8,11 +8,11 @@
 #include "co_priv.h"
 
 /* 0x1001: the OR of the active errors' bits, each with the generic bit
- * (CiA 301), or with CO_OPT_ERREG_NO_GENERIC the generic bit only for an
+ * (CiA 301), or with CO_ERREG_GENERIC_UNCLASSIFIED the generic bit only for an
  * error that names no other bit. */
 static uint8_t errreg_now(const co_node_t *node)
 {
-    bool generic = !co_opt(node, CO_OPT_ERREG_NO_GENERIC);
+    bool generic = (CO_SET(node, emcy.generic_bit) == CO_ERREG_GENERIC_ALWAYS);
     uint8_t r = 0U;
 
     for (uint8_t i = 0U; i < node->emcy.n_active; i++) {
@@ -97,9 +97,9 @@ static void history_push(co_node_t *node, uint16_t code, const uint8_t *mfr)
         node->emcy.hist[i] = node->emcy.hist[i - 1U];
     }
     /* bits 0..15 error code, 16..31 additional information (mfr bytes 0..1;
-     * none with CO_OPT_HISTORY_CODE_ONLY) */
+     * none with CO_HISTORY_CODE_ONLY) */
     node->emcy.hist[0] = code;
-    if ((mfr != NULL) && !co_opt(node, CO_OPT_HISTORY_CODE_ONLY)) {
+    if ((mfr != NULL) && (CO_SET(node, emcy.history) == CO_HISTORY_CODE_AND_INFO)) {
         node->emcy.hist[0] |= (uint32_t)co_get_u16(mfr) << 16U;
     }
     *node->emcy.hist_count = n;
@@ -127,7 +127,7 @@ void co_emcy_raise(co_node_t *node, uint16_t code, uint8_t reg_bits, const uint8
     }
     history_push(node, code, data);
     send_code(node, code, data);
-    if (co_opt(node, CO_OPT_EMCY_STATE_PAIR)) {
+    if (CO_SET(node, emcy.state_pair) != 0U) {
         send_code(node, CO_EMCY_NO_ERROR, NULL);
     }
 }
@@ -145,7 +145,7 @@ void co_emcy_clear(co_node_t *node, uint16_t code)
     node->emcy.n_active--;
     node->emcy.active[i] = node->emcy.active[node->emcy.n_active];
     update_errreg(node);
-    if ((node->emcy.n_active == 0U) || co_opt(node, CO_OPT_EMCY_RESET_PARTIAL)) {
+    if ((node->emcy.n_active == 0U) || (CO_SET(node, emcy.reset) == CO_EMCY_RESET_EACH_CLEAR)) {
         send_code(node, CO_EMCY_NO_ERROR, NULL);
     }
 }
@@ -217,7 +217,7 @@ static void emcy_nmt(co_node_t *node, co_nmt_state_t from)
     if (from != CO_NMT_INITIALISING) {
         return;
     }
-    if (co_opt(node, CO_OPT_BOOT_EMCY) && (node->emcy.cob != NULL) &&
+    if ((CO_SET(node, nmt.boot_emcy) != 0U) && (node->emcy.cob != NULL) &&
         ((*node->emcy.cob & 0x80000000UL) == 0U)) {
         uint8_t d[8] = {0};
         if (node->dev->boot_emcy_data != NULL) {

@@ -49,7 +49,7 @@ static bool heartbeat_producing(const co_node_t *node)
 static bool guarding_answered(const co_node_t *node)
 {
     return !heartbeat_producing(node) ||
-           co_opt(node, CO_OPT_GUARD_WITH_HEARTBEAT);
+           (CO_SET(node, nmt.guarding_with_hb) != 0U);
 }
 
 /* Life time in ms: guard time 0x100C x life time factor 0x100D (0: off). */
@@ -340,7 +340,7 @@ static co_err_t errctl_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
     bool consumer = (e->index == 0x1016U) && (sub > 0U) && (sub <= c->n_hb_cons);
 
     if (op == (uint8_t)CO_SVC_CHECK) {
-        if ((e->index < 0x1016U) && co_opt(node, CO_OPT_GUARD_HB_EXCLUSIVE) &&
+        if ((e->index < 0x1016U) && (CO_SET(node, nmt.guarding_hb_exclusive) != 0U) &&
             heartbeat_producing(node)) {
             return CO_ERR_RESOURCE; /* guarding refused while the heartbeat runs */
         }

@@ -238,7 +238,7 @@ static void switch_selective(co_node_t *node, uint8_t cs, uint32_t v)
 {
     uint8_t k = (uint8_t)(cs - CS_SEL_VENDOR);
     bool match = (v == address(node, k)) ||
-                 ((k == 2U) && co_opt(node, CO_OPT_LSS_NO_REVISION));
+                 ((k == 2U) && (CO_SET(node, lss.selective) == CO_LSS_IGNORE_REVISION));
 
     if (cs == CS_SEL_VENDOR) {
         node->lss.sel_step = 0U; /* a new sequence */

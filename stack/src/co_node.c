@@ -1,6 +1,7 @@
 /*
  * The node: initialisation, receive dispatch by COB-ID, timers, TX hold-back.
  */
+#include <stddef.h>
 #include <string.h>
 
 #include "co_priv.h"
@@ -363,7 +364,7 @@ static void boot(co_node_t *node)
     if (node->node_id == CO_NODE_ID_UNCONFIGURED) {
         return; /* LSS init: no boot-up, no NMT until a valid node-ID */
     }
-    if (!co_opt(node, CO_OPT_NO_BOOTUP)) {
+    if (CO_SET(node, nmt.bootup) == CO_BOOTUP_FRAME) {
         static const uint8_t bootup = 0x00U;
         co_tx(node, 0x700UL + node->node_id, &bootup, 1U);
     }
@@ -488,9 +489,17 @@ static co_result_t bind_services(co_node_t *node)
             }
         }
     }
-#if CO_OPTIONS != 0xFFFFFFFFUL
-    if ((node->dev->options & ~(uint32_t)CO_OPTIONS) != 0U) {
-        return CO_RESULT_DEV_INCOMPAT;
+#if !CO_PERSONALITY
+    {
+        /* every setting 0 (CiA 301) but lss.slave: a service (CO_LSS), not a deviation */
+        const uint8_t *b = (const uint8_t *)&node->dev->set;
+        uint8_t any = 0U;
+        for (size_t k = 0U; k < sizeof node->dev->set; k++) {
+            any |= (k == offsetof(co_settings_t, lss.slave)) ? 0U : b[k];
+        }
+        if (any != 0U) {
+            return CO_RESULT_DEV_INCOMPAT; /* a deviation this build leaves out */
+        }
     }
 #endif
 #if !CO_LIMITS
@@ -499,7 +508,7 @@ static co_result_t bind_services(co_node_t *node)
     }
 #endif
 #if !CO_LSS
-    if ((node->dev->options & CO_OPT_LSS) != 0U) {
+    if (node->dev->set.lss.slave != 0U) {
         return CO_RESULT_DEV_INCOMPAT;
     }
 #endif
@@ -519,9 +528,9 @@ co_result_t co_node_init(co_node_t *node, const co_node_config_t *cfg, uint32_t 
         ((cfg->dev->pdo == NULL) || (cfg->pdo == NULL) || (cfg->pdo_rx == NULL))) {
         return CO_RESULT_BAD_CONFIG;
     }
-    id = ((cfg->dev->options & CO_OPT_LSS_ONLY) != 0U) ? CO_NODE_ID_UNCONFIGURED : cfg->node_id;
+    id = (cfg->dev->set.lss.node_id == CO_LSS_ID_ONLY) ? CO_NODE_ID_UNCONFIGURED : cfg->node_id;
     if (((id < 1U) || (id > 127U)) &&
-        ((id != CO_NODE_ID_UNCONFIGURED) || ((cfg->dev->options & CO_OPT_LSS) == 0U))) {
+        ((id != CO_NODE_ID_UNCONFIGURED) || (cfg->dev->set.lss.slave == 0U))) {
         return CO_RESULT_BAD_NODE_ID;
     }
     (void)memset(node, 0, sizeof *node);
@@ -601,7 +610,7 @@ co_err_t co_node_set_id(co_node_t *node, uint8_t id, uint32_t now_us)
 uint8_t co_node_cob_base_for(const co_node_t *node, uint8_t id)
 {
     if ((id == CO_NODE_ID_UNCONFIGURED) || (node->node_id == CO_NODE_ID_UNCONFIGURED) ||
-        !co_opt(node, CO_OPT_LSS_KEEP_COBS)) {
+        (CO_SET(node, lss.cob_ids) != CO_LSS_COBS_KEEP)) {
         return id; /* CiA 305: the COB-IDs follow the node-ID */
     }
     return node->cob_base; /* valid to valid: the PDO and EMCY COB-IDs stay */
@@ -620,7 +629,7 @@ co_reset_t co_node_take_id(co_node_t *node, co_reset_t kind)
     if ((from != CO_NODE_ID_UNCONFIGURED) || (to == CO_NODE_ID_UNCONFIGURED)) {
         return kind;
     }
-    if (co_opt(node, CO_OPT_LSS_KEEP_COBS)) {
+    if (CO_SET(node, lss.cob_ids) == CO_LSS_COBS_KEEP) {
         co_store_forget_comm(node); /* the communication settings start from defaults */
     }
     return CO_RESET_NODE; /* the node was never initialised with an ID */

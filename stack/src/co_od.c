@@ -76,7 +76,8 @@ co_err_t co_od_lookup(const co_node_t *node, uint16_t index, uint8_t sub,
 {
     *e = find(node->dev->od, node->dev->od_count, index);
     if (*e == NULL) {
-        return co_opt(node, CO_OPT_UNKNOWN_INDEX_NO_ACCESS) ? CO_ERR_NO_ACCESS : CO_ERR_NO_OBJECT;
+        return (CO_SET(node, sdo.unknown_object) == CO_SDO_ABORT_NO_ACCESS) ? CO_ERR_NO_ACCESS
+                                                                         : CO_ERR_NO_OBJECT;
     }
     *s = find_sub(*e, sub);
     return (*s == NULL) ? CO_ERR_NO_SUB : CO_OK;
@@ -86,7 +87,8 @@ co_err_t co_od_check_access(const co_node_t *node, const co_od_sub_t *s, bool wr
 {
     if (write) {
         if (((s->flags & CO_SUB_W) == 0U) || ((s->flags & (CO_SUB_CONST | CO_SUB_ROM)) != 0U)) {
-            return co_opt(node, CO_OPT_READ_ONLY_NO_ACCESS) ? CO_ERR_NO_ACCESS : CO_ERR_READ_ONLY;
+            return (CO_SET(node, sdo.read_only) == CO_SDO_ABORT_NO_ACCESS) ? CO_ERR_NO_ACCESS
+                                                                        : CO_ERR_READ_ONLY;
         }
     } else if ((s->flags & CO_SUB_R) == 0U) {
         return CO_ERR_WRITE_ONLY;
@@ -105,10 +107,12 @@ uint32_t co_od_data_size(const co_node_t *node, const co_od_sub_t *s)
         return 0U;
     }
     if (s->type == (uint8_t)CO_VISIBLE_STRING) {
-        const void *nul = memchr(v, 0, n);
-        if (nul != NULL) {
-            n = (uint32_t)((const uint8_t *)nul - v);
+        /* the text ends at the first NUL (a loop: memchr costs more flash) */
+        uint32_t i = 0U;
+        while ((i < n) && (v[i] != 0U)) {
+            i++;
         }
+        n = i;
     } else if (s->type == (uint8_t)CO_UNICODE_STRING) {
         /* UTF-16 units: the text ends at the first zero unit */
         uint32_t i = 0U;
@@ -549,7 +553,7 @@ co_err_t co_od_write_part(co_node_t *node, const co_od_entry_t *e, const co_od_s
 }
 
 /* The COB-ID of a PDO (communication parameter sub 1) or of the EMCY: its
- * $NODEID default uses the node's COB-ID base (CO_OPT_LSS_KEEP_COBS). */
+ * $NODEID default uses the node's COB-ID base (CO_LSS_COBS_KEEP). */
 static bool is_pdo_emcy_cob(uint16_t index, uint8_t sub)
 {
     bool pdo = ((index >= 0x1400U) && (index <= 0x15FFU)) ||
@@ -563,10 +567,23 @@ void co_od_restore(co_node_t *node, uint16_t from, uint16_t to)
     const co_dev_t *dev = node->dev;
     const uint8_t *def = (const uint8_t *)dev->defaults;
 
-    if ((to <= from) || (def == NULL)) {
+    if ((to <= from) || ((def == NULL) && (dev->default_at == NULL))) {
         return;
     }
-    (void)memcpy(&node->ram[from], &def[from], (size_t)to - from);
+    if (dev->default_at == NULL) {
+        (void)memcpy(&node->ram[from], &def[from], (size_t)to - from);
+    } else {
+        /* sparse: zeros, then the values that are not */
+        uint32_t at = 0U;
+        (void)memset(&node->ram[from], 0, (size_t)to - from);
+        for (uint16_t i = 0U; i < dev->n_defaults; i++) {
+            const co_od_default_t *d = &dev->default_at[i];
+            if ((d->off >= from) && (d->off < to)) {
+                (void)memcpy(&node->ram[d->off], &def[at], d->size);
+            }
+            at += d->size;
+        }
+    }
     /* $NODEID-relative defaults inside the restored range. */
     for (uint16_t i = 0U; i < dev->od_count; i++) {
         const co_od_entry_t *e = &dev->od[i];

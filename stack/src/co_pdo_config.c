@@ -82,7 +82,7 @@ static co_err_t check_entry(const co_node_t *node, bool tx, uint32_t v, uint8_t 
     if ((*bits == 0U) || (*bits > (uint8_t)(size * 8U))) {
         return CO_ERR_PARAM_INCOMPAT;
     }
-    if (((*bits & 7U) != 0U) && co_opt(node, CO_OPT_PDO_MAP_BYTES)) {
+    if (((*bits & 7U) != 0U) && (CO_SET(node, pdo.granularity) == CO_PDO_MAP_BYTES)) {
         return CO_ERR_NO_MAP; /* granularity 8: whole bytes only */
     }
     return CO_OK;
@@ -157,13 +157,13 @@ static co_err_t check_mapping(const co_node_t *node, uint16_t i, uint8_t count, 
 }
 
 /* Mapping writes: CiA 301 wants the PDO invalid first; some devices only
- * want the node out of Operational (CO_OPT_PDO_MAP_WHILE_VALID). */
+ * want the node out of Operational (set.pdo.mapping_while_valid). */
 static bool mapping_locked(const co_node_t *node, uint16_t i)
 {
     if ((co_pdo_cob(node, i) & CO_PDO_COB_INVALID) != 0U) {
         return false;
     }
-    return !co_opt(node, CO_OPT_PDO_MAP_WHILE_VALID) ||
+    return (CO_SET(node, pdo.mapping_while_valid) == 0U) ||
            (node->nmt == (uint8_t)CO_NMT_OPERATIONAL);
 }
 
@@ -211,7 +211,7 @@ static co_err_t check_comm_write(const co_node_t *node, uint16_t i, uint8_t sub,
             return CO_ERR_VALUE; /* 29-bit identifiers are not supported */
         }
         if (valid && new_valid && ((v & 0x7FFUL) != (cur & 0x7FFUL)) &&
-            !co_opt(node, CO_OPT_PDO_COBID_WHILE_VALID)) {
+            (CO_SET(node, pdo.cob_id_while_valid) == 0U)) {
             return CO_ERR_VALUE; /* the CAN-ID changes only while invalid */
         }
         if (new_valid && co_cob_restricted(v & 0x7FFUL)) {
@@ -246,7 +246,7 @@ static co_err_t pdo_check_write(const co_node_t *node, uint16_t index, uint8_t s
     if (!pdo_of(node, index, &i, &is_map)) {
         return CO_OK;
     }
-    if (co_opt(node, CO_OPT_PDO_CONFIG_PREOP_ONLY) &&
+    if ((CO_SET(node, pdo.parameter_writes) == CO_PDO_WRITES_PREOP) &&
         (node->nmt != (uint8_t)CO_NMT_PRE_OPERATIONAL)) {
         return CO_ERR_STORE_STATE; /* the device configures PDOs in Pre-operational only */
     }

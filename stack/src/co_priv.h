@@ -40,12 +40,10 @@ enum {
     CO_RX_LSS
 };
 
-/* A personality option of the node's device; options this build leaves out
- * (CO_OPTIONS) are constant false, so their code is not built. */
-static inline bool co_opt(const co_node_t *node, uint32_t opt)
-{
-    return (node->dev->options & (opt & (uint32_t)CO_OPTIONS)) != 0U;
-}
+/* A setting of the node's device (co_settings.h, e.g. CO_SET(node,
+ * pdo.granularity)); with CO_PERSONALITY 0 every setting is its CiA 301
+ * value 0, so the code of the deviations is not built. */
+#define CO_SET(node, field) ((CO_PERSONALITY != 0) ? (uint32_t)(node)->dev->set.field : 0U)
 
 /* Wrap-safe "a is at or after b". */
 static inline bool co_time_reached(uint32_t now, uint32_t when)
@@ -390,11 +388,11 @@ uint32_t co_store_lss_base(const co_dev_t *dev);
 /* The device is an LSS slave (and the build has LSS). */
 static inline bool co_lss_enabled(const co_node_t *node)
 {
-    return (CO_LSS != 0) && co_opt(node, CO_OPT_LSS);
+    return (CO_LSS != 0) && (CO_SET(node, lss.slave) != 0U);
 }
 
 /* Drop the communication group of the stored set (a node leaving the
- * unconfigured state with CO_OPT_LSS_KEEP_COBS; co_store.c). */
+ * unconfigured state with CO_LSS_COBS_KEEP; co_store.c). */
 void co_store_forget_comm(co_node_t *node);
 
 /* ---- what one service asks of another (no cycles: tools/core-callgraph) */
@@ -473,7 +471,7 @@ CO_INLINE bool co_pdo_usable(const co_node_t *node, uint16_t i)
 static inline uint32_t co_pdo_event_us(const co_node_t *node, uint16_t i)
 {
     uint16_t off = node->dev->pdo[i].event;
-    uint32_t unit = ((node->dev->options & CO_OPT_EVENT_TIMER_100US) != 0U) ? 100UL : 1000UL;
+    uint32_t unit = (CO_SET(node, pdo.event_timer_unit) == CO_PDO_TIMER_100US) ? 100UL : 1000UL;
 
     return (off == CO_PDO_NONE) ? 0U : co_dict_us(co_ram_u16(node, off), unit);
 }

@@ -41,7 +41,7 @@ static void apply(co_node_t *node, uint16_t i, const uint8_t *data, uint8_t dlc)
     if (node->cb.rpdo != NULL) {
         node->cb.rpdo(node->cb.ctx, node, i);
     }
-    if (co_opt(node, CO_OPT_TPDO_AFTER_RPDO) && (i < node->dev->n_tpdo) &&
+    if ((CO_SET(node, pdo.tpdo_after_rpdo) != 0U) && (i < node->dev->n_tpdo) &&
         (co_pdo_type(node, (uint16_t)(node->dev->n_rpdo + i)) == 255U)) {
         (void)co_tpdo_request(node, i); /* with the data the RPDO has just changed */
     }
@@ -54,7 +54,7 @@ static bool length_ok(co_node_t *node, uint16_t i, uint8_t dlc)
     uint8_t len = node->pdo.p[i].len;
 
     if (dlc < len) {
-        if (!co_opt(node, CO_OPT_RPDO_SHORT_OK)) {
+        if ((CO_SET(node, pdo.short_rpdo) == CO_RPDO_SHORT_EMCY)) {
             rpdo_error(node, i, CO_PDO_F_SHORT, CO_EMCY_PDO_SHORT, true);
             return false; /* CiA 301: not processed */
         }

@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "co/co_endian.h"
+#include "co/co_sdo.h"
 #include "co_priv.h"
 #if CO_SDO_BLOCK
 #include "co_crc16.h"
@@ -71,7 +72,7 @@ static void sdo_reset(co_node_t *node)
 
 static void abort_at(co_node_t *node, uint16_t index, uint8_t sub, co_err_t err)
 {
-    reply(node, 0x80U, index, sub, (uint32_t)err);
+    reply(node, CO_SDO_B0(CO_SDO_CS_ABORT), index, sub, (uint32_t)err);
     sdo_reset(node);
 }
 
@@ -208,11 +209,18 @@ static void open_upload(co_sdo_srv_t *t, const co_od_entry_t *e, const co_od_sub
     t->seqno = 0U;
 }
 
+/* The server offers expedited transfers only (segmented upload refused:
+ * then segmented download and block are too, co_settings.h). */
+static bool expedited_only(const co_node_t *node)
+{
+    return (CO_SET(node, sdo.refused) & CO_SDO_XFER_SEG_UPLOAD) != 0U;
+}
+
 /* The whole value is staged and fits an expedited answer (an empty one only
- * with CO_OPT_SDO_EXPEDITED_ONLY). */
+ * when the server offers expedited transfers only). */
 static bool fits_expedited(const co_node_t *node, bool last, uint32_t size)
 {
-    return last && (size <= 4U) && ((size > 0U) || co_opt(node, CO_OPT_SDO_EXPEDITED_ONLY));
+    return last && (size <= 4U) && ((size > 0U) || expedited_only(node));
 }
 
 /* Expedited upload answer with the @p size bytes staged in t->buf. */
@@ -221,7 +229,8 @@ static void send_expedited(co_node_t *node, uint16_t index, uint8_t sub, uint32_
     uint8_t d[8] = {0};
     uint32_t n = (size == 0U) ? 1U : size;
 
-    d[0] = (uint8_t)(0x43U | ((4U - n) << 2U));
+    d[0] = (uint8_t)(CO_SDO_B0(CO_SDO_SCS_UPLOAD_INITIATE) | CO_SDO_EXPEDITED | CO_SDO_SIZE_IND |
+                     ((4U - n) << CO_SDO_N_SHIFT));
     co_put_u16(&d[1], index);
     d[3] = sub;
     (void)memcpy(&d[4], node->sdo.buf, size);
@@ -263,8 +272,8 @@ static co_err_t read_seg(co_node_t *node, uint32_t at, uint8_t *buf, uint32_t *g
 CO_NOINLINE static void initiate_download(co_node_t *node, const uint8_t *d, uint16_t index,
                                           uint8_t sub)
 {
-    bool expedited = (d[0] & 0x02U) != 0U;
-    bool size_ind = (d[0] & 0x01U) != 0U;
+    bool expedited = (d[0] & CO_SDO_EXPEDITED) != 0U;
+    bool size_ind = (d[0] & CO_SDO_SIZE_IND) != 0U;
     co_err_t err;
 
     if (expedited) {
@@ -284,15 +293,15 @@ CO_NOINLINE static void initiate_download(co_node_t *node, const uint8_t *d, uin
             return;
         }
         sdo_reset(node);
-        reply(node, 0x60U, index, sub, 0U);
+        reply(node, CO_SDO_B0(CO_SDO_SCS_DOWNLOAD_INITIATE), index, sub, 0U);
         return;
     }
-    if (co_opt(node, CO_OPT_SDO_EXPEDITED_ONLY)) {
+    if (expedited_only(node)) {
         abort_at(node, index, sub, CO_ERR_CMD);
         return;
     }
     err = open_download(node, index, sub, size_ind, co_get_u32(&d[4]));
-    if ((err == CO_OK) && co_opt(node, CO_OPT_SDO_NO_SEG_DOWNLOAD)) {
+    if ((err == CO_OK) && ((CO_SET(node, sdo.refused) & CO_SDO_XFER_SEG_DOWNLOAD) != 0U)) {
         err = CO_ERR_NO_ACCESS; /* the object's own errors come first */
     }
     if (err != CO_OK) {
@@ -300,7 +309,7 @@ CO_NOINLINE static void initiate_download(co_node_t *node, const uint8_t *d, uin
         return;
     }
     start(node, S_DL_SEG);
-    reply(node, 0x60U, index, sub, 0U);
+    reply(node, CO_SDO_B0(CO_SDO_SCS_DOWNLOAD_INITIATE), index, sub, 0U);
 }
 
 static void respond_upload(co_node_t *node, bool last)
@@ -315,12 +324,15 @@ static void respond_upload(co_node_t *node, bool last)
         send_expedited(node, index, sub, size);
         return;
     }
-    if (co_opt(node, CO_OPT_SDO_EXPEDITED_ONLY)) {
+    if (expedited_only(node)) {
         abort_at(node, index, sub, CO_ERR_NO_ACCESS);
         return;
     }
     start(node, S_UL_SEG);
-    reply(node, ((t->flags & F_SIZE) != 0U) ? 0x41U : 0x40U, index, sub, t->size);
+    reply(node,
+          (uint8_t)(CO_SDO_B0(CO_SDO_SCS_UPLOAD_INITIATE) |
+                    (((t->flags & F_SIZE) != 0U) ? CO_SDO_SIZE_IND : 0U)),
+          index, sub, t->size);
 }
 
 /* Called in S_IDLE (no transfer open): an expedited answer leaves it so. */
@@ -346,9 +358,9 @@ static void initiate_upload(co_node_t *node, uint16_t index, uint8_t sub)
 static void download_segment(co_node_t *node, const uint8_t *d)
 {
     co_sdo_srv_t *t = &node->sdo;
-    uint8_t toggle = (uint8_t)(d[0] & 0x10U);
-    uint32_t len = SEG - (((uint32_t)d[0] >> 1U) & 7U);
-    bool last = (d[0] & 0x01U) != 0U;
+    uint8_t toggle = (uint8_t)(d[0] & CO_SDO_TOGGLE);
+    uint32_t len = SEG - (((uint32_t)d[0] >> CO_SDO_SEG_N_SHIFT) & 7U);
+    bool last = (d[0] & CO_SDO_LAST_SEG) != 0U;
     co_err_t err = CO_OK;
 
     if (toggle != t->toggle) {
@@ -374,8 +386,8 @@ static void download_segment(co_node_t *node, const uint8_t *d)
     }
     {
         uint8_t r[8] = {0};
-        r[0] = (uint8_t)(0x20U | toggle);
-        t->toggle ^= 0x10U;
+        r[0] = (uint8_t)(CO_SDO_B0(CO_SDO_SCS_DOWNLOAD_SEGMENT) | toggle);
+        t->toggle ^= CO_SDO_TOGGLE;
         if (last) {
             sdo_reset(node);
         } else {
@@ -388,7 +400,7 @@ static void download_segment(co_node_t *node, const uint8_t *d)
 static void upload_segment(co_node_t *node, const uint8_t *d)
 {
     co_sdo_srv_t *t = &node->sdo;
-    uint8_t toggle = (uint8_t)(d[0] & 0x10U);
+    uint8_t toggle = (uint8_t)(d[0] & CO_SDO_TOGGLE);
     uint8_t r[8] = {0};
     uint32_t got = 0U;
     bool last = false;
@@ -405,8 +417,9 @@ static void upload_segment(co_node_t *node, const uint8_t *d)
     }
     t->flags &= (uint8_t)~F_STAGED;
     t->offset += got;
-    r[0] = (uint8_t)(toggle | ((SEG - got) << 1U) | (last ? 1U : 0U));
-    t->toggle ^= 0x10U;
+    r[0] = (uint8_t)(CO_SDO_B0(CO_SDO_SCS_UPLOAD_SEGMENT) | toggle | ((SEG - got) << CO_SDO_SEG_N_SHIFT) |
+                     (last ? CO_SDO_LAST_SEG : 0U));
+    t->toggle ^= CO_SDO_TOGGLE;
     if (last) {
         sdo_reset(node);
     } else {
@@ -421,10 +434,10 @@ static void upload_segment(co_node_t *node, const uint8_t *d)
 static void block_download_initiate(co_node_t *node, const uint8_t *d, uint16_t index,
                                     uint8_t sub)
 {
-    bool size_ind = (d[0] & 0x02U) != 0U;
+    bool size_ind = (d[0] & CO_SDO_BLK_SIZE_IND) != 0U;
     co_err_t err;
 
-    if ((d[0] & 0x01U) != 0U) {
+    if ((d[0] & CO_SDO_BLK_END) != 0U) {
         abort_at(node, index, sub, CO_ERR_CMD); /* end without a transfer */
         return;
     }
@@ -433,19 +446,20 @@ static void block_download_initiate(co_node_t *node, const uint8_t *d, uint16_t 
         abort_at(node, index, sub, err);
         return;
     }
-    if ((d[0] & 0x04U) != 0U) {
+    if ((d[0] & CO_SDO_BLK_CRC) != 0U) {
         node->sdo.flags |= F_CRC;
     }
     node->sdo.blksize = (uint8_t)SDO_BLKSIZE;
     start(node, S_BLK_DL);
-    reply(node, 0xA4U, index, sub, SDO_BLKSIZE);
+    reply(node, (uint8_t)(CO_SDO_B0(CO_SDO_SCS_BLOCK_DOWNLOAD) | CO_SDO_BLK_CRC | CO_SDO_BLK_INITIATE),
+          index, sub, SDO_BLKSIZE);
 }
 
 static void block_ack(co_node_t *node)
 {
     uint8_t r[8] = {0};
 
-    r[0] = 0xA2U;
+    r[0] = (uint8_t)(CO_SDO_B0(CO_SDO_SCS_BLOCK_DOWNLOAD) | CO_SDO_BLK_ACK);
     r[1] = node->sdo.seqno;
     r[2] = node->sdo.blksize;
     send8(node, r);
@@ -454,8 +468,8 @@ static void block_ack(co_node_t *node)
 static void block_download_segment(co_node_t *node, const uint8_t *d)
 {
     co_sdo_srv_t *t = &node->sdo;
-    uint8_t seq = (uint8_t)(d[0] & 0x7FU);
-    bool last = (d[0] & 0x80U) != 0U;
+    uint8_t seq = (uint8_t)(d[0] & (uint8_t)~CO_SDO_BLK_LAST);
+    bool last = (d[0] & CO_SDO_BLK_LAST) != 0U;
     co_err_t err;
 
     if ((seq == 0U) || (seq > t->blksize)) {
@@ -501,10 +515,10 @@ static void block_download_segment(co_node_t *node, const uint8_t *d)
 static void block_download_end(co_node_t *node, const uint8_t *d)
 {
     co_sdo_srv_t *t = &node->sdo;
-    uint32_t len = SEG - (((uint32_t)d[0] >> 2U) & 7U);
+    uint32_t len = SEG - (((uint32_t)d[0] >> CO_SDO_BLK_N_SHIFT) & 7U);
     co_err_t err = CO_OK;
 
-    if ((d[0] & 0xE3U) != 0xC1U) {
+    if ((d[0] & 0xE3U) != (CO_SDO_B0(CO_SDO_CCS_BLOCK_DOWNLOAD) | CO_SDO_BLK_END)) {
         abort_cur(node, CO_ERR_CMD);
         return;
     }
@@ -532,7 +546,7 @@ static void block_download_end(co_node_t *node, const uint8_t *d)
     sdo_reset(node);
     {
         uint8_t r[8] = {0};
-        r[0] = 0xA1U;
+        r[0] = (uint8_t)(CO_SDO_B0(CO_SDO_SCS_BLOCK_DOWNLOAD) | CO_SDO_BLK_END);
         send8(node, r);
     }
 }
@@ -550,7 +564,7 @@ CO_NOINLINE static void block_upload_initiate(co_node_t *node, const uint8_t *d,
     co_od_chunk_t c;
     co_err_t err;
 
-    if ((d[0] & 0x03U) != 0U) {
+    if ((d[0] & CO_SDO_BLK_SUB_MASK) != CO_SDO_BLK_INITIATE) {
         abort_at(node, index, sub, CO_ERR_CMD);
         return;
     }
@@ -569,11 +583,14 @@ CO_NOINLINE static void block_upload_initiate(co_node_t *node, const uint8_t *d,
         return;
     }
     t->blksize = blksize;
-    if ((d[0] & 0x04U) != 0U) {
+    if ((d[0] & CO_SDO_BLK_CRC) != 0U) {
         t->flags |= F_CRC;
     }
     start(node, S_BLK_UL_INI);
-    reply(node, (uint8_t)(0xC4U | (((t->flags & F_SIZE) != 0U) ? 0x02U : 0U)), index, sub,
+    reply(node,
+          (uint8_t)(CO_SDO_B0(CO_SDO_SCS_BLOCK_UPLOAD) | CO_SDO_BLK_CRC |
+                    (((t->flags & F_SIZE) != 0U) ? CO_SDO_BLK_SIZE_IND : 0U)),
+          index, sub,
           t->size);
 }
 
@@ -597,7 +614,7 @@ static void block_upload_send(co_node_t *node)
             abort_cur(node, CO_ERR_GENERAL); /* a hook produced a short chunk mid-stream */
             return;
         }
-        d[0] = (uint8_t)((uint8_t)(t->seqno + 1U) | (last ? 0x80U : 0U));
+        d[0] = (uint8_t)((uint8_t)(t->seqno + 1U) | (last ? CO_SDO_BLK_LAST : 0U));
         if (!co_tx_try(node, tx_cob(node), d, 8U)) {
             return;
         }
@@ -677,7 +694,8 @@ static void block_upload_ack(co_node_t *node, const uint8_t *d)
     }
     if (all) {
         uint8_t r[8] = {0};
-        r[0] = (uint8_t)(0xC1U | ((SEG - tail) << 2U));
+        r[0] = (uint8_t)(CO_SDO_B0(CO_SDO_SCS_BLOCK_UPLOAD) | CO_SDO_BLK_END |
+                         ((SEG - tail) << CO_SDO_BLK_N_SHIFT));
         co_put_u16(&r[1], ((t->flags & F_CRC) != 0U) ? t->crc : 0U);
         start(node, S_BLK_UL_END);
         send8(node, r);
@@ -698,29 +716,29 @@ static void idle_request(co_node_t *node, const uint8_t *d)
 {
     uint16_t index = co_get_u16(&d[1]);
     uint8_t sub = d[3];
-    uint8_t ccs = (uint8_t)(d[0] >> 5U);
+    uint8_t ccs = CO_SDO_CS(d[0]);
 #if CO_SDO_BLOCK
-    bool blocks = !co_opt(node, CO_OPT_SDO_NO_BLOCK | CO_OPT_SDO_EXPEDITED_ONLY);
+    bool blocks = ((CO_SET(node, sdo.refused) & CO_SDO_XFER_BLOCK) == 0U) && !expedited_only(node);
 #endif
 
     switch (ccs) {
-    case 1U:
+    case CO_SDO_CCS_DOWNLOAD_INITIATE:
         initiate_download(node, d, index, sub);
         break;
-    case 2U:
+    case CO_SDO_CCS_UPLOAD_INITIATE:
         initiate_upload(node, index, sub);
         break;
-    case 4U:
+    case CO_SDO_CS_ABORT:
         break; /* abort with nothing open: nothing to do */
 #if CO_SDO_BLOCK
-    case 5U:
+    case CO_SDO_CCS_BLOCK_UPLOAD:
         if (blocks) {
             block_upload_initiate(node, d, index, sub);
         } else {
             abort_at(node, index, sub, CO_ERR_CMD);
         }
         break;
-    case 6U:
+    case CO_SDO_CCS_BLOCK_DOWNLOAD:
         if (blocks) {
             block_download_initiate(node, d, index, sub);
         } else {
@@ -728,8 +746,8 @@ static void idle_request(co_node_t *node, const uint8_t *d)
         }
         break;
 #endif
-    case 0U:
-    case 3U:
+    case CO_SDO_CCS_DOWNLOAD_SEGMENT:
+    case CO_SDO_CCS_UPLOAD_SEGMENT:
         /* a segment without a transfer carries no index: answer with 0 */
         abort_at(node, 0U, 0U, CO_ERR_CMD);
         break;
@@ -758,18 +776,18 @@ static void bad_length(co_node_t *node, const co_frame_t *f)
 CO_NOINLINE static void transfer_request(co_node_t *node, const uint8_t *d)
 {
     co_sdo_srv_t *t = &node->sdo;
-    uint8_t ccs = (uint8_t)(d[0] >> 5U);
+    uint8_t ccs = CO_SDO_CS(d[0]);
 
     switch (t->state) {
     case S_DL_SEG:
-        if (ccs == 0U) {
+        if (ccs == CO_SDO_CCS_DOWNLOAD_SEGMENT) {
             download_segment(node, d);
         } else {
             abort_cur(node, CO_ERR_CMD);
         }
         break;
     case S_UL_SEG:
-        if (ccs == 3U) {
+        if (ccs == CO_SDO_CCS_UPLOAD_SEGMENT) {
             upload_segment(node, d);
         } else {
             abort_cur(node, CO_ERR_CMD);
@@ -780,7 +798,7 @@ CO_NOINLINE static void transfer_request(co_node_t *node, const uint8_t *d)
         block_download_end(node, d);
         break;
     case S_BLK_UL_INI:
-        if (d[0] == 0xA3U) {
+        if (d[0] == (CO_SDO_B0(CO_SDO_CCS_BLOCK_UPLOAD) | CO_SDO_BLK_START)) {
             t->seqno = 0U;
             t->flags &= (uint8_t)~F_LAST;
             start(node, S_BLK_UL);
@@ -790,14 +808,14 @@ CO_NOINLINE static void transfer_request(co_node_t *node, const uint8_t *d)
         }
         break;
     case S_BLK_UL:
-        if ((d[0] & 0xE3U) == 0xA2U) {
+        if ((d[0] & 0xE3U) == (CO_SDO_B0(CO_SDO_CCS_BLOCK_UPLOAD) | CO_SDO_BLK_ACK)) {
             block_upload_ack(node, d);
         } else {
             abort_cur(node, CO_ERR_CMD);
         }
         break;
     case S_BLK_UL_END:
-        if ((d[0] & 0xE3U) == 0xA1U) {
+        if ((d[0] & 0xE3U) == (CO_SDO_B0(CO_SDO_CCS_BLOCK_UPLOAD) | CO_SDO_BLK_END)) {
             sdo_reset(node);
         } else {
             abort_cur(node, CO_ERR_CMD);
@@ -819,8 +837,8 @@ static void sdo_rx(co_node_t *node, uint16_t arg, const co_frame_t *f)
     if ((node->nmt == (uint8_t)CO_NMT_STOPPED) || co_frame_is_rtr(f)) {
         return;
     }
-    if ((f->dlc >= 1U) && ((t->state != (uint8_t)S_BLK_DL) ? ((d[0] >> 5U) == 4U)
-                                                             : (d[0] == 0x80U))) {
+    if ((f->dlc >= 1U) && ((t->state != (uint8_t)S_BLK_DL) ? (CO_SDO_CS(d[0]) == CO_SDO_CS_ABORT)
+                                                             : (d[0] == CO_SDO_B0(CO_SDO_CS_ABORT)))) {
         /* client abort, whatever its length: CiA 301 makes the abort
          * unconfirmed, so nothing answers it; the transfer ends */
         sdo_reset(node);

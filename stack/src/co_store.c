@@ -13,7 +13,7 @@
  *   8  layout signature (u16) 10  app_end (u16)
  *  12  groups held (bit 0 communication, bit 1 application); bits 2, 3:
  *      of those, the groups restored to defaults whose data is kept for a
- *      restore of the saved set (CO_OPT_RESTORE_SAVED)
+ *      restore of the saved set (CO_RESTORE_SAVED)
  *  13  format (1)             14  CRC-16 over bytes 0..13 and the data of
  *                                 the groups held (in address order)
  *
@@ -24,7 +24,7 @@
  * stays the newest valid one: a power cut at any byte leaves the old or the
  * new set, never a mix. Groups not saved are copied from the previous set; a
  * restore writes a set without the restored groups (persistent, effective at
- * the next reset that covers them). With CO_OPT_RESTORE_SAVED a restore
+ * the next reset that covers them). With CO_RESTORE_SAVED a restore
  * keeps the group's data, marked restored (the defaults load), and 0x1011
  * sub 4..6 ("restore the saved set": all, communication, application) take
  * the mark away again, so that the last saved values load at the next reset.
@@ -87,7 +87,7 @@ uint32_t co_store_nv_size(const co_dev_t *dev)
 {
     uint32_t size = 2U * bank_size(dev);
 
-    if ((dev->options & CO_OPT_LSS) != 0U) {
+    if ((CO_LSS != 0) && (dev->set.lss.slave != 0U)) {
         size += CO_LSS_NV_SIZE; /* the LSS records (co_lss.c) */
     }
     return size;
@@ -244,7 +244,7 @@ static bool is_command(const co_od_entry_t *e, const co_od_sub_t *s)
 /* The highest sub-index of 0x1010 / 0x1011 the core acts on. */
 static uint8_t last_sub(const co_node_t *node, uint16_t index)
 {
-    return ((index == 0x1011U) && co_opt(node, CO_OPT_RESTORE_SAVED)) ? 6U : 3U;
+    return ((index == 0x1011U) && (CO_SET(node, store.restore) == CO_RESTORE_SAVED)) ? 6U : 3U;
 }
 
 static co_err_t command(co_node_t *node, uint16_t index, uint8_t sub, const uint8_t *data)
@@ -263,7 +263,7 @@ static co_err_t command(co_node_t *node, uint16_t index, uint8_t sub, const uint
         c.from_ram = grp;
     } else if (sub >= 4U) {
         c.unmark = grp; /* the saved set loads again */
-    } else if (co_opt(node, CO_OPT_RESTORE_SAVED)) {
+    } else if (CO_SET(node, store.restore) == CO_RESTORE_SAVED) {
         c.mark = grp; /* defaults, the saved data kept for sub 4..6 */
     } else {
         c.drop = grp;

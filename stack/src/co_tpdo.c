@@ -100,6 +100,18 @@ static bool cyclic_due(co_node_t *node, uint16_t i, uint8_t type, uint8_t counte
     return true;
 }
 
+/* The sampled data differ from the last sent (a loop: the C library's
+ * memcmp costs more flash). */
+static bool changed(const uint8_t *now, const uint8_t *sent)
+{
+    uint8_t d = 0U;
+
+    for (uint8_t k = 0U; k < 8U; k++) {
+        d |= (uint8_t)(now[k] ^ sent[k]);
+    }
+    return d != 0U;
+}
+
 /* Acyclic (0): due at the SYNC after a change of the data or a request. */
 static bool acyclic_due(co_node_t *node, uint16_t i)
 {
@@ -108,7 +120,7 @@ static bool acyclic_due(co_node_t *node, uint16_t i)
 
     build(node, i, now);
     return ((p->flags & (CO_PDO_F_EVENT | CO_PDO_F_SENT)) != CO_PDO_F_SENT) ||
-           (memcmp(now, p->data, 8U) != 0);
+           changed(now, p->data);
 }
 
 void co_tpdo_sync(co_node_t *node, uint8_t counter)
@@ -202,17 +214,17 @@ CO_INLINE uint32_t event_due(co_node_t *node, uint16_t i, uint32_t next, const u
     return at;
 }
 
-/* CO_OPT_TPDO_MASK_254/255: does the change from the data last sent to
+/* set.tpdo.change_mask: does the change from the data last sent to
  * @p now touch a bit of TPDO i's change mask (co_dev_t.tpdo_mask)? True
  * when no mask applies to its transmission type. */
 static CO_NOINLINE bool masked_change(const co_node_t *node, uint16_t i, const uint8_t *now)
 {
     const co_pdo_t *p = &node->pdo.p[i];
-    uint32_t opt = (co_pdo_type(node, i) == 254U) ? CO_OPT_TPDO_MASK_254 : CO_OPT_TPDO_MASK_255;
+    uint32_t type = (co_pdo_type(node, i) == 254U) ? CO_TPDO_MASK_254 : CO_TPDO_MASK_255;
     uint16_t off;
     uint32_t mask = 0U;
 
-    if (!co_opt(node, opt) || (node->dev->tpdo_mask == NULL)) {
+    if (((CO_SET(node, tpdo.change_mask) & type) == 0U) || (node->dev->tpdo_mask == NULL)) {
         return true;
     }
     off = node->dev->tpdo_mask[i - node->dev->n_rpdo];
@@ -228,7 +240,7 @@ static CO_NOINLINE bool masked_change(const co_node_t *node, uint16_t i, const u
     return false;
 }
 
-/* Event-driven (254/255): change of the data (with CO_OPT_TPDO_MASK_*, of
+/* Event-driven (254/255): change of the data (with set.tpdo.change_mask, of
  * the bits of its change mask; looked at only when the data changed), a
  * request, or the event timer, no sooner than the inhibit time allows.
  * Returns the next deadline. */
@@ -243,8 +255,8 @@ static uint32_t event_driven(co_node_t *node, uint16_t i, uint32_t next)
         /* sample unless already due and waiting for the inhibit time anyway */
         build(node, i, now);
         if (((p->flags & CO_PDO_F_SENT) == 0U) ||
-            ((memcmp(now, p->data, 8U) != 0) &&
-             (!co_opt(node, CO_OPT_TPDO_MASK_254 | CO_OPT_TPDO_MASK_255) ||
+            (changed(now, p->data) &&
+             ((CO_SET(node, tpdo.change_mask) == 0U) ||
               masked_change(node, i, now)) &&
              ((node->cb.tpdo_event == NULL) ||
               node->cb.tpdo_event(node->cb.ctx, node, (uint16_t)(i - node->dev->n_rpdo),
@@ -258,7 +270,7 @@ static uint32_t event_driven(co_node_t *node, uint16_t i, uint32_t next)
     return timer_next(node, p, next);
 }
 
-/* CO_OPT_TPDO_NO_CHANGE_DETECT: event-driven (254/255) without change
+/* CO_TPDO_CHANGE_IGNORED: event-driven (254/255) without change
  * detection: a request or the event timer (which runs from the start of
  * Operational, when nothing has been sent), sampled when it goes out. */
 static uint32_t event_requested(co_node_t *node, uint16_t i, uint32_t next)
@@ -288,7 +300,7 @@ static uint32_t event_requested(co_node_t *node, uint16_t i, uint32_t next)
 
 /* One pass over the TPDOs: RTR answers and synchronous transmissions held
  * back, event-driven TPDOs with (@p detect) or without change detection
- * (CO_OPT_TPDO_NO_CHANGE_DETECT). Inlined twice with a constant @p detect,
+ * (CO_TPDO_CHANGE_IGNORED). Inlined twice with a constant @p detect,
  * so the usual pass pays nothing for the option. */
 CO_INLINE uint32_t tpdo_pass(co_node_t *node, uint32_t next, bool detect)
 {
@@ -323,7 +335,7 @@ CO_INLINE uint32_t tpdo_pass(co_node_t *node, uint32_t next, bool detect)
     return next;
 }
 
-/* The pass of a device with CO_OPT_TPDO_NO_CHANGE_DETECT. */
+/* The pass of a device with CO_TPDO_CHANGE_IGNORED. */
 static CO_NOINLINE uint32_t tpdo_pass_requested(co_node_t *node, uint32_t next)
 {
     return tpdo_pass(node, next, false);
@@ -334,7 +346,7 @@ uint32_t co_tpdo_process(co_node_t *node, uint32_t next)
     if (node->nmt != (uint8_t)CO_NMT_OPERATIONAL) {
         return next;
     }
-    if (co_opt(node, CO_OPT_TPDO_NO_CHANGE_DETECT)) {
+    if (CO_SET(node, tpdo.change_detection) == CO_TPDO_CHANGE_IGNORED) {
         return tpdo_pass_requested(node, next);
     }
     return tpdo_pass(node, next, true);

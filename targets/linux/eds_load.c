@@ -1087,7 +1087,7 @@ static eds_dev_t *build(ctx_t *c, const char *name, const char *text)
     d->dev.rom = NULL;
     d->dev.limits = (nlim != 0U) ? d->limits : NULL;
     d->dev.n_hooks = 0U;
-    d->dev.options = 0U;
+    (void)memset(&d->dev.set, 0, sizeof d->dev.set); /* CiA 301 */
     nr = pdo_scan(d, 0x1400U, 0x1600U, NULL);
     nt = pdo_scan(d, 0x1800U, 0x1A00U, NULL);
     d->pdo = (co_pdo_desc_t *)calloc(((nr + nt) != 0U) ? (nr + nt) : 1U, sizeof *d->pdo);

@@ -594,9 +594,8 @@ static int run(const options_t *o)
 /* One line of --list-devices: name, LSS column (LSS, LSS-only or -), summary. */
 static void list_device(const co_device_t *d)
 {
-    uint32_t opt = d->dev->options;
-    const char *lss = ((opt & CO_OPT_LSS_ONLY) != 0U) ? "LSS-only"
-                      : ((opt & CO_OPT_LSS) != 0U) ? "LSS" : "-";
+    const co_lss_settings_t *ls = &d->dev->set.lss;
+    const char *lss = (ls->node_id == CO_LSS_ID_ONLY) ? "LSS-only" : (ls->slave != 0U) ? "LSS" : "-";
 
     (void)printf("%-22s %-8s %s\n", d->name, lss, d->summary);
 }

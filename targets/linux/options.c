@@ -144,10 +144,10 @@ static int parse_node(char *spec, opt_node_t *n, char *err, size_t cap)
 static int resolve_id(opt_node_t *n, uint8_t def, char *err, size_t cap)
 {
     const co_device_t *e = (n->eds != NULL) ? NULL : co_device_find(n->device);
-    uint32_t opts = (e != NULL) ? e->dev->options : 0U; /* an EDS device: no LSS */
-    bool lss = (opts & CO_OPT_LSS) != 0U;
+    bool lss = (e != NULL) && (e->dev->set.lss.slave != 0U); /* an EDS device: no LSS */
+    bool lss_only = (e != NULL) && (e->dev->set.lss.node_id == CO_LSS_ID_ONLY);
 
-    if (n->id_given && ((opts & CO_OPT_LSS_ONLY) != 0U)) {
+    if (n->id_given && lss_only) {
         return fail(err, cap, "%s takes its node-ID only through LSS: start it without one%s",
                     n->device, "");
     }

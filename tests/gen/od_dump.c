@@ -120,9 +120,18 @@ int main(int argc, char **argv)
         return 1;
     }
     printf("{\"name\": \"%s\", \"node_id\": %lu, \"ram_size\": %u, \"comm_end\": %u, "
-           "\"app_end\": %u, \"n_hooks\": %u, \"options\": %lu,\n",
+           "\"app_end\": %u, \"n_hooks\": %u,\n",
            dev->name, id, (unsigned)dev->ram_size, (unsigned)dev->comm_end,
-           (unsigned)dev->app_end, (unsigned)dev->n_hooks, (unsigned long)dev->options);
+           (unsigned)dev->app_end, (unsigned)dev->n_hooks);
+    /* the personality (co_settings.h), one part per service */
+    printf(" \"set\": {\"nmt\": {\"bootup\": %u, \"boot_emcy\": %u, \"guarding_with_hb\": %u, "
+           "\"guarding_hb_exclusive\": %u}, \"sdo\": {\"refused\": %u, \"unknown_object\": %u, "
+           "\"read_only\": %u}, \"emcy\": {\"reset\": %u, \"state_pair\": %u, "
+           "\"generic_bit\": %u, \"history\": %u}, \"lss\": {\"slave\": %u}},\n",
+           dev->set.nmt.bootup, dev->set.nmt.boot_emcy, dev->set.nmt.guarding_with_hb,
+           dev->set.nmt.guarding_hb_exclusive, dev->set.sdo.refused, dev->set.sdo.unknown_object,
+           dev->set.sdo.read_only, dev->set.emcy.reset, dev->set.emcy.state_pair,
+           dev->set.emcy.generic_bit, dev->set.emcy.history, dev->set.lss.slave);
     printf(" \"core\": {\"errreg\": %d, \"hist_depth\": %u, \"n_hb_cons\": %u, "
            "\"emcy_cob\": %d, \"hb_prod\": %d, \"guard_time\": %d, \"life_factor\": %d, "
            "\"emcy_inhibit\": %d, \"frames\": %u, \"first_id\": %lu, \"nmt\": %u},\n",
@@ -156,10 +165,12 @@ int main(int argc, char **argv)
             } else {
                 printf("null");
             }
+#if CO_LIMITS
             if ((s->flags & CO_SUB_LIMIT) != 0U) {
                 printf(", \"limit\": [%" PRId64 ", %" PRId64 "]", dev->limits[s->limit].min,
                        dev->limits[s->limit].max);
             }
+#endif
             printf("}%s\n", (k + 1U < e->nsubs) ? "," : "");
         }
         printf("  ]}%s\n", (i + 1U < dev->od_count) ? "," : "");

@@ -42,20 +42,20 @@ def test_refused_names_every_missing_part(tmp_path: Path) -> None:
 
 
 def test_options_outside_the_build(tmp_path: Path) -> None:
-    r = run_odgen(KOLLMORGEN, tmp_path, "--c", "--build=CO_OPTIONS=0U")
+    r = run_odgen(KOLLMORGEN, tmp_path, "--c", "--build=CO_PERSONALITY=0")
     assert r.returncode == 1
-    assert "SDO_EXPEDITED_ONLY" in r.stderr and "CO_OPTIONS" in r.stderr
+    assert "SDO_EXPEDITED_ONLY" in r.stderr and "CO_PERSONALITY" in r.stderr
 
 
 def test_accepted(tmp_path: Path) -> None:
     # what the device does not need may be left out
     assert run_odgen(LEAN, tmp_path, "--c",
                      "--build=CO_STORAGE=0;CO_TIME=0;CO_SYNC_PRODUCER=0;CO_ERROR_BEHAVIOUR=0;"
-                     "CO_LIMITS=0;CO_OPTIONS=0U;CO_NODE_GUARDING=0").returncode == 0
+                     "CO_LIMITS=0;CO_PERSONALITY=0;CO_NODE_GUARDING=0").returncode == 0
     # the minimal slave has guarding: with it, its build's options pass
     assert run_odgen(MINIMAL, tmp_path, "--c",
                      "--build=CO_STORAGE=0,CO_TIME=0,CO_SYNC_PRODUCER=0,CO_ERROR_BEHAVIOUR=0,"
-                     "CO_LIMITS=0,CO_OPTIONS=0U,CO_HB_CONSUMERS_MAX=4U").returncode == 0
+                     "CO_LIMITS=0,CO_PERSONALITY=0,CO_HB_CONSUMERS_MAX=4U").returncode == 0
     # a device that offers no block SDO is fine without it
     assert run_odgen(KOLLMORGEN, tmp_path, "--c", "--build=CO_SDO_BLOCK=0").returncode == 0
     # no build options: the full core

@@ -140,7 +140,10 @@ def test_edge_device(tmp_path):
     assert r.returncode == 0, r.stderr
     exe = compile_dump(tmp_path, "edge")
     dump = run_dump(exe, 127)
-    assert dump["options"] == 0x0080 | 0x0008 | 0x0020
+    # options SDO_NO_BLOCK, BOOT_EMCY, EMCY_RESET_PARTIAL as typed settings
+    assert dump["set"]["sdo"] == {"refused": 0x04, "unknown_object": 0, "read_only": 0}
+    assert dump["set"]["nmt"]["boot_emcy"] == 1 and dump["set"]["nmt"]["bootup"] == 0
+    assert dump["set"]["emcy"]["reset"] == 1 and dump["set"]["emcy"]["history"] == 0
     assert dump["n_hooks"] == 1
     # 0x1018 sub 4 without [device] serial: a RAM value the application fills in
     s1018 = next(e for e in dump["entries"] if e["index"] == 0x1018)["subs"]

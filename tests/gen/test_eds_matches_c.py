@@ -13,7 +13,6 @@ import pytest
 
 from compare import NODE_ID, compare, run_dump
 from conftest import build_dir
-from model import core_options as options
 
 
 @pytest.fixture
@@ -33,8 +32,8 @@ def test_core_finds_its_objects(device, built):
     _, dump = built
     core = dump["core"]
     assert dump["node_id"] == NODE_ID
-    # boot-up, then (CO_OPT_BOOT_EMCY) the EMCY 0x0000 of the end of initialisation
-    boot_emcy = (dump["options"] & options()["BOOT_EMCY"]) != 0
+    # boot-up, then (set.nmt.boot_emcy) the EMCY 0x0000 of the end of initialisation
+    boot_emcy = dump["set"]["nmt"]["boot_emcy"] != 0
     assert core["frames"] == 1 + boot_emcy and core["first_id"] == 0x700 + NODE_ID
     assert core["nmt"] == 0x7F
     if device.stem == "generic-301":

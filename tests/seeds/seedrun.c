@@ -47,7 +47,7 @@ void sr_start(seedrun_t *s, const co_device_t *d, co_node_config_t *cfg, co_node
     tb_attach(&s->bus, 0, node);
     assert_int_equal(co_node_init(node, cfg, s->bus.now), CO_RESULT_OK);
     assert_int_equal(co_device_attach(&s->run, node, s->bus.now), CO_OK);
-    if ((cfg->dev->options & CO_OPT_LSS_ONLY) != 0U) {
+    if (cfg->dev->set.lss.node_id == CO_LSS_ID_ONLY) {
         /* the node-ID only through LSS (FAULHABER quick start, digest 1.5):
          * unconfigured and silent; switch global, configure node-ID, back to
          * waiting: the node initialises at once */

@@ -13,7 +13,7 @@
  * TPDOs (digest 4.3, 9.1 item 1): the only event of a type-255 TPDO is a
  * statusword change. The profile requests the TPDOs that map the statusword
  * on every change (CO402_OPT_TPDO_ON_SW); the core's own change detection is
- * off for this device (CO_OPT_TPDO_NO_CHANGE_DETECT), so nothing goes out on
+ * off for this device (CO_TPDO_CHANGE_IGNORED), so nothing goes out on
  * NMT start or because a position or velocity changed, and TxPDO4 (no
  * statusword) only on RTR or SYNC. The tests assert every frame.
  */
@@ -156,7 +156,7 @@ static void sdo_examples(void **state)
     sr_sdo(S, "40 08 10 00 00 00 00 00", "41 08 10 00 0E 00 00 00");
     sr_sdo(S, "60 00 00 00 00 00 00 00", "00 4D 43 42 4C 20 33 30");
     sr_sdo(S, "70 00 00 00 00 00 00 00", "11 30 36 20 53 20 43 4F");
-    /* no block transfer (CO_OPT_SDO_NO_BLOCK) */
+    /* no block transfer (CO_SDO_XFER_BLOCK) */
     sr_sdo(S, "A0 08 10 00 7F 00 00 00", "80 08 10 00 01 00 04 05");
     /* 0x1200 server SDO COB-IDs, read-only */
     sr_sdo(S, "40 00 12 01 00 00 00 00", "43 00 12 01 02 06 00 00");
@@ -182,7 +182,7 @@ static void store_restore(void **state)
     tb_send(&S->bus, "000 81 02");
     sr_expect(S, "702 00");
     sr_sdo(S, "40 81 60 00 00 00 00 00", "43 81 60 00 B8 0B 00 00");
-    /* subs 4..6 restore the last saved set (section 8; CO_OPT_RESTORE_SAVED):
+    /* subs 4..6 restore the last saved set (section 8; CO_RESTORE_SAVED):
      * they read 1; the factory restore above kept the saved 1234, which
      * comes back at the next reset */
     sr_sdo(S, "40 11 10 04 00 00 00 00", "43 11 10 04 01 00 00 00");
@@ -398,7 +398,7 @@ static void heartbeat_loss_with_fault_mask(void **state)
  * the statusword (1, 2, 3; not TxPDO4), even when the statusword is back at
  * the value last sent before the node runs (0x23 -> 0x21 -> 0x23 between
  * two polls): they go out once, with the present data. The core's own
- * change detection is off (CO_OPT_TPDO_NO_CHANGE_DETECT): the request is
+ * change detection is off (CO_TPDO_CHANGE_IGNORED): the request is
  * what sends them. */
 static void statusword_change_requests_tpdos(void **state)
 {

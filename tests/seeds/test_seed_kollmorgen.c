@@ -552,7 +552,7 @@ static void d711_sync_and_emcy(void **state)
      * category 1, then the state report with the register 08h as the manual
      * prints it (7 bytes, node 1; D2.8's example has the same pair with
      * category 01): the temperature bit only, not the generic bit 0
-     * (CO_OPT_ERREG_NO_GENERIC; CiA 301 would give 09h). */
+     * (CO_ERREG_GENERIC_UNCLASSIFIED; CiA 301 would give 09h). */
     tb_send(BUS, "000 80 03"); /* Pre-operational: no PDOs in between */
     co402_sim_set_fault(sim, 0x4310);
     tseed_run(&fx, 1000);
@@ -566,7 +566,7 @@ static void d711_sync_and_emcy(void **state)
     tb_expect(BUS, "083 10 31 0C 02 00 00 00 00");
     tb_expect(BUS, "083 00 00 0C 00 00 00 00 00");
     /* 1003h: newest first, the bare EMCY code (D8.1-9; the category is in
-     * the EMCY only, CO_OPT_HISTORY_CODE_ONLY) */
+     * the EMCY only, CO_HISTORY_CODE_ONLY) */
     tb_xfer(BUS, "603 40 03 10 00 00 00 00 00", "583 4F 03 10 00 02 00 00 00");
     tb_xfer(BUS, "603 40 03 10 01 00 00 00 00", "583 43 03 10 01 10 31 00 00");
     tb_xfer(BUS, "603 40 03 10 02 00 00 00 00", "583 43 03 10 02 10 43 00 00");
@@ -660,7 +660,7 @@ static void d713_ip_two_axes(void **state)
     dl(2, "23 01 16 02 20 01 C1 60");
     dl(2, "2F 01 16 00 02 00 00 00");
     /* step 9: axis 2 listens on axis 1's COB-ID 301h. The S300 takes the new
-     * CAN-ID while RPDO2 is valid (CO_OPT_PDO_COBID_WHILE_VALID; CiA 301
+     * CAN-ID while RPDO2 is valid (set.pdo.cob_id_while_valid; CiA 301
      * would want it invalid first, 0x06090030) */
     tb_xfer(BUS, "602 23 01 14 01 01 03 00 00", "582 60 01 14 01 00 00 00 00");
     assert_int_equal(tseed_get(&fx, 1, 0x1401, 1), 0x00000301);
@@ -876,7 +876,7 @@ static void event_timer_and_mapping(void **state)
     tb_send(BUS, "000 80 03");
     dl(3, "2F 00 1A 00 00 00 00 00");
     tb_xfer(BUS, "603 23 00 1A 01 20 00 10 10", "583 80 00 1A 01 41 00 04 06");
-    /* mappings are taken over byte-wise only (D4.1, CO_OPT_PDO_MAP_BYTES):
+    /* mappings are taken over byte-wise only (D4.1, CO_PDO_MAP_BYTES):
      * 4 or 12 bits of the statusword are refused (the manual names no code
      * for it; 0604 0041h, "cannot be mapped", is in its list), whole bytes
      * of it are taken */
@@ -889,7 +889,7 @@ static void event_timer_and_mapping(void **state)
     tb_flush(BUS);
 }
 
-/* D4.5: the TPDO change masks 2014h..2017h (CO_OPT_TPDO_MASK_255). The
+/* D4.5: the TPDO change masks 2014h..2017h (CO_TPDO_MASK_255). The
  * manual's purpose: report a position only once per revolution by masking
  * its low bits. TPDO3 (statusword + position, type FFh) with 2016h sub 1 =
  * 0000FFFFh (bytes 0..3: the statusword, not the position's low word) and

@@ -299,7 +299,7 @@ static void ex1411_pp_by_pdo(void **state)
 }
 
 /* §11 (D§4.4): the transmit masks 2014h..2017h apply to transmission type
- * 254 (CO_OPT_TPDO_MASK_254). 14.11 again with TPDO1 of type 254 and 2014h
+ * 254 (CO_TPDO_MASK_254). 14.11 again with TPDO1 of type 254 and 2014h
  * sub 1 = 0000006Fh, the state bits of the statusword: the set-point
  * handshake (bits 10, 12, 15) sends nothing, a state change does. TPDO2
  * (type 255) sends every change, as before. */
@@ -480,7 +480,7 @@ static void derived_vectors(void **state)
     tb_xfer(BUS, "601 2F 00 16 00 05 00 00 00", "581 80 00 16 00 42 00 04 06");
     dl("2F 00 16 00 02 00 00 00");
     /* PDO configuration only in Pre-operational (§7): mapping and
-     * communication parameters alike (CO_OPT_PDO_CONFIG_PREOP_ONLY) */
+     * communication parameters alike (CO_PDO_WRITES_PREOP) */
     tb_send(BUS, "000 01 01");
     tb_flush(BUS);
     tb_xfer(BUS, "601 2F 00 16 00 00 00 00 00", "581 80 00 16 00 22 00 00 08");

@@ -61,9 +61,9 @@ static const co_od_limit_t limits[] = {
 #define Z(field) ((uint16_t)sizeof(((td_ram_t *)0)->field))
 #define RF(field) ((uint16_t)offsetof(td_rom_t, field))
 #define RZ(field) ((uint16_t)sizeof(((td_rom_t *)0)->field))
-#define RAM(sub, type, flags, field) {(sub), (uint8_t)(type), (flags), Z(field), F(field), 0U}
+#define RAM(sub, type, flags, field) CO_OD_SUB((sub), (uint8_t)(type), (flags), Z(field), F(field), 0U)
 #define ROM(sub, type, flags, field) \
-    {(sub), (uint8_t)(type), (uint16_t)((flags) | CO_SUB_ROM), RZ(field), RF(field), 0U}
+    CO_OD_SUB((sub), (uint8_t)(type), (uint16_t)((flags) | CO_SUB_ROM), RZ(field), RF(field), 0U)
 #define RW_MAP (CO_SUB_RW | CO_SUB_MAP)
 
 static const co_od_sub_t s1000[] = {ROM(0, CO_UNSIGNED32, CO_SUB_RO, x1000)};
@@ -71,7 +71,7 @@ static const co_od_sub_t s1001[] = {RAM(0, CO_UNSIGNED8, CO_SUB_RO | CO_SUB_MAP_
 static const co_od_sub_t s1002[] = {RAM(0, CO_UNSIGNED32, CO_SUB_RO, mfr_status)};
 static const co_od_sub_t s1003[] = {
     RAM(0, CO_UNSIGNED8, CO_SUB_RW, hist_n),
-#define H(i) {(i), (uint8_t)CO_UNSIGNED32, CO_SUB_RO, 4U, (uint16_t)(F(hist) + 4U * ((i) - 1U)), 0U}
+#define H(i) CO_OD_SUB((i), (uint8_t)CO_UNSIGNED32, CO_SUB_RO, 4U, (uint16_t)(F(hist) + 4U * ((i) - 1U)), 0U)
     H(1), H(2), H(3), H(4), H(5), H(6), H(7), H(8),
 #undef H
 };
@@ -82,7 +82,7 @@ static const co_od_sub_t s1012[] = {RAM(0, CO_UNSIGNED32, CO_SUB_RW, time_cob)};
 static const co_od_sub_t s1019[] = {RAM(0, CO_UNSIGNED8, CO_SUB_RW, sync_overflow)};
 static const co_od_sub_t s1029[] = {
     ROM(0, CO_UNSIGNED8, CO_SUB_RO | CO_SUB_CONST, n1029),
-#define B(i) {(i), (uint8_t)CO_UNSIGNED8, CO_SUB_RW, 1U, (uint16_t)(F(err_beh) + (i) - 1U), 0U}
+#define B(i) CO_OD_SUB((i), (uint8_t)CO_UNSIGNED8, CO_SUB_RW, 1U, (uint16_t)(F(err_beh) + (i) - 1U), 0U)
     B(1), B(2), B(3),
 #undef B
 };
@@ -94,13 +94,13 @@ static const co_od_sub_t s100C[] = {RAM(0, CO_UNSIGNED16, CO_SUB_RW, guard_time)
 static const co_od_sub_t s100D[] = {RAM(0, CO_UNSIGNED8, CO_SUB_RW, life_factor)};
 static const co_od_sub_t s1010[] = {
     ROM(0, CO_UNSIGNED8, CO_SUB_RO | CO_SUB_CONST, n1010),
-    {1, (uint8_t)CO_UNSIGNED32, CO_SUB_RW, 4U, F(store), 0U},
-    {2, (uint8_t)CO_UNSIGNED32, CO_SUB_RW, 4U, (uint16_t)(F(store) + 4U), 0U},
-    {3, (uint8_t)CO_UNSIGNED32, CO_SUB_RW, 4U, (uint16_t)(F(store) + 8U), 0U},
+    CO_OD_SUB(1, (uint8_t)CO_UNSIGNED32, CO_SUB_RW, 4U, F(store), 0U),
+    CO_OD_SUB(2, (uint8_t)CO_UNSIGNED32, CO_SUB_RW, 4U, (uint16_t)(F(store) + 4U), 0U),
+    CO_OD_SUB(3, (uint8_t)CO_UNSIGNED32, CO_SUB_RW, 4U, (uint16_t)(F(store) + 8U), 0U),
 };
 static const co_od_sub_t s1011[] = {
     ROM(0, CO_UNSIGNED8, CO_SUB_RO | CO_SUB_CONST, n1011),
-#define R(i) {(i), (uint8_t)CO_UNSIGNED32, CO_SUB_RW, 4U, (uint16_t)(F(restore) + 4U * ((i) - 1U)), 0U}
+#define R(i) CO_OD_SUB((i), (uint8_t)CO_UNSIGNED32, CO_SUB_RW, 4U, (uint16_t)(F(restore) + 4U * ((i) - 1U)), 0U)
     R(1), R(2), R(3), R(4), R(5), R(6),
 #undef R
 };
@@ -108,14 +108,14 @@ static const co_od_sub_t s1014[] = {RAM(0, CO_UNSIGNED32, CO_SUB_RW | CO_SUB_NOD
 static const co_od_sub_t s1015[] = {RAM(0, CO_UNSIGNED16, CO_SUB_RW, emcy_inhibit)};
 static const co_od_sub_t s1016[] = {
     ROM(0, CO_UNSIGNED8, CO_SUB_RO | CO_SUB_CONST, n1016),
-#define C(i) {(i), (uint8_t)CO_UNSIGNED32, CO_SUB_RW, 4U, (uint16_t)(F(hb_cons) + 4U * ((i) - 1U)), 0U}
+#define C(i) CO_OD_SUB((i), (uint8_t)CO_UNSIGNED32, CO_SUB_RW, 4U, (uint16_t)(F(hb_cons) + 4U * ((i) - 1U)), 0U)
     C(1), C(2), C(3), C(4),
 #undef C
 };
 static const co_od_sub_t s1017[] = {RAM(0, CO_UNSIGNED16, CO_SUB_RW, hb_prod)};
 static const co_od_sub_t s1018[] = {
     ROM(0, CO_UNSIGNED8, CO_SUB_RO | CO_SUB_CONST, n1018),
-#define I(i) {(i), (uint8_t)CO_UNSIGNED32, CO_SUB_RO | CO_SUB_ROM, 4U, (uint16_t)(RF(x1018) + 4U * ((i) - 1U)), 0U}
+#define I(i) CO_OD_SUB((i), (uint8_t)CO_UNSIGNED32, CO_SUB_RO | CO_SUB_ROM, 4U, (uint16_t)(RF(x1018) + 4U * ((i) - 1U)), 0U)
     I(1), I(2), I(3), I(4),
 #undef I
 };
@@ -141,16 +141,16 @@ static const co_od_sub_t s2012[] = {RAM(0, CO_VISIBLE_STRING, CO_SUB_RW, vstr)};
 static const co_od_sub_t s2013[] = {RAM(0, CO_OCTET_STRING, CO_SUB_RW, ostr)};
 static const co_od_sub_t s2014[] = {RAM(0, CO_UNICODE_STRING, CO_SUB_RW, ustr)};
 static const co_od_sub_t s2020[] = {
-    {0, (uint8_t)CO_UNSIGNED16, CO_SUB_RW | CO_SUB_LIMIT, Z(lim_u16), F(lim_u16), 0U}};
+    CO_OD_SUB(0, (uint8_t)CO_UNSIGNED16, CO_SUB_RW | CO_SUB_LIMIT, Z(lim_u16), F(lim_u16), 0U)};
 static const co_od_sub_t s2021[] = {
-    {0, (uint8_t)CO_INTEGER16, CO_SUB_RW | CO_SUB_LIMIT, Z(lim_i16), F(lim_i16), 1U}};
+    CO_OD_SUB(0, (uint8_t)CO_INTEGER16, CO_SUB_RW | CO_SUB_LIMIT, Z(lim_i16), F(lim_i16), 1U)};
 static const co_od_sub_t s2022[] = {RAM(0, CO_UNSIGNED32, CO_SUB_WO, wo_u32)};
 static const co_od_sub_t s2023[] = {ROM(0, CO_UNSIGNED32, CO_SUB_RO | CO_SUB_CONST, x2023)};
 static const co_od_sub_t s2100[] = {RAM(0, CO_UNSIGNED32, CO_SUB_RW, hooked)};
 static const co_od_sub_t s2200[] = {
-    {0, (uint8_t)CO_DOMAIN, CO_SUB_RW | CO_SUB_HOOKIO, 0U, 0U, 0U}};
+    CO_OD_SUB(0, (uint8_t)CO_DOMAIN, CO_SUB_RW | CO_SUB_HOOKIO, 0U, 0U, 0U)};
 static const co_od_sub_t s2201[] = {
-    {0, (uint8_t)CO_UNSIGNED32, CO_SUB_RW | CO_SUB_HOOKIO, 4U, 0U, 0U}};
+    CO_OD_SUB(0, (uint8_t)CO_UNSIGNED32, CO_SUB_RW | CO_SUB_HOOKIO, 4U, 0U, 0U)};
 static const co_od_sub_t s2300[] = {
     RAM(0, CO_UNSIGNED32, CO_SUB_RW, rec0),
     RAM(1, CO_UNSIGNED16, CO_SUB_RW, rec1),
@@ -161,8 +161,8 @@ static const co_od_sub_t s607A[] = {RAM(0, CO_INTEGER32, RW_MAP, target_pos)};
 static const co_od_sub_t s60FF[] = {RAM(0, CO_INTEGER32, RW_MAP, target_vel)};
 static const co_od_sub_t s6099[] = {
     ROM(0, CO_UNSIGNED8, CO_SUB_RO | CO_SUB_CONST, n6099),
-    {1, (uint8_t)CO_UNSIGNED32, CO_SUB_RW | CO_SUB_LIMIT, 4U, F(homing_speed), 2U},
-    {2, (uint8_t)CO_UNSIGNED32, CO_SUB_RW | CO_SUB_LIMIT, 4U, (uint16_t)(F(homing_speed) + 4U), 2U},
+    CO_OD_SUB(1, (uint8_t)CO_UNSIGNED32, CO_SUB_RW | CO_SUB_LIMIT, 4U, F(homing_speed), 2U),
+    CO_OD_SUB(2, (uint8_t)CO_UNSIGNED32, CO_SUB_RW | CO_SUB_LIMIT, 4U, (uint16_t)(F(homing_speed) + 4U), 2U),
 };
 
 #define E(idx, subs, code) {(idx), (uint8_t)(sizeof(subs) / sizeof((subs)[0])), 0U, (code), (subs)}
@@ -213,7 +213,6 @@ const co_dev_t td_dev = {
     .rom = (const uint8_t *)&rom,
     .limits = limits,
     .n_hooks = TD_N_HOOKS,
-    .options = 0U,
     .boot_emcy_data = NULL,
     .stage = F(stage),
     .stage_size = (uint16_t)sizeof(((td_ram_t *)0)->stage),

@@ -71,7 +71,7 @@ typedef struct td_ram {
     uint32_t hist[8];      /* 0x1003 sub1..8 */
     uint32_t store[3];     /* 0x1010 sub1..3 (core: capability) */
     uint32_t restore[6];   /* 0x1011 sub1..6 (core: capability; 4..6 only with
-                              CO_OPT_RESTORE_SAVED, else 0) */
+                              CO_RESTORE_SAVED, else 0) */
     uint8_t stage[32];     /* SDO download staging (co_dev_t.stage): vstr is the largest */
 } td_ram_t;
 

@@ -28,7 +28,7 @@ static co_err_t hook_write(void *ctx, co_od_io_t *io)
     return f->hook_veto;
 }
 
-void pfx_start(pfx_t *f, uint8_t id, uint32_t options)
+void pfx_start(pfx_t *f, uint8_t id, const co_settings_t *set)
 {
     co_node_config_t cfg;
     co_od_hook_t h = {hook_read, hook_write, NULL};
@@ -37,7 +37,11 @@ void pfx_start(pfx_t *f, uint8_t id, uint32_t options)
     memset(f, 0, sizeof *f);
     tb_init(&f->bus);
     f->dev = pdo_test_dev;
-    f->dev.options = options;
+    if (set != NULL) {
+        f->dev.set = *set;
+    } else {
+        (void)memset(&f->dev.set, 0, sizeof f->dev.set); /* CiA 301 */
+    }
     pdo_test_config(&f->n, &cfg);
     cfg.dev = &f->dev;
     cfg.hal = tb_hal(&f->bus, 0);

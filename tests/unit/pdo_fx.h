@@ -1,6 +1,6 @@
 /*
  * Fixture of the PDO tests: one pdo-test node (tests/unit/devices/pdo-test.toml)
- * on the in-memory bus, with a device copy whose options a test may set, and
+ * on the in-memory bus, with a device copy whose settings a test may set, and
  * hooks on 0x2020 that count, veto and refresh.
  */
 #ifndef PDO_FX_H
@@ -14,7 +14,7 @@
 typedef struct pfx {
     tb_bus_t bus;
     pdo_test_node_t n;
-    co_dev_t dev;           /* pdo_test_dev with the test's options */
+    co_dev_t dev;           /* pdo_test_dev with the test's settings */
     unsigned hook_reads;
     unsigned hook_writes;
     uint32_t hook_value;    /* what the read hook puts into 0x2020 */
@@ -22,8 +22,8 @@ typedef struct pfx {
     co_err_t hook_veto;     /* the write hook's answer */
 } pfx_t;
 
-/** Start node @p id with @p options on a fresh bus; the boot-up is consumed. */
-void pfx_start(pfx_t *f, uint8_t id, uint32_t options);
+/** Start node @p id with the personality @p set (NULL: CiA 301) on a fresh bus; the boot-up is consumed. */
+void pfx_start(pfx_t *f, uint8_t id, const co_settings_t *set);
 
 /** Set a value as the application does (co_od_write with as_app). */
 void pfx_set(pfx_t *f, uint16_t index, uint8_t sub, uint32_t value, uint32_t len);

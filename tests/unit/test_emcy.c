@@ -37,10 +37,10 @@ static int setup(void **state)
 #define NODE (&FX->n.node)
 #define RAMV (FX->n.ram)
 
-/* Restart the node with the fixture's device copy (options set by the test). */
-static void restart_with_options(void **state, uint32_t options)
+/* Restart the node with the fixture's device copy, personality @p set. */
+static void restart_with(void **state, const co_settings_t *set)
 {
-    FX->dev.options = options;
+    FX->dev.set = *set;
     td_start(&FX->n, BUS, 0, 1, &FX->dev);
     tb_expect(BUS, "701 00");
     tb_expect_none(BUS);
@@ -200,7 +200,7 @@ static void history_write_zero_clears(void **state)
 
 static void option_reset_partial(void **state)
 {
-    restart_with_options(state, CO_OPT_EMCY_RESET_PARTIAL);
+    restart_with(state, &(co_settings_t){.emcy.reset = CO_EMCY_RESET_EACH_CLEAR});
     co_emcy_raise(NODE, 0x2310U, CO_ERREG_CURRENT, NULL);
     co_emcy_raise(NODE, 0x4210U, CO_ERREG_TEMPERATURE, NULL);
     tb_expect(BUS, "081 10 23 03 00 00 00 00 00");
@@ -216,7 +216,7 @@ static void option_reset_partial(void **state)
 
 static void option_state_pair(void **state)
 {
-    restart_with_options(state, CO_OPT_EMCY_STATE_PAIR);
+    restart_with(state, &(co_settings_t){.emcy.state_pair = 1U});
     /* Kollmorgen: every error EMCY is followed by EMCY 0000 with the register */
     co_emcy_raise(NODE, 0x2310U, CO_ERREG_CURRENT, MFR);
     tb_expect(BUS, "081 10 23 03 01 02 03 04 05");
@@ -237,7 +237,7 @@ static void option_state_pair(void **state)
 
 static void option_erreg_no_generic(void **state)
 {
-    restart_with_options(state, CO_OPT_ERREG_NO_GENERIC);
+    restart_with(state, &(co_settings_t){.emcy.generic_bit = CO_ERREG_GENERIC_UNCLASSIFIED});
     /* Kollmorgen: an error sets the bits it names, not the generic bit */
     co_emcy_raise(NODE, 0x4310U, CO_ERREG_TEMPERATURE, NULL);
     tb_expect(BUS, "081 10 43 08 00 00 00 00 00");
@@ -265,8 +265,7 @@ static void option_erreg_no_generic_with_state_pair(void **state)
 
     /* the Kollmorgen EMCY example: 4310h with category 1, then the state
      * report with the register (08h, not 09h) */
-    restart_with_options(state, CO_OPT_ERREG_NO_GENERIC | CO_OPT_EMCY_STATE_PAIR |
-                                    CO_OPT_EMCY_RESET_PARTIAL | CO_OPT_HISTORY_CODE_ONLY);
+    restart_with(state, &(co_settings_t){.emcy.generic_bit = CO_ERREG_GENERIC_UNCLASSIFIED, .emcy.state_pair = 1U, .emcy.reset = CO_EMCY_RESET_EACH_CLEAR, .emcy.history = CO_HISTORY_CODE_ONLY});
     co_emcy_raise(NODE, 0x4310U, CO_ERREG_TEMPERATURE, cat1);
     tb_expect(BUS, "081 10 43 08 01 00 00 00 00");
     tb_expect(BUS, "081 00 00 08 00 00 00 00 00");
@@ -282,7 +281,7 @@ static void option_history_code_only(void **state)
 {
     static const uint8_t cat[5] = {0x01, 0x00, 0x00, 0x00, 0x00};
 
-    restart_with_options(state, CO_OPT_HISTORY_CODE_ONLY);
+    restart_with(state, &(co_settings_t){.emcy.history = CO_HISTORY_CODE_ONLY});
     /* the manufacturer bytes still go out in the EMCY ... */
     co_emcy_raise(NODE, 0x2310U, CO_ERREG_CURRENT, MFR);
     tb_expect(BUS, "081 10 23 03 01 02 03 04 05");

@@ -437,7 +437,7 @@ static void node_guarding_not_answered_with_heartbeat(void **state)
 static void node_guarding_with_heartbeat_option(void **state)
 {
     fx_t *fx = FX;
-    fx->dev.options = CO_OPT_GUARD_WITH_HEARTBEAT;
+    fx->dev.set = (co_settings_t){.nmt.guarding_with_hb = 1U};
     start_cb(&fx->n, &fx->r, BUS, 0, 1, &fx->dev);
     tb_expect(BUS, "701 00");
     tb_xfer(BUS, "601 2B 17 10 00 64 00 00 00", "581 60 17 10 00 00 00 00 00");

@@ -80,7 +80,7 @@ static void tpdo_event_timer_while_inhibited(void **state)
     uint32_t d;
 
     (void)state;
-    pfx_start(&pfx, 5, 0U);
+    pfx_start(&pfx, 5, NULL);
     tb_xfer(&pfx.bus, "605 23 00 18 01 85 01 00 80", "585 60 00 18 01 00 00 00 00");
     tb_xfer(&pfx.bus, "605 2B 00 18 03 64 00 00 00", "585 60 00 18 03 00 00 00 00");
     tb_xfer(&pfx.bus, "605 2B 00 18 05 01 00 00 00", "585 60 00 18 05 00 00 00 00");
@@ -110,7 +110,7 @@ static void tpdo_event_timer_tx_full(void **state)
     uint32_t t0;
 
     (void)state;
-    pfx_start(&pfx, 5, 0U);
+    pfx_start(&pfx, 5, NULL);
     tb_xfer(&pfx.bus, "605 2B 00 18 05 01 00 00 00", "585 60 00 18 05 00 00 00 00");
     tb_send(&pfx.bus, "000 01 05");
     t0 = pfx.bus.now;
@@ -235,7 +235,7 @@ static void stall_pdo_timers(void **state)
     uint32_t t0;
 
     (void)state;
-    pfx_start(&pfx, 5, 0U);
+    pfx_start(&pfx, 5, NULL);
     tb_xfer(&pfx.bus, "605 2B 00 18 05 E8 03 00 00", "585 60 00 18 05 00 00 00 00");
     tb_send(&pfx.bus, "000 01 05");
     t0 = pfx.bus.now;

@@ -98,6 +98,35 @@ static void services_kept(void **state)
     tb_expect_none(BUS);
 }
 
+/* The generated dictionary of a build without value limits: sub-entries
+ * without a limit index (8 bytes each) and sparse defaults (only the values
+ * that are not zero, co_dev_t.default_at); a reset communication restores
+ * values of both kinds and the $NODEID-relative ones. */
+static void compact_dictionary(void **state)
+{
+    uint16_t subs = 0U;
+    (void)state;
+    assert_int_equal(sizeof(co_od_sub_t), 8U);
+    for (uint16_t i = 0U; i < lean_test_dev.od_count; i++) {
+        subs = (uint16_t)(subs + lean_test_dev.od[i].nsubs);
+    }
+    assert_non_null(lean_test_dev.default_at);
+    assert_true((lean_test_dev.n_defaults > 0U) && (lean_test_dev.n_defaults < subs / 2U));
+    assert_int_equal(start(&lean_test_dev), CO_RESULT_OK);
+    tb_expect(BUS, "701 00");
+    tb_xfer(BUS, "601 23 05 10 00 81 00 00 00", "581 60 05 10 00 00 00 00 00");
+    tb_xfer(BUS, "601 23 16 10 01 00 00 07 00", "581 60 16 10 01 00 00 00 00");
+    tb_xfer(BUS, "601 23 00 14 01 01 02 00 80", "581 60 00 14 01 00 00 00 00");
+    assert_int_equal(get_u32(0x1005, 0), 0x81UL);
+    assert_int_equal(get_u32(0x1016, 1), 0x00070000UL);
+    tb_send(BUS, "000 82 01");
+    tb_expect(BUS, "701 00");
+    assert_int_equal(get_u32(0x1005, 0), 0x80UL);
+    assert_int_equal(get_u32(0x1016, 1), 0UL);
+    assert_int_equal(get_u32(0x1400, 1), 0x201UL);
+    assert_int_equal(get_u32(0x1600, 1), 0x21000020UL);
+}
+
 static void refuses_what_is_left_out(void **state)
 {
     static const co_od_limit_t limits[1] = {{0, 10}};
@@ -106,10 +135,10 @@ static void refuses_what_is_left_out(void **state)
     co_node_config_t cfg;
     (void)state;
     /* a personality option */
-    dev.options = CO_OPT_SDO_NO_BLOCK;
+    dev.set = (co_settings_t){.sdo.refused = CO_SDO_XFER_BLOCK};
     assert_int_equal(start(&dev), CO_RESULT_DEV_INCOMPAT);
     tb_expect_none(BUS);
-    dev.options = 0U;
+    dev.set = (co_settings_t){0};
     /* value limits */
     dev.limits = limits;
     assert_int_equal(start(&dev), CO_RESULT_DEV_INCOMPAT);
@@ -117,7 +146,8 @@ static void refuses_what_is_left_out(void **state)
     dev.limits = NULL;
     /* error behaviour 0x1029 (the description's entries plus one) */
     {
-        static const co_od_sub_t s1029[] = {{1U, (uint8_t)CO_UNSIGNED8, CO_SUB_RW, 1U, 0U, 0U}};
+        static const co_od_sub_t s1029[] = {
+            CO_OD_SUB(1U, (uint8_t)CO_UNSIGNED8, CO_SUB_RW, 1U, 0U, 0U)};
         static co_od_entry_t od[64];
         uint16_t n = 0U;
         bool added = false;
@@ -162,6 +192,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(storage_left_out),
         cmocka_unit_test(services_kept),
+        cmocka_unit_test(compact_dictionary),
         cmocka_unit_test(refuses_what_is_left_out),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -53,12 +53,17 @@ static void on_reset(void *ctx, co_node_t *node, co_reset_t kind)
     }
 }
 
-static void setup_bus(uint32_t options)
+/* lss-test's device, with the LSS settings of @p lss when not NULL (an LSS
+ * slave either way) */
+static void setup_bus(const co_settings_t *lss)
 {
     memset(&fx, 0, sizeof fx);
     tb_init(&fx.bus);
     fx.dev = lss_test_dev;
-    fx.dev.options |= options;
+    if (lss != NULL) {
+        fx.dev.set.lss = lss->lss;
+        fx.dev.set.lss.slave = 1U;
+    }
 }
 
 /* (Re)start node @p idx with node-ID @p id (UNCONF: unconfigured) on its NV. */
@@ -148,7 +153,7 @@ static uint32_t u32_of(uint8_t idx, uint16_t index, uint8_t sub)
 static void test_unconfigured_silent(void **state)
 {
     (void)state;
-    setup_bus(0U);
+    setup_bus(NULL);
     start(0, UNCONF, 1U);
     tb_expect_none(&fx.bus);
     assert_int_equal(co_node_id(&fx.n[0].node), UNCONF);
@@ -171,8 +176,8 @@ static void test_unconfigured_silent(void **state)
 static void test_unconfigured_needs_lss(void **state)
 {
     (void)state;
-    setup_bus(0U);
-    fx.dev.options &= ~(uint32_t)CO_OPT_LSS;
+    setup_bus(NULL);
+    fx.dev.set.lss.slave = 0U;
     assert_int_equal(start_ops(0, UNCONF, 1U, &tb_hal_ops), CO_RESULT_BAD_NODE_ID);
     assert_int_equal(start_ops(0, 0U, 1U, &tb_hal_ops), CO_RESULT_BAD_NODE_ID);
     assert_int_equal(start_ops(0, 128U, 1U, &tb_hal_ops), CO_RESULT_BAD_NODE_ID);
@@ -190,7 +195,7 @@ static void test_unconfigured_needs_lss(void **state)
 static void test_global_configure_store(void **state)
 {
     (void)state;
-    setup_bus(0U);
+    setup_bus(NULL);
     start(0, UNCONF, 7U);
     silent("04 01");
     xfer("5E", "5E FF");
@@ -227,7 +232,7 @@ static void test_global_configure_store(void **state)
 static void test_lss_only(void **state)
 {
     (void)state;
-    setup_bus(CO_OPT_LSS_ONLY);
+    setup_bus(&(co_settings_t){.lss.node_id = CO_LSS_ID_ONLY});
     start(0, 5U, 1U);
     tb_expect_none(&fx.bus);
     assert_int_equal(co_node_id(&fx.n[0].node), UNCONF);
@@ -246,7 +251,7 @@ static void test_lss_only(void **state)
 static void test_configure_node_id_range(void **state)
 {
     (void)state;
-    setup_bus(0U);
+    setup_bus(NULL);
     start(0, 3U, 1U);
     tb_flush(&fx.bus);
     silent("04 01");
@@ -277,7 +282,7 @@ static void test_configure_node_id_range(void **state)
 static void test_state_rules(void **state)
 {
     (void)state;
-    setup_bus(0U);
+    setup_bus(NULL);
     start(0, UNCONF, 0x11U);
     /* waiting: configuration requests and inquiries get nothing */
     silent("11 05");
@@ -322,7 +327,7 @@ static void test_state_rules(void **state)
 static void test_inquire(void **state)
 {
     (void)state;
-    setup_bus(0U);
+    setup_bus(NULL);
     start(0, 0x22U, 0x8899AABBU);
     tb_flush(&fx.bus);
     silent("04 01");
@@ -338,7 +343,7 @@ static void test_inquire(void **state)
 static void test_switch_selective(void **state)
 {
     (void)state;
-    setup_bus(0U);
+    setup_bus(NULL);
     start(0, 0x10U, 0x1234U);
     start(1, 0x11U, 0x1235U);
     tb_flush(&fx.bus);
@@ -378,7 +383,7 @@ static void test_switch_selective(void **state)
 static void test_switch_selective_no_revision(void **state)
 {
     (void)state;
-    setup_bus(CO_OPT_LSS_NO_REVISION);
+    setup_bus(&(co_settings_t){.lss.selective = CO_LSS_IGNORE_REVISION});
     start(0, 0x10U, 0x1234U);
     tb_flush(&fx.bus);
     silent("40 A5 00 00 00");
@@ -399,7 +404,7 @@ static void test_switch_selective_no_revision(void **state)
 static void test_identify_remote(void **state)
 {
     (void)state;
-    setup_bus(0U);
+    setup_bus(NULL);
     start(0, 0x10U, 100U);
     start(1, 0x11U, 200U);
     tb_flush(&fx.bus);
@@ -457,7 +462,7 @@ static void test_identify_remote(void **state)
 static void test_identify_non_configured(void **state)
 {
     (void)state;
-    setup_bus(0U);
+    setup_bus(NULL);
     start(0, UNCONF, 1U);
     start(1, 0x20U, 2U);
     tb_flush(&fx.bus);
@@ -480,7 +485,7 @@ static void test_identify_non_configured(void **state)
 static void test_bit_timing(void **state)
 {
     (void)state;
-    setup_bus(0U);
+    setup_bus(NULL);
     start(0, 0x10U, 1U);
     tb_flush(&fx.bus);
     silent("04 01");
@@ -510,7 +515,7 @@ static void test_bit_timing(void **state)
     tb_advance(&fx.bus, 1000U);
     assert_int_equal(fx.bus.bit_timing_calls, 1U);
     /* without a configured bit timing there is nothing to activate */
-    setup_bus(0U);
+    setup_bus(NULL);
     start(0, 0x10U, 1U);
     tb_flush(&fx.bus);
     silent("04 01");
@@ -524,13 +529,13 @@ static void test_bit_timing(void **state)
 static void test_store_errors(void **state)
 {
     (void)state;
-    setup_bus(0U);
+    setup_bus(NULL);
     assert_int_equal(start_ops(0, 0x10U, 1U, &tb_hal_ops_no_nv), CO_RESULT_OK);
     tb_flush(&fx.bus);
     silent("04 01");
     xfer("17", "17 01");
 
-    setup_bus(0U);
+    setup_bus(NULL);
     start(0, 0x10U, 1U);
     tb_flush(&fx.bus);
     silent("04 01");
@@ -562,7 +567,7 @@ static void test_store_errors(void **state)
 static void test_change_cia_cobs_follow(void **state)
 {
     (void)state;
-    setup_bus(0U);
+    setup_bus(NULL);
     start(0, 5U, 1U);
     tb_flush(&fx.bus);
     silent("04 01");
@@ -591,7 +596,7 @@ static void test_change_cia_cobs_follow(void **state)
 static void test_change_keep_cobs(void **state)
 {
     (void)state;
-    setup_bus(CO_OPT_LSS_KEEP_COBS);
+    setup_bus(&(co_settings_t){.lss.cob_ids = CO_LSS_COBS_KEEP});
     start(0, 5U, 1U);
     tb_flush(&fx.bus);
     /* a stored communication setting: heartbeat 1000 ms */
@@ -650,7 +655,7 @@ static void test_change_keep_cobs(void **state)
 static void test_unconfigured_cia_keeps_stored(void **state)
 {
     (void)state;
-    setup_bus(0U);
+    setup_bus(NULL);
     start(0, 5U, 1U);
     tb_flush(&fx.bus);
     tb_xfer(&fx.bus, "605 2B 17 10 00 E8 03 00 00", "585 60 17 10 00 00 00 00 00");
@@ -675,8 +680,8 @@ static void test_unconfigured_cia_keeps_stored(void **state)
 static void test_set_id_api(void **state)
 {
     (void)state;
-    setup_bus(0U);
-    fx.dev.options &= ~(uint32_t)CO_OPT_LSS;
+    setup_bus(NULL);
+    fx.dev.set.lss.slave = 0U;
     start(0, 5U, 1U);
     tb_flush(&fx.bus);
     assert_int_equal(co_node_set_id(&fx.n[0].node, 0U, fx.bus.now), CO_ERR_VALUE);
@@ -745,7 +750,7 @@ static void test_fastscan_several(void **state)
     char boot[16];
 
     (void)state;
-    setup_bus(0U);
+    setup_bus(NULL);
     for (uint8_t i = 0U; i < 3U; i++) {
         start(i, UNCONF, serials[i]);
     }
@@ -794,7 +799,7 @@ static void test_fastscan_several(void **state)
 static void test_fastscan_steps(void **state)
 {
     (void)state;
-    setup_bus(0U);
+    setup_bus(NULL);
     start(0, UNCONF, 0x00000100U);
     start(1, UNCONF, 0x00000200U);
     tb_flush(&fx.bus);
@@ -824,7 +829,7 @@ static void test_fastscan_steps(void **state)
 static void test_fastscan_complete(void **state)
 {
     (void)state;
-    setup_bus(0U);
+    setup_bus(NULL);
     start(0, UNCONF, 0x00000100U);
     start(1, UNCONF, 0x00000200U);
     tb_flush(&fx.bus);

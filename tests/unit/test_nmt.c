@@ -493,7 +493,7 @@ static void state_callback_sees_new_state(void **state)
 static void option_no_bootup(void **state)
 {
     fx_t *fx = FX;
-    fx->dev.options = CO_OPT_NO_BOOTUP;
+    fx->dev.set = (co_settings_t){.nmt.bootup = CO_BOOTUP_NONE};
     start_cb(&fx->n, &fx->r, BUS, 0, 1, &fx->dev);
     tb_expect_none(BUS);
     assert_int_equal(co_node_nmt_state(NODE), CO_NMT_PRE_OPERATIONAL);
@@ -510,7 +510,7 @@ static void option_boot_emcy(void **state)
 {
     fx_t *fx = FX;
     static const uint8_t v819d[5] = {'V', '8', '1', '9', 'd'};
-    fx->dev.options = CO_OPT_BOOT_EMCY;
+    fx->dev.set = (co_settings_t){.nmt.boot_emcy = 1U};
     fx->dev.boot_emcy_data = v819d;
     start_cb(&fx->n, &fx->r, BUS, 0, 1, &fx->dev);
     /* SSD 630: boot-up, then EMCY 0000 carrying the firmware version */
@@ -534,7 +534,7 @@ static void option_boot_emcy_with_bootup_suppressed(void **state)
 {
     fx_t *fx = FX;
     static const uint8_t v819d[5] = {'V', '8', '1', '9', 'd'};
-    fx->dev.options = CO_OPT_BOOT_EMCY | CO_OPT_NO_BOOTUP;
+    fx->dev.set = (co_settings_t){.nmt.boot_emcy = 1U, .nmt.bootup = CO_BOOTUP_NONE};
     fx->dev.boot_emcy_data = v819d;
     start_cb(&fx->n, &fx->r, BUS, 0, 3, &fx->dev);
     tb_expect(BUS, "083 00 00 00 56 38 31 39 64");

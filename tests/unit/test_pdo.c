@@ -19,10 +19,10 @@
 static pfx_t fx;
 #define BUS (&fx.bus)
 
-static void start_operational(uint8_t id, uint32_t options)
+static void start_operational(uint8_t id, const co_settings_t *set)
 {
     char nmt[16];
-    pfx_start(&fx, id, options);
+    pfx_start(&fx, id, set);
     snprintf(nmt, sizeof nmt, "000 01 %02X", id);
     tb_send(BUS, nmt);
 }
@@ -31,7 +31,7 @@ static void start_operational(uint8_t id, uint32_t options)
 static void ssd_630_event_driven(void **state)
 {
     (void)state;
-    pfx_start(&fx, 1, 0U);
+    pfx_start(&fx, 1, NULL);
     tb_xfer(BUS, "601 23 00 14 01 01 02 00 00", "581 60 00 14 01 00 00 00 00");
     tb_xfer(BUS, "601 23 00 18 01 81 01 00 00", "581 60 00 18 01 00 00 00 00");
     tb_xfer(BUS, "601 23 81 60 00 E8 03 00 00", "581 60 81 60 00 00 00 00 00");
@@ -70,7 +70,7 @@ static void ssd_630_event_driven(void **state)
 static void ssd_630_interpolated_position(void **state)
 {
     (void)state;
-    pfx_start(&fx, 1, CO_OPT_PDO_MAP_WHILE_VALID);
+    pfx_start(&fx, 1, &(co_settings_t){.pdo.mapping_while_valid = 1U});
     tb_xfer(BUS, "601 2F 00 16 00 00 00 00 00", "581 60 00 16 00 00 00 00 00");
     tb_xfer(BUS, "601 23 00 16 01 10 00 40 60", "581 60 00 16 01 00 00 00 00");
     tb_xfer(BUS, "601 23 00 16 02 20 01 C1 60", "581 60 00 16 02 00 00 00 00");
@@ -111,7 +111,7 @@ static void ssd_630_interpolated_position(void **state)
 static void kollmorgen_jog_by_pdo(void **state)
 {
     (void)state;
-    pfx_start(&fx, 3, CO_OPT_PDO_MAP_WHILE_VALID);
+    pfx_start(&fx, 3, &(co_settings_t){.pdo.mapping_while_valid = 1U});
     tb_xfer(BUS, "603 2F 60 60 00 03 00 00 00", "583 60 60 60 00 00 00 00 00");
     tb_xfer(BUS, "603 2F 00 16 00 00 00 00 00", "583 60 00 16 00 00 00 00 00");
     tb_xfer(BUS, "603 23 00 16 01 20 00 FF 60", "583 60 00 16 01 00 00 00 00");
@@ -147,7 +147,7 @@ static void kollmorgen_jog_by_pdo(void **state)
 static void sync_every_nth(void **state)
 {
     (void)state;
-    pfx_start(&fx, 2, 0U);
+    pfx_start(&fx, 2, NULL);
     tb_xfer(BUS, "602 2F 01 18 02 03 00 00 00", "582 60 01 18 02 00 00 00 00");
     tb_send(BUS, "000 01 02");
     tb_flush(BUS); /* TPDO1's start frame */
@@ -166,7 +166,7 @@ static void sync_every_nth(void **state)
 static void acyclic_sync_type0(void **state)
 {
     (void)state;
-    pfx_start(&fx, 2, 0U);
+    pfx_start(&fx, 2, NULL);
     tb_xfer(BUS, "602 2F 01 18 02 00 00 00 00", "582 60 01 18 02 00 00 00 00");
     tb_send(BUS, "000 01 02");
     tb_flush(BUS);
@@ -191,7 +191,7 @@ static void acyclic_sync_type0(void **state)
 static void counter_and_start_value(void **state)
 {
     (void)state;
-    pfx_start(&fx, 2, 0U);
+    pfx_start(&fx, 2, NULL);
     tb_xfer(BUS, "602 2F 19 10 00 05 00 00 00", "582 60 19 10 00 00 00 00 00");
     tb_xfer(BUS, "602 23 01 18 01 82 02 00 80", "582 60 01 18 01 00 00 00 00");
     tb_xfer(BUS, "602 2F 01 18 02 02 00 00 00", "582 60 01 18 02 00 00 00 00");
@@ -214,7 +214,7 @@ static void counter_and_start_value(void **state)
     tb_expect(BUS, "282 00 00 00");
     tb_expect_none(BUS);
     /* without a SYNC counter the start value has no meaning */
-    pfx_start(&fx, 2, 0U);
+    pfx_start(&fx, 2, NULL);
     tb_xfer(BUS, "602 23 01 18 01 82 02 00 80", "582 60 01 18 01 00 00 00 00");
     tb_xfer(BUS, "602 2F 01 18 06 03 00 00 00", "582 60 01 18 06 00 00 00 00");
     tb_xfer(BUS, "602 23 01 18 01 82 02 00 00", "582 60 01 18 01 00 00 00 00");
@@ -227,7 +227,7 @@ static void counter_and_start_value(void **state)
 static void rtr_types(void **state)
 {
     (void)state;
-    pfx_start(&fx, 2, 0U);
+    pfx_start(&fx, 2, NULL);
     /* TPDO2: 253, RTR only, the data of the moment */
     tb_xfer(BUS, "602 2F 01 18 02 FD 00 00 00", "582 60 01 18 02 00 00 00 00");
     tb_send(BUS, "000 01 02");
@@ -274,7 +274,7 @@ static void rtr_types(void **state)
 static void inhibit_and_event_timer(void **state)
 {
     (void)state;
-    pfx_start(&fx, 1, 0U);
+    pfx_start(&fx, 1, NULL);
     tb_xfer(BUS, "601 23 00 18 01 81 01 00 80", "581 60 00 18 01 00 00 00 00");
     tb_xfer(BUS, "601 2B 00 18 03 64 00 00 00", "581 60 00 18 03 00 00 00 00"); /* 10 ms */
     tb_xfer(BUS, "601 2B 00 18 05 32 00 00 00", "581 60 00 18 05 00 00 00 00"); /* 50 ms */
@@ -311,7 +311,7 @@ static void event_timer_unit_option(void **state)
 {
     (void)state;
     /* Kollmorgen counts the event timer in 100 us */
-    pfx_start(&fx, 1, CO_OPT_EVENT_TIMER_100US);
+    pfx_start(&fx, 1, &(co_settings_t){.pdo.event_timer_unit = CO_PDO_TIMER_100US});
     tb_xfer(BUS, "601 2B 00 18 05 0A 00 00 00", "581 60 00 18 05 00 00 00 00");
     tb_send(BUS, "000 01 01");
     tb_expect(BUS, "181 00 00");
@@ -321,7 +321,7 @@ static void event_timer_unit_option(void **state)
     tb_expect(BUS, "181 00 00");
 }
 
-/* CO_OPT_TPDO_NO_CHANGE_DETECT (FAULHABER §3.2, digest 4.3: "the only event
+/* CO_TPDO_CHANGE_IGNORED (FAULHABER §3.2, digest 4.3: "the only event
  * is a change of the statusword", which its profile requests): TPDOs of
  * type 254/255 go out on co_tpdo_request, the event timer or an RTR, never
  * because their data changed, and not on entering Operational. */
@@ -329,14 +329,14 @@ static void no_change_detect_option(void **state)
 {
     (void)state;
     /* CiA 301: the data once on start, then every change */
-    start_operational(1, 0U);
+    start_operational(1, NULL);
     tb_expect(BUS, "181 00 00");
     pfx_set(&fx, 0x6041, 0, 0x0021, 2);
     tb_advance(BUS, 0);
     tb_expect(BUS, "181 21 00");
     tb_expect_none(BUS);
     /* the option: silent until asked */
-    start_operational(1, CO_OPT_TPDO_NO_CHANGE_DETECT);
+    start_operational(1, &(co_settings_t){.tpdo.change_detection = CO_TPDO_CHANGE_IGNORED});
     tb_advance(BUS, 0);
     tb_expect_none(BUS);
     pfx_set(&fx, 0x6041, 0, 0x0021, 2);
@@ -390,7 +390,7 @@ static void no_change_detect_option(void **state)
     tb_expect_none(BUS);
 }
 
-/* CO_OPT_TPDO_MASK_254/255 (Kollmorgen D4.5 for 255, SSD 630 D§4.4 for 254):
+/* set.tpdo.change_mask (Kollmorgen D4.5 for 255, SSD 630 D§4.4 for 254):
  * the change masks (here 0x2030.. for TPDO1..; sub 1 PDO bytes 0..3, sub 2
  * bytes 4..7) decide which changed bits send an event-driven TPDO. The
  * first transmission, requests, RTRs and the event timer are not filtered. */
@@ -398,7 +398,7 @@ static void tpdo_change_masks(void **state)
 {
     (void)state;
     /* CiA 301: the masks mean nothing, every change is sent */
-    pfx_start(&fx, 1, 0U);
+    pfx_start(&fx, 1, NULL);
     tb_xfer(BUS, "601 23 30 20 01 00 FF 00 00", "581 60 30 20 01 00 00 00 00");
     tb_send(BUS, "000 01 01");
     tb_expect(BUS, "181 00 00");
@@ -406,7 +406,7 @@ static void tpdo_change_masks(void **state)
     tb_advance(BUS, 0);
     tb_expect(BUS, "181 21 00");
     /* type 255 filtered: only the statusword's high byte counts */
-    pfx_start(&fx, 1, CO_OPT_TPDO_MASK_255);
+    pfx_start(&fx, 1, &(co_settings_t){.tpdo.change_mask = CO_TPDO_MASK_255});
     tb_xfer(BUS, "601 23 30 20 01 00 FF 00 00", "581 60 30 20 01 00 00 00 00");
     tb_send(BUS, "000 01 01");
     tb_expect(BUS, "181 00 00"); /* the first one is not a change: always sent */
@@ -446,7 +446,7 @@ static void tpdo_change_masks(void **state)
     tb_expect(BUS, "181 01 00");
     tb_expect_none(BUS);
     /* ... but by TPDO_MASK_254 (SSD 630), and 255 then is not */
-    pfx_start(&fx, 1, CO_OPT_TPDO_MASK_254);
+    pfx_start(&fx, 1, &(co_settings_t){.tpdo.change_mask = CO_TPDO_MASK_254});
     tb_xfer(BUS, "601 23 30 20 01 00 FF 00 00", "581 60 30 20 01 00 00 00 00");
     tb_send(BUS, "000 01 01");
     tb_expect(BUS, "181 00 00");
@@ -471,7 +471,7 @@ static void tpdo_change_masks(void **state)
 static void tpdo_mask_high_bytes(void **state)
 {
     (void)state;
-    pfx_start(&fx, 1, CO_OPT_TPDO_MASK_255);
+    pfx_start(&fx, 1, &(co_settings_t){.tpdo.change_mask = CO_TPDO_MASK_255});
     tb_xfer(BUS, "601 23 32 20 01 00 00 00 00", "581 60 32 20 01 00 00 00 00");
     tb_xfer(BUS, "601 23 32 20 02 01 00 00 00", "581 60 32 20 02 00 00 00 00");
     tb_xfer(BUS, "601 23 02 18 01 81 03 00 00", "581 60 02 18 01 00 00 00 00");
@@ -500,7 +500,7 @@ static void tpdo_mask_high_bytes(void **state)
 static void sync_window(void **state)
 {
     (void)state;
-    pfx_start(&fx, 2, 0U);
+    pfx_start(&fx, 2, NULL);
     tb_xfer(BUS, "602 23 07 10 00 DC 05 00 00", "582 60 07 10 00 00 00 00 00"); /* 1500 us */
     tb_send(BUS, "000 01 02");
     tb_flush(BUS);
@@ -536,7 +536,7 @@ static void sync_window(void **state)
 static void rpdo_length_emcy(void **state)
 {
     (void)state;
-    start_operational(1, 0U);
+    start_operational(1, NULL);
     tb_flush(BUS);
     tb_send(BUS, "201 5F");
     tb_expect(BUS, "081 10 82 11 00 00 00 00 00"); /* too short: not processed */
@@ -559,7 +559,7 @@ static void rpdo_short_option(void **state)
 {
     (void)state;
     /* AnaGate: a short RPDO writes the entries it covers, no EMCY */
-    start_operational(1, CO_OPT_RPDO_SHORT_OK);
+    start_operational(1, &(co_settings_t){.pdo.short_rpdo = CO_RPDO_SHORT_ACCEPT});
     tb_flush(BUS);
     tb_send(BUS, "301 06 00"); /* RPDO2: 0x6040 (16) + 0x6060 (8), type 1 */
     tb_send(BUS, "080");
@@ -576,7 +576,7 @@ static void rpdo_short_option(void **state)
 static void rpdo_timeout(void **state)
 {
     (void)state;
-    pfx_start(&fx, 1, 0U);
+    pfx_start(&fx, 1, NULL);
     tb_xfer(BUS, "601 2B 00 14 05 64 00 00 00", "581 60 00 14 05 00 00 00 00"); /* 100 ms */
     tb_send(BUS, "000 01 01");
     tb_flush(BUS);
@@ -604,7 +604,7 @@ static void rpdo_timeout(void **state)
 static void bit_and_byte_mapping(void **state)
 {
     (void)state;
-    pfx_start(&fx, 1, 0U);
+    pfx_start(&fx, 1, NULL);
     /* RPDO3: dummy U8, BOOLEAN 1 bit, INTEGER8 in 4 bits, INTEGER16 in 3 bits */
     tb_xfer(BUS, "601 2F 02 16 00 00 00 00 00", "581 60 02 16 00 00 00 00 00");
     tb_xfer(BUS, "601 23 02 16 01 08 00 05 00", "581 60 02 16 01 00 00 00 00");
@@ -642,7 +642,7 @@ static void bit_and_byte_mapping(void **state)
 static void full_size_values(void **state)
 {
     (void)state;
-    pfx_start(&fx, 1, 0U);
+    pfx_start(&fx, 1, NULL);
     tb_xfer(BUS, "601 23 03 14 01 01 05 00 80", "581 60 03 14 01 00 00 00 00");
     tb_xfer(BUS, "601 2F 03 16 00 00 00 00 00", "581 60 03 16 00 00 00 00 00");
     tb_xfer(BUS, "601 23 03 16 01 40 00 05 20", "581 60 03 16 01 00 00 00 00");
@@ -664,7 +664,7 @@ static void full_size_values(void **state)
 static void dictionary_path(void **state)
 {
     (void)state;
-    pfx_start(&fx, 1, 0U);
+    pfx_start(&fx, 1, NULL);
     /* RPDO1 -> limited 0x2010 (10..1000) and hooked 0x2020 */
     tb_xfer(BUS, "601 23 00 14 01 01 02 00 80", "581 60 00 14 01 00 00 00 00");
     tb_xfer(BUS, "601 2F 00 16 00 00 00 00 00", "581 60 00 16 00 00 00 00 00");
@@ -704,7 +704,7 @@ static void dictionary_path(void **state)
 static void nmt_states(void **state)
 {
     (void)state;
-    pfx_start(&fx, 1, 0U);
+    pfx_start(&fx, 1, NULL);
     /* Pre-operational: no PDO in or out */
     tb_send(BUS, "201 11 00");
     tb_send(BUS, "301 22 00 01");
@@ -734,7 +734,7 @@ static void nmt_states(void **state)
 static void cob_change_and_reset(void **state)
 {
     (void)state;
-    pfx_start(&fx, 1, 0U);
+    pfx_start(&fx, 1, NULL);
     tb_xfer(BUS, "601 23 00 14 01 01 02 00 80", "581 60 00 14 01 00 00 00 00");
     tb_xfer(BUS, "601 23 00 14 01 A1 02 00 00", "581 60 00 14 01 00 00 00 00");
     tb_send(BUS, "000 01 01");
@@ -760,7 +760,7 @@ static void cob_change_and_reset(void **state)
 static void tx_path_full(void **state)
 {
     (void)state;
-    start_operational(1, 0U);
+    start_operational(1, NULL);
     tb_expect(BUS, "181 00 00");
     /* the HAL refuses: the TPDO stays due and goes with the data of then */
     fx.bus.refuse = 1;

@@ -20,7 +20,7 @@ static pfx_t fx;
 static void mapping_needs_invalid_pdo(void **state)
 {
     (void)state;
-    pfx_start(&fx, 1, 0U);
+    pfx_start(&fx, 1, NULL);
     /* TPDO1 is valid: its mapping is locked (0x08000022) */
     tb_xfer(BUS, "601 2F 00 1A 00 00 00 00 00", "581 80 00 1A 00 22 00 00 08");
     tb_xfer(BUS, "601 23 00 1A 01 10 00 41 60", "581 80 00 1A 01 22 00 00 08");
@@ -53,7 +53,7 @@ static void mapping_needs_invalid_pdo(void **state)
 static void rpdo_mapping_rules(void **state)
 {
     (void)state;
-    pfx_start(&fx, 1, 0U);
+    pfx_start(&fx, 1, NULL);
     tb_xfer(BUS, "601 23 00 14 01 01 02 00 80", "581 60 00 14 01 00 00 00 00");
     tb_xfer(BUS, "601 2F 00 16 00 00 00 00 00", "581 60 00 16 00 00 00 00 00");
     tb_xfer(BUS, "601 23 00 16 01 10 00 41 60", "581 80 00 16 01 41 00 04 06"); /* TPDO-only */
@@ -69,7 +69,7 @@ static void rpdo_mapping_rules(void **state)
 static void cob_id_rules(void **state)
 {
     (void)state;
-    pfx_start(&fx, 1, 0U);
+    pfx_start(&fx, 1, NULL);
     /* the same CAN-ID while valid is fine (SSD 630 14.11 step 1) */
     tb_xfer(BUS, "601 23 00 14 01 01 02 00 00", "581 60 00 14 01 00 00 00 00");
     tb_xfer(BUS, "601 23 00 18 01 81 01 00 00", "581 60 00 18 01 00 00 00 00");
@@ -90,18 +90,18 @@ static void cob_id_rules(void **state)
     tb_xfer(BUS, "601 40 00 18 01 00 00 00 00", "581 43 00 18 01 A1 01 00 40");
 }
 
-/* CO_OPT_PDO_COBID_WHILE_VALID (Kollmorgen, digest D7.13 step 9): the CAN-ID
+/* set.pdo.cob_id_while_valid (Kollmorgen, digest D7.13 step 9): the CAN-ID
  * of a valid PDO changes without invalidating it first; the PDO runs on the
  * new identifier at once. The other COB-ID rules stay. */
 static void cob_id_while_valid_option(void **state)
 {
     (void)state;
     /* strict CiA 301: refused (0x06090030) */
-    pfx_start(&fx, 1, 0U);
+    pfx_start(&fx, 1, NULL);
     tb_xfer(BUS, "601 23 00 14 01 10 02 00 00", "581 80 00 14 01 30 00 09 06");
     tb_xfer(BUS, "601 23 00 18 01 90 01 00 00", "581 80 00 18 01 30 00 09 06");
     /* with the option: taken */
-    pfx_start(&fx, 1, CO_OPT_PDO_COBID_WHILE_VALID);
+    pfx_start(&fx, 1, &(co_settings_t){.pdo.cob_id_while_valid = 1U});
     tb_xfer(BUS, "601 23 00 14 01 10 02 00 00", "581 60 00 14 01 00 00 00 00");
     tb_xfer(BUS, "601 40 00 14 01 00 00 00 00", "581 43 00 14 01 10 02 00 00");
     tb_xfer(BUS, "601 23 00 18 01 90 01 00 00", "581 60 00 18 01 00 00 00 00");
@@ -126,7 +126,7 @@ static void cob_id_while_valid_option(void **state)
 static void comm_parameter_rules(void **state)
 {
     (void)state;
-    pfx_start(&fx, 1, 0U);
+    pfx_start(&fx, 1, NULL);
     /* transmission types: TPDO 241..251 reserved; RPDO also 252/253 */
     tb_xfer(BUS, "601 2F 00 18 02 F1 00 00 00", "581 80 00 18 02 30 00 09 06");
     tb_xfer(BUS, "601 2F 00 18 02 FB 00 00 00", "581 80 00 18 02 30 00 09 06");
@@ -155,7 +155,7 @@ static void mapping_locked_in_operational(void **state)
     (void)state;
     /* even with the SSD/Kollmorgen option: no remapping of a valid PDO in
      * Operational */
-    pfx_start(&fx, 1, CO_OPT_PDO_MAP_WHILE_VALID);
+    pfx_start(&fx, 1, &(co_settings_t){.pdo.mapping_while_valid = 1U});
     tb_send(BUS, "000 01 01");
     tb_flush(BUS);
     tb_xfer(BUS, "601 2F 00 16 00 00 00 00 00", "581 80 00 16 00 22 00 00 08");
@@ -164,7 +164,7 @@ static void mapping_locked_in_operational(void **state)
     tb_xfer(BUS, "601 2F 00 16 00 00 00 00 00", "581 60 00 16 00 00 00 00 00");
 }
 
-/* CO_OPT_PDO_CONFIG_PREOP_ONLY (SSD 630 §7, digest D§2.3 and D§8.4): PDO
+/* CO_PDO_WRITES_PREOP (SSD 630 §7, digest D§2.3 and D§8.4): PDO
  * communication and mapping parameters are written in Pre-operational only;
  * in Operational (and Stopped) every write answers 0x08000022, reads work. */
 static void pdo_config_preop_only_option(void **state)
@@ -173,7 +173,7 @@ static void pdo_config_preop_only_option(void **state)
 
     (void)state;
     /* CiA 301: communication parameters may change in Operational */
-    pfx_start(&fx, 1, 0U);
+    pfx_start(&fx, 1, NULL);
     tb_send(BUS, "000 01 01");
     tb_flush(BUS);
     tb_xfer(BUS, "601 2F 00 18 02 01 00 00 00", "581 60 00 18 02 00 00 00 00");
@@ -181,7 +181,7 @@ static void pdo_config_preop_only_option(void **state)
     tb_xfer(BUS, "601 23 00 14 01 01 02 00 80", "581 60 00 14 01 00 00 00 00");
     tb_xfer(BUS, "601 2F 02 16 00 00 00 00 00", "581 60 02 16 00 00 00 00 00"); /* invalid RPDO3 */
     /* the device's option: none of these in Operational */
-    pfx_start(&fx, 1, CO_OPT_PDO_CONFIG_PREOP_ONLY | CO_OPT_PDO_MAP_WHILE_VALID);
+    pfx_start(&fx, 1, &(co_settings_t){.pdo.parameter_writes = CO_PDO_WRITES_PREOP, .pdo.mapping_while_valid = 1U});
     tb_send(BUS, "000 01 01");
     tb_flush(BUS);
     tb_xfer(BUS, "601 2F 00 18 02 01 00 00 00", "581 80 00 18 02 22 00 00 08");
@@ -207,18 +207,18 @@ static void pdo_config_preop_only_option(void **state)
     tb_xfer(BUS, "601 23 00 14 01 01 02 00 80", "581 60 00 14 01 00 00 00 00");
 }
 
-/* CO_OPT_PDO_MAP_BYTES (Kollmorgen §5.3.1.2/§5.3.2.2, digest D4.1: "mappings
+/* CO_PDO_MAP_BYTES (Kollmorgen §5.3.1.2/§5.3.2.2, digest D4.1: "mappings
  * are only taken over byte-wise"): an entry's length must be whole bytes
  * (0x06040041 otherwise); a whole-byte part of an object is still allowed. */
 static void byte_granularity_option(void **state)
 {
     (void)state;
     /* CiA 301 bit granularity: one bit of a BOOLEAN is an entry */
-    pfx_start(&fx, 1, 0U);
+    pfx_start(&fx, 1, NULL);
     tb_xfer(BUS, "601 2F 02 16 00 00 00 00 00", "581 60 02 16 00 00 00 00 00");
     tb_xfer(BUS, "601 23 02 16 01 01 00 00 20", "581 60 02 16 01 00 00 00 00");
     /* granularity 8 */
-    pfx_start(&fx, 1, CO_OPT_PDO_MAP_BYTES);
+    pfx_start(&fx, 1, &(co_settings_t){.pdo.granularity = CO_PDO_MAP_BYTES});
     tb_xfer(BUS, "601 2F 02 16 00 00 00 00 00", "581 60 02 16 00 00 00 00 00");
     tb_xfer(BUS, "601 23 02 16 01 01 00 00 20", "581 80 02 16 01 41 00 04 06"); /* 1 bit */
     tb_xfer(BUS, "601 23 02 16 01 04 00 01 20", "581 80 02 16 01 41 00 04 06"); /* 4 of 8 */
@@ -247,7 +247,7 @@ static void byte_granularity_option(void **state)
 static void ssd_630_sync_pdo_setup(void **state)
 {
     (void)state;
-    pfx_start(&fx, 1, CO_OPT_PDO_MAP_WHILE_VALID);
+    pfx_start(&fx, 1, &(co_settings_t){.pdo.mapping_while_valid = 1U});
     tb_xfer(BUS, "601 2F 00 16 00 00 00 00 00", "581 60 00 16 00 00 00 00 00"); /* 1.1 */
     tb_xfer(BUS, "601 23 00 16 01 10 00 40 60", "581 60 00 16 01 00 00 00 00"); /* 1.2 */
     tb_xfer(BUS, "601 23 00 16 02 20 01 C1 60", "581 60 00 16 02 00 00 00 00"); /* 1.3 */
@@ -263,7 +263,7 @@ static void ssd_630_sync_pdo_setup(void **state)
     tb_xfer(BUS, "601 23 00 18 01 81 01 00 00", "581 60 00 18 01 00 00 00 00"); /* 1.12 meant */
     tb_xfer(BUS, "601 23 06 10 00 88 13 00 00", "581 60 06 10 00 00 00 00 00"); /* 2.1 */
     /* the same first step on a strict device is refused */
-    pfx_start(&fx, 1, 0U);
+    pfx_start(&fx, 1, NULL);
     tb_xfer(BUS, "601 2F 00 16 00 00 00 00 00", "581 80 00 16 00 22 00 00 08");
 }
 
@@ -272,7 +272,7 @@ static void ssd_630_sync_pdo_setup(void **state)
 static void kollmorgen_free_mapping(void **state)
 {
     (void)state;
-    pfx_start(&fx, 1, CO_OPT_PDO_MAP_WHILE_VALID);
+    pfx_start(&fx, 1, &(co_settings_t){.pdo.mapping_while_valid = 1U});
     tb_xfer(BUS, "601 2F 00 1A 00 00 00 00 00", "581 60 00 1A 00 00 00 00 00");
     tb_xfer(BUS, "601 23 00 1A 01 10 00 41 60", "581 60 00 1A 01 00 00 00 00");
     tb_xfer(BUS, "601 23 00 1A 02 20 00 02 10", "581 60 00 1A 02 00 00 00 00");
@@ -289,7 +289,7 @@ static void kollmorgen_free_mapping(void **state)
 static void ssd_630_profile_velocity(void **state)
 {
     (void)state;
-    pfx_start(&fx, 1, CO_OPT_UNKNOWN_INDEX_NO_ACCESS | CO_OPT_PDO_MAP_WHILE_VALID);
+    pfx_start(&fx, 1, &(co_settings_t){.sdo.unknown_object = CO_SDO_ABORT_NO_ACCESS, .pdo.mapping_while_valid = 1U});
     tb_xfer(BUS, "601 23 FF 60 00 00 00 00 00", "581 60 FF 60 00 00 00 00 00");
     tb_xfer(BUS, "601 2F 06 60 00 03 00 00 00", "581 80 06 60 00 00 00 01 06");
     tb_xfer(BUS, "601 2F 60 60 00 03 00 00 00", "581 60 60 60 00 00 00 00 00");

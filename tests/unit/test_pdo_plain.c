@@ -57,7 +57,7 @@ static void mixed_tpdo(void **state)
     /* plain U16, hooked U32 (the read hook refreshes it), plain U8 */
     static const uint32_t map[] = {0x20080010UL, 0x20200020UL, 0x20070008UL};
     (void)state;
-    pfx_start(&fx, 1, 0U);
+    pfx_start(&fx, 1, NULL);
     map_pdo1(true, map, 3);
     pfx_set(&fx, 0x2008, 0, 0x1234, 2);
     pfx_set(&fx, 0x2007, 0, 0x56, 1);
@@ -76,7 +76,7 @@ static void mixed_rpdo(void **state)
     /* plain U8, hooked U32, limited U16 (10..1000), plain I8 */
     static const uint32_t map[] = {0x20070008UL, 0x20200020UL, 0x20100010UL, 0x20010008UL};
     (void)state;
-    pfx_start(&fx, 1, 0U);
+    pfx_start(&fx, 1, NULL);
     map_pdo1(false, map, 4);
     tb_send(BUS, "000 01 01");
     tb_flush(BUS);
@@ -101,7 +101,7 @@ static void rpdo_more_entries_than_resolved(void **state)
     static const uint32_t map[] = {0x20010008UL, 0x20070008UL, 0x20020010UL,
                                    0x20000008UL, 0x20080010UL, 0x00050008UL};
     (void)state;
-    pfx_start(&fx, 1, 0U);
+    pfx_start(&fx, 1, NULL);
     map_pdo1(false, map, 6);
     tb_send(BUS, "000 01 01");
     tb_flush(BUS);
@@ -127,7 +127,7 @@ static void tpdo_more_entries_than_resolved(void **state)
     static const uint32_t map[] = {0x20010008UL, 0x20070008UL, 0x20020010UL, 0x20080010UL,
                                    0x20090010UL};
     (void)state;
-    pfx_start(&fx, 1, 0U);
+    pfx_start(&fx, 1, NULL);
     map_pdo1(true, map, 5);
     pfx_set(&fx, 0x2001, 0, 0x81, 1);
     pfx_set(&fx, 0x2007, 0, 0x42, 1);
@@ -145,7 +145,7 @@ static void remap_plain_and_hooked(void **state)
     static const uint32_t hooked[] = {0x20200020UL};
     static const uint32_t limited[] = {0x20100010UL};
     (void)state;
-    pfx_start(&fx, 1, 0U);
+    pfx_start(&fx, 1, NULL);
     pfx_set(&fx, 0x2009, 0, 0x11223344UL, 4);
     fx.hook_value = 0xCAFEF00DUL;
     map_pdo1(true, plain, 1);
@@ -179,7 +179,7 @@ static void reset_restores_plain_mapping(void **state)
 {
     static const uint32_t hooked[] = {0x20200020UL};
     (void)state;
-    pfx_start(&fx, 1, 0U);
+    pfx_start(&fx, 1, NULL);
     map_pdo1(true, hooked, 1);
     pfx_set(&fx, 0x6041, 0, 0x0237, 2);
     fx.hook_value = 0xCAFEF00DUL;
@@ -200,7 +200,7 @@ static void short_rpdo_plain_entries(void **state)
     /* AnaGate option: a short frame writes only the entries it covers */
     static const uint32_t map[] = {0x20090020UL, 0x20080010UL};
     (void)state;
-    pfx_start(&fx, 1, CO_OPT_RPDO_SHORT_OK);
+    pfx_start(&fx, 1, &(co_settings_t){.pdo.short_rpdo = CO_RPDO_SHORT_ACCEPT});
     map_pdo1(false, map, 2);
     tb_send(BUS, "000 01 01");
     tb_flush(BUS);

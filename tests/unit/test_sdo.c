@@ -71,7 +71,7 @@ static void ssd_14_1_unknown_index_strict_and_630(void **state)
     /* strict CiA 301: object does not exist */
     tb_xfer(BUS, "601 40 34 12 00 00 00 00 00", "581 80 34 12 00 00 00 02 06");
     /* SSD 630 personality option: access not supported */
-    dev.options = CO_OPT_UNKNOWN_INDEX_NO_ACCESS | CO_OPT_READ_ONLY_NO_ACCESS;
+    dev.set = (co_settings_t){.sdo.unknown_object = CO_SDO_ABORT_NO_ACCESS, .sdo.read_only = CO_SDO_ABORT_NO_ACCESS};
     td_start(&ssd, BUS, 1, 4, &dev);
     tb_expect(BUS, "704 00");
     tb_xfer(BUS, "604 40 34 12 00 00 00 00 00", "584 80 34 12 00 00 00 01 06");
@@ -89,7 +89,7 @@ static void ssd_no_segmented_download(void **state)
     static td_node_t ssd;
     co_dev_t dev = td_dev;
 
-    dev.options = CO_OPT_SDO_NO_SEG_DOWNLOAD;
+    dev.set = (co_settings_t){.sdo.refused = CO_SDO_XFER_SEG_DOWNLOAD};
     td_start(&ssd, BUS, 1, 4, &dev);
     tb_expect(BUS, "704 00");
     /* size indicated or not, a string or a fixed-size value */
@@ -157,7 +157,7 @@ static void kollmorgen_7_9_expedited_only_node3(void **state)
 {
     static td_node_t ko;
     co_dev_t dev = td_dev;
-    dev.options = CO_OPT_SDO_EXPEDITED_ONLY;
+    dev.set = (co_settings_t){.sdo.refused = CO_SDO_EXPEDITED_ONLY};
     td_start(&ko, BUS, 1, 3, &dev);
     tb_expect(BUS, "703 00");
     tb_xfer(BUS, "603 2F 60 60 00 03 00 00 00", "583 60 60 60 00 00 00 00 00");

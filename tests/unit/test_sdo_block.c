@@ -985,7 +985,7 @@ static void options_disable_block_transfers(void **state)
 {
     co_dev_t dev = td_dev;
 
-    dev.options = CO_OPT_SDO_NO_BLOCK;
+    dev.set = (co_settings_t){.sdo.refused = CO_SDO_XFER_BLOCK};
     td_start(&FX->n2, BUS, 1, 2, &dev);
     tb_expect(BUS, "702 00");
     tb_xfer(BUS, "602 C6 04 20 00 04 00 00 00", "582 80 04 20 00 01 00 04 05");
@@ -1002,7 +1002,7 @@ static void options_disable_block_transfers(void **state)
     tb_expect_none(BUS);
 
     /* expedited only implies no block transfers either */
-    dev.options = CO_OPT_SDO_EXPEDITED_ONLY;
+    dev.set = (co_settings_t){.sdo.refused = CO_SDO_EXPEDITED_ONLY};
     td_start(&FX->n2, BUS, 1, 3, &dev);
     tb_expect(BUS, "703 00");
     tb_xfer(BUS, "603 C6 04 20 00 04 00 00 00", "583 80 04 20 00 01 00 04 05");

@@ -4,7 +4,7 @@
  * what NMT resets and a power cycle (a new co_node_init on the same NV) load,
  * wrong signatures, a HAL without NV, NV failures, foreign and corrupt sets,
  * a power cut at every byte of a save or restore, and the restore of the
- * saved set (0x1011 sub 4..6, CO_OPT_RESTORE_SAVED).
+ * saved set (0x1011 sub 4..6, CO_RESTORE_SAVED).
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -197,7 +197,7 @@ static void capability_reads_and_signature_does_not_change_them(void **state)
     tb_xfer(BUS, "601 40 11 10 02 00 00 00 00", "581 43 11 10 02 01 00 00 00");
     tb_xfer(BUS, "601 40 11 10 03 00 00 00 00", "581 43 11 10 03 01 00 00 00");
     /* sub 4..6 (a manufacturer's) are not the core's without
-     * CO_OPT_RESTORE_SAVED: they read 0 and refuse the signature */
+     * CO_RESTORE_SAVED: they read 0 and refuse the signature */
     tb_xfer(BUS, "601 40 11 10 04 00 00 00 00", "581 43 11 10 04 00 00 00 00");
     tb_xfer(BUS, "601 40 11 10 06 00 00 00 00", "581 43 11 10 06 00 00 00 00");
     tb_xfer(BUS, "601 23 11 10 04 6C 6F 61 64", "581 80 11 10 04 20 00 00 08");
@@ -388,7 +388,7 @@ static void restore_without_stored_set_writes_nothing(void **state)
     }
 }
 
-/* ------------------------------------- CO_OPT_RESTORE_SAVED (sub 4..6) */
+/* ------------------------------------- CO_RESTORE_SAVED (sub 4..6) */
 
 #define LOAD_SAVED_ALL    "601 23 11 10 04 6C 6F 61 64"
 #define LOAD_SAVED_COMM   "601 23 11 10 05 6C 6F 61 64"
@@ -399,7 +399,7 @@ static void restore_without_stored_set_writes_nothing(void **state)
 
 static void start_restore_saved(void)
 {
-    fx.dev.options = CO_OPT_RESTORE_SAVED;
+    fx.dev.set = (co_settings_t){.store.restore = CO_RESTORE_SAVED};
     power_cycle_dev(&fx.dev);
 }
 

@@ -101,13 +101,13 @@ def check(dev: Device, build: dict[str, int]) -> None:
     if not cfg.get("CO_SDO_BLOCK", 1) and offers_block(dev):
         missing.append("block SDO (offered unless [sdo] transfers leaves out \"block\") needs "
                        "CO_SDO_BLOCK=1 (this build: CO_SDO_BLOCK=0)")
-    opts = cfg.get("CO_OPTIONS", 0xFFFFFFFF)
-    extra = dev.option_bits & ~opts & 0xFFFFFFFF
-    if extra:
-        from model import core_options
-        names = [n for n, b in sorted(core_options().items()) if b & extra]
-        missing.append("personality " + ", ".join(names) + f" needs CO_OPTIONS to have bits "
-                       f"0x{extra:08X} (this build: CO_OPTIONS=0x{opts:08X})")
+    if not cfg.get("CO_PERSONALITY", 1):
+        devs = [o for o in dev.options if o != "LSS"]
+        if devs:
+            missing.append("the personality " + ", ".join(devs) + " needs CO_PERSONALITY=1 "
+                           "(this build: CO_PERSONALITY=0, CiA 301 behaviour only)")
+    if not cfg.get("CO_LSS", 1) and "LSS" in dev.options:
+        need("CO_LSS", "LSS ([device] lss)")
     if missing:
         raise DescError("the core this device is built with leaves out what it needs: "
                         + "; ".join(missing))

@@ -12,6 +12,7 @@ from __future__ import annotations
 import struct
 from dataclasses import dataclass, field
 
+import personality
 from model import F_W, FLAG_NAMES, DescError, Device, Sub, encoded_default
 
 REGIONS = (("comm", "communication parameters (stored)"),
@@ -265,16 +266,31 @@ def generate(dev: Device, toml_name: str, warn=None) -> tuple[str, str]:
             v = field_init(f)
             c.append(f"    .{f.name} = {v if v is not None else ('{0}' if f.dims else '0U')},")
         c += ["};", ""]
-    c += ["/* Defaults of the RAM image ($NODEID defaults hold the offset; the core adds",
-          " * the node-ID when it restores them). */",
-          f"static const {cn}_ram_t defaults = {{"]
+    # sparse defaults: only the values that are not zero, largest alignment
+    # first so that they follow each other without padding, and where each
+    # goes in the RAM image (co_dev_t.default_at); the core zeroes the rest
     inits = [(f, field_init(f)) for f in ram if f.subs]
-    inits = [(f, v) for f, v in inits if v is not None]
-    for f, v in inits:
-        c.append(f"    .{f.name} = {v},")
-    if not inits:
-        c.append("    0")
-    c += ["};", ""]
+    inits = sorted([(f, v) for f, v in inits if v is not None], key=lambda fv: -fv[0].align)
+    c += [f"#define F(field) ((uint16_t)offsetof({cn}_ram_t, field))", ""]
+    if inits:
+        c += ["/* Defaults of the RAM image that are not zero ($NODEID defaults hold the",
+              " * offset; the core adds the node-ID when it restores them), one after the",
+              " * other without padding, and where each goes. */",
+              f"typedef struct {cn}_defaults {{"]
+        c += [f"    {f.decl()};" for f, _ in inits]
+        c += [f"}} {cn}_defaults_t;", f"static const {cn}_defaults_t defaults = {{"]
+        c += [f"    .{f.name} = {v}," for f, v in inits]
+        c += ["};"]
+        last = inits[-1][0].name
+        size = " + ".join(f"sizeof defaults.{f.name}" for f, _ in inits)
+        c += [f"typedef char {cn}_defaults_packed[(offsetof({cn}_defaults_t, {last}) + "
+              f"sizeof defaults.{last} == {size}) ? 1 : -1];",
+              "static const co_od_default_t default_at[] = {"]
+        c += [f"    {{F({f.name}), (uint16_t)sizeof defaults.{f.name}}}," for f, _ in inits]
+        c += ["};", ""]
+    else:
+        c += ["/* Every value of the RAM image defaults to 0. */",
+              "static const co_od_default_t default_at[1] = {{0U, 0U}};", ""]
     if dev.limits:
         c.append("static const co_od_limit_t limits[] = {")
         for lo, hi in dev.limits:
@@ -282,7 +298,6 @@ def generate(dev: Device, toml_name: str, warn=None) -> tuple[str, str]:
         c += ["};", ""]
     if dev.boot_emcy_data is not None:
         c += [f"static const uint8_t boot_emcy[5] = {c_bytes(bytes(dev.boot_emcy_data))};", ""]
-    c += [f"#define F(field) ((uint16_t)offsetof({cn}_ram_t, field))"]
     if rom:
         c.append(f"#define R(field) ((uint16_t)offsetof({cn}_rom_t, field))")
     c.append("")
@@ -297,8 +312,8 @@ def generate(dev: Device, toml_name: str, warn=None) -> tuple[str, str]:
                 off = f"{m}({s.field})" if s.elem <= 0 else \
                     f"(uint16_t)({m}({s.field}) + {s.elem * s.size}U)"
             lim = f"{s.limit_slot}U" if s.limit_slot >= 0 else "0U"
-            c.append(f"    {{0x{s.sub:02X}U, (uint8_t)CO_{s.type}, {flags_expr(s.flags)}, "
-                     f"{s.size}U, {off}, {lim}}}, /* {comment(s.name)} */")
+            c.append(f"    CO_OD_SUB(0x{s.sub:02X}U, (uint8_t)CO_{s.type}, {flags_expr(s.flags)}, "
+                     f"{s.size}U, {off}, {lim}), /* {comment(s.name)} */")
         c.append("};")
     c += ["", "static const co_od_entry_t od[] = {"]
     for o in dev.objects:
@@ -324,7 +339,7 @@ def generate(dev: Device, toml_name: str, warn=None) -> tuple[str, str]:
 
     masks = mask_table(dev, len(pdos[1]))
     if masks:
-        c += ["/* Change masks of the TPDOs (CO_OPT_TPDO_MASK_*): where sub 1 of each lives. */",
+        c += ["/* Change masks of the TPDOs (set.tpdo.change_mask): where sub 1 of each lives. */",
               "static const uint16_t tpdo_mask[] = {"]
         c += [f"    {off_expr(m)}, /* 0x{m.index:04X} */" for m in masks]
         c += ["};", ""]
@@ -336,7 +351,6 @@ def generate(dev: Device, toml_name: str, warn=None) -> tuple[str, str]:
                 return f"F({sel[0].name})"
         return f"(uint16_t)sizeof({cn}_ram_t)"
 
-    opts = " | ".join(f"CO_OPT_{o}" for o in dev.options)
     c += [f"const co_dev_t {cn}_dev = {{",
           f'    .name = "{dev.name}",',
           "    .od = od,",
@@ -344,11 +358,11 @@ def generate(dev: Device, toml_name: str, warn=None) -> tuple[str, str]:
           f"    .ram_size = (uint16_t)sizeof({cn}_ram_t),",
           f"    .comm_end = {first(('app', 'none'))},",
           f"    .app_end = {first(('none',))},",
-          "    .defaults = &defaults,",
+          f"    .defaults = {'&defaults' if inits else 'NULL'},",
           f"    .rom = {'(const uint8_t *)&rom' if rom else 'NULL'},",
           f"    .limits = {'limits' if dev.limits else 'NULL'},",
           f"    .n_hooks = {up}_N_HOOKS,",
-          f"    .options = {('(uint32_t)(' + opts + ')') if opts else '0U'},",
+          *personality.settings_c(dev.options),
           f"    .boot_emcy_data = {'boot_emcy' if dev.boot_emcy_data is not None else 'NULL'},",
           f"    .pdo = {'pdo' if n_pdo else 'NULL'},",
           f"    .n_rpdo = {len(pdos[0])}U,",
@@ -358,6 +372,8 @@ def generate(dev: Device, toml_name: str, warn=None) -> tuple[str, str]:
           f"    .nodeid_index = 0x{(dev.nodeid_object or 0):04X}U,",
           f"    .stage = {'F(sdo_stage)' if stage else '0U'},",
           f"    .stage_size = {stage}U,",
+          "    .default_at = default_at,",
+          f"    .n_defaults = {len(inits)}U,",
           "};", "",
           f"void {cn}_config({cn}_node_t *n, co_node_config_t *cfg)",
           "{",

@@ -1,6 +1,8 @@
 """Markdown back end: the object table of a device, for documentation and review."""
 from __future__ import annotations
 
+from personality import SETTINGS
+
 from gen_eds import eds_default, eds_limit
 from model import Device, RawObj, Sub
 
@@ -27,7 +29,7 @@ def generate(dev: Device, toml_name: str) -> str:
             f"| vendor | {cell(info['vendor_name'])} (0x{info['vendor_id']:08X}) |",
             f"| product | {cell(info['product_name'])} (0x{info['product_code']:08X}), "
             f"revision 0x{info['revision']:08X} |",
-            f"| options | {', '.join('`CO_OPT_' + o + '`' for o in dev.options) or 'none'} |",
+            f"| personality | {', '.join('`set.' + SETTINGS[o][1] + ' = ' + SETTINGS[o][2] + '`' for o in dev.options) or 'CiA 301'} |",
             f"| objects | {len(dev.objects)} entries, "
             f"{sum(len(o.subs) for o in dev.objects)} sub-entries, {dev.n_hooks} hook slots"
             + (f"; {len(dev.eds_only)} more only in the EDS" if dev.eds_only else "") + " |",

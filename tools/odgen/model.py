@@ -58,20 +58,11 @@ FLAG_NAMES = [
     (F_HOOKIO, "CO_SUB_HOOKIO"), (F_NODEID, "CO_SUB_NODEID"), (F_LIMIT, "CO_SUB_LIMIT"),
 ]
 
-# co_node.h: in the source tree (tools/odgen -> stack/include), or installed
-# (share/canopen-stack/odgen -> include/canopen-stack).
-_HERE = Path(__file__).resolve()
-CORE_HEADER = next((p for p in (
-    _HERE.parents[2] / "stack" / "include" / "co" / "co_node.h",
-    _HERE.parents[3] / "include" / "canopen-stack" / "co" / "co_node.h") if p.exists()),
-    _HERE.parents[2] / "stack" / "include" / "co" / "co_node.h")
-
-
-def core_options(header: Path = CORE_HEADER) -> dict[str, int]:
-    """The CO_OPT_* personality options the core defines (name without prefix -> bit)."""
-    text = header.read_text(encoding="utf-8")
-    return {m.group(1): int(m.group(2), 16)
-            for m in re.finditer(r"#define\s+CO_OPT_(\w+)\s+0x([0-9A-Fa-f]+)U?", text)}
+def core_options() -> dict[str, int]:
+    """The personality deviations the core implements, by name -> their bit in
+    Device.option_bits (the C side is typed: co_settings.h, personality.SETTINGS)."""
+    from personality import SETTINGS
+    return {name: bit for name, (bit, _, _) in SETTINGS.items()}
 
 
 def where(index: int, sub: int | None = None) -> str:

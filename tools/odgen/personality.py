@@ -18,13 +18,60 @@ core, instead of a list of option bits:
     [store] restore_saved = false
 
 Every key is optional (the default is CiA 301). The generator turns them
-into the core's co_dev_t fields (the CO_OPT_* bits, boot_emcy_data,
-tpdo_mask); the older `[device] options = [...]` list names the same bits
-and may be used alongside, but not against, a setting given here.
+into the core's typed settings (co_dev_t.set, stack/include/co/co_settings.h:
+one part per service, every field's zero the CiA behaviour), boot_emcy_data
+and tpdo_mask. The older `[device] options = [...]` list names the same
+deviations (SETTINGS below) and may be used alongside, but not against, a
+setting given here.
 """
 from __future__ import annotations
 
 from model import DescError
+
+# every deviation by name: (its bit in Device.option_bits, the field of
+# co_settings_t it sets, the value; fields that are sets OR their values)
+SETTINGS = {
+    "UNKNOWN_INDEX_NO_ACCESS": (0x0001, "sdo.unknown_object", "CO_SDO_ABORT_NO_ACCESS"),
+    "READ_ONLY_NO_ACCESS": (0x0002, "sdo.read_only", "CO_SDO_ABORT_NO_ACCESS"),
+    "NO_BOOTUP": (0x0004, "nmt.bootup", "CO_BOOTUP_NONE"),
+    "BOOT_EMCY": (0x0008, "nmt.boot_emcy", "1U"),
+    "EMCY_STATE_PAIR": (0x0010, "emcy.state_pair", "1U"),
+    "EMCY_RESET_PARTIAL": (0x0020, "emcy.reset", "CO_EMCY_RESET_EACH_CLEAR"),
+    "SDO_EXPEDITED_ONLY": (0x0040, "sdo.refused", "CO_SDO_EXPEDITED_ONLY"),
+    "SDO_NO_BLOCK": (0x0080, "sdo.refused", "CO_SDO_XFER_BLOCK"),
+    "GUARD_WITH_HEARTBEAT": (0x0100, "nmt.guarding_with_hb", "1U"),
+    "PDO_MAP_WHILE_VALID": (0x0200, "pdo.mapping_while_valid", "1U"),
+    "RPDO_SHORT_OK": (0x0400, "pdo.short_rpdo", "CO_RPDO_SHORT_ACCEPT"),
+    "EVENT_TIMER_100US": (0x0800, "pdo.event_timer_unit", "CO_PDO_TIMER_100US"),
+    "LSS": (0x1000, "lss.slave", "1U"),
+    "LSS_KEEP_COBS": (0x2000, "lss.cob_ids", "CO_LSS_COBS_KEEP"),
+    "LSS_NO_REVISION": (0x4000, "lss.selective", "CO_LSS_IGNORE_REVISION"),
+    "LSS_ONLY": (0x8000, "lss.node_id", "CO_LSS_ID_ONLY"),
+    "PDO_COBID_WHILE_VALID": (0x00010000, "pdo.cob_id_while_valid", "1U"),
+    "PDO_CONFIG_PREOP_ONLY": (0x00020000, "pdo.parameter_writes", "CO_PDO_WRITES_PREOP"),
+    "PDO_MAP_BYTES": (0x00040000, "pdo.granularity", "CO_PDO_MAP_BYTES"),
+    "TPDO_NO_CHANGE_DETECT": (0x00080000, "tpdo.change_detection", "CO_TPDO_CHANGE_IGNORED"),
+    "TPDO_MASK_254": (0x00100000, "tpdo.change_mask", "CO_TPDO_MASK_254"),
+    "TPDO_MASK_255": (0x00200000, "tpdo.change_mask", "CO_TPDO_MASK_255"),
+    "ERREG_NO_GENERIC": (0x01000000, "emcy.generic_bit", "CO_ERREG_GENERIC_UNCLASSIFIED"),
+    "HISTORY_CODE_ONLY": (0x02000000, "emcy.history", "CO_HISTORY_CODE_ONLY"),
+    "SDO_NO_SEG_DOWNLOAD": (0x04000000, "sdo.refused", "CO_SDO_XFER_SEG_DOWNLOAD"),
+    "RESTORE_SAVED": (0x08000000, "store.restore", "CO_RESTORE_SAVED"),
+    "TPDO_AFTER_RPDO": (0x10000000, "pdo.tpdo_after_rpdo", "1U"),
+    "GUARD_HB_EXCLUSIVE": (0x20000000, "nmt.guarding_hb_exclusive", "1U"),
+}
+
+
+def settings_c(options: list[str]) -> list[str]:
+    """The designated initialisers of co_dev_t.set for these deviations
+    (field -> value; a set's values ORed), in the order of SETTINGS."""
+    fields: dict[str, list[str]] = {}
+    for name, (_, field, value) in SETTINGS.items():
+        if name in options:
+            fields.setdefault(field, []).append(value)
+    return [f"    .set.{f} = {v[0] if len(v) == 1 else '(uint8_t)(' + ' | '.join(v) + ')'},"
+            for f, v in fields.items()]
+
 
 TRANSFERS = ("expedited", "segmented-upload", "segmented-download", "block")
 # the SDO transfer sets the server offers -> options

@@ -22,7 +22,7 @@
 
 #ifndef CO_LSS
 /** LSS slave, CiA 305 (co_lss.c): node-ID and bit timing over the bus,
- *  unconfigured nodes, fastscan. Left out: a device with CO_OPT_LSS is
+ *  unconfigured nodes, fastscan. Left out: a device with set.lss.slave is
  *  refused (configured node-IDs still change with co_node_set_id). */
 #define CO_LSS 1
 #endif
@@ -105,11 +105,11 @@
  *  a device with a limit table is refused. */
 #define CO_LIMITS 1
 #endif
-#ifndef CO_OPTIONS
-/** Personality options (CO_OPT_*, co_node.h) the core implements. A device
- *  whose co_dev_t.options has others is refused; the code of options left
- *  out is not built. */
-#define CO_OPTIONS 0xFFFFFFFFUL
+#ifndef CO_PERSONALITY
+/** Device personalities (co_settings.h, co_dev_t.set): 1 implements every
+ *  setting; 0 only the CiA 301 ones (every field 0), the code of the
+ *  deviations is not built and a device that needs one is refused. */
+#define CO_PERSONALITY 1
 #endif
 
 #endif /* CO_CONFIG_H */

@@ -21,71 +21,9 @@
 #include "co/co_hal.h"
 #include "co/co_od.h"
 #include "co/co_pdo.h"
+#include "co/co_settings.h"
 
 #define CO_NO_DEADLINE 0xFFFFFFFFUL /**< co_node_process: nothing is due, ever */
-
-/* ---- Device personality options (CiA deviations; all default off). ---- */
-#define CO_OPT_UNKNOWN_INDEX_NO_ACCESS 0x0001U /**< unknown index answers 0x06010000 (SSD 630) */
-#define CO_OPT_READ_ONLY_NO_ACCESS     0x0002U /**< write to ro answers 0x06010000 (SSD 630) */
-#define CO_OPT_NO_BOOTUP               0x0004U /**< no boot-up frame (pre-DS301 4.0 devices) */
-#define CO_OPT_BOOT_EMCY               0x0008U /**< EMCY 0x0000 with boot_emcy_data after init (SSD 630) */
-#define CO_OPT_EMCY_STATE_PAIR         0x0010U /**< after every error EMCY send an EMCY 0x0000 with the register (Kollmorgen) */
-#define CO_OPT_EMCY_RESET_PARTIAL      0x0020U /**< EMCY 0x0000 also when some errors remain (CiA 301 "may") */
-#define CO_OPT_SDO_EXPEDITED_ONLY      0x0040U /**< no segmented or block SDO (Kollmorgen S300/S700) */
-#define CO_OPT_SDO_NO_BLOCK            0x0080U /**< no block SDO (answers 0x05040001) */
-#define CO_OPT_GUARD_WITH_HEARTBEAT    0x0100U /**< answer guarding RTRs even while producing heartbeats */
-#define CO_OPT_PDO_MAP_WHILE_VALID     0x0200U /**< PDO mapping writable while the PDO is valid,
-                                                    outside Operational (SSD 630, Kollmorgen) */
-#define CO_OPT_RPDO_SHORT_OK           0x0400U /**< an RPDO shorter than its mapping writes the
-                                                    entries it covers, no EMCY (AnaGate) */
-#define CO_OPT_EVENT_TIMER_100US       0x0800U /**< PDO event timer in 100 us, not ms (Kollmorgen) */
-/* LSS (CiA 305, co_lss.c; build option CO_LSS) from bit 12 */
-#define CO_OPT_LSS                     0x1000U /**< the device is an LSS slave ([device] lss) */
-#define CO_OPT_LSS_KEEP_COBS           0x2000U /**< a node-ID change from one valid ID to another
-                                                    keeps the PDO and EMCY COB-IDs (their
-                                                    $NODEID defaults stay on the ID the node had
-                                                    when it left the unconfigured state); from
-                                                    0xFF to valid the communication settings go
-                                                    back to their defaults, a stored
-                                                    communication set is dropped (FAULHABER) */
-#define CO_OPT_LSS_NO_REVISION         0x4000U /**< switch state selective ignores the revision
-                                                    number (FAULHABER) */
-#define CO_OPT_LSS_ONLY                0x8000U /**< the node-ID comes only through LSS: the
-                                                    node starts with its LSS-stored node-ID or
-                                                    unconfigured, co_node_config_t.node_id is
-                                                    not used (FAULHABER) */
-/* PDO options from bit 16 */
-#define CO_OPT_PDO_COBID_WHILE_VALID   0x00010000U /**< a PDO's CAN-ID may change while the
-                                                        PDO is valid (Kollmorgen) */
-#define CO_OPT_PDO_CONFIG_PREOP_ONLY   0x00020000U /**< PDO parameters (0x1400..0x1BFF) are
-                                                        written in Pre-operational only, else
-                                                        0x08000022 (SSD 630) */
-#define CO_OPT_PDO_MAP_BYTES           0x00040000U /**< mapping granularity 8: an entry not of
-                                                        whole bytes: 0x06040041 (Kollmorgen) */
-#define CO_OPT_TPDO_NO_CHANGE_DETECT   0x00080000U /**< event-driven TPDOs (254/255) go out on
-                                                        co_tpdo_request, the event timer or an RTR
-                                                        only: no change detection, none on entering
-                                                        Operational (FAULHABER) */
-#define CO_OPT_TPDO_MASK_254           0x00100000U /**< the change masks (co_dev_t.tpdo_mask)
-                                                        filter the change detection of type-254
-                                                        TPDOs (SSD 630) */
-#define CO_OPT_TPDO_MASK_255           0x00200000U /**< ... of type-255 TPDOs (Kollmorgen) */
-/* EMCY, SDO and storage options from bit 24 */
-#define CO_OPT_ERREG_NO_GENERIC        0x01000000UL /**< 0x1001: an error sets only the bits it names;
-                                                         bit 0 only for one that names none (Kollmorgen) */
-#define CO_OPT_HISTORY_CODE_ONLY       0x02000000UL /**< 0x1003 entries hold the error code only, no
-                                                         manufacturer bytes above it (Kollmorgen) */
-#define CO_OPT_SDO_NO_SEG_DOWNLOAD     0x04000000UL /**< a segmented SDO download is refused at its
-                                                         initiate with 0x06010000 (SSD 630) */
-#define CO_OPT_RESTORE_SAVED           0x08000000UL /**< 0x1011 sub 4/5/6 restore the saved set (all /
-                                                         comm. / application); sub 1..3 keep its data
-                                                         (FAULHABER) */
-#define CO_OPT_TPDO_AFTER_RPDO         0x10000000UL /**< a received RPDO n requests TPDO n when that
-                                                         TPDO has transmission type 255: "the TPDO
-                                                         right after the RPDO" (Wandfluh DSV) */
-#define CO_OPT_GUARD_HB_EXCLUSIVE      0x20000000UL /**< 0x100C / 0x100D refused with 0x060A0023
-                                                         while the heartbeat 0x1017 is not 0
-                                                         (Wandfluh DSV) */
 
 /** Error register 0x1001 bits. */
 #define CO_ERREG_GENERIC      0x01U
@@ -138,22 +76,22 @@ typedef struct co_dev {
     uint16_t comm_end;          /**< [0, comm_end): communication parameters */
     uint16_t app_end;           /**< [comm_end, app_end): stored application values;
                                      [app_end, ram_size): not stored */
-    const void *defaults;       /**< default image, ram_size bytes */
+    const void *defaults;       /**< default image, ram_size bytes; with
+                                     default_at only the values not zero */
     const uint8_t *rom;         /**< const values (CO_SUB_ROM) */
     const co_od_limit_t *limits;
     uint8_t n_hooks;            /**< hook slots the node's hook table must have */
-    uint32_t options;           /**< CO_OPT_* */
-    const uint8_t *boot_emcy_data; /**< 5 bytes, with CO_OPT_BOOT_EMCY */
+    const uint8_t *boot_emcy_data; /**< 5 bytes, with set.nmt.boot_emcy */
     const co_pdo_desc_t *pdo;   /**< n_rpdo RPDOs, then n_tpdo TPDOs */
     uint16_t n_rpdo;
     uint16_t n_tpdo;
-    /** With CO_OPT_TPDO_MASK_254/255: per TPDO (n_tpdo entries) the RAM offset
+    /** With set.tpdo.change_mask: per TPDO (n_tpdo entries) the RAM offset
      *  of its change mask, two UNSIGNED32 values (the manufacturer object the
      *  description names, sub 1 and 2): bit k of the first is bit k of PDO
      *  bytes 0..3, of the second of bytes 4..7; a change of the mapped data
      *  sends the TPDO only if it touches a set bit. NULL: no masks. */
     const uint16_t *tpdo_mask;
-    /** With CO_OPT_LSS: the bit rates the device supports, bit k for index k
+    /** With set.lss.slave: the bit rates the device supports, bit k for index k
      *  of the CiA 305 bit-timing table (0 1000, 1 800, 2 500, 3 250, 4 125,
      *  6 50, 7 20, 8 10 kbit/s, 9 automatic detection); the generator makes
      *  it from [device] baudrates. Configure bit timing refuses the others. */
@@ -170,6 +108,15 @@ typedef struct co_dev {
      *  are then written in place as they arrive). */
     uint16_t stage;
     uint16_t stage_size;
+    /** Sparse defaults (the generator's form): where each value of
+     *  @ref defaults goes, n_defaults of them, in the order they follow each
+     *  other there without padding; the rest of the image defaults to 0.
+     *  NULL: @ref defaults is the whole image. */
+    const co_od_default_t *default_at;
+    uint16_t n_defaults;
+    /** The personality (co_settings.h); all zero: CiA 301. Last, so that the
+     *  fields above keep short offsets where a build leaves it unread. */
+    co_settings_t set;
 } co_dev_t;
 
 struct co_node;
@@ -208,7 +155,7 @@ typedef struct co_node_callbacks {
     void (*rpdo)(void *ctx, struct co_node *node, uint16_t n);
     /** The mapped data of event-driven TPDO @p n (0-based) changed from
      *  @p last (what it sent last) to @p now (8 bytes each, zero beyond the
-     *  mapping; the change masks of CO_OPT_TPDO_MASK_* passed): true lets
+     *  mapping; the change masks of set.tpdo.change_mask passed): true lets
      *  the change send it (asked at every co_node_process while the data
      *  differs from what was sent). Not asked for the first transmission in
      *  Operational, a request, the event timer or an RTR. NULL: every
@@ -234,7 +181,7 @@ typedef struct co_node_callbacks {
 typedef struct co_node_config {
     const co_dev_t *dev;
     co_hal_t hal;
-    /** 1..127; with CO_OPT_LSS also 0xFF (CO_NODE_ID_UNCONFIGURED): the node
+    /** 1..127; on an LSS slave (set.lss.slave) also 0xFF (CO_NODE_ID_UNCONFIGURED): the node
      *  starts unconfigured. An LSS slave uses the node-ID its LSS
      *  configuration store holds instead, when the HAL's NV has one. */
     uint8_t node_id;
@@ -372,7 +319,7 @@ typedef struct co_node {
     uint8_t node_id;         /**< active node-ID, CO_NODE_ID_UNCONFIGURED while unconfigured */
     uint8_t pending_id;      /**< node-ID from the next reset communication */
     uint8_t cob_base;        /**< node-ID the $NODEID defaults of the PDO and EMCY
-                                  COB-IDs use (CO_OPT_LSS_KEEP_COBS; else node_id) */
+                                  COB-IDs use (CO_LSS_COBS_KEEP; else node_id) */
     uint8_t nmt;             /**< co_nmt_state_t */
     /* the dispatcher's receive table (co_node.c), rebuilt when rx_dirty */
     uint8_t n_rx;
@@ -431,7 +378,7 @@ uint8_t co_node_id(const co_node_t *node);
  *  LSS slave): it takes effect at the next reset communication or reset node
  *  (CiA 305), at once for an unconfigured node, which then initialises and
  *  sends its boot-up. The $NODEID defaults follow the new ID (the PDO and
- *  EMCY COB-IDs not with CO_OPT_LSS_KEEP_COBS). CO_ERR_VALUE for an ID out
+ *  EMCY COB-IDs not with CO_LSS_COBS_KEEP). CO_ERR_VALUE for an ID out
  *  of range. LSS configure node-ID does the same through the bus. */
 co_err_t co_node_set_id(co_node_t *node, uint8_t id, uint32_t now_us);
 
@@ -520,7 +467,7 @@ co_result_t co_od_bind_hook(co_node_t *node, uint16_t index, const co_od_hook_t 
 /** Raise an error: set it active, update 0x1001 and 0x1003 and send an EMCY
  *  with @p code, the register and @p mfr (5 bytes, NULL for zeros).
  *  @p reg_bits are the 0x1001 bits this error sets (the generic bit is added;
- *  with CO_OPT_ERREG_NO_GENERIC only when @p reg_bits is 0). With @p mfr
+ *  with CO_ERREG_GENERIC_UNCLASSIFIED only when @p reg_bits is 0). With @p mfr
  *  NULL the emcy_mfr callback (if any) fills the manufacturer bytes. 
  *  Raising an active code again does nothing. */
 void co_emcy_raise(co_node_t *node, uint16_t code, uint8_t reg_bits, const uint8_t *mfr);
@@ -540,7 +487,7 @@ bool co_sync_window_open(const co_node_t *node);
  *  (at the next SYNC) or 254/255 (as soon as the inhibit time allows).
  *  Changes of mapped data are also found without this call: event-driven
  *  TPDOs compare their data at every co_node_process (not on a device with
- *  CO_OPT_TPDO_NO_CHANGE_DETECT, whose application calls this for its
+ *  CO_TPDO_CHANGE_IGNORED, whose application calls this for its
  *  events). */
 co_err_t co_tpdo_request(co_node_t *node, uint16_t n);
 

@@ -23,6 +23,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "co/co_config.h"
 #include "co/co_err.h"
 
 struct co_node;
@@ -66,8 +67,26 @@ typedef struct co_od_sub {
     uint16_t flags;  /**< CO_SUB_* */
     uint16_t size;   /**< bytes; capacity for strings and DOMAINs */
     uint16_t off;    /**< offset into the RAM image, or the ROM image with CO_SUB_ROM */
+#if CO_LIMITS
     uint16_t limit;  /**< with CO_SUB_LIMIT: index into co_dev_t.limits */
+#endif
 } co_od_sub_t;
+
+/** Initialiser of one co_od_sub_t (the generated dictionaries use it): a
+ *  core built without value limits (CO_LIMITS=0) has no 'limit' field, 2
+ *  bytes less flash per sub-entry. */
+#if CO_LIMITS
+#define CO_OD_SUB(sub, type, flags, size, off, limit) \
+    {(sub), (type), (flags), (size), (off), (limit)}
+#else
+#define CO_OD_SUB(sub, type, flags, size, off, limit) {(sub), (type), (flags), (size), (off)}
+#endif
+
+/** Where one value of a sparse default image goes (co_dev_t.default_at). */
+typedef struct co_od_default {
+    uint16_t off;  /**< offset into the RAM image */
+    uint16_t size; /**< bytes */
+} co_od_default_t;
 
 typedef struct co_od_entry {
     uint16_t index;

@@ -129,6 +129,7 @@ static co_err_t check_mapping(const co_node_t *node, uint16_t i, uint8_t count, 
     const co_pdo_desc_t *d = &node->dev->pdo[i];
     bool tx = is_tpdo(node, i);
     uint16_t total = 0U;
+    bool direct = count <= CO_PDO_FAST_MAX;
 
     if (count > d->map_max) {
         return CO_ERR_MAP_LEN;
@@ -145,12 +146,16 @@ static co_err_t check_mapping(const co_node_t *node, uint16_t i, uint8_t count, 
 #if CO_PDO_FAST_MAX > 0
         if ((p != NULL) && (k < CO_PDO_FAST_MAX)) {
             p->plain[k] = (s != NULL) ? direct_code(node, e, s, tx, bits, total) : CO_PDO_DUMMY;
+            direct = direct && (p->plain[k] != CO_PDO_SLOW) && ((bits & 7U) == 0U);
         }
 #endif
         total = (uint16_t)(total + bits);
     }
     if (total > 64U) {
         return CO_ERR_MAP_LEN;
+    }
+    if ((p != NULL) && direct) {
+        p->flags |= CO_PDO_F_DIRECT;
     }
     *len = (uint8_t)((total + 7U) / 8U);
     return CO_OK;
@@ -266,7 +271,7 @@ static void compile_mapping(co_node_t *node, uint16_t i)
     uint8_t count = co_ram_u8(node, node->dev->pdo[i].count);
     uint8_t len = 0U;
 
-    p->flags &= (uint16_t)~CO_PDO_F_MAP_OK;
+    p->flags &= (uint16_t)~(CO_PDO_F_MAP_OK | CO_PDO_F_DIRECT);
     p->len = 0U;
     if ((count != 0U) && (check_mapping(node, i, count, &len, p) == CO_OK)) {
         p->flags |= CO_PDO_F_MAP_OK;
@@ -279,7 +284,8 @@ static void restart(co_node_t *node, uint16_t i)
 {
     co_pdo_t *p = &node->pdo.p[i];
 
-    p->flags &= (uint16_t)(CO_PDO_F_MAP_OK | CO_PDO_F_TIMEOUT | CO_PDO_F_SHORT | CO_PDO_F_LONG);
+    p->flags &= (uint16_t)(CO_PDO_F_MAP_OK | CO_PDO_F_DIRECT | CO_PDO_F_TIMEOUT | CO_PDO_F_SHORT |
+                           CO_PDO_F_LONG);
     p->count = 0U;
 }
 
@@ -398,7 +404,7 @@ static co_err_t pdo_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
 }
 
 static const co_svc_hook_t pdo_hooks[] = {
-    {0x1400U, 0x1BFFU, CO_SVC_CHECK | CO_SVC_WRITTEN, pdo_obj},
+    {0x1400U, 0x1BFFU, CO_SVC_CHECK | CO_SVC_WRITTEN, pdo_obj, CO_ROW_PDO},
 };
 
 const co_service_t co_svc_pdo = {

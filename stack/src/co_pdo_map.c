@@ -92,66 +92,6 @@ CO_NOINLINE static void store(co_node_t *node, uint32_t v, uint16_t pos, const u
 }
 
 
-/* @p n bytes of a value between the RAM image (native) and the wire, for
- * the sizes a direct entry has (1..8): the usual ones without a call. */
-CO_INLINE void direct_to_wire(uint8_t *dst, const uint8_t *src, uint8_t n)
-{
-    if (n == 1U) {
-        dst[0] = src[0];
-    } else if (n == 2U) {
-        co_to_wire(dst, src, 2U);
-    } else if (n == 4U) {
-        co_to_wire(dst, src, 4U);
-    } else {
-        co_to_wire(dst, src, n);
-    }
-}
-
-CO_INLINE void direct_from_wire(uint8_t *dst, const uint8_t *src, uint8_t n)
-{
-    if (n == 1U) {
-        dst[0] = src[0];
-    } else if (n == 2U) {
-        co_from_wire(dst, src, 2U);
-    } else if (n == 4U) {
-        co_from_wire(dst, src, 4U);
-    } else {
-        co_from_wire(dst, src, n);
-    }
-}
-
-/* A resolved entry (co_pdo_code @p code), @p n bytes of the frame at @p at. */
-CO_INLINE void sample_direct(const co_node_t *node, uint16_t code, uint8_t *at, uint8_t n)
-{
-    const uint8_t *v = &node->ram[code & CO_PDO_OFF_MASK];
-    uint8_t size = (uint8_t)(((code >> 12U) & 7U) + 1U);
-
-    if (n == size) {
-        direct_to_wire(at, v, size);
-    } else {
-        uint8_t wire[8];
-        co_to_wire(wire, v, size);
-        (void)memcpy(at, wire, n); /* the low bytes */
-    }
-}
-
-CO_INLINE void store_direct(co_node_t *node, uint16_t code, const uint8_t *at, uint8_t n)
-{
-    uint8_t *v = &node->ram[code & CO_PDO_OFF_MASK];
-    uint8_t size = (uint8_t)(((code >> 12U) & 7U) + 1U);
-
-    if (n == size) {
-        direct_from_wire(v, at, size);
-    } else {
-        /* the low bytes, extended by the sign for signed types */
-        uint8_t wire[8];
-        bool neg = ((code & CO_PDO_SIGNED) != 0U) && ((at[n - 1U] & 0x80U) != 0U);
-        (void)memset(wire, neg ? 0xFF : 0x00, sizeof wire);
-        (void)memcpy(wire, at, n);
-        co_from_wire(v, wire, size);
-    }
-}
-
 void co_pdo_sample(co_node_t *node, uint16_t i, uint8_t *out)
 {
     const co_pdo_desc_t *d = &node->dev->pdo[i];
@@ -164,7 +104,7 @@ void co_pdo_sample(co_node_t *node, uint16_t i, uint8_t *out)
         uint32_t v = co_ram_u32(node, entry);
         uint16_t code = co_pdo_code(p, k);
         if (code < CO_PDO_DUMMY) {
-            sample_direct(node, code, &out[pos >> 3U], (uint8_t)((v & 0xFFU) >> 3U));
+            co_pdo_get_direct(node, code, &out[pos >> 3U], (uint8_t)((v & 0xFFU) >> 3U));
         } else {
             sample(node, v, pos, out);
         }
@@ -190,7 +130,7 @@ void co_pdo_store(co_node_t *node, uint16_t i, const uint8_t *data, uint8_t dlc)
             break;
         }
         if (code < CO_PDO_DUMMY) {
-            store_direct(node, code, &data[pos >> 3U], (uint8_t)((v & 0xFFU) >> 3U));
+            co_pdo_put_direct(node, code, &data[pos >> 3U], (uint8_t)((v & 0xFFU) >> 3U));
         } else if (code == CO_PDO_DUMMY) {
             /* a gap */
         } else {

@@ -37,7 +37,11 @@ static void rpdo_error(co_node_t *node, uint16_t i, uint16_t flag, uint16_t code
 /* Write the mapped objects from @p data (@p dlc bytes). */
 static void apply(co_node_t *node, uint16_t i, const uint8_t *data, uint8_t dlc)
 {
-    co_pdo_store(node, i, data, dlc);
+    if ((node->pdo.p[i].flags & CO_PDO_F_DIRECT) != 0U) {
+        co_pdo_store_direct(node, i, data, dlc);
+    } else {
+        co_pdo_store(node, i, data, dlc);
+    }
     if (node->cb.rpdo != NULL) {
         node->cb.rpdo(node->cb.ctx, node, i);
     }
@@ -84,6 +88,11 @@ void co_rpdo_rx(co_node_t *node, uint16_t i, const co_frame_t *f)
     }
     ev = co_pdo_event_us(node, i);
     if (ev != 0U) {
+        if ((p->flags & CO_PDO_F_TIMER) == 0U) {
+            /* a new deadline (a later one only costs co_node_process an
+             * early look) */
+            co_svc_touch(node, CO_ROW_PDO);
+        }
         p->timer = node->now + ev;
         p->flags |= CO_PDO_F_TIMER;
     }

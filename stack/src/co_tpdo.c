@@ -17,7 +17,11 @@
 static void build(co_node_t *node, uint16_t i, uint8_t *out)
 {
     (void)memset(out, 0, 8U);
-    co_pdo_sample(node, i, out);
+    if ((node->pdo.p[i].flags & CO_PDO_F_DIRECT) != 0U) {
+        co_pdo_sample_direct(node, i, out);
+    } else {
+        co_pdo_sample(node, i, out);
+    }
 }
 
 /* Send @p data (8 bytes, zero beyond the mapping) now, or not at all. */
@@ -67,11 +71,24 @@ static bool send_event(co_node_t *node, uint16_t i, const uint8_t *data)
 static void send_sync(co_node_t *node, uint16_t i)
 {
     co_pdo_t *p = &node->pdo.p[i];
+    co_frame_t f;
 
-    build(node, i, p->data);
+    /* sampled straight into the frame (the usual case without a call) */
+    (void)memset(f.data, 0, 8U);
+    if ((p->flags & CO_PDO_F_DIRECT) != 0U) {
+        co_pdo_sample_direct(node, i, f.data);
+    } else {
+        co_pdo_sample(node, i, f.data);
+    }
+    f.id = co_pdo_cob(node, i) & 0x7FFUL;
+    f.dlc = p->len;
+    (void)memcpy(p->data, f.data, 8U);
     p->flags &= (uint16_t)~CO_PDO_F_EVENT;
-    if (!send(node, i, p->data)) {
+    if (co_tx_now(node, &f)) {
+        p->flags |= CO_PDO_F_SENT;
+    } else {
         p->flags |= CO_PDO_F_SYNC_PEND;
+        co_svc_touch(node, CO_ROW_PDO); /* retried while the window is open */
     }
 }
 
@@ -172,6 +189,7 @@ void co_tpdo_rtr(co_node_t *node, uint16_t i)
     if (!answer_rtr(node, i)) {
         node->pdo.p[i].flags |= CO_PDO_F_RTR;
     }
+    co_svc_touch(node, CO_ROW_PDO); /* the retry, or the timers an answer restarts */
 }
 
 /* The event timer and the inhibit time of an event-driven TPDO, at now. */
@@ -306,6 +324,7 @@ CO_INLINE uint32_t tpdo_pass(co_node_t *node, uint32_t next, bool detect)
 {
     uint16_t n = (uint16_t)(node->dev->n_rpdo + node->dev->n_tpdo);
 
+    node->pdo.poll = 0U;
     for (uint16_t i = node->dev->n_rpdo; i < n; i++) {
         co_pdo_t *p = &node->pdo.p[i];
         uint8_t type;
@@ -329,6 +348,8 @@ CO_INLINE uint32_t tpdo_pass(co_node_t *node, uint32_t next, bool detect)
             }
         }
         if (type >= 254U) {
+            /* change detection compares the data at every co_node_process */
+            node->pdo.poll = detect ? 1U : node->pdo.poll;
             next = detect ? event_driven(node, i, next) : event_requested(node, i, next);
         }
     }
@@ -344,6 +365,7 @@ static CO_NOINLINE uint32_t tpdo_pass_requested(co_node_t *node, uint32_t next)
 uint32_t co_tpdo_process(co_node_t *node, uint32_t next)
 {
     if (node->nmt != (uint8_t)CO_NMT_OPERATIONAL) {
+        node->pdo.poll = 0U;
         return next;
     }
     if (CO_SET(node, tpdo.change_detection) == CO_TPDO_CHANGE_IGNORED) {
@@ -363,5 +385,6 @@ co_err_t co_tpdo_request(co_node_t *node, uint16_t n)
         return CO_ERR_STORE_STATE;
     }
     node->pdo.p[i].flags |= CO_PDO_F_EVENT;
+    co_svc_touch(node, CO_ROW_PDO);
     return CO_OK;
 }

@@ -272,6 +272,7 @@ static void w2(int port)
 
     w_sdo(port, req, ans);
     check(rd(0x1017U, 0U) == 1000U, "0x1017 value");
+    check_hb(port); /* the writes do not restart the heartbeat's cycle */
 }
 
 static void w2b(int port)

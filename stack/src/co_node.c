@@ -332,6 +332,35 @@ static uint16_t services_due(co_node_t *node, uint32_t now_us)
     return run;
 }
 
+/* One pass over the rows of @p run (and those touched meanwhile by a row
+ * before them), in table order; returns the earlier of @p next and their
+ * deadlines. */
+static uint32_t run_rows(co_node_t *node, uint16_t run, uint32_t next)
+{
+    uint8_t rows = services_running(node);
+    uint8_t k = 0U;
+
+    for (;;) {
+        uint16_t rest = (uint16_t)((run | node->svc_run) >> k);
+        if (rest == 0U) {
+            break;
+        }
+        while ((rest & 1U) == 0U) {
+            rest >>= 1U;
+            k++;
+        }
+        if (k >= rows) {
+            break;
+        }
+        node->svc_run &= (uint16_t)~(1U << k);
+        if (co_services[k]->process != NULL) {
+            next = co_services[k]->process(node, next);
+        }
+        k++;
+    }
+    return next;
+}
+
 uint32_t co_node_process(co_node_t *node, uint32_t now_us)
 {
     uint32_t next;
@@ -345,38 +374,21 @@ uint32_t co_node_process(co_node_t *node, uint32_t now_us)
         next = node->due;
     } else {
         /* an earlier deadline than the cached one comes from the rows that run */
-        uint8_t rows = services_running(node);
-        uint8_t k = 0U;
         next = (run == CO_SVC_ALL) ? CO_NO_DEADLINE : node->due;
         node->svc_run = 0U;
-        for (;;) {
-            /* the next row to run (one touched by an earlier one in this
-             * pass runs too) */
-            uint16_t rest = (uint16_t)((run | node->svc_run) >> k);
-            if (rest == 0U) {
-                break;
-            }
-            while ((rest & 1U) == 0U) {
-                rest >>= 1U;
-                k++;
-            }
-            if (k >= rows) {
-                break;
-            }
-            node->svc_run &= (uint16_t)~(1U << k);
-            if (co_services[k]->process != NULL) {
-                next = co_services[k]->process(node, next);
-            }
-            k++;
+        next = run_rows(node, run, next);
+        if (node->svc_run != 0U) {
+            /* rows touched during the pass before their turn: once more
+             * (what is touched after that runs at the next call) */
+            run = node->svc_run;
+            node->svc_run = 0U;
+            next = run_rows(node, run, next);
         }
         if (node->txq_len > 0U) {
             /* TX path still full: look again in a millisecond */
             next = co_deadline_min(now_us, next, now_us + 1000U);
         }
         node->due = next;
-        if (node->svc_run != 0U) {
-            next = now_us; /* touched again during the pass: once more, at once */
-        }
     }
     if ((next != CO_NO_DEADLINE) && !co_time_reached(next, now_us)) {
         next = now_us; /* never a deadline before the time given */

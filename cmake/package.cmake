@@ -83,5 +83,5 @@ co_pkgconfig(canopen-stack-cia408 "CANopen slave stack: CiA 408 valve profile an
              "canopen-stack" "-lco408dev -lco408 -lco408sim -lcoprofile" "")
 if(TARGET coport_linux)
   co_pkgconfig(canopen-stack-linux "CANopen slave stack: Linux SocketCAN port"
-               "canopen-stack" "-lcoport_linux" "-D_GNU_SOURCE")
+               "canopen-stack" "-lcoport_linux -pthread" "-D_GNU_SOURCE -pthread")
 endif()

@@ -30,7 +30,7 @@ static int bus_send(void *ctx, const co_frame_t *f)
     return 0;
 }
 
-static const co_hal_ops_t bus_ops = {bus_send, NULL, NULL};
+static const co_hal_ops_t bus_ops = {.send = bus_send};
 
 static int failures;
 

@@ -164,6 +164,11 @@ bool co_emcy_is_active(const co_node_t *node, uint16_t code)
 
 static uint32_t emcy_process(co_node_t *node, uint32_t next)
 {
+    if ((node->emcy.store_report != 0U) && !co_store_damaged(node)) {
+        /* a save or restore wrote a whole parameter set */
+        node->emcy.store_report = 0U;
+        co_emcy_clear(node, CO_EMCY_STORE_DAMAGED);
+    }
     /* more than one only when the inhibit time was lowered to 0 meanwhile */
     while ((node->emcy.n_q > 0U) && !inhibited(node)) {
         uint32_t cob = cob_id(node);
@@ -204,6 +209,7 @@ static void emcy_reset(co_node_t *node, uint8_t kind)
 {
     if (kind == (uint8_t)CO_RESET_NODE) {
         node->emcy.n_active = 0U;
+        node->emcy.store_report = 0U;
     } else if (kind == CO_SVC_START) {
         node->emcy.n_q = 0U;
         node->emcy.next = node->now;
@@ -237,6 +243,12 @@ static void emcy_nmt(co_node_t *node, co_nmt_state_t from)
     co_emcy_clear(node, CO_EMCY_PDO_SHORT);
     co_emcy_clear(node, CO_EMCY_PDO_LONG);
     co_emcy_clear(node, CO_EMCY_RPDO_TIMEOUT);
+    /* the newest parameter set was damaged: an older one or the defaults
+     * were loaded (co_store.c); reported until a save writes a whole one */
+    if (co_store_damaged(node)) {
+        node->emcy.store_report = 1U;
+        co_emcy_raise(node, CO_EMCY_STORE_DAMAGED, 0U, NULL);
+    }
 }
 
 /* 0x1003: entries beyond the number of recorded errors hold no data; only

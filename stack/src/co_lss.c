@@ -115,7 +115,7 @@ static uint32_t address(co_node_t *node, uint8_t k)
 
 static uint32_t rec_addr(const co_node_t *node, uint8_t i)
 {
-    return co_store_lss_base(node->dev) + ((uint32_t)i * CO_LSS_REC);
+    return co_store_lss_addr(node, i);
 }
 
 static bool lss_has_nv(const co_node_t *node)
@@ -155,27 +155,86 @@ static uint8_t rec_newest(co_node_t *node, uint32_t *seq, uint8_t data[3])
     return best;
 }
 
-static uint8_t lss_store(co_node_t *node)
+/* Write the configuration as it is now into record node->lss.nv_rec. */
+static bool rec_write(co_node_t *node, uint32_t seq)
 {
     uint8_t r[CO_LSS_REC] = {0};
-    uint8_t old[3];
-    uint32_t seq = 0U;
-    uint8_t at;
 
-    if (!lss_has_nv(node)) {
-        return ERR_STORE_NONE;
-    }
-    at = (rec_newest(node, &seq, old) == 0U) ? 1U : 0U;
     co_put_u32(&r[0], LSS_MAGIC);
-    co_put_u32(&r[4], seq + 1U);
+    co_put_u32(&r[4], seq);
     r[8] = node->pending_id;
     r[9] = co_node_cob_base_for(node, node->pending_id);
     r[10] = (node->lss.bit_timing != BT_NONE) ? node->lss.bit_timing : node->lss.active_bt;
     r[11] = LSS_FORMAT;
     co_put_u16(&r[14], co_crc16(0xFFFFU, r, 14U));
-    return (node->hal.ops->nv_write(node->hal.ctx, rec_addr(node, at), r, CO_LSS_REC) == 0)
-               ? ERR_OK
-               : ERR_STORE_MEDIA;
+    return node->hal.ops->nv_write(node->hal.ctx, rec_addr(node, node->lss.nv_rec), r,
+                                   CO_LSS_REC) == 0;
+}
+
+/* Store configuration: the other record than the newest. On flash
+ * (nv_erase) its erase unit is erased first; with an asynchronous HAL
+ * (nv_poll) the erase and the write run in the background (lss_process)
+ * and the answer comes when the record is durable: ERR_PENDING. */
+#define ERR_PENDING 0xFFU
+static uint8_t lss_store(co_node_t *node)
+{
+    const co_hal_ops_t *ops = node->hal.ops;
+    uint8_t old[3];
+    uint32_t seq = 0U;
+
+    if (!lss_has_nv(node)) {
+        return ERR_STORE_NONE;
+    }
+    if ((node->lss.nv_step != 0U) || co_store_busy(node)) {
+        return ERR_STORE_MEDIA; /* the NV is being written (a store or a 0x1010 save) */
+    }
+    node->lss.nv_rec = (rec_newest(node, &seq, old) == 0U) ? 1U : 0U;
+    if ((ops->nv_erase != NULL) &&
+        (ops->nv_erase(node->hal.ctx, rec_addr(node, node->lss.nv_rec),
+                       co_store_lss_unit(node)) != 0)) {
+        return ERR_STORE_MEDIA;
+    }
+    if ((ops->nv_erase != NULL) && (ops->nv_poll != NULL)) {
+        node->lss.nv_step = 1U; /* written when the erase is done */
+        return ERR_PENDING;
+    }
+    if (!rec_write(node, seq + 1U)) {
+        return ERR_STORE_MEDIA;
+    }
+    if (ops->nv_poll != NULL) {
+        node->lss.nv_step = 2U;
+        return ERR_PENDING;
+    }
+    return ERR_OK;
+}
+
+/* Store configuration on an asynchronous HAL: erase done -> write the
+ * record; written -> answer. */
+static uint32_t lss_store_process(co_node_t *node, uint32_t next)
+{
+    int r = node->hal.ops->nv_poll(node->hal.ctx);
+    uint8_t err = ERR_OK;
+
+    if (r == CO_NV_BUSY) {
+        return co_deadline_min(node->now, next, node->now + 1000U);
+    }
+    if (r != 0) {
+        err = ERR_STORE_MEDIA;
+    } else if (node->lss.nv_step == 1U) {
+        uint8_t old[3];
+        uint32_t seq = 0U;
+        (void)rec_newest(node, &seq, old);
+        if (rec_write(node, seq + 1U)) {
+            node->lss.nv_step = 2U;
+            return co_deadline_min(node->now, next, node->now + 1000U);
+        }
+        err = ERR_STORE_MEDIA;
+    } else {
+        /* durable */
+    }
+    node->lss.nv_step = 0U;
+    answer(node, CS_STORE, err, 0U);
+    return next;
 }
 
 /* bind (co_node_init, before any reset): the stored configuration (node-ID,
@@ -371,7 +430,10 @@ static void rx_config(co_node_t *node, const uint8_t *d)
     } else if (cs == CS_ACTIVATE_BIT) {
         activate_bit_timing(node, co_get_u16(&d[1]));
     } else if (cs == CS_STORE) {
-        answer(node, CS_STORE, lss_store(node), 0U);
+        uint8_t err = lss_store(node);
+        if (err != ERR_PENDING) {
+            answer(node, CS_STORE, err, 0U);
+        }
     } else if ((cs >= CS_INQ_VENDOR) && (cs <= CS_INQ_NODE_ID)) {
         inquire(node, cs);
     } else {
@@ -410,8 +472,13 @@ static void lss_rx(co_node_t *node, uint16_t arg, const co_frame_t *f)
     }
 }
 
-static uint32_t lss_process(co_node_t *node, uint32_t next)
+static uint32_t lss_process(co_node_t *node, uint32_t next_in)
 {
+    uint32_t next = next_in;
+
+    if (node->lss.nv_step != 0U) {
+        next = lss_store_process(node, next);
+    }
     if (node->lss.switching == 0U) {
         return next;
     }

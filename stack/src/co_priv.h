@@ -407,8 +407,10 @@ co_reset_t co_node_take_id(co_node_t *node, co_reset_t kind);
 /* ---- LSS slave (co_lss.c) */
 #define CO_LSS_REC     16U               /* bytes of one stored LSS record */
 #define CO_LSS_NV_SIZE (2U * CO_LSS_REC) /* NV behind the parameter banks */
-/* NV address of the LSS records (co_store.c). */
-uint32_t co_store_lss_base(const co_dev_t *dev);
+/* NV address of LSS record @p rec (0, 1) behind the parameter banks, and
+ * the records' spacing: an erase unit of its own each on flash (co_store.c). */
+uint32_t co_store_lss_addr(const co_node_t *node, uint8_t rec);
+uint32_t co_store_lss_unit(const co_node_t *node);
 /* Rows at the head of co_services[] that run while the node is unconfigured
  * (the LSS service); the others wait for a valid node-ID. */
 #define CO_SVC_UNCONFIGURED_ROWS ((uint8_t)(CO_LSS))
@@ -421,6 +423,16 @@ static inline bool co_lss_enabled(const co_node_t *node)
 /* Drop the communication group of the stored set (a node leaving the
  * unconfigured state with CO_LSS_COBS_KEEP; co_store.c). */
 void co_store_forget_comm(co_node_t *node);
+/* True for a sub-entry of 0x1010 / 0x1011 the core acts on (sub >= 1,
+ * UNSIGNED32 in RAM): a write saves or restores, the value is never stored. */
+bool co_store_is_command(const co_od_entry_t *e, const co_od_sub_t *s);
+/* The result of the last command, once co_store_busy() is false (an
+ * asynchronous HAL: the SDO server answers with it). */
+co_err_t co_store_result(const co_node_t *node);
+/* The newest parameter set found at the last reset was damaged (an older
+ * one or the defaults were loaded), and no save has written a whole one
+ * since: the EMCY service reports it (EMCY 0x5530). */
+bool co_store_damaged(const co_node_t *node);
 
 /* ---- what one service asks of another (no cycles: tools/core-callgraph) */
 /* A serious error of 0x1029 class @p sub: the NMT reaction it configures

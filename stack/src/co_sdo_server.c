@@ -28,7 +28,8 @@ enum {
     S_BLK_DL_END, /* block download: waiting for the end request */
     S_BLK_UL_INI, /* block upload: waiting for the start command */
     S_BLK_UL,     /* block upload: sending / waiting for the acknowledge */
-    S_BLK_UL_END  /* block upload: waiting for the client's end response */
+    S_BLK_UL_END, /* block upload: waiting for the client's end response */
+    S_STORE       /* a download started a save: its answer waits until it is durable */
 };
 
 /* flags */
@@ -136,6 +137,22 @@ static co_err_t put_chunk(co_node_t *node, const uint8_t *data, uint32_t len)
         t->offset += len;
     }
     return err;
+}
+
+/* The answer @p r that ends a download: sent now, or, when the download
+ * started a save or restore (0x1010 / 0x1011) that an asynchronous HAL is
+ * still writing, once the set is durable (sdo_process). */
+static void download_done(co_node_t *node, const uint8_t *r)
+{
+    co_sdo_srv_t *t = &node->sdo;
+
+    if ((t->entry != NULL) && co_store_is_command(t->entry, t->desc) && co_store_busy(node)) {
+        (void)memcpy(t->buf, r, 8U);
+        t->state = (uint8_t)S_STORE;
+        return;
+    }
+    sdo_reset(node);
+    send8(node, r);
 }
 
 /* Checks common to every download initiate. */
@@ -292,8 +309,12 @@ CO_NOINLINE static void initiate_download(co_node_t *node, const uint8_t *d, uin
             abort_at(node, index, sub, err);
             return;
         }
-        sdo_reset(node);
-        reply(node, CO_SDO_B0(CO_SDO_SCS_DOWNLOAD_INITIATE), index, sub, 0U);
+        {
+            uint8_t r[8] = {CO_SDO_B0(CO_SDO_SCS_DOWNLOAD_INITIATE), 0U, 0U, 0U, 0U, 0U, 0U, 0U};
+            co_put_u16(&r[1], index);
+            r[3] = sub;
+            download_done(node, r);
+        }
         return;
     }
     if (expedited_only(node)) {
@@ -389,11 +410,11 @@ static void download_segment(co_node_t *node, const uint8_t *d)
         r[0] = (uint8_t)(CO_SDO_B0(CO_SDO_SCS_DOWNLOAD_SEGMENT) | toggle);
         t->toggle ^= CO_SDO_TOGGLE;
         if (last) {
-            sdo_reset(node);
+            download_done(node, r);
         } else {
             start(node, S_DL_SEG);
+            send8(node, r);
         }
-        send8(node, r);
     }
 }
 
@@ -543,11 +564,10 @@ static void block_download_end(co_node_t *node, const uint8_t *d)
         abort_cur(node, err);
         return;
     }
-    sdo_reset(node);
     {
         uint8_t r[8] = {0};
         r[0] = (uint8_t)(CO_SDO_B0(CO_SDO_SCS_BLOCK_DOWNLOAD) | CO_SDO_BLK_END);
-        send8(node, r);
+        download_done(node, r);
     }
 }
 
@@ -833,6 +853,12 @@ CO_NOINLINE static void transfer_request(co_node_t *node, const uint8_t *d)
         }
         break;
 #endif
+    case S_STORE:
+        /* a new request while the save's answer is pending: refused, the
+         * answer still comes */
+        reply(node, CO_SDO_B0(CO_SDO_CS_ABORT), co_get_u16(&d[1]), d[3],
+              (uint32_t)CO_ERR_STORE_STATE);
+        break;
     default:
         sdo_reset(node);
         break;
@@ -886,6 +912,21 @@ static uint32_t sdo_process(co_node_t *node, uint32_t next)
 
     if (t->state == (uint8_t)S_IDLE) {
         return next;
+    }
+    if (t->state == (uint8_t)S_STORE) {
+        if (!co_store_busy(node)) {
+            if (co_store_result(node) == CO_OK) {
+                uint8_t r[8];
+                (void)memcpy(r, t->buf, 8U);
+                sdo_reset(node);
+                send8(node, r);
+            } else {
+                abort_cur(node, co_store_result(node));
+            }
+        }
+        /* no timeout: the HAL's writing takes what it takes; look again
+         * in a millisecond (the storage service polls the HAL as often) */
+        return co_deadline_min(node->now, next, node->now + 1000U);
     }
     if (co_time_reached(node->now, t->deadline)) {
         abort_cur(node, CO_ERR_TIMEOUT);

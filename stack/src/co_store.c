@@ -28,6 +28,16 @@
  * keeps the group's data, marked restored (the defaults load), and 0x1011
  * sub 4..6 ("restore the saved set": all, communication, application) take
  * the mark away again, so that the last saved values load at the next reset.
+ *
+ * Flash (co_hal_ops_t.nv_erase, nv_erase_unit): each bank starts on an erase
+ * unit and spans whole units; a command erases the bank it writes first.
+ * An asynchronous HAL (nv_poll): the erase, then the writes of the set, run
+ * in the background while the node serves the bus (co_store_process polls
+ * every millisecond); the set is taken from the RAM image in one go once
+ * the erase is done, and the SDO answer comes when the HAL says the set is
+ * durable. A newest set that fails its CRC (damaged after it was written,
+ * or a save cut short in its header) is reported after the boot-up (EMCY
+ * 0x5530, 0x1001, 0x1003) until a save writes a whole one.
  */
 #include <string.h>
 
@@ -78,24 +88,48 @@ static bool has_nv(const co_node_t *node)
 #endif
 }
 
-static uint32_t bank_size(const co_dev_t *dev)
+/* Bytes of one bank: header and data, in whole erase units (at least 4). */
+static uint32_t bank_bytes(const co_dev_t *dev, uint32_t erase_unit)
 {
-    return ((uint32_t)STORE_HDR + dev->app_end + 3U) & ~(uint32_t)3U;
+    uint32_t u = (erase_unit > 4U) ? erase_unit : 4U;
+
+    return ((uint32_t)STORE_HDR + dev->app_end + u - 1U) & ~(u - 1U);
 }
 
-uint32_t co_store_nv_size(const co_dev_t *dev)
+/* The LSS records' spacing: each in an erase unit of its own. */
+static uint32_t lss_stride(uint32_t erase_unit)
 {
-    uint32_t size = 2U * bank_size(dev);
+    return (erase_unit > CO_LSS_REC) ? erase_unit : CO_LSS_REC;
+}
+
+static uint32_t bank_size(const co_node_t *node)
+{
+    return bank_bytes(node->dev, node->hal.ops->nv_erase_unit);
+}
+
+uint32_t co_store_nv_size_unit(const co_dev_t *dev, uint32_t erase_unit)
+{
+    uint32_t size = 2U * bank_bytes(dev, erase_unit);
 
     if ((CO_LSS != 0) && (dev->set.lss.slave != 0U)) {
-        size += CO_LSS_NV_SIZE; /* the LSS records (co_lss.c) */
+        size += 2U * lss_stride(erase_unit); /* the LSS records (co_lss.c) */
     }
     return size;
 }
 
-uint32_t co_store_lss_base(const co_dev_t *dev)
+uint32_t co_store_nv_size(const co_dev_t *dev)
 {
-    return 2U * bank_size(dev);
+    return co_store_nv_size_unit(dev, 0U);
+}
+
+uint32_t co_store_lss_addr(const co_node_t *node, uint8_t rec)
+{
+    return (2U * bank_size(node)) + ((uint32_t)rec * lss_stride(node->hal.ops->nv_erase_unit));
+}
+
+uint32_t co_store_lss_unit(const co_node_t *node)
+{
+    return lss_stride(node->hal.ops->nv_erase_unit);
 }
 
 /* Identifies the RAM layout: sizes, the CPU's byte order (the image holds
@@ -160,81 +194,203 @@ static bool stream(co_node_t *node, uint32_t src, uint32_t dst, uint8_t grp, uin
 
 /* The bank holding the newest valid set (idx NO_BANK, groups 0: none); a
  * bank is valid when magic, format, layout and CRC match. *io_err is set
- * when the NV could not be read. */
-static store_bank_t newest(co_node_t *node, uint16_t sig, bool *io_err)
+ * when the NV could not be read, *damaged when a bank of this layout newer
+ * than the one chosen fails its CRC (a set damaged after it was written, or
+ * a save cut short while it wrote its header). */
+static store_bank_t newest(co_node_t *node, uint16_t sig, bool *io_err, bool *damaged)
 {
     store_bank_t best = {0U, 0U, 0U, NO_BANK};
+    bool bad = false;
+    uint32_t bad_seq = 0U;
 
     for (uint8_t i = 0U; i < 2U; i++) {
-        uint32_t base = i * bank_size(node->dev);
+        uint32_t base = i * bank_size(node);
         uint8_t h[STORE_HDR];
         bool ok = (node->hal.ops->nv_read(node->hal.ctx, base, h, STORE_HDR) == 0);
         if (ok && (co_get_u32(&h[0]) == STORE_MAGIC) && (co_get_u16(&h[8]) == sig) &&
             groups_valid(h[12]) && (h[13] == STORE_FORMAT)) {
             uint16_t crc = co_crc16(0xFFFFU, h, 14U);
             ok = stream(node, base, AT_NONE, (uint8_t)(h[12] & GRP_ALL), &crc);
-            if (ok && (crc == co_get_u16(&h[14])) &&
-                ((best.idx == NO_BANK) || ((int32_t)(co_get_u32(&h[4]) - best.seq) > 0))) {
+            if (ok && (crc != co_get_u16(&h[14]))) {
+                bad = true;
+                bad_seq = co_get_u32(&h[4]);
+            } else if (ok && ((best.idx == NO_BANK) ||
+                              ((int32_t)(co_get_u32(&h[4]) - best.seq) > 0))) {
                 best.seq = co_get_u32(&h[4]);
                 best.groups = (uint8_t)(h[12] & GRP_ALL);
                 best.restored = (uint8_t)((uint8_t)(h[12] >> GRP_RESTORED) & GRP_ALL);
                 best.idx = i;
+            } else {
+                /* an older valid set */
             }
         }
         *io_err = *io_err || !ok;
     }
+    *damaged = bad && ((best.idx == NO_BANK) || ((int32_t)(bad_seq - best.seq) > 0));
     return best;
 }
 
-/* What a command does to the stored set (commit). */
-typedef struct store_change {
-    uint8_t from_ram; /* groups saved from the RAM image */
-    uint8_t drop;     /* groups the new set no longer holds */
-    uint8_t mark;     /* held groups restored to defaults, their data kept */
-    uint8_t unmark;   /* held groups whose saved data loads again */
-} store_change_t;
+/* What a command does to the stored set (commit): co_store_t's from_ram,
+ * drop, mark, unmark. */
 
-/* Write a new set into the other bank: the groups of @p c->from_ram from
- * the RAM image, the other groups the newest set holds (less @p c->drop)
- * copied from it, with their restored marks changed as @p c says; data in
- * address order, the header last. Nothing is written when nothing changes. */
-static co_err_t commit(co_node_t *node, const store_change_t *c)
+/* What a command writes: the newest set, the new set's groups and marks,
+ * and the bank it goes to (the other one). */
+typedef struct store_plan {
+    store_bank_t old;
+    uint32_t base;
+    uint16_t sig;
+    uint8_t held;
+    uint8_t restored;
+    bool noop;        /* nothing changes: nothing is written */
+} store_plan_t;
+
+static co_err_t plan(co_node_t *node, store_plan_t *p)
+{
+    const co_store_t *c = &node->store;
+    bool io_err = false;
+    bool damaged = false;
+
+    p->sig = layout_sig(node->dev);
+    p->old = newest(node, p->sig, &io_err, &damaged);
+    p->held = (uint8_t)((p->old.groups & (uint8_t)~c->drop) | c->from_ram);
+    p->restored = (uint8_t)((p->old.restored | c->mark) &
+                            (uint8_t)~(c->unmark | c->from_ram) & p->held);
+    p->base = (p->old.idx == 0U) ? bank_size(node) : 0U;
+    /* restore: nothing of these groups is stored (or it is done) */
+    p->noop = (c->from_ram == 0U) && (p->held == p->old.groups) &&
+              (p->restored == p->old.restored);
+    /* the previous set (and which bank is free) is unknown */
+    return io_err ? CO_ERR_HW : CO_OK;
+}
+
+/* Write a new set into the other bank: the groups of from_ram from the RAM
+ * image, the other groups the newest set holds (less drop) copied from it,
+ * with their restored marks changed as mark / unmark say; data in address
+ * order, the header last. Nothing is written when nothing changes. */
+static co_err_t commit(co_node_t *node)
 {
     const co_dev_t *dev = node->dev;
-    uint16_t sig = layout_sig(dev);
-    bool io_err = false;
-    store_bank_t old = newest(node, sig, &io_err);
-    uint8_t held = (uint8_t)((old.groups & (uint8_t)~c->drop) | c->from_ram);
-    uint8_t restored = (uint8_t)((old.restored | c->mark) & (uint8_t)~(c->unmark | c->from_ram) &
-                                 held);
-    uint32_t base = (old.idx == 0U) ? bank_size(dev) : 0U;
+    store_plan_t p;
     uint8_t h[STORE_HDR];
     uint16_t crc;
+    co_err_t err = plan(node, &p);
 
-    if (io_err) {
-        return CO_ERR_HW; /* the previous set (and which bank is free) is unknown */
-    }
-    if ((c->from_ram == 0U) && (held == old.groups) && (restored == old.restored)) {
-        return CO_OK; /* restore: nothing of these groups is stored (or it is done) */
+    if ((err != CO_OK) || p.noop) {
+        return err;
     }
     co_put_u32(&h[0], STORE_MAGIC);
-    co_put_u32(&h[4], old.seq + 1U);
-    co_put_u16(&h[8], sig);
+    co_put_u32(&h[4], p.old.seq + 1U);
+    co_put_u16(&h[8], p.sig);
     co_put_u16(&h[10], dev->app_end);
-    h[12] = (uint8_t)(held | (uint8_t)(restored << GRP_RESTORED));
+    h[12] = (uint8_t)(p.held | (uint8_t)(p.restored << GRP_RESTORED));
     h[13] = STORE_FORMAT;
     crc = co_crc16(0xFFFFU, h, 14U);
     for (uint8_t grp = GRP_COMM; grp <= GRP_APP; grp = (uint8_t)(grp << 1U)) {
-        uint32_t src = ((c->from_ram & grp) != 0U) ? AT_RAM : ((uint32_t)old.idx * bank_size(dev));
-        if (((held & grp) != 0U) && !stream(node, src, base, grp, &crc)) {
+        uint32_t src = ((node->store.from_ram & grp) != 0U)
+                           ? AT_RAM
+                           : ((uint32_t)p.old.idx * bank_size(node));
+        if (((p.held & grp) != 0U) && !stream(node, src, p.base, grp, &crc)) {
             return CO_ERR_HW;
         }
     }
     co_put_u16(&h[14], crc);
-    return (node->hal.ops->nv_write(node->hal.ctx, base, h, STORE_HDR) != 0) ? CO_ERR_HW : CO_OK;
+    return (node->hal.ops->nv_write(node->hal.ctx, p.base, h, STORE_HDR) != 0) ? CO_ERR_HW
+                                                                                : CO_OK;
 }
 
-static bool is_command(const co_od_entry_t *e, const co_od_sub_t *s)
+enum { STEP_IDLE = 0, STEP_ERASE, STEP_WRITE, STEP_DONE };
+
+/* A command's end: a set written whole ends the report of a damaged one
+ * (the EMCY service clears it, co_store_damaged). */
+static co_err_t store_finish(co_node_t *node, co_err_t err)
+{
+    node->store.result = err;
+    node->store.step = (uint8_t)STEP_DONE;
+    if (err == CO_OK) {
+        node->store.damaged = 0U;
+    }
+    return err;
+}
+
+bool co_store_damaged(const co_node_t *node)
+{
+    return node->store.damaged != 0U;
+}
+
+bool co_store_busy(const co_node_t *node)
+{
+    return (node->store.step == (uint8_t)STEP_ERASE) || (node->store.step == (uint8_t)STEP_WRITE);
+}
+
+co_err_t co_store_result(const co_node_t *node)
+{
+    return node->store.result;
+}
+
+/* Start the command node->store describes: erase the bank it writes (with
+ * nv_erase), write the set, and with an asynchronous HAL (nv_poll) leave
+ * the rest to store_process. */
+static co_err_t start_command(co_node_t *node)
+{
+    const co_hal_ops_t *ops = node->hal.ops;
+    bool async = (ops->nv_poll != NULL);
+    co_err_t err;
+
+    if (ops->nv_erase != NULL) {
+        store_plan_t p;
+        err = plan(node, &p);
+        if ((err != CO_OK) || p.noop) {
+            return store_finish(node, err);
+        }
+        if (ops->nv_erase(node->hal.ctx, p.base, bank_size(node)) != 0) {
+            return store_finish(node, CO_ERR_HW);
+        }
+        if (async) {
+            node->store.step = (uint8_t)STEP_ERASE; /* written when the erase is done */
+            return CO_OK;
+        }
+    }
+    err = commit(node);
+    if ((err != CO_OK) || !async) {
+        return store_finish(node, err);
+    }
+    node->store.step = (uint8_t)STEP_WRITE;
+    return CO_OK;
+}
+
+/* An asynchronous HAL at work: poll it every millisecond (the bus is served
+ * meanwhile); once the erase is done the set is written, once the set is
+ * durable the command ends (the SDO server answers at its next round,
+ * within 1 ms). */
+static uint32_t store_process(co_node_t *node, uint32_t next)
+{
+    uint32_t at = next;
+    int r;
+
+    if (!co_store_busy(node)) {
+        return at;
+    }
+    r = node->hal.ops->nv_poll(node->hal.ctx);
+    if (r == CO_NV_BUSY) {
+        return co_deadline_min(node->now, at, node->now + 1000U);
+    }
+    if (r != 0) {
+        (void)store_finish(node, CO_ERR_HW);
+    } else if (node->store.step == (uint8_t)STEP_ERASE) {
+        co_err_t err = commit(node); /* the RAM image as it is now */
+        if (err != CO_OK) {
+            (void)store_finish(node, err);
+        } else {
+            node->store.step = (uint8_t)STEP_WRITE;
+            return co_deadline_min(node->now, at, node->now + 1000U);
+        }
+    } else {
+        (void)store_finish(node, CO_OK);
+    }
+    return at;
+}
+
+bool co_store_is_command(const co_od_entry_t *e, const co_od_sub_t *s)
 {
     return ((e->index == 0x1010U) || (e->index == 0x1011U)) && (s->sub != 0U) &&
            (s->type == (uint8_t)CO_UNSIGNED32) &&
@@ -253,30 +409,40 @@ static co_err_t command(co_node_t *node, uint16_t index, uint8_t sub, const uint
                                              GRP_ALL, GRP_COMM, GRP_APP};
     bool save = (index == 0x1010U);
     uint8_t grp = (sub <= last_sub(node, index)) ? groups_of_sub[sub] : 0U;
-    store_change_t c = {0U, 0U, 0U, 0U};
+    co_store_t *c = &node->store;
 
     if ((grp == 0U) || !has_nv(node) ||
         (co_get_u32(data) != (save ? STORE_SIG_SAVE : STORE_SIG_LOAD))) {
         return CO_ERR_STORE;
     }
-    if (save) {
-        c.from_ram = grp;
-    } else if (sub >= 4U) {
-        c.unmark = grp; /* the saved set loads again */
-    } else if (CO_SET(node, store.restore) == CO_RESTORE_SAVED) {
-        c.mark = grp; /* defaults, the saved data kept for sub 4..6 */
-    } else {
-        c.drop = grp;
+    if (co_store_busy(node)) {
+        return CO_ERR_STORE_STATE; /* the previous command is still being written */
     }
-    return commit(node, &c);
+    c->from_ram = 0U;
+    c->drop = 0U;
+    c->mark = 0U;
+    c->unmark = 0U;
+    if (save) {
+        c->from_ram = grp;
+    } else if (sub >= 4U) {
+        c->unmark = grp; /* the saved set loads again */
+    } else if (CO_SET(node, store.restore) == CO_RESTORE_SAVED) {
+        c->mark = grp; /* defaults, the saved data kept for sub 4..6 */
+    } else {
+        c->drop = grp;
+    }
+    return start_command(node);
 }
 
 void co_store_forget_comm(co_node_t *node)
 {
-    store_change_t c = {0U, GRP_COMM, 0U, 0U};
-
-    if (has_nv(node)) {
-        (void)commit(node, &c);
+    /* (while a command is being written the stored set is not dropped) */
+    if (has_nv(node) && !co_store_busy(node)) {
+        node->store.from_ram = 0U;
+        node->store.drop = GRP_COMM;
+        node->store.mark = 0U;
+        node->store.unmark = 0U;
+        (void)start_command(node);
     }
 }
 
@@ -291,20 +457,25 @@ static void store_reset(co_node_t *node, uint8_t kind)
         return; /* values are restored by the resets of a kind only */
     }
     co_od_restore(node, 0U, end);
+    node->store.damaged = 0U;
     if (cap != 0U) {
         bool io_err = false; /* an unreadable bank counts as invalid */
-        store_bank_t b = newest(node, layout_sig(dev), &io_err);
+        bool damaged = false;
+        store_bank_t b = newest(node, layout_sig(dev), &io_err, &damaged);
         uint8_t grp = (uint8_t)(b.groups & (uint8_t)~b.restored & (all ? GRP_ALL : GRP_COMM));
         uint16_t crc = 0U;
-        if ((grp != 0U) && !stream(node, (uint32_t)b.idx * bank_size(dev), AT_RAM, grp, &crc)) {
+        if ((grp != 0U) && !stream(node, (uint32_t)b.idx * bank_size(node), AT_RAM, grp, &crc)) {
             co_od_restore(node, 0U, end);
         }
+        /* reported after the boot-up by the EMCY service (co_store_damaged):
+         * EMCY 0x5530, 0x1001, 0x1003 */
+        node->store.damaged = damaged ? 1U : 0U;
     }
     /* What 0x1010 / 0x1011 read: the capability, whatever was written. */
     for (uint16_t index = 0x1010U; index <= 0x1011U; index++) {
         const co_od_entry_t *e = co_od_find(dev->od, dev->od_count, index);
         for (uint8_t k = 0U; (e != NULL) && (k < e->nsubs); k++) {
-            if (is_command(e, &e->subs[k])) {
+            if (co_store_is_command(e, &e->subs[k])) {
                 uint32_t v = (e->subs[k].sub <= last_sub(node, index)) ? cap : 0U;
                 (void)memcpy(&node->ram[e->subs[k].off], (const uint8_t *)&v, 4U);
             }
@@ -321,7 +492,7 @@ static co_err_t store_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
                           const co_od_sub_t *s, const uint8_t *data, uint32_t len)
 {
     (void)op;
-    if (!is_command(e, s)) {
+    if (!co_store_is_command(e, s)) {
         co_od_commit(node, s, data, len);
         return CO_OK;
     }
@@ -333,5 +504,5 @@ static const co_svc_hook_t store_hooks[] = {
 };
 
 const co_service_t co_svc_store = {
-    NULL, store_reset, NULL, NULL, NULL, NULL, store_hooks, 1U,
+    NULL, store_reset, NULL, NULL, store_process, NULL, store_hooks, 1U,
 };

@@ -4,16 +4,21 @@
  * (RX FIFOs into co_rxq, TX-empty into co_node_tx_ready, error state into
  * co_node_can_state), the hardware filters hold the node's COB-ID set
  * (co_node_rx_cob) and are reprogrammed when the core says it changed, and
- * the core sleeps in WFI until a CAN interrupt or the 1 ms SysTick. Built in
- * CI (tools/run-tests, Cortex-M3 cross-build); it has not run on a board here.
+ * the core sleeps in WFI until a CAN interrupt or the 1 ms SysTick.
+ * Parameters (0x1010 / 0x1011) live in the last 4 KiB of the flash, four
+ * 1 KiB pages (an STM32F103x8's), two banks of two pages: a save erases its
+ * bank's pages through the asynchronous NV HAL (co_bxcan/flash.h) and the
+ * SDO answer comes when the set is programmed. Built in CI (tools/run-tests,
+ * Cortex-M3 cross-build); it has not run on a board here.
  */
 #include <stdint.h>
 
 #include "co/co_canstate.h"
 #include "co/co_node.h"
 #include "co/co_rxq.h"
+#include "bxcan_slave.h"
 #include "co_bxcan/bxcan.h"
-#include "minimal_slave.h"
+#include "co_bxcan/flash.h"
 
 #define REG(a) (*(volatile uint32_t *)(uintptr_t)(a))
 #define RCC_APB2ENR  0x40021018UL
@@ -25,11 +30,16 @@
 #define SYST_CVR     0xE000E018UL
 #define CPU_HZ       8000000UL
 #define NODE_ID      1U
+#define NV_PAGE      1024U                   /* STM32F103x8: 1 KiB pages */
+#define NV_SIZE      4096U                   /* = _nv_reserve (CMakeLists.txt) */
+#define NV_BASE      (0x08000000UL + 65536UL - NV_SIZE)
 
 static co_bxcan_t can;
 static co_rxq_t rxq;
 static co_frame_t rx_store[16];
-static minimal_slave_node_t slave;
+static co_bxcan_flash_t flash;
+static co_bxcan_port_t port = {&can, &flash};
+static bxcan_slave_node_t slave;
 static volatile uint32_t ms_ticks;
 static volatile uint8_t filters_stale;
 
@@ -101,7 +111,12 @@ static int due(uint32_t now, uint32_t deadline)
 
 int main(void)
 {
-    static const co_hal_ops_t hal_ops = {co_bxcan_send, NULL, NULL, NULL};
+    static const co_hal_ops_t hal_ops = {.send = co_bxcan_port_send,
+                                         .nv_read = co_bxcan_port_nv_read,
+                                         .nv_write = co_bxcan_port_nv_write,
+                                         .nv_erase = co_bxcan_port_nv_erase,
+                                         .nv_poll = co_bxcan_port_nv_poll,
+                                         .nv_erase_unit = NV_PAGE};
     co_node_config_t cfg;
     uint32_t deadline;
     co_can_state_t state = CO_CAN_ERROR_ACTIVE;
@@ -119,9 +134,15 @@ int main(void)
         }
     }
     REG(NVIC_ISER0) = 0xFUL << 19U;           /* CAN1 TX, RX0, RX1, SCE */
-    minimal_slave_config(&slave, &cfg);
+    if ((co_store_nv_size_unit(&bxcan_slave_dev, NV_PAGE) > NV_SIZE) ||
+        (co_bxcan_flash_init(&flash, CO_FLASH_F1, CO_FLASH_R_BASE_F1, NULL, NULL, NV_BASE,
+                             NV_SIZE, NV_PAGE, 0U) != 0)) {
+        for (;;) {
+        }
+    }
+    bxcan_slave_config(&slave, &cfg);
     cfg.hal.ops = &hal_ops;
-    cfg.hal.ctx = &can;
+    cfg.hal.ctx = &port;
     cfg.node_id = NODE_ID;
     cfg.cb.rx_set = on_rx_set;
     (void)co_node_init(&slave.node, &cfg, now_us());

@@ -236,7 +236,9 @@ static int start_node(dnode_t *d, const opt_node_t *spec, const char *iface)
         return -1;
     }
     if (spec->storage != NULL) {
-        if (co_lx_nv_open(&d->nv, spec->storage, CO_LX_NV_SIZE_DEFAULT, err, sizeof err) != 0) {
+        /* sized to what the node's storage needs (two banks) */
+        if (co_lx_nv_open(&d->nv, spec->storage, co_store_nv_size(d->dev->dev), err,
+                          sizeof err) != 0) {
             (void)fprintf(stderr, PROG ": %s\n", err);
             return -1;
         }

@@ -268,8 +268,8 @@ static int hal_nv_write(void *ctx, uint32_t addr, const uint8_t *buf, uint32_t l
 {
     return nv_write(((fw_hal_ctx_t *)ctx)->nv, addr, buf, len);
 }
-static const co_hal_ops_t hal_plain = {hal_send, NULL, NULL, NULL};
-static const co_hal_ops_t hal_ops_nv = {hal_send, hal_nv_read, hal_nv_write, NULL};
+static const co_hal_ops_t hal_plain = {.send = hal_send};
+static const co_hal_ops_t hal_ops_nv = {.send = hal_send, .nv_read = hal_nv_read, .nv_write = hal_nv_write};
 static fw_hal_ctx_t hal_ctx;
 
 /* --serial: written again at every reset node (0x1018 sub 4 is a RAM value

@@ -10,7 +10,8 @@
  *
  *  1. No frame with DLC > 8, no extended or remote frame from the node.
  *  2. No frame on a restricted or foreign COB-ID: only the node's SDO
- *     (0x580+id) and error-control (0x700+id) identifiers, and the EMCY,
+ *     (0x580+id) and error-control (0x700+id) identifiers (for the node-ID
+ *     it starts with and the one LSS gives it), an LSS slave's 0x7E4, the EMCY,
  *     SYNC, TIME and TPDO identifiers its dictionary has configured for
  *     sending at some time during the run.
  *  3. Const values (CO_SUB_CONST, ROM) never change; a download to a
@@ -19,7 +20,9 @@
  *     in the past or at now would make a caller's loop spin).
  *  5. An SDO initiate request (expedited/segmented/block up- or download)
  *     to an idle server of a node in Pre-operational or Operational, with
- *     the TX path free, gets exactly one answer; no request gets more than
+ *     the TX path free, gets exactly one answer (a save or restore on an
+ *     asynchronous NV: once the set is durable, at the next round); no
+ *     request gets more than
  *     one, except the sub-blocks of a block upload and answers to earlier
  *     requests that were held back (TX path full) and go out now; a client
  *     abort none.
@@ -64,6 +67,8 @@ typedef struct fz {
     unsigned sent;              /* frames the node sent */
     unsigned sdo_answers;       /* frames on 0x580+id */
     uint8_t last_sdo[8];        /* the last of them */
+    unsigned nv_busy;           /* asynchronous NV: busy answers still to give */
+    bool store_wait;            /* an SDO download started a save: its answer is deferred */
     uint8_t allowed[256];       /* bit per COB-ID the node may send on */
     uint8_t nv[NV_SIZE];
     uint8_t snap[SNAP_MAX];     /* const values at the start */
@@ -120,9 +125,21 @@ static void update_allowed(void)
     const co_node_t *nd = &fz.n.node;
     const co_dev_t *dev = nd->dev;
 
+    uint8_t id = co_node_id(nd);
+
     allow(0x580U + NODE_ID);
     allow(0x700U + NODE_ID);
     allow(0x080U + NODE_ID); /* EMCY default, while 0x1014 is absent */
+    if ((id >= 1U) && (id <= 127U)) {
+        /* LSS may give the node another node-ID (configure node-ID, then a
+         * reset communication): its SDO, error-control and EMCY identifiers */
+        allow(0x580U + id);
+        allow(0x700U + id);
+        allow(0x080U + id);
+    }
+    if (dev->set.lss.slave != 0U) {
+        allow(0x7E4U); /* LSS slave -> master (CiA 305) */
+    }
     if ((nd->emcy.cob != NULL) && ((*nd->emcy.cob & 0x80000000UL) == 0U)) {
         allow(*nd->emcy.cob);
     }
@@ -193,7 +210,44 @@ static int nv_write(void *ctx, uint32_t addr, const uint8_t *buf, uint32_t len)
     return 0;
 }
 
+static int nv_write_async(void *ctx, uint32_t addr, const uint8_t *buf, uint32_t len)
+{
+    fz.nv_busy = 3U;
+    return nv_write(ctx, addr, buf, len);
+}
+
+static int nv_erase(void *ctx, uint32_t addr, uint32_t len)
+{
+    (void)ctx;
+    if (((addr % 64U) != 0U) || ((len % 64U) != 0U) || (addr > NV_SIZE) ||
+        (len > (NV_SIZE - addr))) {
+        fail("nv_erase outside whole erase units");
+    }
+    (void)memset(&fz.nv[addr], 0xFF, len);
+    fz.nv_busy = 3U;
+    return 0;
+}
+
+static int nv_poll(void *ctx)
+{
+    (void)ctx;
+    if (fz.nv_busy > 0U) {
+        fz.nv_busy--;
+        return CO_NV_BUSY;
+    }
+    return 0;
+}
+
 static const co_hal_ops_t hal_ops = {.send = hal_send, .nv_read = nv_read, .nv_write = nv_write};
+/* the same with asynchronous writes and an erase unit of 64 bytes (inputs
+ * whose first byte is 0xA5): saves, restores and LSS stores in the
+ * background, their answers deferred */
+static const co_hal_ops_t hal_ops_async = {.send = hal_send,
+                                           .nv_read = nv_read,
+                                           .nv_write = nv_write_async,
+                                           .nv_poll = nv_poll,
+                                           .nv_erase = nv_erase,
+                                           .nv_erase_unit = 64U};
 
 /* ------------------------------------------------------------ const values */
 
@@ -249,9 +303,22 @@ static bool not_writable(uint16_t index, uint8_t sub)
 static void process(void)
 {
     uint32_t d;
+    bool done_before = !co_store_busy(&fz.n.node);
+    unsigned answers = fz.sdo_answers;
 
     update_allowed();
     d = co_node_process(&fz.n.node, fz.now);
+    if (fz.store_wait) {
+        /* a save's answer waits until the set is durable, then comes at the
+         * next round (or never: the client aborted, a reset, Stopped) */
+        if ((fz.sdo_answers != answers) || (fz.n.node.sdo.state == 0U)) {
+            fz.store_wait = false;
+        } else if (done_before && (fz.n.node.txq_len == 0U)) {
+            fail("a save was durable but its SDO answer did not come");
+        } else {
+            /* still being written, or the answer is held back (TX path full) */
+        }
+    }
     if ((d != CO_NO_DEADLINE) && ((int32_t)(d - fz.now) <= 0)) {
         fail("co_node_process returned a deadline at or before its now");
     }
@@ -300,7 +367,12 @@ static void deliver(const co_frame_t *f)
         unsigned got = fz.sdo_answers - before;
         bool initiate = (ccs == 1U) || (ccs == 2U) || (ccs == 5U) || (ccs == 6U);
         bool sub_block = (cs == 0xA3U) || ((cs & 0xE3U) == 0xA2U);
-        if (idle && initiate && (got != 1U)) {
+        bool deferred = idle && (got == 0U) && (ccs == 1U) && co_store_busy(&fz.n.node) &&
+                        (fz.n.node.sdo.state != 0U);
+        if (deferred) {
+            fz.store_wait = true; /* answered once durable (process) */
+        }
+        if (idle && initiate && (got != 1U) && !deferred) {
             fail("an SDO request to an idle server got no answer or more than one");
         }
         if ((ccs == 4U) && (got != 0U) && idle) {
@@ -406,7 +478,7 @@ static size_t step(const uint8_t *d, size_t n)
     }
 }
 
-static void start(void)
+static void start(bool async)
 {
     co_node_config_t cfg;
 
@@ -420,7 +492,7 @@ static void start(void)
     }
     DEV_CONFIG(&fz.n, &cfg);
     cfg.cb = co_device_callbacks(&fz.run);
-    cfg.hal.ops = &hal_ops;
+    cfg.hal.ops = async ? &hal_ops_async : &hal_ops;
     cfg.hal.ctx = &fz;
     cfg.node_id = NODE_ID;
     /* the boot-up: before co_node_init binds the objects */
@@ -443,7 +515,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     size_t at = 0U;
     unsigned k = 0U;
 
-    start();
+    start((size > 0U) && (data[0] == 0xA5U));
     while (at < size) {
         at += step(&data[at], size - at);
         if ((++k & 63U) == 0U) {

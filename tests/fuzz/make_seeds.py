@@ -157,7 +157,11 @@ def main() -> int:
             old.unlink()
         for name, lines in scen.items():
             (d / f"seed-{name}").write_bytes(encode(lines))
-        print(f"{d.relative_to(HERE.parents[1])}: {len(scen)} seeds")
+        # an input whose first byte is 0xA5 runs on the asynchronous NV
+        # with an erase unit (and starts with "refuse 0 frames")
+        store = scen.get("storage", scen.get("pp_move"))
+        (d / "seed-async-nv").write_bytes(bytes([0xA5, 0x00]) + encode(store))
+        print(f"{d.relative_to(HERE.parents[1])}: {len(scen) + 1} seeds")
     return 0
 
 

@@ -65,7 +65,7 @@ static int nv_write(void *ctx, uint32_t addr, const uint8_t *buf, uint32_t len)
     return 0;
 }
 
-static const co_hal_ops_t ops = {count_send, nv_read, nv_write, NULL};
+static const co_hal_ops_t ops = {.send = count_send, .nv_read = nv_read, .nv_write = nv_write};
 
 static void hex(const uint8_t *p, uint32_t n)
 {

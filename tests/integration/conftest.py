@@ -85,7 +85,11 @@ class Sniffer:
 
     def _run(self):
         while self.running:
-            m = self.bus.recv(0.05)
+            try:
+                m = self.bus.recv(0.05)
+            except can.CanOperationError:
+                time.sleep(0.01)   # the interface is down for a while (test_robustness)
+                continue
             if m is None or m.is_error_frame:
                 continue
             with self.cond:

@@ -21,7 +21,7 @@ static int can_send(void *ctx, const co_frame_t *f)
     can_tx_reg = f->id ^ f->data[0];
     return 0;
 }
-static const co_hal_ops_t hal_ops = {can_send, NULL, NULL, NULL};
+static const co_hal_ops_t hal_ops = {.send = can_send};
 
 static size_dev_node_t node;
 static co_frame_t rx_store[8];

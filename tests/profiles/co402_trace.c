@@ -40,7 +40,7 @@ static int hal_send(void *ctx, const co_frame_t *f)
     return 0;
 }
 
-static const co_hal_ops_t hal_ops = {hal_send, NULL, NULL, NULL};
+static const co_hal_ops_t hal_ops = {.send = hal_send};
 
 static int put(uint16_t index, int64_t v, uint32_t len)
 {

@@ -80,8 +80,62 @@ static int tb_bit_timing(void *ctx, uint8_t index)
     return 0;
 }
 
-const co_hal_ops_t tb_hal_ops = {tb_hal_send, tb_nv_read, tb_nv_write, tb_bit_timing};
-const co_hal_ops_t tb_hal_ops_no_nv = {tb_hal_send, NULL, NULL, tb_bit_timing};
+static int tb_nv_write_flash(void *ctx, uint32_t addr, const uint8_t *buf, uint32_t len)
+{
+    tb_bus_t *bus = ((tb_port_t *)ctx)->bus;
+
+    const uint8_t *nv = nv_of((tb_port_t *)ctx);
+
+    for (uint32_t i = 0U; (i < len) && ((addr + i) < TB_NV_SIZE); i++) {
+        if (nv[addr + i] != 0xFFU) {
+            bus->nv_unerased++;
+        }
+    }
+    bus->nv_busy = bus->nv_busy_each;
+    return tb_nv_write(ctx, addr, buf, len);
+}
+
+static int tb_nv_erase(void *ctx, uint32_t addr, uint32_t len)
+{
+    tb_bus_t *bus = ((tb_port_t *)ctx)->bus;
+
+    if (((addr % TB_NV_ERASE_UNIT) != 0U) || ((len % TB_NV_ERASE_UNIT) != 0U) ||
+        (addr > TB_NV_SIZE) || (len > TB_NV_SIZE - addr)) {
+        return -1;
+    }
+    bus->nv_erases++;
+    bus->nv_erase_addr = addr;
+    bus->nv_erase_len = len;
+    memset(&nv_of((tb_port_t *)ctx)[addr], 0xFF, len);
+    bus->nv_busy = bus->nv_busy_each;
+    return 0;
+}
+
+static int tb_nv_poll(void *ctx)
+{
+    tb_bus_t *bus = ((tb_port_t *)ctx)->bus;
+
+    bus->nv_polls++;
+    if (bus->nv_busy > 0U) {
+        bus->nv_busy--;
+        return CO_NV_BUSY;
+    }
+    return bus->nv_fail_poll ? -1 : 0;
+}
+
+const co_hal_ops_t tb_hal_ops_async = {.send = tb_hal_send,
+                                       .nv_read = tb_nv_read,
+                                       .nv_write = tb_nv_write_flash,
+                                       .nv_poll = tb_nv_poll,
+                                       .nv_erase = tb_nv_erase,
+                                       .nv_erase_unit = TB_NV_ERASE_UNIT,
+                                       .bit_timing = tb_bit_timing};
+
+const co_hal_ops_t tb_hal_ops = {.send = tb_hal_send,
+                                 .nv_read = tb_nv_read,
+                                 .nv_write = tb_nv_write,
+                                 .bit_timing = tb_bit_timing};
+const co_hal_ops_t tb_hal_ops_no_nv = {.send = tb_hal_send, .bit_timing = tb_bit_timing};
 
 void tb_nv_cut(tb_bus_t *bus, uint32_t n, bool tear)
 {
@@ -111,7 +165,7 @@ co_hal_t tb_hal(tb_bus_t *bus, uint8_t idx)
     co_hal_t h;
     bus->ports[idx].bus = bus;
     bus->ports[idx].idx = idx;
-    h.ops = &tb_hal_ops;
+    h.ops = bus->nv_async ? &tb_hal_ops_async : &tb_hal_ops;
     h.ctx = &bus->ports[idx];
     return h;
 }

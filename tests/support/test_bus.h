@@ -58,13 +58,29 @@ struct tb_bus {
     bool nv_tear;              /**< the byte at the cut is torn, not lost */
     bool nv_fail_write;        /**< nv_write fails (nothing written) */
     bool nv_fail_read;         /**< nv_read fails */
+    /* asynchronous NV with erase (tb_hal_ops_async; set nv_async before tb_hal) */
+    bool nv_async;             /**< tb_hal gives the asynchronous flash-like HAL */
+    unsigned nv_busy_each;     /**< nv_poll answers busy this often after each erase/write */
+    unsigned nv_busy;          /**< busy answers still to give */
+    unsigned nv_polls;         /**< nv_poll calls */
+    unsigned nv_erases;        /**< nv_erase calls */
+    uint32_t nv_erase_addr;    /**< of the last one */
+    uint32_t nv_erase_len;
+    unsigned nv_unerased;      /**< bytes written that were not erased (flash would not hold them) */
+    bool nv_fail_poll;         /**< nv_poll reports a failure */
 };
+
+/** Erase unit of tb_hal_ops_async. */
+#define TB_NV_ERASE_UNIT 256U
 
 /** Every port has NV of its own (port 0: bus->nv) and records the LSS
  *  bit-timing switches. */
 extern const co_hal_ops_t tb_hal_ops;
 /** The same bus without non-volatile memory (nv_read/nv_write NULL). */
 extern const co_hal_ops_t tb_hal_ops_no_nv;
+/** Flash-like NV: erase in TB_NV_ERASE_UNIT units, writes and erases
+ *  complete asynchronously (nv_poll busy nv_busy_each times after each). */
+extern const co_hal_ops_t tb_hal_ops_async;
 
 void tb_init(tb_bus_t *bus);
 /** A HAL for node slot @p idx on @p bus (attach the node afterwards). */

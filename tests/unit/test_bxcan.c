@@ -351,7 +351,7 @@ static void node_fed_by_the_interrupts(void **state)
     static generic_301_node_t node;
     static const char text[] = "written in seven-byte segments!"; /* 31 bytes */
     co_node_config_t cfg;
-    co_hal_ops_t ops = {co_bxcan_send, NULL, NULL, NULL};
+    co_hal_ops_t ops = {.send = co_bxcan_send};
     co_frame_t f;
 
     generic_301_config(&node, &cfg);

@@ -563,6 +563,58 @@ static void test_store_errors(void **state)
     tb_expect_none(&fx.bus);
 }
 
+/* Store configuration on flash written in the background (tb_hal_ops_async:
+ * erase units of TB_NV_ERASE_UNIT bytes, every erase and write busy for 40
+ * polls): each record has an erase unit of its own behind the parameter
+ * banks, erased before it is written; the answer comes when the record is
+ * durable and the node serves the bus meanwhile. */
+static void test_store_async_flash(void **state)
+{
+    uint32_t unit_base;
+    unsigned polls;
+
+    (void)state;
+    setup_bus(0U);
+    fx.bus.nv_busy_each = 40U;
+    assert_int_equal(start_ops(0, 0x10U, 1U, &tb_hal_ops_async), CO_RESULT_OK);
+    tb_flush(&fx.bus);
+    unit_base = co_store_nv_size_unit(&fx.dev, TB_NV_ERASE_UNIT) - 2U * TB_NV_ERASE_UNIT;
+    silent("04 01");
+    xfer("11 20", "11 00");
+    silent("17"); /* erasing: no answer yet */
+    assert_int_equal(fx.bus.nv_erases, 1U);
+    assert_int_equal(fx.bus.nv_erase_addr, unit_base); /* no record yet: record 0 */
+    assert_int_equal(fx.bus.nv_erase_len, TB_NV_ERASE_UNIT);
+    xfer("5E", "5E 10"); /* served meanwhile */
+    xfer("17", "17 02"); /* a second store while one is written: refused */
+    polls = fx.bus.nv_polls;
+    tb_advance(&fx.bus, 30000U);
+    tb_expect_none(&fx.bus);
+    tb_advance(&fx.bus, 60000U);
+    ans("17 00");
+    tb_expect_none(&fx.bus);
+    assert_in_range(fx.bus.nv_polls - polls, 80U, 84U); /* erase, then the record */
+    assert_int_equal(fx.bus.nv_unerased, 0U);
+    /* the next one goes to the other record's unit */
+    xfer("11 21", "11 00");
+    silent("17");
+    assert_int_equal(fx.bus.nv_erase_addr, unit_base + TB_NV_ERASE_UNIT);
+    tb_advance(&fx.bus, 100000U);
+    ans("17 00");
+    assert_int_equal(fx.bus.nv_unerased, 0U);
+    /* a failure the HAL reports: media error */
+    xfer("11 22", "11 00");
+    fx.bus.nv_fail_poll = true;
+    silent("17");
+    tb_advance(&fx.bus, 100000U);
+    ans("17 02");
+    fx.bus.nv_fail_poll = false;
+    tb_expect_none(&fx.bus);
+    assert_int_equal(start_ops(0, 0x10U, 1U, &tb_hal_ops_async), CO_RESULT_OK);
+    tb_expect(&fx.bus, "721 00");
+    tb_expect_none(&fx.bus);
+}
+
 /* CiA default: at reset communication the new node-ID's COB-IDs. */
 static void test_change_cia_cobs_follow(void **state)
 {
@@ -872,6 +924,7 @@ int main(void)
         cmocka_unit_test(test_identify_non_configured),
         cmocka_unit_test(test_bit_timing),
         cmocka_unit_test(test_store_errors),
+        cmocka_unit_test(test_store_async_flash),
         cmocka_unit_test(test_change_cia_cobs_follow),
         cmocka_unit_test(test_change_keep_cobs),
         cmocka_unit_test(test_unconfigured_cia_keeps_stored),

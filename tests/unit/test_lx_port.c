@@ -369,6 +369,21 @@ static int nv_teardown(void **state)
     return 0;
 }
 
+/* nv_poll until it is no longer busy (the writer thread's fsync and rename) */
+static int nv_poll_until_done(co_lx_nv_t *nv)
+{
+    int r;
+
+    for (int k = 0; k < 10000; k++) {
+        r = co_lx_nv_poll(nv);
+        if (r != CO_NV_BUSY) {
+            return r;
+        }
+        (void)usleep(1000);
+    }
+    return r;
+}
+
 static void nv_file_round_trip(void **state)
 {
     co_lx_nv_t nv;
@@ -389,11 +404,17 @@ static void nv_file_round_trip(void **state)
         assert_int_equal(buf[i], 0xFF);
     }
     assert_int_not_equal(stat(path, &st), 0);
-    /* a write persists the image; the temporary file is gone */
-    assert_int_equal(co_lx_nv_write(&nv, 10U, data, 4U), 0);
+    /* writes change the image only; nv_poll persists it once, in the
+     * background (busy until the file holds it); the temporary file is gone */
+    assert_int_equal(co_lx_nv_write(&nv, 10U, data, 2U), 0);
+    assert_int_equal(co_lx_nv_write(&nv, 12U, &data[2], 2U), 0);
+    assert_int_not_equal(stat(path, &st), 0);
+    assert_int_equal(nv_poll_until_done(&nv), 0);
     assert_int_equal(stat(path, &st), 0);
     assert_int_equal(st.st_size, 256);
     assert_int_not_equal(stat(tmp, &st), 0);
+    assert_int_equal(nv.writes, 1U);
+    assert_int_equal(co_lx_nv_poll(&nv), 0); /* nothing new: nothing written */
     assert_int_equal(nv.writes, 1U);
     /* outside the memory: refused */
     assert_int_equal(co_lx_nv_write(&nv, 254U, data, 4U), -1);
@@ -407,8 +428,15 @@ static void nv_file_round_trip(void **state)
     assert_memory_equal(&buf[1], data, 4U);
     assert_int_equal(buf[5], 0xFF);
     co_lx_nv_close(&nv);
-    /* a file larger than the memory is not taken */
-    assert_int_equal(co_lx_nv_open(&nv, path, 128U, err, sizeof err), -1);
+    /* a file larger than the memory (an older daemon's 64 KiB image): its
+     * first bytes are the memory */
+    assert_int_equal(co_lx_nv_open(&nv, path, 16U, err, sizeof err), 0);
+    assert_int_equal(co_lx_nv_read(&nv, 10U, buf, 4U), 0);
+    assert_memory_equal(buf, data, 4U);
+    co_lx_nv_close(&nv);
+    /* beyond 64 KiB it is no parameter file */
+    assert_int_equal(truncate(path, 65537), 0);
+    assert_int_equal(co_lx_nv_open(&nv, path, 16U, err, sizeof err), -1);
     assert_non_null(strstr(err, "params.bin"));
 }
 
@@ -423,9 +451,11 @@ static void nv_write_failure_rolls_back(void **state)
     (void)state;
     (void)snprintf(path, sizeof path, "%s/params.bin", dir);
     assert_int_equal(co_lx_nv_open(&nv, path, 64U, err, sizeof err), 0);
-    /* the file's place is taken by a directory: the rename fails */
+    /* the file's place is taken by a directory: the rename fails; the
+     * image rolls back to what the file holds */
     assert_int_equal(mkdir(path, 0755), 0);
-    assert_int_equal(co_lx_nv_write(&nv, 0U, data, 4U), -1);
+    assert_int_equal(co_lx_nv_write(&nv, 0U, data, 4U), 0);
+    assert_int_equal(nv_poll_until_done(&nv), -1);
     assert_int_equal(co_lx_nv_read(&nv, 0U, buf, 4U), 0);
     assert_int_equal(buf[0], 0xFF);
     assert_int_equal(nv.writes, 0U);
@@ -434,6 +464,64 @@ static void nv_write_failure_rolls_back(void **state)
     (void)snprintf(path, sizeof path, "%s/missing/params.bin", dir);
     assert_int_equal(co_lx_nv_open(&nv, path, 64U, err, sizeof err), -1);
     assert_non_null(strstr(err, "missing"));
+}
+
+/* A 0x1010 save on the port with a parameter file (issue 19 item 9): the
+ * file is written once per save, sized to what the node's storage needs,
+ * in the writer thread; the SDO answer comes when the file holds the set,
+ * and the node is served meanwhile (co_node_process runs, frames are
+ * answered). */
+static void save_writes_the_file_once(void **state)
+{
+    co_lx_nv_t nv;
+    co_node_config_t cfg;
+    char path[128];
+    char err[256];
+    char out[64];
+    struct stat st;
+    uint32_t now = 2000U;
+    unsigned rounds = 0U;
+
+    (void)state;
+    (void)snprintf(path, sizeof path, "%s/params.bin", dir);
+    assert_int_equal(co_lx_nv_open(&nv, path, co_store_nv_size(&td_dev), err, sizeof err), 0);
+    make_pair(0);
+    memset(&fx.port, 0, sizeof fx.port);
+    fx.port.fd = fx.sv[0];
+    fx.port.nv = &nv;
+    memset(&fx.n, 0, sizeof fx.n);
+    memset(&cfg, 0, sizeof cfg);
+    cfg.dev = &td_dev;
+    cfg.hal = co_lx_port_hal(&fx.port);
+    cfg.node_id = 5;
+    cfg.ram = &fx.n.ram;
+    cfg.hooks = fx.n.hooks;
+    assert_int_equal(co_node_init(&fx.n.node, &cfg, 1000U), CO_OK);
+    co_lx_port_attach(&fx.port, &fx.n.node);
+    EXPECT_OUT("705 00");
+    bus_send("605 23 10 10 01 73 61 76 65");
+    assert_int_equal(co_lx_port_rx(&fx.port, now), 1);
+    EXPECT_OUT(""); /* not in the file yet: no answer */
+    while (strcmp(bus_next(out, sizeof out), "") == 0) {
+        /* the loop goes on: a request meanwhile is answered at once */
+        if (rounds == 0U) {
+            bus_send("605 40 00 10 00 00 00 00 00");
+            assert_int_equal(co_lx_port_rx(&fx.port, now), 1);
+            EXPECT_OUT("585 80 00 10 00 22 00 00 08"); /* the SDO server waits for the save */
+        }
+        (void)usleep(1000);
+        now += 1000U;
+        (void)co_node_process(&fx.n.node, now);
+        rounds++;
+        assert_true(rounds < 10000U);
+    }
+    assert_string_equal(out, "585 60 10 10 01 00 00 00 00");
+    assert_int_equal(nv.writes, 1U);
+    assert_int_equal(stat(path, &st), 0);
+    assert_int_equal((uint32_t)st.st_size, co_store_nv_size(&td_dev));
+    co_lx_nv_close(&nv);
+    close(fx.sv[0]);
+    close(fx.sv[1]);
 }
 
 /* ------------------------------------------------------------ time */
@@ -485,6 +573,7 @@ int main(void)
         cmocka_unit_test(trace_format_is_candump_log),
         cmocka_unit_test_setup_teardown(nv_file_round_trip, nv_setup, nv_teardown),
         cmocka_unit_test_setup_teardown(nv_write_failure_rolls_back, nv_setup, nv_teardown),
+        cmocka_unit_test_setup_teardown(save_writes_the_file_once, nv_setup, nv_teardown),
         cmocka_unit_test(sleep_time_and_wrap),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

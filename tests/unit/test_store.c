@@ -17,6 +17,7 @@
 
 #include "generic_301.h"
 #include "test_bus.h"
+#include "test_frames.h"
 #include "test_dev.h"
 
 /* ------------------------------------------------------------ value sets */
@@ -128,13 +129,36 @@ typedef struct fx {
 
 static fx_t fx;
 
+#define STORE_MAGIC_TEST 0x564E6F63UL /* "coNV", little-endian at bank offset 0 */
+
+/* After a power cut the boot may report the newest set damaged (a header
+ * cut short): EMCY 0x5530 after the boot-up. Allowed where this is set. */
+static bool cut_allowed;
+static bool cut_reported;
+
+#define EMCY_DAMAGED "081 30 55 01 00 00 00 00 00"
+
 /* Power on: a new co_node_init on the same NV; the boot-up is checked. */
 static void power_cycle_dev(const co_dev_t *dev)
 {
+    const co_frame_t *f;
+
     tb_flush(&fx.bus);
     td_start(&fx.n, &fx.bus, 0, 1, dev);
     tb_expect(&fx.bus, "701 00");
-    tb_expect_none(&fx.bus);
+    cut_reported = false;
+    f = tb_next(&fx.bus);
+    if ((f != NULL) && cut_allowed) {
+        TF_ASSERT_FRAME(f, EMCY_DAMAGED);
+        cut_reported = true;
+        f = tb_next(&fx.bus);
+    }
+    if (f != NULL) {
+        char txt[64];
+        tf_format(f, txt, sizeof txt);
+        print_error("after the boot-up: expected no frame, got %s\n", txt);
+        fail();
+    }
 }
 
 static void power_cycle(void)
@@ -518,9 +542,14 @@ static void restore_saved_power_cut(void **state)
             tb_nv_cut(BUS, cut, (cut & 1U) != 0U);
             tb_send(BUS, cmds[k][0]);
             tb_nv_power_on(BUS);
+            cut_allowed = true;
             start_restore_saved();
-            assert_true((memcmp(&fx.n.ram, &img_old, sizeof img_old) == 0) ||
-                        (memcmp(&fx.n.ram, &img_new, sizeof img_new) == 0));
+            cut_allowed = false;
+            /* the stored values (a report changes 0x1001 / 0x1003, not stored) */
+            assert_true((memcmp(&fx.n.ram, &img_old, td_dev.app_end) == 0) ||
+                        (memcmp(&fx.n.ram, &img_new, td_dev.app_end) == 0));
+            /* a reported cut fell back to the old set */
+            assert_true(!cut_reported || (memcmp(&fx.n.ram, &img_new, td_dev.app_end) != 0));
             if (cut == total) {
                 assert_memory_equal(&fx.n.ram, &img_new, sizeof img_new);
             }
@@ -662,36 +691,63 @@ static void corrupt_set_ignored(void **state)
     (void)state;
     write_set(BUS, &SET_A);
     tb_xfer(BUS, SAVE_ALL, SAVED_ALL); /* bank 0 */
+    /* the only set damaged: defaults, reported (EMCY 0x5530, 0x1001, 0x1003) */
     fx.bus.nv[16U + 2U] ^= 0x01U;
+    cut_allowed = true;
     power_cycle();
+    assert_true(cut_reported);
     expect_comm(BUS, &DEF);
     expect_app(BUS, &DEF);
+    tb_xfer(BUS, "601 40 01 10 00 00 00 00 00", "581 4F 01 10 00 01 00 00 00");
+    tb_xfer(BUS, "601 40 03 10 01 00 00 00 00", "581 43 03 10 01 30 55 00 00");
     fx.bus.nv[16U + 2U] ^= 0x01U;
     power_cycle();
+    assert_false(cut_reported);
     expect_comm(BUS, &SET_A);
     expect_app(BUS, &SET_A);
-    /* a bad newer set: the older complete set is used */
+    /* a bad newer set: the older complete set is used, and reported */
     write_set(BUS, &SET_B);
     tb_xfer(BUS, SAVE_ALL, SAVED_ALL); /* bank 1 */
     power_cycle();
     expect_app(BUS, &SET_B);
     fx.bus.nv[bank_size() + 16U + td_dev.app_end - 1U] ^= 0x80U;
     power_cycle();
+    assert_true(cut_reported);
     expect_comm(BUS, &SET_A);
     expect_app(BUS, &SET_A);
     fx.bus.nv[bank_size() + 16U + td_dev.app_end - 1U] ^= 0x80U;
     fx.bus.nv[bank_size() + 14U] ^= 0x10U; /* its CRC */
     power_cycle();
+    assert_true(cut_reported);
     expect_app(BUS, &SET_A);
     fx.bus.nv[bank_size() + 14U] ^= 0x10U;
-    fx.bus.nv[bank_size() + 0U] = 0x00U; /* its magic */
+    /* no magic: an erased bank, not a damaged set */
+    fx.bus.nv[bank_size() + 0U] = 0x00U;
     power_cycle();
+    assert_false(cut_reported);
     expect_app(BUS, &SET_A);
     /* both bad */
     fx.bus.nv[3] = 0x00U;
     power_cycle();
     expect_comm(BUS, &DEF);
     expect_app(BUS, &DEF);
+    /* damaged newer set; a save writes a whole one and ends the report */
+    fx.bus.nv[3] = (uint8_t)(STORE_MAGIC_TEST >> 24);
+    fx.bus.nv[bank_size() + 0U] = (uint8_t)STORE_MAGIC_TEST;
+    fx.bus.nv[bank_size() + 14U] ^= 0x10U;
+    power_cycle();
+    assert_true(cut_reported);
+    tb_xfer(BUS, "601 40 01 10 00 00 00 00 00", "581 4F 01 10 00 01 00 00 00");
+    write_set(BUS, &SET_C);
+    tb_send(BUS, SAVE_ALL);
+    tb_expect(BUS, SAVED_ALL);
+    tb_advance(BUS, 100000U); /* the EMCY inhibit time of the boot's report */
+    tb_expect(BUS, "081 00 00 00 00 00 00 00 00");
+    tb_expect_none(BUS);
+    power_cycle();
+    assert_false(cut_reported);
+    expect_app(BUS, &SET_C);
+    cut_allowed = false;
 }
 
 /* -------------------------------------------- power cut at every byte */
@@ -737,6 +793,7 @@ static void power_cut_at_every_byte(void **state)
         uint32_t total;
         uint32_t n_old = 0U;
         uint32_t n_new = 0U;
+        uint32_t n_reported = 0U;
 
         /* reference: what the device boots with before and after the command */
         prepare(sc);
@@ -759,9 +816,20 @@ static void power_cut_at_every_byte(void **state)
                 tb_nv_cut(BUS, cut, tear != 0);
                 tb_send(BUS, sc->cmd);
                 tb_nv_power_on(BUS);
+                cut_allowed = true;
                 power_cycle();
-                is_old = memcmp(&fx.n.ram, &img_old, sizeof img_old) == 0;
-                is_new = memcmp(&fx.n.ram, &img_new, sizeof img_new) == 0;
+                cut_allowed = false;
+                /* the stored values (a report changes 0x1001 / 0x1003, not stored) */
+                is_old = memcmp(&fx.n.ram, &img_old, td_dev.app_end) == 0;
+                is_new = memcmp(&fx.n.ram, &img_new, td_dev.app_end) == 0;
+                /* reported only for a cut in the header (the last 16
+                 * bytes), and then the old set loaded */
+                if (cut_reported && !(is_old && (cut + 16U > total))) {
+                    print_error("%s: cut %u of %u tear %d: reported, old %d new %d\n", sc->name,
+                                (unsigned)cut, (unsigned)total, tear, is_old, is_new);
+                }
+                assert_true(!cut_reported || (is_old && (cut + 16U > total)));
+                n_reported += cut_reported ? 1U : 0U;
                 if (!is_old && !is_new) {
                     print_error("%s: cut after %u of %u bytes (%s): neither old nor new\n",
                                 sc->name, (unsigned)cut, (unsigned)total,
@@ -778,8 +846,9 @@ static void power_cut_at_every_byte(void **state)
                 n_new += is_new ? 1U : 0U;
             }
         }
-        print_message("%s: %u bytes; cut at 0..%u (lost, torn): %u old, %u new\n", sc->name,
-                      (unsigned)total, (unsigned)total, (unsigned)n_old, (unsigned)n_new);
+        print_message("%s: %u bytes; cut at 0..%u (lost, torn): %u old (%u reported), %u new\n",
+                      sc->name, (unsigned)total, (unsigned)total, (unsigned)n_old,
+                      (unsigned)n_reported, (unsigned)n_new);
         /* the header goes last: only a complete save (or one whose missing
          * bytes happen to be there already) yields the new set */
         assert_int_equal(n_old + n_new, 2U * (total + 1U));
@@ -820,16 +889,123 @@ static void interrupted_save_then_complete_save(void **state)
     power_cycle();
     expect_comm(BUS, &SET_C);
     expect_app(BUS, &SET_B);
-    /* an interrupted restore, then a complete one */
+    /* an interrupted restore (cut in its header: reported), then a
+     * complete one, which ends the report */
     tb_nv_cut(BUS, 8U, false);
     tb_send(BUS, LOAD_ALL);
     tb_nv_power_on(BUS);
+    cut_allowed = true;
     power_cycle();
+    cut_allowed = false;
+    assert_true(cut_reported);
     expect_app(BUS, &SET_B);
-    tb_xfer(BUS, LOAD_ALL, LOADED_ALL);
+    tb_send(BUS, LOAD_ALL);
+    tb_expect(BUS, LOADED_ALL);
+    tb_advance(BUS, 100000U); /* the EMCY inhibit time of the boot's report */
+    tb_expect(BUS, "081 00 00 00 00 00 00 00 00");
+    tb_expect_none(BUS);
     power_cycle();
     expect_comm(BUS, &DEF);
     expect_app(BUS, &DEF);
+}
+
+/* ------------------------------------- asynchronous, flash-like NV (item 9) */
+
+static int setup_async(void **state)
+{
+    memset(&fx, 0, sizeof fx);
+    tb_init(&fx.bus);
+    fx.bus.nv_async = true;
+    fx.bus.nv_busy_each = 40U; /* each erase / write takes 40 polls (1 ms apart) */
+    fx.dev = td_dev;
+    power_cycle();
+    *state = &fx;
+    return 0;
+}
+
+/* A save on a HAL that erases and writes in the background: the node keeps
+ * serving the bus (heartbeats keep their 10 ms period, SDO requests are
+ * answered), the bank is erased once in whole units and written once, and
+ * the SDO answer comes when the set is durable. */
+static void async_save_serves_the_bus(void **state)
+{
+    uint32_t t0;
+    unsigned beats = 0U;
+    const co_frame_t *f;
+
+    (void)state;
+    assert_int_equal(co_store_nv_size_unit(&td_dev, TB_NV_ERASE_UNIT), 2U * TB_NV_ERASE_UNIT);
+    write_set(BUS, &SET_A);
+    tb_xfer(BUS, "601 2B 17 10 00 0A 00 00 00", "581 60 17 10 00 00 00 00 00");
+    t0 = fx.bus.now;
+    tb_send(BUS, SAVE_ALL);
+    tb_expect_none(BUS);                 /* not durable yet: no answer */
+    assert_int_equal(fx.bus.nv_erases, 1U);
+    assert_int_equal(fx.bus.nv_erase_addr, 0U); /* no set yet: bank 0 */
+    assert_int_equal(fx.bus.nv_erase_len, TB_NV_ERASE_UNIT);
+    /* another save meanwhile: refused; another request: answered */
+    tb_xfer(BUS, SAVE_APP, "581 80 10 10 03 22 00 00 08");
+    tb_advance(BUS, 5000U);
+    tb_xfer(BUS, "601 40 17 10 00 00 00 00 00", "581 80 17 10 00 22 00 00 08");
+    /* 10 ms steps: a heartbeat in each until the answer */
+    f = NULL;
+    for (unsigned k = 0U; (k < 20U) && (f == NULL); k++) {
+        tb_advance(BUS, 10000U);
+        tb_expect(BUS, "701 7F");
+        beats++;
+        f = tb_next(BUS);
+    }
+    assert_non_null(f);
+    TF_ASSERT_FRAME(f, SAVED_ALL);
+    tb_expect_none(BUS);
+    /* erase (40 polls) then data and header (40 polls): about 80 ms */
+    assert_in_range(fx.bus.now - t0, 75000U, 100000U);
+    assert_in_range(beats, 7U, 9U);
+    assert_int_equal(fx.bus.nv_unerased, 0U);
+    tb_advance(BUS, 10000U);
+    tb_expect(BUS, "701 7F");
+    tb_expect_none(BUS);
+    power_cycle();
+    expect_comm(BUS, &SET_A);
+    expect_app(BUS, &SET_A);
+    /* the next save erases and writes the other bank */
+    tb_xfer(BUS, "601 2B 17 10 00 00 00 00 00", "581 60 17 10 00 00 00 00 00");
+    write_set(BUS, &SET_B);
+    tb_send(BUS, SAVE_ALL);
+    tb_advance(BUS, 200000U);
+    tb_expect(BUS, SAVED_ALL);
+    assert_int_equal(fx.bus.nv_erases, 2U);
+    assert_int_equal(fx.bus.nv_erase_addr, TB_NV_ERASE_UNIT);
+    assert_int_equal(fx.bus.nv_unerased, 0U);
+    power_cycle();
+    expect_app(BUS, &SET_B);
+}
+
+/* The HAL reports a failed write: the save answers 0x06060000, the old set stays. */
+static void async_save_failure(void **state)
+{
+    (void)state;
+    write_set(BUS, &SET_A);
+    tb_send(BUS, SAVE_ALL);
+    tb_advance(BUS, 200000U);
+    tb_expect(BUS, SAVED_ALL);
+    write_set(BUS, &SET_B);
+    fx.bus.nv_fail_poll = true;
+    tb_send(BUS, SAVE_ALL);
+    tb_expect_none(BUS);
+    tb_advance(BUS, 200000U);
+    tb_expect(BUS, "581 80 10 10 01 00 00 06 06");
+    tb_expect_none(BUS);
+    fx.bus.nv_fail_poll = false;
+    /* the client gave up meanwhile (abort): the save still ends, silently */
+    tb_send(BUS, SAVE_ALL);
+    tb_send(BUS, "601 80 10 10 01 00 00 04 05");
+    tb_advance(BUS, 200000U);
+    tb_expect_none(BUS);
+    tb_send(BUS, SAVE_APP);
+    tb_advance(BUS, 200000U);
+    tb_expect(BUS, SAVED_APP);
+    tb_expect_none(BUS);
 }
 
 /* ------------------------------------------------- the generated device */
@@ -918,6 +1094,8 @@ int main(void)
         cmocka_unit_test_setup(interrupted_save_then_complete_save, setup),
         cmocka_unit_test_setup(generic_301_stores_and_restores, setup),
         cmocka_unit_test_setup(stored_pdo_mapping_after_power_on, setup),
+        cmocka_unit_test_setup(async_save_serves_the_bus, setup_async),
+        cmocka_unit_test_setup(async_save_failure, setup_async),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -59,9 +59,16 @@ static int port_nv_read(void *ctx, uint32_t addr, uint8_t *buf, uint32_t len)
 static int port_nv_write(void *ctx, uint32_t addr, const uint8_t *buf, uint32_t len)
 {
     const co_lx_port_t *p = (const co_lx_port_t *)ctx;
-    int r = co_lx_nv_write(p->nv, addr, buf, len);
+    return co_lx_nv_write(p->nv, addr, buf, len);
+}
 
-    if (r != 0) {
+/* The file is written once per save, in the background (nvfile.h). */
+static int port_nv_poll(void *ctx)
+{
+    const co_lx_port_t *p = (const co_lx_port_t *)ctx;
+    int r = co_lx_nv_poll(p->nv);
+
+    if ((r != 0) && (r != CO_NV_BUSY)) {
         char msg[160];
         (void)snprintf(msg, sizeof msg, "%s: writing the parameter file failed", p->nv->path);
         port_say(p, CO_LX_ERROR, msg);
@@ -90,8 +97,12 @@ static int port_bit_timing(void *ctx, uint8_t index)
     return 0;
 }
 
-static const co_hal_ops_t ops_nv = {port_send, port_nv_read, port_nv_write, port_bit_timing};
-static const co_hal_ops_t ops_plain = {port_send, NULL, NULL, port_bit_timing};
+static const co_hal_ops_t ops_nv = {.send = port_send,
+                                    .nv_read = port_nv_read,
+                                    .nv_write = port_nv_write,
+                                    .nv_poll = port_nv_poll,
+                                    .bit_timing = port_bit_timing};
+static const co_hal_ops_t ops_plain = {.send = port_send, .bit_timing = port_bit_timing};
 
 int co_lx_port_open(co_lx_port_t *p, const char *iface, co_lx_nv_t *nv, co_lx_can_fail_t *why)
 {

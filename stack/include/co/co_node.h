@@ -209,7 +209,21 @@ typedef struct co_lss {
     uint8_t bit_timing;   /**< configured (pending) bit-timing index, 0xFF none */
     uint8_t active_bt;    /**< active bit-timing index, 0xFF none (the port's rate) */
     uint8_t switching;    /**< 1: activate bit timing waits for switch_at */
+    uint8_t nv_step;      /**< store configuration in progress: 0 none, 1 erasing, 2 writing */
+    uint8_t nv_rec;       /**< the record it writes */
 } co_lss_t;
+
+/** Parameter storage (co_store.c): a save or restore an asynchronous HAL
+ *  is still writing (co_hal_ops_t.nv_poll), and the report of a damaged set. */
+typedef struct co_store {
+    co_err_t result;      /**< of the last command, once done */
+    uint8_t step;         /**< idle, erasing, writing, done */
+    uint8_t from_ram;     /**< the pending command: groups saved from the RAM image, */
+    uint8_t drop;         /**< groups the new set no longer holds, */
+    uint8_t mark;         /**< held groups restored to defaults (data kept), */
+    uint8_t unmark;       /**< held groups whose saved data loads again */
+    uint8_t damaged;      /**< the newest set found at the last reset was damaged */
+} co_store_t;
 
 typedef struct co_rx_slot {
     uint16_t cob;
@@ -280,6 +294,7 @@ typedef struct co_emcy {
     uint8_t hist_depth;
     uint8_t n_active;
     uint8_t n_q;
+    uint8_t store_report;    /**< EMCY 0x5530 raised for a damaged parameter set */
     co_emcy_active_t active[CO_EMCY_ACTIVE_MAX];
     co_emcy_pending_t q[CO_EMCY_QUEUE_LEN];
 } co_emcy_t;
@@ -355,6 +370,7 @@ typedef struct co_node {
     co_sync_t sync;
     co_time_t time;
     co_pdo_svc_t pdo;
+    co_store_t store;
 #if CO_LSS
     co_lss_t lss;
 #endif
@@ -375,6 +391,21 @@ co_result_t co_node_init(co_node_t *node, const co_node_config_t *cfg, uint32_t 
  *  node of @p dev: the HAL's nv_read/nv_write see addresses 0 .. this - 1
  *  (two banks; the second starts at half of it). */
 uint32_t co_store_nv_size(const co_dev_t *dev);
+
+/** The same for a HAL whose non-volatile memory is erased in units of
+ *  @p erase_unit bytes (co_hal_ops_t.nv_erase_unit): each bank spans whole
+ *  units. */
+uint32_t co_store_nv_size_unit(const co_dev_t *dev, uint32_t erase_unit);
+
+/** True while a save or restore command (0x1010 / 0x1011) is being written
+ *  by an asynchronous HAL (co_hal_ops_t.nv_poll); a new one is refused with
+ *  0x08000022 until it is done. */
+bool co_store_busy(const co_node_t *node);
+
+/** EMCY code raised after a reset whose newest parameter set was damaged
+ *  (the older set or the defaults were loaded instead); cleared by the next
+ *  successful save. */
+#define CO_EMCY_STORE_DAMAGED 0x5530U
 
 /** Handle one received frame. Safe for any frame (other nodes' frames, bad
  *  lengths, RTRs): malformed requests get the CiA-defined answer. */

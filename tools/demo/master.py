@@ -13,11 +13,15 @@ sampled by TPDOs at SYNC and plotted to PNG and SVG (tools/plot-trace), then
 homed; next to it a CiA 401 I/O module (loopback simulation): outputs set by
 RPDO come back as inputs by TPDO, an input set through the daemon's control
 interface sends its TPDO, a masked input change sends none. A step that fails is reported as FAILED with its
-reason and the demo goes on; the exit status is 1 when any step failed.
+reason and the demo goes on; the exit status is 1 when any step failed. A
+step that does not end within STEP_TIMEOUT is reported as hung, with the
+stack it waits in, and the demo stops there (every wait of a step has its
+own time limit as well).
 """
 from __future__ import annotations
 
 import argparse
+import json
 import signal
 import socket
 import subprocess
@@ -39,6 +43,13 @@ from cia408_master import (ValveSample, rpdo, setup_closed_loop, valve_state,  #
                            wait_sw, write_valve_csv)
 
 GENERIC_ID = 5
+# Every step ends within this time or is reported as hung, with where it
+# waits, and the demo stops there (exit status 1). Generous: the VM without
+# KVM on a loaded machine; a step takes a few seconds, a plot (matplotlib)
+# minutes in the VM (tools/run-demo plots on the host: --plot-later).
+STEP_TIMEOUT = 300.0
+PLOT_TIMEOUT = 240.0
+SEND_TIMEOUT = 1.0     # a frame the socket does not take within this fails the step
 DEFAULT_DEVICES = ("generic-301", "cia402", "cia408", "cia401")
 T0 = time.monotonic()
 
@@ -52,19 +63,28 @@ def hexs(b: bytes) -> str:
 
 
 class Watch:
-    """A raw socket that records frames; the transcript shows those asked for."""
+    """A raw socket that records frames; the transcript shows those asked for.
+    If its socket fails, every later wait says so (instead of timing out as
+    if the devices were silent)."""
 
     def __init__(self, iface: str):
         self.bus = can.Bus(interface="socketcan", channel=iface)
         self.frames: list[can.Message] = []
         self.lock = threading.Condition()
         self.alive = True
-        self.t = threading.Thread(target=self.run, daemon=True)
+        self.error: Exception | None = None
+        self.t = threading.Thread(target=self.run, name="watch", daemon=True)
         self.t.start()
 
     def run(self):
         while self.alive:
-            m = self.bus.recv(0.05)
+            try:
+                m = self.bus.recv(0.05)
+            except Exception as e:   # the socket failed: tell the waiters
+                with self.lock:
+                    self.error = e
+                    self.lock.notify_all()
+                return
             if m is not None and not m.is_error_frame:
                 with self.lock:
                     self.frames.append(m)
@@ -83,6 +103,8 @@ class Watch:
                     if pred(self.frames[i]):
                         return self.frames[i], i
                     i += 1
+                if self.error is not None:
+                    raise RuntimeError(f"the bus watch failed: {self.error}")
                 left = end - time.monotonic()
                 if left <= 0:
                     return None, i
@@ -93,20 +115,27 @@ class Watch:
             return [m for m in self.frames[mark:] if cob is None or m.arbitration_id == cob]
 
     def send(self, cob: int, data: bytes = b""):
-        self.bus.send(can.Message(arbitration_id=cob, data=data, is_extended_id=False))
+        self.bus.send(can.Message(arbitration_id=cob, data=data, is_extended_id=False),
+                      timeout=SEND_TIMEOUT)
 
     def close(self):
         self.alive = False
-        self.t.join()
+        self.t.join(2.0)
         self.bus.shutdown()
+
+
+class StepHung(Exception):
+    """A step did not end within its time (Demo.step)."""
 
 
 STATES = {0x00: "boot-up", 0x04: "stopped", 0x05: "operational", 0x7F: "pre-operational"}
 
 
 class Demo:
-    def __init__(self, daemon: Path, iface: str, out: Path, devices: list[str] | None):
+    def __init__(self, daemon: Path, iface: str, out: Path, devices: list[str] | None,
+                 plot_later: Path | None = None):
         self.daemon = daemon
+        self.plot_later = plot_later
         self.out = out
         self.wanted = devices
         self.iface = iface
@@ -122,20 +151,58 @@ class Demo:
         self.lss_only: set[str] = set()
 
     # ------------------------------------------------------------ helpers
-    def step(self, title: str, fn) -> None:
+    def step(self, title: str, fn, timeout: float = STEP_TIMEOUT) -> None:
+        """Run one step in a thread of its own: a step that fails is reported
+        and the demo goes on; one that does not end within `timeout` is
+        reported as hung with the stack it waits in (StepHung)."""
         print(f"\n== {title} ==", flush=True)
-        try:
-            note = fn() or ""
-            self.results.append((title, True, note))
-        except Exception as e:  # a failed step is reported, the demo goes on
-            reason = f"{type(e).__name__}: {e}" if str(e) else type(e).__name__
-            if isinstance(e, canopen.SdoAbortedError):
-                reason = f"SDO abort 0x{e.code:08X} ({e})"
-            say(f"FAILED: {reason}")
-            if not isinstance(e, (canopen.SdoAbortedError, canopen.SdoCommunicationError,
-                                  AssertionError, TimeoutError)):
-                traceback.print_exc(limit=2, file=sys.stdout)
-            self.results.append((title, False, reason))
+        box: dict = {}
+
+        def work():
+            try:
+                box["note"] = fn() or ""
+            except BaseException as e:   # handed to the main thread
+                box["error"] = e
+
+        worker = threading.Thread(target=work, name=title, daemon=True)
+        worker.start()
+        worker.join(timeout)
+        if worker.is_alive():
+            frame = sys._current_frames().get(worker.ident)
+            where = "".join(traceback.format_stack(frame)) if frame else "?\n"
+            say(f"FAILED: no end after {timeout:g} s; the step waits in:")
+            print(where, end="", flush=True)
+            self.results.append((title, False, f"hung: no end after {timeout:g} s"))
+            raise StepHung(title)
+        if "error" not in box:
+            self.results.append((title, True, box["note"]))
+            return
+        e = box["error"]
+        if not isinstance(e, Exception):   # KeyboardInterrupt, SystemExit
+            raise e
+        # a failed step is reported, the demo goes on
+        reason = f"{type(e).__name__}: {e}" if str(e) else type(e).__name__
+        if isinstance(e, canopen.SdoAbortedError):
+            reason = f"SDO abort 0x{e.code:08X} ({e})"
+        say(f"FAILED: {reason}")
+        if not isinstance(e, (canopen.SdoAbortedError, canopen.SdoCommunicationError,
+                              AssertionError, TimeoutError)):
+            traceback.print_exception(type(e), e, e.__traceback__, limit=3, file=sys.stdout)
+        self.results.append((title, False, reason))
+
+    def plot(self, csv_path: Path, png: Path, more: list[str]) -> None:
+        """Plot a trace with tools/plot-trace, or with --plot-later leave the
+        command to the caller (run-demo plots on the host: matplotlib takes
+        minutes to start in a VM without KVM)."""
+        argv = [str(ROOT / "tools" / "plot-trace"), str(csv_path), "-o", str(png), *more]
+        rel = (lambda p: p.relative_to(ROOT) if p.is_relative_to(ROOT) else p)
+        if self.plot_later is not None:
+            with open(self.plot_later, "a") as f:
+                f.write(json.dumps(argv) + "\n")
+            say(f"trace {rel(csv_path)}, plot {rel(png)} (drawn on the host after the run)")
+            return
+        subprocess.run([sys.executable, *argv], check=True, timeout=PLOT_TIMEOUT)
+        say(f"trace {rel(csv_path)}, plot {rel(png)}")
 
     def start_device(self, node_id: int, device: str, storage: bool = False) -> None:
         lss = device in self.lss_only       # its node-ID only through LSS (FAULHABER)
@@ -208,7 +275,7 @@ class Demo:
         for name in self.devices:
             p = self.tmp / f"{name}.eds"
             subprocess.run([str(self.daemon), "--device", name, "--export-eds", str(p)],
-                           check=True)
+                           check=True, timeout=30)
             self.eds[name] = p
         say(f"EDS exported: {', '.join(sorted(self.eds))}")
         self.start_device(GENERIC_ID, "generic-301", storage=True)
@@ -445,11 +512,8 @@ class Demo:
         self.out.mkdir(parents=True, exist_ok=True)
         csv_path, png = self.out / "cia402-move.csv", self.out / "cia402-move.png"
         write_csv(csv_path, samples)
-        subprocess.run([sys.executable, str(ROOT / "tools" / "plot-trace"), str(csv_path),
-                        "-o", str(png), "-o", str(png.with_suffix(".svg")), "--title",
-                        f"cia402 node {nid}: profile position 0 to {target}"], check=True)
-        say(f"trace {csv_path.relative_to(ROOT) if csv_path.is_relative_to(ROOT) else csv_path}"
-            f", plot {png.relative_to(ROOT) if png.is_relative_to(ROOT) else png}")
+        self.plot(csv_path, png, ["-o", str(png.with_suffix(".svg")), "--title",
+                                  f"cia402 node {nid}: profile position 0 to {target}"])
         return f"target {target} reached ({state_of(end.statusword)}), plot {png.name}"
 
     def valve_id(self) -> int:
@@ -502,13 +566,9 @@ class Demo:
         self.out.mkdir(parents=True, exist_ok=True)
         csv_path, png = self.out / "cia408-step.csv", self.out / "cia408-step.png"
         write_valve_csv(csv_path, samples)
-        subprocess.run([sys.executable, str(ROOT / "tools" / "plot-trace"), str(csv_path),
-                        "-o", str(png), "--title",
-                        f"cia408 node {nid}: vprc set-point steps (position = actual value, "
-                        f"demand = set-point, velocity = control deviation)"],
-                       check=True)
-        say(f"trace {csv_path.relative_to(ROOT) if csv_path.is_relative_to(ROOT) else csv_path}"
-            f", plot {png.relative_to(ROOT) if png.is_relative_to(ROOT) else png}")
+        self.plot(csv_path, png, ["--title",
+                                  f"cia408 node {nid}: vprc set-point steps (position = actual "
+                                  f"value, demand = set-point, velocity = control deviation)"])
         # NMT stop forces the fault reaction; the EMCY 0x8100 when it may go out
         m = self.watch.mark()
         self.nmt(nid, "STOPPED")
@@ -570,9 +630,16 @@ class Demo:
         self.devices = ["generic-301"] + [d for d in wanted if d != "generic-301"]
         print(f"canopen demo: python-canopen {canopen.__version__} master on {self.iface}; "
               f"devices: {', '.join(self.devices)}", flush=True)
+        try:
+            self.steps()
+        except StepHung as e:
+            print(f"\ndemo: stopped after the step that hung ({e})", flush=True)
+        return self.summary()
+
+    def steps(self) -> None:
         self.step("boot-up", self.boot)
         if not self.nodes:
-            return self.summary()
+            return
         self.step("identity over SDO", self.identity)
         self.step("NMT and heartbeats", self.nmt_and_heartbeats)
         self.step("PDO mapped and exchanged at SYNC", self.pdo_at_sync)
@@ -587,7 +654,6 @@ class Demo:
         if "cia401" in self.devices:
             self.step("CiA 401 I/O module: outputs, inputs, control interface", self.io_module)
         self.step("stop", self.shutdown)
-        return self.summary()
 
     def summary(self) -> int:
         print("\n== summary ==", flush=True)
@@ -617,8 +683,12 @@ def main() -> int:
     ap.add_argument("--devices", nargs="+", metavar="NAME",
                     help="devices to bring up (default: generic-301 cia402 cia401; 'all': every "
                          "device of canopen-device --list-devices)")
+    ap.add_argument("--plot-later", metavar="FILE",
+                    help="write the plot-trace commands to FILE (one JSON list a line) "
+                         "instead of running them (tools/run-demo plots on the host)")
     a = ap.parse_args()
-    demo = Demo(Path(a.daemon), a.iface, Path(a.out), a.devices)
+    demo = Demo(Path(a.daemon), a.iface, Path(a.out), a.devices,
+                Path(a.plot_later) if a.plot_later else None)
     try:
         return demo.run()
     finally:

@@ -126,6 +126,7 @@ void co_emcy_raise(co_node_t *node, uint16_t code, uint8_t reg_bits, const uint8
         data = filled;
     }
     history_push(node, code, data);
+    co_svc_touch_all(node); /* the queue, and what reacts to errors */
     send_code(node, code, data);
     if (CO_SET(node, emcy.state_pair) != 0U) {
         send_code(node, CO_EMCY_NO_ERROR, NULL);
@@ -145,6 +146,7 @@ void co_emcy_clear(co_node_t *node, uint16_t code)
     node->emcy.n_active--;
     node->emcy.active[i] = node->emcy.active[node->emcy.n_active];
     update_errreg(node);
+    co_svc_touch_all(node);
     if ((node->emcy.n_active == 0U) || (CO_SET(node, emcy.reset) == CO_EMCY_RESET_EACH_CLEAR)) {
         send_code(node, CO_EMCY_NO_ERROR, NULL);
     }
@@ -283,8 +285,8 @@ static co_err_t emcy_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
 }
 
 static const co_svc_hook_t emcy_hooks[] = {
-    {0x1003U, 0x1003U, CO_SVC_READ | CO_SVC_CHECK | CO_SVC_WRITTEN, emcy_obj},
-    {0x1014U, 0x1015U, CO_SVC_CHECK, emcy_obj},
+    {0x1003U, 0x1003U, CO_SVC_READ | CO_SVC_CHECK | CO_SVC_WRITTEN, emcy_obj, CO_ROW_EMCY},
+    {0x1014U, 0x1015U, CO_SVC_CHECK, emcy_obj, CO_ROW_EMCY},
 };
 
 const co_service_t co_svc_emcy = {

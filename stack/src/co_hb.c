@@ -7,6 +7,8 @@
 
 enum { HBC_UNUSED = 0, HBC_WAITING, HBC_ACTIVE, HBC_LOST };
 enum { GUARD_OFF = 0, GUARD_ARMED, GUARD_LOST };
+#define HB_ON    0x01U /* co_errctl_t.hb_flags: the producer runs */
+#define HB_MUTED 0x02U /* heartbeats held back (co_node_hb_mute) */
 
 static uint32_t ms_to_us(uint32_t ms)
 {
@@ -81,11 +83,19 @@ static void guard_check(co_node_t *node)
     }
 }
 
+/* 0x1017 written (CiA 301: the producer's cycle time). Switched on, the
+ * cycle starts at the write; written while the producer runs, the cycle
+ * goes on: the next heartbeat is due one (new) period after the last one,
+ * at once if that has passed. A write does not restart the cycle, or a
+ * master writing 0x1017 faster than its period would silence the node. */
 static void producer_changed(co_node_t *node)
 {
-    if (heartbeat_producing(node)) {
-        node->errctl.hb_deadline = node->now + ms_to_us(*node->errctl.hb_prod);
+    bool on = heartbeat_producing(node);
+
+    if (on && ((node->errctl.hb_flags & HB_ON) == 0U)) {
+        node->errctl.hb_last = node->now;
     }
+    node->errctl.hb_flags = (uint8_t)((node->errctl.hb_flags & ~HB_ON) | (on ? HB_ON : 0U));
     guard_check(node);
 }
 
@@ -123,9 +133,9 @@ static void hb_reset(co_node_t *node)
     node->errctl.guard_toggle = 0U;
     node->errctl.guard_state = (uint8_t)GUARD_OFF;
     /* The boot-up frame counts as the first heartbeat. */
-    if (heartbeat_producing(node)) {
-        node->errctl.hb_deadline = node->now + ms_to_us(*node->errctl.hb_prod);
-    }
+    node->errctl.hb_last = node->now;
+    node->errctl.hb_flags = (uint8_t)((node->errctl.hb_flags & ~HB_ON) |
+                                      (heartbeat_producing(node) ? HB_ON : 0U));
     for (uint8_t k = 0U; k < node->errctl.n_hb_cons; k++) {
         node->errctl.hbc[k].state = (uint8_t)HBC_UNUSED;
     }
@@ -199,18 +209,21 @@ static uint32_t errctl_process(co_node_t *node, uint32_t next)
     uint32_t now = node->now;
 
     if (heartbeat_producing(node)) {
-        if (co_time_reached(now, node->errctl.hb_deadline)) {
+        /* A change of the NMT state sends no heartbeat of its own: CiA 301
+         * defines the heartbeat as cyclic (the next one carries the new
+         * state); only the boot-up marks a transition. */
+        uint32_t period = ms_to_us(*node->errctl.hb_prod);
+        if (co_time_reached(now, node->errctl.hb_last + period)) {
             uint8_t st = node->nmt;
-            uint32_t period = ms_to_us(*node->errctl.hb_prod);
-            if (node->errctl.hb_muted == 0U) {
+            if ((node->errctl.hb_flags & HB_MUTED) == 0U) {
                 co_tx(node, 0x700UL + node->node_id, &st, 1U);
             }
-            node->errctl.hb_deadline += period;
-            if (co_time_reached(now, node->errctl.hb_deadline)) {
-                node->errctl.hb_deadline = now + period; /* fell behind: no burst */
+            node->errctl.hb_last += period;
+            if (co_time_reached(now, node->errctl.hb_last + period)) {
+                node->errctl.hb_last = now; /* fell behind (or a shorter period): no burst */
             }
         }
-        next = co_deadline_min(now, next, node->errctl.hb_deadline);
+        next = co_deadline_min(now, next, node->errctl.hb_last + period);
     }
     for (uint8_t k = 0U; k < node->errctl.n_hb_cons; k++) {
         co_hb_consumer_t *c = &node->errctl.hbc[k];
@@ -243,12 +256,14 @@ static uint32_t errctl_process(co_node_t *node, uint32_t next)
 
 void co_node_hb_mute(co_node_t *node, bool muted, uint32_t now_us)
 {
-    bool was = (node->errctl.hb_muted != 0U);
+    bool was = (node->errctl.hb_flags & HB_MUTED) != 0U;
 
-    node->errctl.hb_muted = muted ? 1U : 0U;
-    if (was && !muted) {
-        node->errctl.hb_deadline = now_us; /* the first heartbeat at once */
+    node->errctl.hb_flags = (uint8_t)((node->errctl.hb_flags & ~HB_MUTED) | (muted ? HB_MUTED : 0U));
+    if (was && !muted && heartbeat_producing(node)) {
+        /* the first heartbeat at once */
+        node->errctl.hb_last = now_us - ms_to_us(*node->errctl.hb_prod);
     }
+    co_svc_touch(node, CO_ROW_ERRCTL);
 }
 
 /* ------------------------------------------------------------ service */
@@ -365,8 +380,8 @@ static co_err_t errctl_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
 }
 
 static const co_svc_hook_t errctl_hooks[] = {
-    {0x100CU, 0x100DU, CO_SVC_CHECK | CO_SVC_WRITTEN, errctl_obj},
-    {0x1016U, 0x1017U, CO_SVC_CHECK | CO_SVC_WRITTEN, errctl_obj},
+    {0x100CU, 0x100DU, CO_SVC_CHECK | CO_SVC_WRITTEN, errctl_obj, CO_ROW_ERRCTL},
+    {0x1016U, 0x1017U, CO_SVC_CHECK | CO_SVC_WRITTEN, errctl_obj, CO_ROW_ERRCTL},
 };
 
 const co_service_t co_svc_errctl = {

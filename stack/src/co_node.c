@@ -67,6 +67,7 @@ void co_node_tx_ready(co_node_t *node, uint32_t now_us)
                 (void)co_services[k]->process(node, CO_NO_DEADLINE);
             }
         }
+        co_svc_touch_all(node); /* their deadlines, taken anew by co_node_process */
     }
 }
 
@@ -252,6 +253,11 @@ void co_rx_dispatch(co_node_t *node, const co_frame_t *f, uint16_t cob, uint32_t
     }
     if (slot != NULL) {
         co_node_clock(node, now_us);
+        if (slot->kind != CO_ROW_SYNC) {
+            /* its timers may have changed (a SYNC received changes none: the
+             * producer's run from its own period) */
+            co_svc_touch(node, slot->kind);
+        }
         co_services[slot->kind]->rx(node, slot->arg, f);
     } else if ((node->pdo.fc & fc) != 0U) {
         rx_pdo(node, cob, f, now_us);
@@ -285,12 +291,16 @@ CO_NOINLINE void co_node_stalled(co_node_t *node, uint32_t now_us)
 {
     uint16_t n = (uint16_t)(node->dev->n_rpdo + node->dev->n_tpdo);
 
-    node->errctl.hb_deadline = now_us;
+    if (node->errctl.hb_prod != NULL) {
+        /* the next heartbeat due now */
+        node->errctl.hb_last = now_us - co_dict_us(*node->errctl.hb_prod, 1000UL);
+    }
     node->errctl.guard_deadline = now_us;
     node->sync.deadline = now_us;
     node->sync.last = now_us - (uint32_t)CO_HORIZON_US; /* the SYNC window is long closed */
     node->emcy.next = now_us;
     node->sdo.deadline = now_us;
+    co_svc_touch_all(node);
 #if CO_LSS
     node->lss.switch_at = now_us;
 #endif
@@ -303,21 +313,82 @@ CO_NOINLINE void co_node_stalled(co_node_t *node, uint32_t now_us)
     }
 }
 
+/* The services that run now: every one once the earliest deadline they
+ * returned has come (or the TX path holds frames back), else only those
+ * with something new and, while event-driven TPDOs detect changes, the PDO
+ * service. An idle call costs a comparison. */
+static uint16_t services_due(co_node_t *node, uint32_t now_us)
+{
+    uint16_t run;
+
+    if ((node->txq_len > 0U) ||
+        ((node->due != CO_NO_DEADLINE) && co_time_reached(now_us, node->due))) {
+        co_svc_touch_all(node);
+    }
+    run = node->svc_run;
+    if (node->pdo.poll != 0U) {
+        run |= (uint16_t)(1U << CO_ROW_PDO);
+    }
+    return run;
+}
+
+/* One pass over the rows of @p run (and those touched meanwhile by a row
+ * before them), in table order; returns the earlier of @p next and their
+ * deadlines. */
+static uint32_t run_rows(co_node_t *node, uint16_t run, uint32_t next)
+{
+    uint8_t rows = services_running(node);
+    uint8_t k = 0U;
+
+    for (;;) {
+        uint16_t rest = (uint16_t)((run | node->svc_run) >> k);
+        if (rest == 0U) {
+            break;
+        }
+        while ((rest & 1U) == 0U) {
+            rest >>= 1U;
+            k++;
+        }
+        if (k >= rows) {
+            break;
+        }
+        node->svc_run &= (uint16_t)~(1U << k);
+        if (co_services[k]->process != NULL) {
+            next = co_services[k]->process(node, next);
+        }
+        k++;
+    }
+    return next;
+}
+
 uint32_t co_node_process(co_node_t *node, uint32_t now_us)
 {
-    uint32_t next = CO_NO_DEADLINE;
+    uint32_t next;
+    uint16_t run;
 
     co_node_clock(node, now_us);
     co_rx_settle(node); /* COB-IDs the application changed since */
     tx_drain(node);
-    for (uint8_t k = 0U; k < services_running(node); k++) {
-        if (co_services[k]->process != NULL) {
-            next = co_services[k]->process(node, next);
+    run = services_due(node, now_us);
+    if (run == 0U) {
+        next = node->due;
+    } else {
+        /* an earlier deadline than the cached one comes from the rows that run */
+        next = (run == CO_SVC_ALL) ? CO_NO_DEADLINE : node->due;
+        node->svc_run = 0U;
+        next = run_rows(node, run, next);
+        if (node->svc_run != 0U) {
+            /* rows touched during the pass before their turn: once more
+             * (what is touched after that runs at the next call) */
+            run = node->svc_run;
+            node->svc_run = 0U;
+            next = run_rows(node, run, next);
         }
-    }
-    if (node->txq_len > 0U) {
-        /* TX path still full: look again in a millisecond */
-        next = co_deadline_min(now_us, next, now_us + 1000U);
+        if (node->txq_len > 0U) {
+            /* TX path still full: look again in a millisecond */
+            next = co_deadline_min(now_us, next, now_us + 1000U);
+        }
+        node->due = next;
     }
     if ((next != CO_NO_DEADLINE) && !co_time_reached(next, now_us)) {
         next = now_us; /* never a deadline before the time given */
@@ -335,6 +406,7 @@ void co_node_set_state(co_node_t *node, co_nmt_state_t st)
         return;
     }
     node->nmt = (uint8_t)st;
+    co_svc_touch_all(node);
     for (uint8_t k = 0U; k < co_n_services; k++) {
         if (co_services[k]->nmt != NULL) {
             co_services[k]->nmt(node, from);
@@ -549,6 +621,7 @@ co_result_t co_node_init(co_node_t *node, const co_node_config_t *cfg, uint32_t 
     node->pdo.p = cfg->pdo;
     node->pdo.rx = cfg->pdo_rx;
     node->now = now_us;
+    node->svc_run = CO_SVC_ALL;
     r = bind_services(node); /* LSS first: an LSS-stored node-ID replaces cfg->node_id */
     if (r != CO_RESULT_OK) {
         return r;

@@ -153,6 +153,13 @@ static const co_svc_hook_t *svc_hook(const co_node_t *node, uint16_t index)
     return NULL;
 }
 
+uint8_t co_od_svc_ops(const co_node_t *node, uint16_t index)
+{
+    const co_svc_hook_t *h = svc_hook(node, index);
+
+    return (h != NULL) ? h->ops : 0U;
+}
+
 co_result_t co_od_register(co_node_t *node, const co_svc_hook_t *h)
 {
     uint8_t at = node->n_svc_hooks;
@@ -206,9 +213,19 @@ static inline co_err_t svc_read(co_node_t *node, const co_od_entry_t *e, const c
                : CO_OK;
 }
 
+/* A write of an object a service owns: that service runs at the next
+ * co_node_process (its deadlines may have changed). */
+static void touch_owner(co_node_t *node, const co_svc_hook_t *h)
+{
+    if (h != NULL) {
+        co_svc_touch(node, h->row);
+    }
+}
+
 static void svc_written(co_node_t *node, const co_svc_hook_t *h, const co_od_entry_t *e,
                         const co_od_sub_t *s)
 {
+    touch_owner(node, h);
     if ((h != NULL) && ((h->ops & CO_SVC_WRITTEN) != 0U)) {
         (void)h->fn(node, CO_SVC_WRITTEN, e, s, NULL, 0U);
     }
@@ -449,6 +466,7 @@ co_err_t co_od_write_value(co_node_t *node, const co_od_entry_t *e, const co_od_
         /* plain stored value */
     }
     if ((sh != NULL) && ((sh->ops & CO_SVC_COMMIT) != 0U)) {
+        touch_owner(node, sh);
         return sh->fn(node, CO_SVC_COMMIT, e, s, data, len); /* the service's commit */
     }
     co_od_commit(node, s, data, len);

@@ -89,33 +89,47 @@ static co_err_t check_entry(const co_node_t *node, bool tx, uint32_t v, uint8_t 
 }
 
 #if CO_PDO_FAST_MAX > 0
-/* A mapped object the PDO engine may copy directly between the RAM image
- * and the frame, with the same result as the dictionary's path: no hook, no
- * limits, none of the core's rules (index 0x2000 and above), a RAM value of
- * its type's size, mapped whole. An RPDO does not copy a BOOLEAN directly
- * (the dictionary refuses values above 1). */
-static bool is_plain(const co_od_entry_t *e, const co_od_sub_t *s, bool tx, uint8_t bits)
+/* The code of a mapped object the PDO engine may copy directly between the
+ * RAM image and the frame (co_pdo_code), with the same result as the
+ * dictionary's path, else CO_PDO_SLOW. Direct: a RAM value of its type's
+ * size (not ROM, not CO_SUB_HOOKIO) at an offset the code holds, of an
+ * entry without a hook slot (a hook bound later finds the PDO going through
+ * the dictionary already), mapped in whole bytes at a byte boundary (the
+ * low bytes of a longer value: a TPDO sends them, an RPDO extends them to
+ * the value's size, by the sign for signed types). A TPDO reads it directly
+ * when no service reads the object first (CO_SVC_READ); an RPDO writes it
+ * directly when no service hooks the object at all, the value has no
+ * limits and is not a BOOLEAN (the dictionary refuses values above 1). */
+static uint16_t direct_code(const co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
+                            bool tx, uint8_t bits, uint16_t pos)
 {
     uint8_t size = co_type_len(s->type);
+    uint8_t svc = co_od_svc_ops(node, e->index);
 
-    return (e->index >= 0x2000U) && (e->hook == 0U) &&
-           ((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO | CO_SUB_LIMIT)) == 0U) &&
-           (s->size == size) && (bits == (uint8_t)(size * 8U)) &&
-           (tx || (s->type != (uint8_t)CO_BOOLEAN));
+    if ((e->hook != 0U) || ((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) != 0U) ||
+        (s->size != size) || (s->off >= CO_PDO_OFF_END) || ((pos & 7U) != 0U) ||
+        ((bits & 7U) != 0U)) {
+        return CO_PDO_SLOW;
+    }
+    if (tx ? ((svc & CO_SVC_READ) != 0U)
+           : ((svc != 0U) || ((s->flags & CO_SUB_LIMIT) != 0U) ||
+              (s->type == (uint8_t)CO_BOOLEAN))) {
+        return CO_PDO_SLOW;
+    }
+    return (uint16_t)((uint32_t)s->off | (((uint32_t)size - 1U) << 12U) |
+                      (co_type_is_signed(s->type) ? (uint32_t)CO_PDO_SIGNED : 0U));
 }
 #endif
 
 /* Validate the first @p count entries of PDO i's mapping; *len gets bytes.
- * With @p p, also note where the entries are if all of them (at most
- * CO_PDO_FAST_MAX) are plain values at byte boundaries (p->plain,
- * CO_PDO_F_PLAIN). */
+ * With @p p, also resolve the first CO_PDO_FAST_MAX entries (p->plain). */
 static co_err_t check_mapping(const co_node_t *node, uint16_t i, uint8_t count, uint8_t *len,
                               co_pdo_t *p)
 {
     const co_pdo_desc_t *d = &node->dev->pdo[i];
     bool tx = is_tpdo(node, i);
     uint16_t total = 0U;
-    uint8_t plain = 0U;
+    bool direct = count <= CO_PDO_FAST_MAX;
 
     if (count > d->map_max) {
         return CO_ERR_MAP_LEN;
@@ -130,10 +144,9 @@ static co_err_t check_mapping(const co_node_t *node, uint16_t i, uint8_t count, 
             return err;
         }
 #if CO_PDO_FAST_MAX > 0
-        if ((p != NULL) && (k < CO_PDO_FAST_MAX) && (s != NULL) && ((total & 7U) == 0U) &&
-            is_plain(e, s, tx, bits)) {
-            p->plain[k] = s->off;
-            plain++;
+        if ((p != NULL) && (k < CO_PDO_FAST_MAX)) {
+            p->plain[k] = (s != NULL) ? direct_code(node, e, s, tx, bits, total) : CO_PDO_DUMMY;
+            direct = direct && (p->plain[k] != CO_PDO_SLOW) && ((bits & 7U) == 0U);
         }
 #endif
         total = (uint16_t)(total + bits);
@@ -141,8 +154,8 @@ static co_err_t check_mapping(const co_node_t *node, uint16_t i, uint8_t count, 
     if (total > 64U) {
         return CO_ERR_MAP_LEN;
     }
-    if ((p != NULL) && (plain == count)) {
-        p->flags |= CO_PDO_F_PLAIN;
+    if ((p != NULL) && direct) {
+        p->flags |= CO_PDO_F_DIRECT;
     }
     *len = (uint8_t)((total + 7U) / 8U);
     return CO_OK;
@@ -258,7 +271,7 @@ static void compile_mapping(co_node_t *node, uint16_t i)
     uint8_t count = co_ram_u8(node, node->dev->pdo[i].count);
     uint8_t len = 0U;
 
-    p->flags &= (uint16_t)~(CO_PDO_F_MAP_OK | CO_PDO_F_PLAIN);
+    p->flags &= (uint16_t)~(CO_PDO_F_MAP_OK | CO_PDO_F_DIRECT);
     p->len = 0U;
     if ((count != 0U) && (check_mapping(node, i, count, &len, p) == CO_OK)) {
         p->flags |= CO_PDO_F_MAP_OK;
@@ -271,7 +284,7 @@ static void restart(co_node_t *node, uint16_t i)
 {
     co_pdo_t *p = &node->pdo.p[i];
 
-    p->flags &= (uint16_t)(CO_PDO_F_MAP_OK | CO_PDO_F_PLAIN | CO_PDO_F_TIMEOUT | CO_PDO_F_SHORT |
+    p->flags &= (uint16_t)(CO_PDO_F_MAP_OK | CO_PDO_F_DIRECT | CO_PDO_F_TIMEOUT | CO_PDO_F_SHORT |
                            CO_PDO_F_LONG);
     p->count = 0U;
 }
@@ -391,7 +404,7 @@ static co_err_t pdo_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
 }
 
 static const co_svc_hook_t pdo_hooks[] = {
-    {0x1400U, 0x1BFFU, CO_SVC_CHECK | CO_SVC_WRITTEN, pdo_obj},
+    {0x1400U, 0x1BFFU, CO_SVC_CHECK | CO_SVC_WRITTEN, pdo_obj, CO_ROW_PDO},
 };
 
 const co_service_t co_svc_pdo = {

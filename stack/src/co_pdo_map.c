@@ -1,9 +1,9 @@
 /*
  * Mapped objects through the dictionary: one mapping entry (index:16 sub:8
  * bits:8) sampled into a TPDO's bits or written from an RPDO's bits by the
- * same path as SDO (hooks, limits, the core's rules), and the bit copies.
- * PDOs whose entries are all plain values skip this (co_tpdo.c, co_rpdo.c
- * copy them directly).
+ * same path as SDO (hooks, limits, the core's rules), and the bit copies;
+ * entries resolved when the mapping was enabled (co_pdo_config.c,
+ * co_pdo_code) are copied directly between frame and RAM image.
  */
 #include "co_priv.h"
 
@@ -36,7 +36,7 @@ static void bits_get(uint8_t *dst, const uint8_t *src, uint16_t spos, uint8_t n)
 /* Sample one mapped object through the dictionary's read path into @p out
  * at bit @p pos. An object that cannot be read (a hook's veto) is sent as
  * zeros. */
-static void sample(co_node_t *node, uint32_t v, uint16_t pos, uint8_t *out)
+CO_NOINLINE static void sample(co_node_t *node, uint32_t v, uint16_t pos, uint8_t *out)
 {
     uint8_t bits = (uint8_t)(v & 0xFFU);
     const co_od_entry_t *e;
@@ -71,7 +71,7 @@ static void unpack(uint8_t *out, const uint8_t *data, uint16_t pos, uint8_t bits
 /* Write one mapped object (entry @p v, at bit @p pos of @p data) through
  * the dictionary's write path. A value the object refuses (limits, a hook's
  * veto) is dropped. */
-static void store(co_node_t *node, uint32_t v, uint16_t pos, const uint8_t *data)
+CO_NOINLINE static void store(co_node_t *node, uint32_t v, uint16_t pos, const uint8_t *data)
 {
     uint16_t index = (uint16_t)(v >> 16U);
     uint8_t bits = (uint8_t)(v & 0xFFU);
@@ -95,13 +95,19 @@ static void store(co_node_t *node, uint32_t v, uint16_t pos, const uint8_t *data
 void co_pdo_sample(co_node_t *node, uint16_t i, uint8_t *out)
 {
     const co_pdo_desc_t *d = &node->dev->pdo[i];
+    const co_pdo_t *p = &node->pdo.p[i];
     uint8_t count = co_ram_u8(node, d->count);
     uint16_t pos = 0U;
     uint16_t entry = d->map;
 
     for (uint8_t k = 0U; k < count; k++) {
         uint32_t v = co_ram_u32(node, entry);
-        sample(node, v, pos, out);
+        uint16_t code = co_pdo_code(p, k);
+        if (code < CO_PDO_DUMMY) {
+            co_pdo_get_direct(node, code, &out[pos >> 3U], (uint8_t)((v & 0xFFU) >> 3U));
+        } else {
+            sample(node, v, pos, out);
+        }
         pos = (uint16_t)(pos + (v & 0xFFU));
         entry = (uint16_t)(entry + 4U);
     }
@@ -110,6 +116,7 @@ void co_pdo_sample(co_node_t *node, uint16_t i, uint8_t *out)
 void co_pdo_store(co_node_t *node, uint16_t i, const uint8_t *data, uint8_t dlc)
 {
     const co_pdo_desc_t *d = &node->dev->pdo[i];
+    const co_pdo_t *p = &node->pdo.p[i];
     uint8_t count = co_ram_u8(node, d->count);
     uint16_t avail = (uint16_t)((dlc > 8U) ? 64U : (dlc * 8U));
     uint16_t pos = 0U;
@@ -118,10 +125,17 @@ void co_pdo_store(co_node_t *node, uint16_t i, const uint8_t *data, uint8_t dlc)
     for (uint8_t k = 0U; k < count; k++) {
         uint32_t v = co_ram_u32(node, entry);
         uint16_t end = (uint16_t)(pos + (v & 0xFFU));
+        uint16_t code = co_pdo_code(p, k);
         if (end > avail) {
             break;
         }
-        store(node, v, pos, data);
+        if (code < CO_PDO_DUMMY) {
+            co_pdo_put_direct(node, code, &data[pos >> 3U], (uint8_t)((v & 0xFFU) >> 3U));
+        } else if (code == CO_PDO_DUMMY) {
+            /* a gap */
+        } else {
+            store(node, v, pos, data);
+        }
         pos = end;
         entry = (uint16_t)(entry + 4U);
     }

@@ -213,6 +213,22 @@ void co_node_set_state(co_node_t *node, co_nmt_state_t st);
 /* Tell the application that NMT command @p cs is about to be executed. */
 void co_node_nmt_notice(co_node_t *node, uint8_t cs);
 
+/* ---- what co_node_process runs: only the services with something new
+ * (co_node_t.svc_run) until the earliest deadline they returned has come */
+#define CO_SVC_ALL 0xFFFFU /* every row, and the cached deadline is stale */
+/* Service row @p k has something new (a frame for it, a write of one of
+ * its objects): it runs at the next co_node_process. */
+static inline void co_svc_touch(co_node_t *node, uint8_t k)
+{
+    node->svc_run |= (uint16_t)(1U << k);
+}
+/* Something that may concern any service (an NMT state change, an error,
+ * the TX path): they all run and their deadlines are taken anew. */
+static inline void co_svc_touch_all(co_node_t *node)
+{
+    node->svc_run = CO_SVC_ALL;
+}
+
 /* ---- the services (co_services.c): the node's dispatch table */
 
 /* What the dictionary engine asks of a service's hook (co_svc_hook_t.fn),
@@ -236,6 +252,8 @@ typedef struct co_svc_hook {
     uint8_t ops;
     co_err_t (*fn)(co_node_t *node, uint8_t op, const co_od_entry_t *e, const co_od_sub_t *s,
                    const uint8_t *data, uint32_t len);
+    uint8_t row;  /* the owning service's row in co_services[] (CO_ROW_*): a write
+                     of its objects makes it run at the next co_node_process */
 } co_svc_hook_t;
 
 /* Reset kinds a service sees (co_service_t.reset): CO_RESET_NODE and
@@ -264,6 +282,15 @@ typedef struct co_service {
     uint8_t n_hooks;
 } co_service_t;
 
+/* The rows of co_services[] (co_services.c places each service at its row). */
+#define CO_ROW_NMT    ((uint8_t)(CO_LSS))
+#define CO_ROW_SDO    ((uint8_t)(CO_ROW_NMT + 1U))
+#define CO_ROW_ERRCTL ((uint8_t)(CO_ROW_NMT + 2U))
+#define CO_ROW_EMCY   ((uint8_t)(CO_ROW_NMT + 3U))
+#define CO_ROW_SYNC   ((uint8_t)(CO_ROW_NMT + 4U))
+#define CO_ROW_TIME   ((uint8_t)(CO_ROW_NMT + 5U))
+#define CO_ROW_PDO    ((uint8_t)(CO_ROW_NMT + 6U))
+#define CO_ROW_STORE  ((uint8_t)(CO_ROW_NMT + 7U))
 extern const co_service_t *const co_services[];
 extern const uint8_t co_n_services;
 /* The services (one per file; co_services.c puts them in order). */
@@ -341,6 +368,8 @@ void co_od_restore(co_node_t *node, uint16_t from, uint16_t to);
  * overlaps one already registered, CO_RESULT_NO_MEMORY when the table
  * (CO_SVC_HOOKS_MAX) is full. */
 co_result_t co_od_register(co_node_t *node, const co_svc_hook_t *h);
+/* The CO_SVC_* operations the service owning @p index hooks (0: none). */
+uint8_t co_od_svc_ops(const co_node_t *node, uint16_t index);
 /* Store a checked value of @p s from wire bytes (the engine's commit). */
 void co_od_commit(co_node_t *node, const co_od_sub_t *s, const uint8_t *data, uint32_t len);
 
@@ -432,7 +461,31 @@ static inline void co_nmt_error(co_node_t *node, uint8_t sub)
 #define CO_PDO_F_STARTED   0x0400U /* TPDO: SYNC start value reached */
 #define CO_PDO_F_SAMPLED   0x0800U /* TPDO 252: data[] sampled at the last SYNC */
 #define CO_PDO_F_RTR       0x1000U /* TPDO: a remote request waits for an answer */
-#define CO_PDO_F_PLAIN     0x2000U /* every mapping entry is plain (co_pdo_plain) */
+#define CO_PDO_F_DIRECT    0x2000U /* every mapping entry resolved (co_pdo_code) */
+
+/* Mapping entries resolved when the mapping is enabled (co_pdo_t.plain[k],
+ * the first CO_PDO_FAST_MAX entries): a RAM value the PDO copies directly
+ * between frame and RAM image, with the dictionary path's result, is coded
+ * as its RAM offset (bits 0..11), its type's size - 1 (bits 12..14) and
+ * whether it is signed (bit 15); CO_PDO_SLOW: through the dictionary;
+ * CO_PDO_DUMMY: a dummy entry. */
+#define CO_PDO_SLOW     0xFFFFU
+#define CO_PDO_DUMMY    0xFFFEU /* an RPDO's dummy entry: nothing to write */
+#define CO_PDO_OFF_MASK 0x0FFFU
+#define CO_PDO_OFF_END  0x0FFEU /* direct entries have offsets below */
+#define CO_PDO_SIGNED   0x8000U
+CO_INLINE uint16_t co_pdo_code(const co_pdo_t *p, uint8_t k)
+{
+#if CO_PDO_FAST_MAX > 0
+    if (k < CO_PDO_FAST_MAX) {
+        return p->plain[k];
+    }
+#else
+    (void)p;
+    (void)k;
+#endif
+    return CO_PDO_SLOW;
+}
 
 #define CO_PDO_COB_INVALID 0x80000000UL
 #define CO_PDO_COB_NO_RTR  0x40000000UL
@@ -454,19 +507,125 @@ CO_INLINE bool co_pdo_usable(const co_node_t *node, uint16_t i)
            ((node->pdo.p[i].flags & CO_PDO_F_MAP_OK) != 0U);
 }
 
-/* RAM offset of the value of mapping entry k of PDO p, which is plain
- * (CO_PDO_F_PLAIN; co_pdo_config.c decides). */
-static inline uint16_t co_pdo_plain(const co_pdo_t *p, uint8_t k)
+/* @p n bytes of a value between the RAM image (native) and the wire, for
+ * the sizes a direct entry has (1..8): the usual ones without a call. */
+CO_INLINE void co_pdo_to_wire(uint8_t *dst, const uint8_t *src, uint8_t n)
 {
-#if CO_PDO_FAST_MAX > 0
-    if (k < CO_PDO_FAST_MAX) {
-        return p->plain[k];
+    if (n == 1U) {
+        dst[0] = src[0];
+    } else if (n == 2U) {
+        co_to_wire(dst, src, 2U);
+    } else if (n == 4U) {
+        co_to_wire(dst, src, 4U);
+    } else {
+        co_to_wire(dst, src, n);
     }
-#else
-    (void)p;
-    (void)k;
-#endif
-    return 0U; /* not reached: no PDO is plain beyond CO_PDO_FAST_MAX entries */
+}
+
+CO_INLINE void co_pdo_from_wire(uint8_t *dst, const uint8_t *src, uint8_t n)
+{
+    if (n == 1U) {
+        dst[0] = src[0];
+    } else if (n == 2U) {
+        co_from_wire(dst, src, 2U);
+    } else if (n == 4U) {
+        co_from_wire(dst, src, 4U);
+    } else {
+        co_from_wire(dst, src, n);
+    }
+}
+
+/* @p n (1..8) bytes, the usual lengths without a call. */
+CO_INLINE void co_copy_small(uint8_t *dst, const uint8_t *src, uint8_t n)
+{
+    if (n == 1U) {
+        dst[0] = src[0];
+    } else if (n == 2U) {
+        (void)memcpy(dst, src, 2U);
+    } else if (n == 4U) {
+        (void)memcpy(dst, src, 4U);
+    } else {
+        (void)memcpy(dst, src, n);
+    }
+}
+
+/* A resolved entry (co_pdo_code @p code), @p n bytes of the frame at @p at:
+ * the low @p n bytes of the value's wire image (on a little-endian CPU the
+ * first @p n bytes of the native value). */
+CO_INLINE void co_pdo_get_direct(const co_node_t *node, uint16_t code, uint8_t *at, uint8_t n)
+{
+    const uint8_t *v = &node->ram[code & CO_PDO_OFF_MASK];
+    uint8_t size = (uint8_t)(((code >> 12U) & 7U) + 1U);
+
+    if (CO_NATIVE_LE) {
+        co_copy_small(at, v, n);
+    } else if (n == size) {
+        co_pdo_to_wire(at, v, size);
+    } else {
+        uint8_t wire[8];
+        co_to_wire(wire, v, size);
+        (void)memcpy(at, wire, n); /* the low bytes */
+    }
+}
+
+CO_INLINE void co_pdo_put_direct(co_node_t *node, uint16_t code, const uint8_t *at, uint8_t n)
+{
+    uint8_t *v = &node->ram[code & CO_PDO_OFF_MASK];
+    uint8_t size = (uint8_t)(((code >> 12U) & 7U) + 1U);
+
+    if (n == size) {
+        if (CO_NATIVE_LE) {
+            co_copy_small(v, at, n);
+        } else {
+            co_pdo_from_wire(v, at, size);
+        }
+    } else {
+        /* the low bytes, extended by the sign for signed types */
+        uint8_t wire[8];
+        bool neg = ((code & CO_PDO_SIGNED) != 0U) && ((at[n - 1U] & 0x80U) != 0U);
+        (void)memset(wire, neg ? 0xFF : 0x00, sizeof wire);
+        (void)memcpy(wire, at, n);
+        co_from_wire(v, wire, size);
+    }
+}
+
+/* PDO i has CO_PDO_F_DIRECT (every entry resolved, co_pdo_code): its
+ * mapped objects straight into @p out (zeroed by the caller), or from
+ * @p data (@p dlc bytes, the entries the frame covers; dummies are gaps),
+ * without a call. */
+CO_INLINE void co_pdo_sample_direct(const co_node_t *node, uint16_t i, uint8_t *out)
+{
+    const co_pdo_desc_t *d = &node->dev->pdo[i];
+    const co_pdo_t *p = &node->pdo.p[i];
+    uint8_t count = co_ram_u8(node, d->count);
+    uint8_t at = 0U;
+
+    for (uint8_t k = 0U; k < count; k++) {
+        uint8_t n = (uint8_t)((co_ram_u32(node, (uint16_t)(d->map + (4U * k))) & 0xFFU) >> 3U);
+        co_pdo_get_direct(node, co_pdo_code(p, k), &out[at], n);
+        at = (uint8_t)(at + n);
+    }
+}
+
+CO_INLINE void co_pdo_store_direct(co_node_t *node, uint16_t i, const uint8_t *data, uint8_t dlc)
+{
+    const co_pdo_desc_t *d = &node->dev->pdo[i];
+    const co_pdo_t *p = &node->pdo.p[i];
+    uint8_t count = co_ram_u8(node, d->count);
+    uint8_t avail = (dlc > 8U) ? 8U : dlc;
+    uint8_t at = 0U;
+
+    for (uint8_t k = 0U; k < count; k++) {
+        uint8_t n = (uint8_t)((co_ram_u32(node, (uint16_t)(d->map + (4U * k))) & 0xFFU) >> 3U);
+        uint16_t code = co_pdo_code(p, k);
+        if ((uint8_t)(at + n) > avail) {
+            break;
+        }
+        if (code != CO_PDO_DUMMY) {
+            co_pdo_put_direct(node, code, &data[at], n);
+        }
+        at = (uint8_t)(at + n);
+    }
 }
 
 /* Event timer of PDO i in us (0: off). */
@@ -477,10 +636,11 @@ static inline uint32_t co_pdo_event_us(const co_node_t *node, uint16_t i)
 
     return (off == CO_PDO_NONE) ? 0U : co_dict_us(co_ram_u16(node, off), unit);
 }
-/* The mapped objects of PDO i through the dictionary (co_pdo_map.c): sample
- * them into @p out (8 bytes, zeroed by the caller; an object that cannot be
- * read is sent as zeros), or write them from @p data (@p dlc bytes; entries
- * the frame does not cover are skipped, a refused value is dropped). */
+/* The mapped objects of PDO i (co_pdo_map.c), the resolved entries
+ * directly, the others through the dictionary: sample them into @p out (8
+ * bytes, zeroed by the caller; an object that cannot be read is sent as
+ * zeros), or write them from @p data (@p dlc bytes; entries the frame does
+ * not cover are skipped, a refused value is dropped). */
 void co_pdo_sample(co_node_t *node, uint16_t i, uint8_t *out);
 void co_pdo_store(co_node_t *node, uint16_t i, const uint8_t *data, uint8_t dlc);
 void co_rpdo_rx(co_node_t *node, uint16_t i, const co_frame_t *f);

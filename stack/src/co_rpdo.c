@@ -34,33 +34,11 @@ static void rpdo_error(co_node_t *node, uint16_t i, uint16_t flag, uint16_t code
     }
 }
 
-/* Every entry of PDO p is a plain value (CO_PDO_F_PLAIN): copy them from
- * @p data (@p dlc bytes) into the RAM image, those the frame covers. */
-static void apply_plain(co_node_t *node, const co_pdo_t *p, uint16_t map, uint8_t count,
-                        const uint8_t *data, uint8_t dlc)
-{
-    uint8_t at = 0U;
-    uint16_t entry = map;
-
-    for (uint8_t k = 0U; k < count; k++) {
-        uint8_t n = (uint8_t)((co_ram_u32(node, entry) & 0xFFU) >> 3U);
-        if ((uint8_t)(at + n) > dlc) {
-            break;
-        }
-        co_from_wire(&node->ram[co_pdo_plain(p, k)], &data[at], n);
-        at = (uint8_t)(at + n);
-        entry = (uint16_t)(entry + 4U);
-    }
-}
-
 /* Write the mapped objects from @p data (@p dlc bytes). */
 static void apply(co_node_t *node, uint16_t i, const uint8_t *data, uint8_t dlc)
 {
-    const co_pdo_desc_t *d = &node->dev->pdo[i];
-    const co_pdo_t *p = &node->pdo.p[i];
-
-    if ((p->flags & CO_PDO_F_PLAIN) != 0U) {
-        apply_plain(node, p, d->map, co_ram_u8(node, d->count), data, (dlc > 8U) ? 8U : dlc);
+    if ((node->pdo.p[i].flags & CO_PDO_F_DIRECT) != 0U) {
+        co_pdo_store_direct(node, i, data, dlc);
     } else {
         co_pdo_store(node, i, data, dlc);
     }
@@ -110,6 +88,11 @@ void co_rpdo_rx(co_node_t *node, uint16_t i, const co_frame_t *f)
     }
     ev = co_pdo_event_us(node, i);
     if (ev != 0U) {
+        if ((p->flags & CO_PDO_F_TIMER) == 0U) {
+            /* a new deadline (a later one only costs co_node_process an
+             * early look) */
+            co_svc_touch(node, CO_ROW_PDO);
+        }
         p->timer = node->now + ev;
         p->flags |= CO_PDO_F_TIMER;
     }

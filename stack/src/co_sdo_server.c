@@ -638,6 +638,11 @@ static void block_upload_send(co_node_t *node)
         if (!co_tx_try(node, tx_cob(node), d, 8U)) {
             return;
         }
+        if ((t->flags & F_CRC) != 0U) {
+            /* the CRC as the segments go out (an acknowledge of all of them
+             * takes it over, co_crc16 need not read them again) */
+            t->crc_sent = co_crc16(t->crc_sent, &d[1], got);
+        }
         t->seqno++;
         /* the client's answer is due one timeout after the last segment */
         t->deadline = node->now + node->sdo.timeout_us;
@@ -701,8 +706,12 @@ static void block_upload_ack(co_node_t *node, const uint8_t *d)
     } else {
         acked = (uint32_t)ackseq * SEG;
     }
-    if ((t->flags & F_CRC) != 0U) {
-        err = crc_range(node, t->offset, acked);
+    if ((t->flags & F_CRC) == 0U) {
+        /* no CRC */
+    } else if (ackseq == t->seqno) {
+        t->crc = t->crc_sent; /* every segment sent is acknowledged */
+    } else {
+        err = crc_range(node, t->offset, acked); /* the rest goes again */
     }
     if (err != CO_OK) {
         abort_cur(node, err);
@@ -724,6 +733,7 @@ static void block_upload_ack(co_node_t *node, const uint8_t *d)
     t->flags &= (uint8_t)~F_LAST;
     t->blksize = blksize;
     t->seqno = 0U;
+    t->crc_sent = t->crc;
     start(node, S_BLK_UL);
     block_upload_send(node);
 }
@@ -820,6 +830,7 @@ CO_NOINLINE static void transfer_request(co_node_t *node, const uint8_t *d)
     case S_BLK_UL_INI:
         if (d[0] == (CO_SDO_B0(CO_SDO_CCS_BLOCK_UPLOAD) | CO_SDO_BLK_START)) {
             t->seqno = 0U;
+            t->crc_sent = t->crc;
             t->flags &= (uint8_t)~F_LAST;
             start(node, S_BLK_UL);
             block_upload_send(node);

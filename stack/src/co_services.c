@@ -9,16 +9,16 @@
 
 const co_service_t *const co_services[] = {
 #if CO_LSS
-    &co_svc_lss,    /* LSS slave, CiA 305 (alone while unconfigured: CO_SVC_UNCONFIGURED_ROWS) */
+    [0] = &co_svc_lss,    /* LSS slave, CiA 305 (alone while unconfigured: CO_SVC_UNCONFIGURED_ROWS) */
 #endif
-    &co_svc_nmt,    /* NMT command, 0x1029 */
-    &co_svc_sdo,    /* SDO server */
-    &co_svc_errctl, /* heartbeat, node / life guarding: 0x100C, 0x100D, 0x1016, 0x1017 */
-    &co_svc_emcy,   /* EMCY: 0x1001, 0x1003, 0x1014, 0x1015 */
-    &co_svc_sync,   /* SYNC: 0x1005..0x1007, 0x1019 */
-    &co_svc_time,   /* TIME: 0x1012 */
-    &co_svc_pdo,    /* RPDO, TPDO: 0x1400..0x1BFF */
-    &co_svc_store,  /* parameter storage: 0x1010, 0x1011 */
+    [CO_ROW_NMT] = &co_svc_nmt,    /* NMT command, 0x1029 */
+    [CO_ROW_SDO] = &co_svc_sdo,    /* SDO server */
+    [CO_ROW_ERRCTL] = &co_svc_errctl, /* heartbeat, node / life guarding: 0x100C, 0x100D, 0x1016, 0x1017 */
+    [CO_ROW_EMCY] = &co_svc_emcy,   /* EMCY: 0x1001, 0x1003, 0x1014, 0x1015 */
+    [CO_ROW_SYNC] = &co_svc_sync,   /* SYNC: 0x1005..0x1007, 0x1019 */
+    [CO_ROW_TIME] = &co_svc_time,   /* TIME: 0x1012 */
+    [CO_ROW_PDO] = &co_svc_pdo,    /* RPDO, TPDO: 0x1400..0x1BFF */
+    [CO_ROW_STORE] = &co_svc_store,  /* parameter storage: 0x1010, 0x1011 */
 };
 
 const uint8_t co_n_services = (uint8_t)(sizeof(co_services) / sizeof(co_services[0]));

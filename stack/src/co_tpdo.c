@@ -13,31 +13,12 @@
 
 #define RETRY_US 1000UL /* TX path full: try again this much later */
 
-/* Every entry of PDO p is a plain value (CO_PDO_F_PLAIN): copy them from
- * the RAM image into @p out, back to back. */
-static void build_plain(const co_node_t *node, const co_pdo_t *p, uint16_t map, uint8_t count,
-                        uint8_t *out)
-{
-    uint8_t at = 0U;
-    uint16_t entry = map;
-
-    for (uint8_t k = 0U; k < count; k++) {
-        uint8_t n = (uint8_t)((co_ram_u32(node, entry) & 0xFFU) >> 3U);
-        co_to_wire(&out[at], &node->ram[co_pdo_plain(p, k)], n);
-        at = (uint8_t)(at + n);
-        entry = (uint16_t)(entry + 4U);
-    }
-}
-
 /* Sample the mapped objects into @p out (8 bytes, zero-padded). */
 static void build(co_node_t *node, uint16_t i, uint8_t *out)
 {
-    const co_pdo_desc_t *d = &node->dev->pdo[i];
-    const co_pdo_t *p = &node->pdo.p[i];
-
     (void)memset(out, 0, 8U);
-    if ((p->flags & CO_PDO_F_PLAIN) != 0U) {
-        build_plain(node, p, d->map, co_ram_u8(node, d->count), out);
+    if ((node->pdo.p[i].flags & CO_PDO_F_DIRECT) != 0U) {
+        co_pdo_sample_direct(node, i, out);
     } else {
         co_pdo_sample(node, i, out);
     }
@@ -90,11 +71,24 @@ static bool send_event(co_node_t *node, uint16_t i, const uint8_t *data)
 static void send_sync(co_node_t *node, uint16_t i)
 {
     co_pdo_t *p = &node->pdo.p[i];
+    co_frame_t f;
 
-    build(node, i, p->data);
+    /* sampled straight into the frame (the usual case without a call) */
+    (void)memset(f.data, 0, 8U);
+    if ((p->flags & CO_PDO_F_DIRECT) != 0U) {
+        co_pdo_sample_direct(node, i, f.data);
+    } else {
+        co_pdo_sample(node, i, f.data);
+    }
+    f.id = co_pdo_cob(node, i) & 0x7FFUL;
+    f.dlc = p->len;
+    (void)memcpy(p->data, f.data, 8U);
     p->flags &= (uint16_t)~CO_PDO_F_EVENT;
-    if (!send(node, i, p->data)) {
+    if (co_tx_now(node, &f)) {
+        p->flags |= CO_PDO_F_SENT;
+    } else {
         p->flags |= CO_PDO_F_SYNC_PEND;
+        co_svc_touch(node, CO_ROW_PDO); /* retried while the window is open */
     }
 }
 
@@ -195,6 +189,7 @@ void co_tpdo_rtr(co_node_t *node, uint16_t i)
     if (!answer_rtr(node, i)) {
         node->pdo.p[i].flags |= CO_PDO_F_RTR;
     }
+    co_svc_touch(node, CO_ROW_PDO); /* the retry, or the timers an answer restarts */
 }
 
 /* The event timer and the inhibit time of an event-driven TPDO, at now. */
@@ -329,6 +324,7 @@ CO_INLINE uint32_t tpdo_pass(co_node_t *node, uint32_t next, bool detect)
 {
     uint16_t n = (uint16_t)(node->dev->n_rpdo + node->dev->n_tpdo);
 
+    node->pdo.poll = 0U;
     for (uint16_t i = node->dev->n_rpdo; i < n; i++) {
         co_pdo_t *p = &node->pdo.p[i];
         uint8_t type;
@@ -352,6 +348,8 @@ CO_INLINE uint32_t tpdo_pass(co_node_t *node, uint32_t next, bool detect)
             }
         }
         if (type >= 254U) {
+            /* change detection compares the data at every co_node_process */
+            node->pdo.poll = detect ? 1U : node->pdo.poll;
             next = detect ? event_driven(node, i, next) : event_requested(node, i, next);
         }
     }
@@ -367,6 +365,7 @@ static CO_NOINLINE uint32_t tpdo_pass_requested(co_node_t *node, uint32_t next)
 uint32_t co_tpdo_process(co_node_t *node, uint32_t next)
 {
     if (node->nmt != (uint8_t)CO_NMT_OPERATIONAL) {
+        node->pdo.poll = 0U;
         return next;
     }
     if (CO_SET(node, tpdo.change_detection) == CO_TPDO_CHANGE_IGNORED) {
@@ -386,5 +385,6 @@ co_err_t co_tpdo_request(co_node_t *node, uint16_t n)
         return CO_ERR_STORE_STATE;
     }
     node->pdo.p[i].flags |= CO_PDO_F_EVENT;
+    co_svc_touch(node, CO_ROW_PDO);
     return CO_OK;
 }

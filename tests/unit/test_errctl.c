@@ -142,6 +142,51 @@ static void heartbeat_producer_zero_stops(void **state)
     tb_expect_none(BUS);
 }
 
+/* CiA 301: 0x1017 is the producer's cycle time. Written again while the
+ * producer runs, the cycle goes on (a master writing it every millisecond
+ * must not silence the node, issue 15): the next heartbeat is due one (new)
+ * period after the last one, at once if that has passed. A change of the
+ * NMT state sends no heartbeat of its own (CiA 301 defines the heartbeat as
+ * cyclic; only the boot-up marks a transition): the next one carries the
+ * new state. */
+static void heartbeat_rewrite_keeps_cycle(void **state)
+{
+    tb_xfer(BUS, "601 2B 17 10 00 64 00 00 00", "581 60 17 10 00 00 00 00 00");
+    /* the same 100 ms written every millisecond for 250 ms */
+    for (int i = 1; i <= 250; i++) {
+        tb_advance(BUS, 1000U);
+        if ((i % 100) == 0) {
+            tb_expect(BUS, "701 7F");
+        }
+        tb_xfer(BUS, "601 2B 17 10 00 64 00 00 00", "581 60 17 10 00 00 00 00 00");
+    }
+    /* 50 ms after the last heartbeat: 200 ms, due 200 ms after that one */
+    tb_xfer(BUS, "601 2B 17 10 00 C8 00 00 00", "581 60 17 10 00 00 00 00 00");
+    tb_advance(BUS, 149999U);
+    tb_expect_none(BUS);
+    tb_advance(BUS, 1U);
+    tb_expect(BUS, "701 7F");
+    tb_expect_none(BUS);
+    /* 50 ms after it: 10 ms, already past: at once, then every 10 ms */
+    tb_advance(BUS, 50000U);
+    tb_xfer(BUS, "601 2B 17 10 00 0A 00 00 00", "581 60 17 10 00 00 00 00 00");
+    tb_advance(BUS, 0U);
+    tb_expect(BUS, "701 7F");
+    tb_expect_none(BUS);
+    /* a state change: no heartbeat of its own, the next one has the state */
+    tb_advance(BUS, 4000U);
+    tb_send(BUS, "000 01 01");
+    tb_advance(BUS, 0U);
+    tb_expect_none(BUS);
+    tb_advance(BUS, 5999U);
+    tb_expect_none(BUS);
+    tb_advance(BUS, 1U);
+    tb_expect(BUS, "701 05");
+    tb_advance(BUS, 10000U);
+    tb_expect(BUS, "701 05");
+    tb_expect_none(BUS);
+}
+
 /* Fault injection: muted, the node sends no heartbeat but still answers
  * SDO (0x1017 unchanged) and sends its boot-up after a reset; resumed, the
  * first heartbeat goes out at once, then one per period again. */
@@ -772,6 +817,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_setup(heartbeat_producer_period, setup),
         cmocka_unit_test_setup(heartbeat_state_follows_nmt, setup),
+        cmocka_unit_test_setup(heartbeat_rewrite_keeps_cycle, setup),
         cmocka_unit_test_setup(heartbeat_producer_zero_stops, setup),
         cmocka_unit_test_setup(heartbeat_muted_and_resumed, setup),
         cmocka_unit_test_setup(heartbeat_consumer_timeout_and_recovery, setup),

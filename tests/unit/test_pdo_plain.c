@@ -215,6 +215,36 @@ static void short_rpdo_plain_entries(void **state)
     tb_expect_none(BUS);
 }
 
+/* Entries mapped in part (the low bytes of a longer value) are resolved
+ * too: an RPDO extends them to the value's size by the sign (INTEGER32) or
+ * with zeros (UNSIGNED32), a TPDO sends the low bytes; an INTEGER24 is
+ * copied whole. Both directions also on a big-endian CPU (test-matrix). */
+static void partial_entries(void **state)
+{
+    static const uint32_t map[] = {0x20040010UL, 0x20090008UL, 0x20030018UL};
+    (void)state;
+    pfx_start(&fx, 1, 0U);
+    map_pdo1(false, map, 3);
+    map_pdo1(true, map, 3);
+    pfx_set(&fx, 0x2004, 0, 0x87654321UL, 4);
+    pfx_set(&fx, 0x2009, 0, 0xAABBCCDDUL, 4);
+    pfx_set(&fx, 0x2003, 0, 0x112233UL, 3);
+    tb_send(BUS, "000 01 01");
+    tb_expect(BUS, "181 21 43 DD 33 22 11");
+    tb_send(BUS, "201 FE FF 80 01 02 83");
+    assert_int_equal(pfx_get(&fx, 0x2004, 0), 0xFFFFFFFEUL);
+    assert_int_equal(pfx_get(&fx, 0x2009, 0), 0x80UL);
+    assert_int_equal(pfx_get(&fx, 0x2003, 0) & 0xFFFFFFUL, 0x830201UL);
+    tb_advance(BUS, 0);
+    tb_expect(BUS, "181 FE FF 80 01 02 83");
+    tb_send(BUS, "201 34 12 7F 00 00 00");
+    assert_int_equal(pfx_get(&fx, 0x2004, 0), 0x1234UL);
+    assert_int_equal(pfx_get(&fx, 0x2009, 0), 0x7FUL);
+    tb_advance(BUS, 0);
+    tb_expect(BUS, "181 34 12 7F 00 00 00");
+    tb_expect_none(BUS);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -225,6 +255,7 @@ int main(void)
         cmocka_unit_test(remap_plain_and_hooked),
         cmocka_unit_test(reset_restores_plain_mapping),
         cmocka_unit_test(short_rpdo_plain_entries),
+        cmocka_unit_test(partial_entries),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

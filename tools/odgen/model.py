@@ -936,11 +936,13 @@ def _dcf_table(dcf) -> dict | None:
     return out
 
 
-def _include(data: dict, path: Path) -> dict:
+def _include(data: dict, path: Path, _seen: list | None = None) -> dict:
     """include = "other.toml": the other description (relative to this one) is
     the base; this one's [device], [eds], [dcf] and personality ([sdo] ...)
     keys replace the base's, its
-    objects replace the base's objects of the same index or are added."""
+    objects replace the base's objects of the same index or are added. The
+    base may include another description in turn."""
+    _seen = _seen or [path.resolve()]
     inc = data["include"]
     if not isinstance(inc, str) or not inc:
         raise DescError("include must name a description file (\"other.toml\")")
@@ -951,6 +953,10 @@ def _include(data: dict, path: Path) -> dict:
         raise DescError(f"include {inc!r}: cannot read: {e.strerror}") from None
     except tomllib.TOMLDecodeError as e:
         raise DescError(f"include {inc!r}: TOML syntax: {e}") from None
+    if "include" in base:   # the base includes another in turn
+        if len(stack := [*_seen, ipath.resolve()]) > 8 or ipath.resolve() in _seen:
+            raise DescError(f"include {inc!r}: includes itself (or more than 8 deep)")
+        base = _include(base, ipath, stack)
     import personality  # noqa: PLC0415
 
     _check_keys(base, {"device", "eds", "dcf", "object", "profile", *personality.TABLES},

@@ -239,6 +239,9 @@ typedef struct co_sdo_srv {
     uint32_t deadline;
     uint32_t timeout_us; /**< co_node_config_t.sdo_timeout_us */
     uint16_t crc;
+#if CO_SDO_BLOCK
+    uint16_t crc_sent;   /**< block upload: CRC up to the last segment sent */
+#endif
     uint8_t state;
     uint8_t toggle;
     uint8_t blksize;
@@ -261,12 +264,13 @@ typedef struct co_errctl {
     uint16_t *hb_prod;       /**< 0x1017 */
     uint16_t *guard_time;    /**< 0x100C */
     uint8_t *life_factor;    /**< 0x100D */
-    uint32_t hb_deadline;
+    uint32_t hb_last;        /**< time of the last heartbeat (or boot-up) */
     uint32_t guard_deadline;
     uint8_t n_hb_cons;
     uint8_t guard_toggle;
     uint8_t guard_state;     /**< 0 off, 1 armed (first RTR seen), 2 lost */
-    uint8_t hb_muted;        /**< 1: heartbeats held back (co_node_hb_mute) */
+    uint8_t hb_flags;        /**< co_hb.c: producer running (0x01), heartbeats held back
+                                  (0x02, co_node_hb_mute) */
     co_hb_consumer_t hbc[CO_HB_CONSUMERS_MAX];
 } co_errctl_t;
 
@@ -318,6 +322,8 @@ typedef struct co_pdo_svc {
     uint16_t n_rx;
     uint16_t fc;             /**< bit per function code in rx[] */
     uint8_t buffered;        /**< some RPDO may hold data for the next SYNC */
+    uint8_t poll;            /**< 1: event-driven TPDOs compare their data at every
+                                  co_node_process (change detection) */
     /** the PDO service's receive entry, for frames found in rx[] */
     void (*recv)(struct co_node *node, uint16_t i, const co_frame_t *f);
 } co_pdo_svc_t;
@@ -331,6 +337,9 @@ typedef struct co_node {
     co_od_hook_t *hooks;
     co_node_callbacks_t cb;
     uint32_t now;
+    /** co_node_process: the earliest deadline of the services when they last
+     *  ran (one that has moved later since only costs an early call). */
+    uint32_t due;
     uint8_t node_id;         /**< active node-ID, CO_NODE_ID_UNCONFIGURED while unconfigured */
     uint8_t pending_id;      /**< node-ID from the next reset communication */
     uint8_t cob_base;        /**< node-ID the $NODEID defaults of the PDO and EMCY
@@ -344,6 +353,10 @@ typedef struct co_node {
     uint8_t n_svc_rd;        /**< 1 once a service hook with a read hook is registered */
     uint8_t rx_filter[16];   /**< bit per (COB-ID & 0x7F): quick reject */
     uint16_t rx_fc;          /**< bit per function code (COB-ID >> 7) in rx[] */
+    /** co_node_process: bit k: service row k has something new since it
+     *  last ran (a frame, a write of its objects); CO_SVC_ALL: every row,
+     *  and 'due' is stale. */
+    uint16_t svc_run;
     co_rx_slot_t rx[CO_RX_SLOTS_MAX];
     co_frame_t txq[CO_TXQ_LEN];
     /** The services' own hooks on the objects they own (co_od.c), sorted by index. */

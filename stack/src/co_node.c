@@ -563,11 +563,16 @@ static co_result_t bind_services(co_node_t *node)
     }
 #if !CO_PERSONALITY
     {
-        /* every setting 0 (CiA 301) but lss.slave: a service (CO_LSS), not a deviation */
+        /* every setting 0 (CiA 301) but lss.slave: a service (CO_LSS), not
+         * a deviation; and without block SDO (CO_SDO_BLOCK=0) "no block",
+         * which such a core does anyway (odgen/build.py says the same) */
         const uint8_t *b = (const uint8_t *)&node->dev->set;
         uint8_t any = 0U;
         for (size_t k = 0U; k < sizeof node->dev->set; k++) {
-            any |= (k == offsetof(co_settings_t, lss.slave)) ? 0U : b[k];
+            bool cia = (k == offsetof(co_settings_t, lss.slave)) ||
+                       ((CO_SDO_BLOCK == 0) && (k == offsetof(co_settings_t, sdo.refused)) &&
+                        (b[k] == CO_SDO_XFER_BLOCK));
+            any |= cia ? 0U : b[k];
         }
         if (any != 0U) {
             return CO_RESULT_DEV_INCOMPAT; /* a deviation this build leaves out */

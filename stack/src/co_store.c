@@ -367,7 +367,8 @@ static uint32_t store_process(co_node_t *node, uint32_t next)
     uint32_t at = next;
     int r;
 
-    if (!co_store_busy(node)) {
+    /* without CO_STORAGE never busy: none of this is built */
+    if ((CO_STORAGE == 0) || !co_store_busy(node)) {
         return at;
     }
     r = node->hal.ops->nv_poll(node->hal.ctx);

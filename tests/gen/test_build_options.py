@@ -47,6 +47,16 @@ def test_options_outside_the_build(tmp_path: Path) -> None:
     assert "SDO_EXPEDITED_ONLY" in r.stderr and "CO_PERSONALITY" in r.stderr
 
 
+def test_no_block_is_no_deviation_without_block(tmp_path: Path) -> None:
+    # [sdo] transfers without "block": a personality for a core with block
+    # SDO, what a core without it does anyway (tools/bench-size's SEG set)
+    seg = ROOT / "tests" / "perf" / "size-seg.toml"
+    r = run_odgen(seg, tmp_path, "--c", "--build=CO_PERSONALITY=0,CO_SDO_BLOCK=1")
+    assert r.returncode == 1 and "SDO_NO_BLOCK" in r.stderr
+    assert run_odgen(seg, tmp_path, "--c",
+                     "--build=CO_PERSONALITY=0,CO_SDO_BLOCK=0").returncode == 0
+
+
 def test_accepted(tmp_path: Path) -> None:
     # what the device does not need may be left out
     assert run_odgen(LEAN, tmp_path, "--c",

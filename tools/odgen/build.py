@@ -102,7 +102,10 @@ def check(dev: Device, build: dict[str, int]) -> None:
         missing.append("block SDO (offered unless [sdo] transfers leaves out \"block\") needs "
                        "CO_SDO_BLOCK=1 (this build: CO_SDO_BLOCK=0)")
     if not cfg.get("CO_PERSONALITY", 1):
-        devs = [o for o in dev.options if o != "LSS"]
+        # a core without block SDO answers block requests as SDO_NO_BLOCK
+        # says (0x05040001): that setting is no deviation for it
+        devs = [o for o in dev.options if o != "LSS" and
+                not (o == "SDO_NO_BLOCK" and not cfg.get("CO_SDO_BLOCK", 1))]
         if devs:
             missing.append("the personality " + ", ".join(devs) + " needs CO_PERSONALITY=1 "
                            "(this build: CO_PERSONALITY=0, CiA 301 behaviour only)")

@@ -414,10 +414,11 @@ uint32_t co_store_lss_unit(const co_node_t *node);
 /* Rows at the head of co_services[] that run while the node is unconfigured
  * (the LSS service); the others wait for a valid node-ID. */
 #define CO_SVC_UNCONFIGURED_ROWS ((uint8_t)(CO_LSS))
-/* The device is an LSS slave (and the build has LSS). */
+/* The device is an LSS slave (and the build has LSS). LSS is a service
+ * (CO_LSS), not a deviation: read past CO_PERSONALITY, as co_node_init does. */
 static inline bool co_lss_enabled(const co_node_t *node)
 {
-    return (CO_LSS != 0) && (CO_SET(node, lss.slave) != 0U);
+    return (CO_LSS != 0) && (node->dev->set.lss.slave != 0U);
 }
 
 /* Drop the communication group of the stored set (a node leaving the

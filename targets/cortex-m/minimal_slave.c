@@ -5,13 +5,21 @@
  * stub CAN driver. Its dictionary is generated from minimal-slave.toml; the
  * start-up code (startup.c, libc_min.c, cortex-m3.ld) is the project's own,
  * so the image holds nothing the firmware does not use. Built only for the
- * size report; it never runs.
+ * size report; it never runs. tools/bench-size links the same loop with its
+ * own device (SLAVE_HEADER, SLAVE_NODE_T, SLAVE_CONFIG, SLAVE_NODE_ID).
  */
 #include <stdint.h>
 
 #include "co/co_node.h"
 #include "co/co_rxq.h"
-#include "minimal_slave.h"
+
+#ifndef SLAVE_HEADER
+#define SLAVE_HEADER  "minimal_slave.h"
+#define SLAVE_NODE_T  minimal_slave_node_t
+#define SLAVE_CONFIG  minimal_slave_config
+#define SLAVE_NODE_ID 1U
+#endif
+#include SLAVE_HEADER
 
 /* Stand-ins for the CAN peripheral: a TX mailbox register and the RX FIFO
  * (identifier, length, data bytes 0..3 and 4..7). */
@@ -25,7 +33,7 @@ static int can_send(void *ctx, const co_frame_t *f)
 }
 static const co_hal_ops_t hal_ops = {.send = can_send};
 
-static minimal_slave_node_t slave;
+static SLAVE_NODE_T node;
 static co_frame_t rx_store[8];
 static co_rxq_t rxq;
 volatile uint32_t systick_us;
@@ -53,15 +61,15 @@ int main(void)
     co_node_config_t cfg;
     co_frame_t f;
 
-    minimal_slave_config(&slave, &cfg);
+    SLAVE_CONFIG(&node, &cfg);
     cfg.hal.ops = &hal_ops;
-    cfg.node_id = 1U;
+    cfg.node_id = SLAVE_NODE_ID;
     (void)co_rxq_init(&rxq, rx_store, 8U);
-    (void)co_node_init(&slave.node, &cfg, systick_us);
+    (void)co_node_init(&node.node, &cfg, systick_us);
     for (;;) {
         while (co_rxq_pop(&rxq, &f)) {
-            co_node_rx(&slave.node, &f, systick_us);
+            co_node_rx(&node.node, &f, systick_us);
         }
-        (void)co_node_process(&slave.node, systick_us);
+        (void)co_node_process(&node.node, systick_us);
     }
 }

@@ -96,6 +96,10 @@ static void producer_changed(co_node_t *node)
         node->errctl.hb_last = node->now;
     }
     node->errctl.hb_flags = (uint8_t)((node->errctl.hb_flags & ~HB_ON) | (on ? HB_ON : 0U));
+    if (on) {
+        /* the next heartbeat: errctl_process needs to run no sooner */
+        co_svc_due(node, node->errctl.hb_last + ms_to_us(*node->errctl.hb_prod));
+    }
     guard_check(node);
 }
 
@@ -363,25 +367,30 @@ static co_err_t errctl_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
                                          : CO_OK;
     }
     if (consumer) {
-        c->hbc[sub - 1U].state = (uint8_t)HBC_UNUSED; /* this entry starts over */
+        /* this entry starts over: it waits for the producer's first
+         * heartbeat, with no deadline until then */
+        c->hbc[sub - 1U].state = (uint8_t)HBC_UNUSED;
         consumers_changed(node);
     } else if (e->index == 0x1017U) {
         producer_changed(node);
-    } else if ((e->index != 0x1016U) && (c->guard_state == (uint8_t)GUARD_ARMED)) {
+    } else if (e->index != 0x1016U) {
         /* 0x100C / 0x100D: life guarding is re-armed with the new life time
          * by the next guarding request. A lost state is kept: that request
          * must still end the error (errctl_process ends it if life guarding
          * is now off). */
-        c->guard_state = (uint8_t)GUARD_OFF;
+        if (c->guard_state == (uint8_t)GUARD_ARMED) {
+            c->guard_state = (uint8_t)GUARD_OFF;
+        }
+        co_svc_touch(node, CO_ROW_ERRCTL);
     } else {
-        /* nothing armed */
+        /* 0x1016 sub 0 */
     }
     return CO_OK;
 }
 
 static const co_svc_hook_t errctl_hooks[] = {
-    {0x100CU, 0x100DU, CO_SVC_CHECK | CO_SVC_WRITTEN, errctl_obj, CO_ROW_ERRCTL},
-    {0x1016U, 0x1017U, CO_SVC_CHECK | CO_SVC_WRITTEN, errctl_obj, CO_ROW_ERRCTL},
+    {0x100CU, 0x100DU, CO_SVC_CHECK | CO_SVC_WRITTEN | CO_SVC_SELF, errctl_obj, CO_ROW_ERRCTL},
+    {0x1016U, 0x1017U, CO_SVC_CHECK | CO_SVC_WRITTEN | CO_SVC_SELF, errctl_obj, CO_ROW_ERRCTL},
 };
 
 const co_service_t co_svc_errctl = {

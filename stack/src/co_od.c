@@ -6,25 +6,23 @@
 #include "co/co_endian.h"
 #include "co_priv.h"
 
-/* Binary search over the entries sorted by index. */
+/* Binary search over the entries sorted by index: the range halves
+ * without a branch on the comparison (a conditional move), and the one
+ * entry left is compared at the end. */
 static const co_od_entry_t *find(const co_od_entry_t *od, uint32_t count, uint16_t index)
 {
-    uint32_t lo = 0U;
-    uint32_t hi = count;
+    const co_od_entry_t *e = od;
+    uint32_t n = count;
 
-    while (lo < hi) {
-        uint32_t mid = (lo + hi) >> 1U;
-        uint16_t at = od[mid].index;
-        if (at == index) {
-            return &od[mid];
-        }
-        if (at < index) {
-            lo = mid + 1U;
-        } else {
-            hi = mid;
-        }
+    if (n == 0U) {
+        return NULL;
     }
-    return NULL;
+    while (n > 1U) {
+        uint32_t half = n >> 1U;
+        e = (e[half].index <= index) ? &e[half] : e;
+        n -= half;
+    }
+    return (e->index == index) ? e : NULL;
 }
 
 /* Arrays and most records are dense: try the direct slot first. */
@@ -128,29 +126,23 @@ uint32_t co_od_data_size(const co_node_t *node, const co_od_sub_t *s)
 
 /* ------------------------------------------------------ service hooks */
 
-/* The service hook whose range holds @p index (binary search over the
- * registered ranges, which do not overlap), or NULL. */
+/* The service hook whose range holds @p index, or NULL: the last
+ * registered range that starts at or before it (the ranges are sorted and do
+ * not overlap; a branch-free binary search), if it reaches that far. */
 static const co_svc_hook_t *svc_hook(const co_node_t *node, uint16_t index)
 {
-    uint32_t lo = 0U;
-    uint32_t hi = node->n_svc_hooks;
+    const co_svc_hook_t *const *at = node->svc_hooks;
+    uint32_t n = node->n_svc_hooks;
 
-    if ((hi == 0U) || (index < node->svc_hooks[0]->first) ||
-        (index > node->svc_hooks[hi - 1U]->last)) {
+    if ((n == 0U) || (index < at[0]->first)) {
         return NULL;
     }
-    while (lo < hi) {
-        uint32_t mid = (lo + hi) >> 1U;
-        const co_svc_hook_t *h = node->svc_hooks[mid];
-        if (index < h->first) {
-            hi = mid;
-        } else if (index > h->last) {
-            lo = mid + 1U;
-        } else {
-            return h;
-        }
+    while (n > 1U) {
+        uint32_t half = n >> 1U;
+        at = (at[half]->first <= index) ? &at[half] : at;
+        n -= half;
     }
-    return NULL;
+    return (index <= (*at)->last) ? *at : NULL;
 }
 
 uint8_t co_od_svc_ops(const co_node_t *node, uint16_t index)
@@ -214,15 +206,16 @@ static inline co_err_t svc_read(co_node_t *node, const co_od_entry_t *e, const c
 }
 
 /* A write of an object a service owns: that service runs at the next
- * co_node_process (its deadlines may have changed). */
+ * co_node_process (its deadlines may have changed), unless its hook says
+ * what changed itself (CO_SVC_SELF). */
 static void touch_owner(co_node_t *node, const co_svc_hook_t *h)
 {
-    if (h != NULL) {
+    if ((h != NULL) && ((h->ops & CO_SVC_SELF) == 0U)) {
         co_svc_touch(node, h->row);
     }
 }
 
-static void svc_written(co_node_t *node, const co_svc_hook_t *h, const co_od_entry_t *e,
+static inline void svc_written(co_node_t *node, const co_svc_hook_t *h, const co_od_entry_t *e,
                         const co_od_sub_t *s)
 {
     touch_owner(node, h);
@@ -426,10 +419,8 @@ co_err_t co_od_write_value(co_node_t *node, const co_od_entry_t *e, const co_od_
                            const uint8_t *data, uint32_t len)
 {
     co_od_hook_t *h = hook_of(node, e);
-    const co_svc_hook_t *sh = svc_hook(node, e->index);
-    co_od_io_t io;
+    const co_svc_hook_t *sh;
     co_err_t err;
-    uint8_t *v = (uint8_t *)co_od_loc(node, s);
     uint8_t fixed = co_type_len(s->type);
 
     if (fixed != 0U) {
@@ -444,6 +435,7 @@ co_err_t co_od_write_value(co_node_t *node, const co_od_entry_t *e, const co_od_
         /* fits */
     }
     err = check_limits(node, s, data, len);
+    sh = svc_hook(node, e->index);
     if ((err == CO_OK) && (sh != NULL) && ((sh->ops & CO_SVC_CHECK) != 0U)) {
         err = sh->fn(node, CO_SVC_CHECK, e, s, data, len);
     }
@@ -451,6 +443,7 @@ co_err_t co_od_write_value(co_node_t *node, const co_od_entry_t *e, const co_od_
         return err;
     }
     if ((h != NULL) && (h->write != NULL)) {
+        co_od_io_t io;
         io_init(&io, node, e, s);
         io.buf = (uint8_t *)(uintptr_t)data;
         io.len = len;
@@ -460,8 +453,8 @@ co_err_t co_od_write_value(co_node_t *node, const co_od_entry_t *e, const co_od_
         if (err != CO_OK) {
             return err;
         }
-    } else if (v == NULL) {
-        return CO_ERR_NO_ACCESS;
+    } else if ((s->flags & CO_SUB_HOOKIO) != 0U) {
+        return CO_ERR_NO_ACCESS; /* no stored value, no hook to take it */
     } else {
         /* plain stored value */
     }

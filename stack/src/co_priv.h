@@ -222,6 +222,12 @@ static inline void co_svc_touch(co_node_t *node, uint8_t k)
 {
     node->svc_run |= (uint16_t)(1U << k);
 }
+/* A service's deadline that moved to @p when without the service running
+ * (a hook with CO_SVC_SELF): co_node_process comes back no later. */
+static inline void co_svc_due(co_node_t *node, uint32_t when)
+{
+    node->due = co_deadline_min(node->now, node->due, when);
+}
 /* Something that may concern any service (an NMT state change, an error,
  * the TX path): they all run and their deadlines are taken anew. */
 static inline void co_svc_touch_all(co_node_t *node)
@@ -241,6 +247,9 @@ static inline void co_svc_touch_all(co_node_t *node)
                                 the service stores or acts on the value (co_od_commit stores
                                 it); its result is the answer, CO_SVC_WRITTEN does not follow */
 #define CO_SVC_WRITTEN 0x08U /* after the value was stored (the result is ignored) */
+#define CO_SVC_SELF    0x10U /* the hook tells the node itself what a write changes
+                                (co_svc_touch, co_svc_due): a write alone does not make
+                                the service run at the next co_node_process */
 
 /* A service's hook on the objects it owns, @p first .. @p last. The
  * dictionary engine (co_od.c) calls fn for the accesses @p ops names,

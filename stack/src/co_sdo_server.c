@@ -146,7 +146,8 @@ static void download_done(co_node_t *node, const uint8_t *r)
 {
     co_sdo_srv_t *t = &node->sdo;
 
-    if ((t->entry != NULL) && co_store_is_command(t->entry, t->desc) && co_store_busy(node)) {
+    if (((t->entry->index & 0xFFFEU) == 0x1010U) && co_store_is_command(t->entry, t->desc) &&
+        co_store_busy(node)) {
         (void)memcpy(t->buf, r, 8U);
         t->state = (uint8_t)S_STORE;
         return;
@@ -155,40 +156,52 @@ static void download_done(co_node_t *node, const uint8_t *r)
     send8(node, r);
 }
 
-/* Checks common to every download initiate. */
-static co_err_t open_download(co_node_t *node, uint16_t index, uint8_t sub, bool size_ind,
-                              uint32_t size)
+/* An indicated download size @p size against @p s: a value of fixed size
+ * must have it exactly, a string or DOMAIN in RAM or ROM must hold it. */
+static co_err_t check_size(const co_od_sub_t *s, bool size_ind, uint32_t size)
 {
-    co_sdo_srv_t *t = &node->sdo;
-    const co_od_entry_t *e;
-    const co_od_sub_t *s;
-    co_err_t err = co_od_lookup(node, index, sub, &e, &s);
+    uint8_t fixed = co_type_len(s->type);
+
+    if (!size_ind) {
+        return CO_OK;
+    }
+    if ((fixed != 0U) && (size != fixed)) {
+        return CO_ERR_TYPE_MISMATCH;
+    }
+    if ((fixed == 0U) && ((s->flags & CO_SUB_HOOKIO) == 0U) && (size > s->size)) {
+        return CO_ERR_TYPE_TOO_LONG;
+    }
+    return CO_OK;
+}
+
+#if CO_SDO_BLOCK
+/* The checks of a block download initiate: the object @p index / @p sub
+ * exists and is writable, and an indicated @p size fits it. */
+static co_err_t check_download(co_node_t *node, uint16_t index, uint8_t sub, bool size_ind,
+                               uint32_t size, const co_od_entry_t **e, const co_od_sub_t **s)
+{
+    co_err_t err = co_od_lookup(node, index, sub, e, s);
 
     if (err == CO_OK) {
-        err = co_od_check_access(node, s, true);
+        err = co_od_check_access(node, *s, true);
     }
-    if ((err == CO_OK) && size_ind) {
-        uint8_t fixed = co_type_len(s->type);
-        if ((fixed != 0U) && (size != fixed)) {
-            err = CO_ERR_TYPE_MISMATCH;
-        } else if ((fixed == 0U) && ((s->flags & CO_SUB_HOOKIO) == 0U) && (size > s->size)) {
-            err = CO_ERR_TYPE_TOO_LONG;
-        } else {
-            /* size fits */
-        }
-    }
-    if (err == CO_OK) {
-        t->entry = e;
-        t->desc = s;
-        t->size = size_ind ? size : 0U;
-        t->flags = size_ind ? F_SIZE : 0U;
-        t->offset = 0U;
-        t->buf_len = 0U;
-        t->toggle = 0U;
-        t->crc = 0U;
-        t->seqno = 0U;
-    }
-    return err;
+    return (err == CO_OK) ? check_size(*s, size_ind, size) : err;
+}
+#endif
+
+/* The transfer state of a segmented or block download of @p s of @p e. */
+static void open_download(co_sdo_srv_t *t, const co_od_entry_t *e, const co_od_sub_t *s,
+                          bool size_ind, uint32_t size)
+{
+    t->entry = e;
+    t->desc = s;
+    t->size = size_ind ? size : 0U;
+    t->flags = size_ind ? F_SIZE : 0U;
+    t->offset = 0U;
+    t->buf_len = 0U;
+    t->toggle = 0U;
+    t->crc = 0U;
+    t->seqno = 0U;
 }
 
 /* Checks common to every upload initiate; reads the first chunk into t->buf
@@ -240,18 +253,20 @@ static bool fits_expedited(const co_node_t *node, bool last, uint32_t size)
     return last && (size <= 4U) && ((size > 0U) || expedited_only(node));
 }
 
-/* Expedited upload answer with the @p size bytes staged in t->buf. */
+/* Expedited upload answer with the @p size bytes staged in t->buf (the
+ * bytes past them zero). */
 static void send_expedited(co_node_t *node, uint16_t index, uint8_t sub, uint32_t size)
 {
-    uint8_t d[8] = {0};
     uint32_t n = (size == 0U) ? 1U : size;
+    uint32_t data = co_get_u32(node->sdo.buf);
 
-    d[0] = (uint8_t)(CO_SDO_B0(CO_SDO_SCS_UPLOAD_INITIATE) | CO_SDO_EXPEDITED | CO_SDO_SIZE_IND |
-                     ((4U - n) << CO_SDO_N_SHIFT));
-    co_put_u16(&d[1], index);
-    d[3] = sub;
-    (void)memcpy(&d[4], node->sdo.buf, size);
-    send8(node, d);
+    if (size < 4U) {
+        data &= (uint32_t)((1UL << (8U * size)) - 1U);
+    }
+    reply(node,
+          (uint8_t)(CO_SDO_B0(CO_SDO_SCS_UPLOAD_INITIATE) | CO_SDO_EXPEDITED | CO_SDO_SIZE_IND |
+                    ((4U - n) << CO_SDO_N_SHIFT)),
+          index, sub, data);
 }
 
 /* Read up to SEG bytes of the value at byte @p at into @p buf (SEG bytes). */
@@ -286,49 +301,66 @@ static co_err_t read_seg(co_node_t *node, uint32_t at, uint8_t *buf, uint32_t *g
 
 /* ------------------------------------------------------------ initiate */
 
-CO_NOINLINE static void initiate_download(co_node_t *node, const uint8_t *d, uint16_t index,
-                                          uint8_t sub)
+/* A download initiate. Expedited: the value is in the request and written
+ * straight from it (no transfer state, no staging copy); a value of fixed
+ * size must come with its size: as indicated (else 0x06070010), or without
+ * an indication the four bytes, or the object's own size when it is
+ * smaller (co_od_write_value compares). Else a segmented download opens. */
+static void initiate_download(co_node_t *node, const uint8_t *d, uint16_t index, uint8_t sub)
 {
     bool expedited = (d[0] & CO_SDO_EXPEDITED) != 0U;
     bool size_ind = (d[0] & CO_SDO_SIZE_IND) != 0U;
+    uint32_t size = co_get_u32(&d[4]);
+    const co_od_entry_t *e;
+    const co_od_sub_t *s;
     co_err_t err;
 
     if (expedited) {
-        uint32_t len = size_ind ? (4U - ((uint32_t)(d[0] >> 2U) & 3U)) : 4U;
-        err = open_download(node, index, sub, size_ind, len);
-        if ((err == CO_OK) && !size_ind) {
-            uint8_t fixed = co_type_len(node->sdo.desc->type);
-            if ((fixed != 0U) && (fixed < 4U)) {
-                len = fixed; /* size not indicated: take what the object needs */
-            }
-        }
-        if (err == CO_OK) {
-            err = finish_download(node, &d[4], len);
-        }
-        if (err != CO_OK) {
-            abort_at(node, index, sub, err);
-            return;
-        }
-        {
-            uint8_t r[8] = {CO_SDO_B0(CO_SDO_SCS_DOWNLOAD_INITIATE), 0U, 0U, 0U, 0U, 0U, 0U, 0U};
-            co_put_u16(&r[1], index);
-            r[3] = sub;
-            download_done(node, r);
-        }
-        return;
-    }
-    if (expedited_only(node)) {
+        size = size_ind ? (4U - ((uint32_t)(d[0] >> 2U) & 3U)) : 4U;
+    } else if (expedited_only(node)) {
         abort_at(node, index, sub, CO_ERR_CMD);
         return;
+    } else {
+        /* segmented: the size in the request */
     }
-    err = open_download(node, index, sub, size_ind, co_get_u32(&d[4]));
-    if ((err == CO_OK) && ((CO_SET(node, sdo.refused) & CO_SDO_XFER_SEG_DOWNLOAD) != 0U)) {
-        err = CO_ERR_NO_ACCESS; /* the object's own errors come first */
+    err = co_od_lookup(node, index, sub, &e, &s);
+    if (err == CO_OK) {
+        err = co_od_check_access(node, s, true);
+    }
+    if ((err == CO_OK) && expedited) {
+        uint8_t fixed = co_type_len(s->type);
+        if (fixed != 0U) {
+            if (!size_ind && (fixed < 4U)) {
+                size = fixed; /* size not indicated: take what the object needs */
+            }
+            err = co_od_write_value(node, e, s, &d[4], size);
+        } else {
+            /* longer than the object: 0x06070012, size indicated or not */
+            err = co_od_write_part(node, e, s, 0U, &d[4], size, size_ind ? size : 0U, true);
+        }
+        co_rx_settle(node); /* a COB-ID written: the receive set (the port's filters) */
+    } else if (err == CO_OK) {
+        err = check_size(s, size_ind, size);
+        if ((err == CO_OK) && ((CO_SET(node, sdo.refused) & CO_SDO_XFER_SEG_DOWNLOAD) != 0U)) {
+            err = CO_ERR_NO_ACCESS; /* the object's own errors come first */
+        }
+    } else {
+        /* not found or not writable */
     }
     if (err != CO_OK) {
         abort_at(node, index, sub, err);
         return;
     }
+    if (expedited) {
+        uint8_t r[8] = {CO_SDO_B0(CO_SDO_SCS_DOWNLOAD_INITIATE), 0U, 0U, 0U, 0U, 0U, 0U, 0U};
+        co_put_u16(&r[1], index);
+        r[3] = sub;
+        node->sdo.entry = e;
+        node->sdo.desc = s;
+        download_done(node, r);
+        return;
+    }
+    open_download(&node->sdo, e, s, size_ind, size);
     start(node, S_DL_SEG);
     reply(node, CO_SDO_B0(CO_SDO_SCS_DOWNLOAD_INITIATE), index, sub, 0U);
 }
@@ -456,17 +488,20 @@ static void block_download_initiate(co_node_t *node, const uint8_t *d, uint16_t 
                                     uint8_t sub)
 {
     bool size_ind = (d[0] & CO_SDO_BLK_SIZE_IND) != 0U;
+    const co_od_entry_t *e;
+    const co_od_sub_t *s;
     co_err_t err;
 
     if ((d[0] & CO_SDO_BLK_END) != 0U) {
         abort_at(node, index, sub, CO_ERR_CMD); /* end without a transfer */
         return;
     }
-    err = open_download(node, index, sub, size_ind, co_get_u32(&d[4]));
+    err = check_download(node, index, sub, size_ind, co_get_u32(&d[4]), &e, &s);
     if (err != CO_OK) {
         abort_at(node, index, sub, err);
         return;
     }
+    open_download(&node->sdo, e, s, size_ind, co_get_u32(&d[4]));
     if ((d[0] & CO_SDO_BLK_CRC) != 0U) {
         node->sdo.flags |= F_CRC;
     }
@@ -874,6 +909,10 @@ static void sdo_rx(co_node_t *node, uint16_t arg, const co_frame_t *f)
     if ((node->nmt == (uint8_t)CO_NMT_STOPPED) || co_frame_is_rtr(f)) {
         return;
     }
+    if ((t->state == (uint8_t)S_IDLE) && (f->dlc == 8U)) {
+        idle_request(node, d); /* (an abort: nothing is open, nothing to do) */
+        return;
+    }
     if ((f->dlc >= 1U) && ((t->state != (uint8_t)S_BLK_DL) ? (CO_SDO_CS(d[0]) == CO_SDO_CS_ABORT)
                                                              : (d[0] == CO_SDO_B0(CO_SDO_CS_ABORT)))) {
         /* client abort, whatever its length: CiA 301 makes the abort
@@ -888,13 +927,10 @@ static void sdo_rx(co_node_t *node, uint16_t arg, const co_frame_t *f)
 #if CO_SDO_BLOCK
     if (t->state == (uint8_t)S_BLK_DL) {
         block_download_segment(node, d);
-    } else
-#endif
-    if (t->state == (uint8_t)S_IDLE) {
-        idle_request(node, d);
-    } else {
-        transfer_request(node, d);
+        return;
     }
+#endif
+    transfer_request(node, d); /* (S_IDLE took the 8-byte frames above) */
 }
 
 #if CO_SDO_BLOCK

@@ -194,6 +194,50 @@ static void expedited_download_all_sizes(void **state)
     assert_int_equal(RAMV.i16, -266);
 }
 
+/* An expedited download is written straight from the request (no transfer
+ * state, no staging copy): the answer, the value, and each refusal it can
+ * give, every one of which leaves the old value. */
+static void expedited_download_answers_and_refusals(void **state)
+{
+    /* 0x1017, an object with a service hook (heartbeat producer) */
+    tb_xfer(BUS, "601 2B 17 10 00 E8 03 00 00", "581 60 17 10 00 00 00 00 00");
+    assert_int_equal(RAMV.hb_prod, 1000);
+    /* size not indicated: the object's two bytes, the rest ignored */
+    tb_xfer(BUS, "601 22 17 10 00 F4 01 FF FF", "581 60 17 10 00 00 00 00 00");
+    assert_int_equal(RAMV.hb_prod, 500);
+    /* 1, 3 or 4 bytes to a 16-bit object; 4 bytes without an indication to
+     * a 64-bit one: 0x06070010 */
+    tb_xfer(BUS, "601 2F 17 10 00 01 00 00 00", "581 80 17 10 00 10 00 07 06");
+    tb_xfer(BUS, "601 27 17 10 00 01 00 00 00", "581 80 17 10 00 10 00 07 06");
+    tb_xfer(BUS, "601 23 17 10 00 01 00 00 00", "581 80 17 10 00 10 00 07 06");
+    assert_int_equal(RAMV.hb_prod, 500);
+    RAMV.u64 = 7U;
+    tb_xfer(BUS, "601 22 06 20 00 01 00 00 00", "581 80 06 20 00 10 00 07 06");
+    assert_true(RAMV.u64 == 7U);
+    /* the service's check refuses (one consumer entry per producer) */
+    tb_xfer(BUS, "601 23 16 10 01 2C 01 05 00", "581 60 16 10 01 00 00 00 00");
+    tb_xfer(BUS, "601 23 16 10 02 F4 01 05 00", "581 80 16 10 02 43 00 04 06");
+    assert_int_equal(RAMV.hb_cons[1], 0);
+    /* a value out of the type's range, a limit */
+    RAMV.b = 1U;
+    tb_xfer(BUS, "601 2F 0A 20 00 02 00 00 00", "581 80 0A 20 00 30 00 09 06");
+    assert_int_equal(RAMV.b, 1);
+    /* not writable, not there */
+    tb_xfer(BUS, "601 23 00 10 00 00 00 00 00", "581 80 00 10 00 02 00 01 06");
+    tb_xfer(BUS, "601 23 23 20 00 00 00 00 00", "581 80 23 20 00 02 00 01 06");
+    tb_xfer(BUS, "601 2B 34 12 00 00 00 00 00", "581 80 34 12 00 00 00 02 06");
+    tb_xfer(BUS, "601 2B 17 10 01 00 00 00 00", "581 80 17 10 01 11 00 09 06");
+    assert_int_equal(RAMV.hb_prod, 500);
+    /* a string: the bytes given, the rest of the object zeroed */
+    tb_xfer(BUS, "601 23 12 20 00 41 42 43 44", "581 60 12 20 00 00 00 00 00");
+    assert_string_equal(RAMV.vstr, "ABCD");
+    tb_xfer(BUS, "601 2B 12 20 00 58 59 43 44", "581 60 12 20 00 00 00 00 00");
+    assert_string_equal(RAMV.vstr, "XY");
+    /* an abort shorter than 8 bytes while nothing is open: no answer */
+    tb_send(BUS, "601 80 17 10 00");
+    tb_expect_none(BUS);
+}
+
 static void expedited_upload_all_sizes(void **state)
 {
     RAMV.u8 = 0x7F;
@@ -370,6 +414,7 @@ int main(void)
         cmocka_unit_test_setup(faulhaber_7_5_host_examples_node2, setup),
         cmocka_unit_test_setup(kollmorgen_7_9_expedited_only_node3, setup),
         cmocka_unit_test_setup(expedited_download_all_sizes, setup),
+        cmocka_unit_test_setup(expedited_download_answers_and_refusals, setup),
         cmocka_unit_test_setup(expedited_upload_all_sizes, setup),
         cmocka_unit_test_setup(boolean_accepts_only_0_and_1, setup),
         cmocka_unit_test_setup(limits_checked, setup),

@@ -507,7 +507,10 @@ static co_err_t commit_streamed(co_node_t *node, const co_od_entry_t *e, const c
         }
     }
     if ((end > 0U) && (data != v)) {
-        (void)memmove(v, data, end);
+        /* the data are a frame, the SDO server's buffer, the staging area
+         * or the application's: never a part of this value (gathered in
+         * place, they are the value itself, data == v) */
+        (void)memcpy(v, data, end);
     }
     if (end < s->size) {
         (void)memset(&v[end], 0, s->size - end);
@@ -597,7 +600,9 @@ void co_od_restore(co_node_t *node, uint16_t from, uint16_t to)
                 (s->off >= from) && (s->off < to)) {
                 uint8_t n = co_type_len(s->type);
                 uint8_t *p = &node->ram[s->off];
-                uint8_t id = is_pdo_emcy_cob(e->index, s->sub) ? node->cob_base : node->node_id;
+                /* (the COB-ID base differs from the node-ID only with LSS) */
+                uint8_t id = ((CO_LSS != 0) && is_pdo_emcy_cob(e->index, s->sub)) ? node->cob_base
+                                                                                 : node->node_id;
                 /* 16/32-bit values are native integers in RAM */
                 if (n == 1U) {
                     p[0] = (uint8_t)(p[0] + id);

@@ -474,7 +474,7 @@ void co_od_commit(co_node_t *node, const co_od_sub_t *s, const uint8_t *data, ui
 
     if ((v != NULL) && ((s->flags & CO_SUB_ROM) == 0U)) {
         if (fixed != 0U) {
-            co_from_wire(v, data, fixed);
+            co_pdo_from_wire(v, data, fixed); /* 1, 2 and 4 bytes without a call */
         } else {
             (void)memcpy(v, data, len);
             if (len < s->size) {

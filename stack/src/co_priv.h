@@ -220,6 +220,15 @@ static inline void co_svc_touch(co_node_t *node, uint8_t k)
 {
     node->svc_run |= (uint16_t)(1U << k);
 }
+/* Service row @p k has nothing to do for what touched it (a frame answered
+ * completely, no timer running): it need not run at the next
+ * co_node_process for it (when every row runs, it runs too). */
+static inline void co_svc_untouch(co_node_t *node, uint8_t k)
+{
+    if (node->svc_run != CO_SVC_ALL) {
+        node->svc_run &= (uint16_t)~(1U << k);
+    }
+}
 /* A service's deadline that moved to @p when without the service running
  * (a hook with CO_SVC_SELF): co_node_process comes back no later. */
 static inline void co_svc_due(co_node_t *node, uint32_t when)

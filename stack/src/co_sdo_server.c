@@ -44,25 +44,25 @@ static uint32_t tx_cob(const co_node_t *node)
     return 0x580UL + node->node_id;
 }
 
-static void send8(co_node_t *node, const uint8_t *d)
+/* An answer: command byte, index, sub-index, four data bytes (written into
+ * the frame: no 8-byte image copied). */
+static void reply(co_node_t *node, uint8_t cmd, uint16_t index, uint8_t sub, uint32_t data)
 {
     co_frame_t f;
 
     f.id = tx_cob(node);
     f.dlc = 8U;
-    (void)memcpy(f.data, d, 8U);
+    f.data[0] = cmd;
+    co_put_u16(&f.data[1], index);
+    f.data[3] = sub;
+    co_put_u32(&f.data[4], data);
     co_tx_frame(node, &f);
 }
 
-static void reply(co_node_t *node, uint8_t cmd, uint16_t index, uint8_t sub, uint32_t data)
+/* An answer given as its eight bytes. */
+static void send8(co_node_t *node, const uint8_t *d)
 {
-    uint8_t d[8];
-
-    d[0] = cmd;
-    co_put_u16(&d[1], index);
-    d[3] = sub;
-    co_put_u32(&d[4], data);
-    send8(node, d);
+    reply(node, d[0], co_get_u16(&d[1]), d[3], co_get_u32(&d[4]));
 }
 
 static void sdo_reset(co_node_t *node)
@@ -140,60 +140,42 @@ static co_err_t put_chunk(co_node_t *node, const uint8_t *data, uint32_t len)
     return err;
 }
 
-/* The answer @p r that ends a download: sent now, or, when the download
- * started a save or restore (0x1010 / 0x1011) that an asynchronous HAL is
- * still writing, once the set is durable (sdo_process). */
-static void download_done(co_node_t *node, const uint8_t *r)
+/* The answer (@p cmd, @p index, @p sub, data 0) that ends a download:
+ * sent now, or, when the download started a save or restore (0x1010 /
+ * 0x1011) that an asynchronous HAL is still writing, once the set is
+ * durable (sdo_process). */
+static void download_done(co_node_t *node, uint8_t cmd, uint16_t index, uint8_t sub)
 {
     co_sdo_srv_t *t = &node->sdo;
 
-    if (((t->entry->index & 0xFFFEU) == 0x1010U) && co_store_is_command(t->entry, t->desc) &&
-        co_store_busy(node)) {
-        (void)memcpy(t->buf, r, 8U);
+    if ((CO_STORAGE != 0) && ((t->entry->index & 0xFFFEU) == 0x1010U) &&
+        co_store_is_command(t->entry, t->desc) && co_store_busy(node)) {
+        t->buf[0] = cmd;
+        co_put_u16(&t->buf[1], index);
+        t->buf[3] = sub;
+        co_put_u32(&t->buf[4], 0U);
         t->state = (uint8_t)S_STORE;
         return;
     }
     sdo_reset(node);
-    send8(node, r);
+    reply(node, cmd, index, sub, 0U);
 }
 
-/* An indicated download size @p size against @p s: a value of fixed size
- * must have it exactly, a string or DOMAIN in RAM or ROM must hold it. */
-static co_err_t check_size(const co_od_sub_t *s, bool size_ind, uint32_t size)
+/* A segmented or block download of @p s of @p e: an indicated @p size must
+ * fit (a value of fixed size must have it exactly, a string or DOMAIN in
+ * RAM must hold it); then its transfer state. */
+static co_err_t open_download(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
+                              bool size_ind, uint32_t size)
 {
+    co_sdo_srv_t *t = &node->sdo;
     uint8_t fixed = co_type_len(s->type);
 
-    if (!size_ind) {
-        return CO_OK;
-    }
-    if ((fixed != 0U) && (size != fixed)) {
+    if (size_ind && (fixed != 0U) && (size != fixed)) {
         return CO_ERR_TYPE_MISMATCH;
     }
-    if ((fixed == 0U) && ((s->flags & CO_SUB_HOOKIO) == 0U) && (size > s->size)) {
+    if (size_ind && (fixed == 0U) && ((s->flags & CO_SUB_HOOKIO) == 0U) && (size > s->size)) {
         return CO_ERR_TYPE_TOO_LONG;
     }
-    return CO_OK;
-}
-
-#if CO_SDO_BLOCK
-/* The checks of a block download initiate: the object @p index / @p sub
- * exists and is writable, and an indicated @p size fits it. */
-static co_err_t check_download(co_node_t *node, uint16_t index, uint8_t sub, bool size_ind,
-                               uint32_t size, const co_od_entry_t **e, const co_od_sub_t **s)
-{
-    co_err_t err = co_od_lookup(node, index, sub, e, s);
-
-    if (err == CO_OK) {
-        err = co_od_check_access(node, *s, true);
-    }
-    return (err == CO_OK) ? check_size(*s, size_ind, size) : err;
-}
-#endif
-
-/* The transfer state of a segmented or block download of @p s of @p e. */
-static void open_download(co_sdo_srv_t *t, const co_od_entry_t *e, const co_od_sub_t *s,
-                          bool size_ind, uint32_t size)
-{
     t->entry = e;
     t->desc = s;
     t->size = size_ind ? size : 0U;
@@ -203,6 +185,7 @@ static void open_download(co_sdo_srv_t *t, const co_od_entry_t *e, const co_od_s
     t->toggle = 0U;
     t->crc = 0U;
     t->seqno = 0U;
+    return CO_OK;
 }
 
 /* Checks common to every upload initiate; reads the first chunk into t->buf
@@ -339,7 +322,7 @@ static void initiate_download(co_node_t *node, const uint8_t *d, uint16_t index,
         }
         co_rx_settle(node); /* a COB-ID written: the receive set (the port's filters) */
     } else if (err == CO_OK) {
-        err = check_size(s, size_ind, size);
+        err = open_download(node, e, s, size_ind, size);
         if ((err == CO_OK) && ((CO_SET(node, sdo.refused) & CO_SDO_XFER_SEG_DOWNLOAD) != 0U)) {
             err = CO_ERR_NO_ACCESS; /* the object's own errors come first */
         }
@@ -351,15 +334,11 @@ static void initiate_download(co_node_t *node, const uint8_t *d, uint16_t index,
         return;
     }
     if (expedited) {
-        uint8_t r[8] = {CO_SDO_B0(CO_SDO_SCS_DOWNLOAD_INITIATE), 0U, 0U, 0U, 0U, 0U, 0U, 0U};
-        co_put_u16(&r[1], index);
-        r[3] = sub;
-        node->sdo.entry = e;
+        node->sdo.entry = e; /* (for download_done) */
         node->sdo.desc = s;
-        download_done(node, r);
+        download_done(node, CO_SDO_B0(CO_SDO_SCS_DOWNLOAD_INITIATE), index, sub);
         return;
     }
-    open_download(&node->sdo, e, s, size_ind, size);
     start(node, S_DL_SEG);
     reply(node, CO_SDO_B0(CO_SDO_SCS_DOWNLOAD_INITIATE), index, sub, 0U);
 }
@@ -437,14 +416,13 @@ static void download_segment(co_node_t *node, const uint8_t *d)
         return;
     }
     {
-        uint8_t r[8] = {0};
-        r[0] = (uint8_t)(CO_SDO_B0(CO_SDO_SCS_DOWNLOAD_SEGMENT) | toggle);
+        uint8_t cmd = (uint8_t)(CO_SDO_B0(CO_SDO_SCS_DOWNLOAD_SEGMENT) | toggle);
         t->toggle ^= CO_SDO_TOGGLE;
         if (last) {
-            download_done(node, r);
+            download_done(node, cmd, 0U, 0U);
         } else {
             start(node, S_DL_SEG);
-            send8(node, r);
+            reply(node, cmd, 0U, 0U, 0U);
         }
     }
 }
@@ -495,12 +473,17 @@ static void block_download_initiate(co_node_t *node, const uint8_t *d, uint16_t 
         abort_at(node, index, sub, CO_ERR_CMD); /* end without a transfer */
         return;
     }
-    err = check_download(node, index, sub, size_ind, co_get_u32(&d[4]), &e, &s);
+    err = co_od_lookup(node, index, sub, &e, &s);
+    if (err == CO_OK) {
+        err = co_od_check_access(node, s, true);
+    }
+    if (err == CO_OK) {
+        err = open_download(node, e, s, size_ind, co_get_u32(&d[4]));
+    }
     if (err != CO_OK) {
         abort_at(node, index, sub, err);
         return;
     }
-    open_download(&node->sdo, e, s, size_ind, co_get_u32(&d[4]));
     if ((d[0] & CO_SDO_BLK_CRC) != 0U) {
         node->sdo.flags |= F_CRC;
     }
@@ -598,11 +581,7 @@ static void block_download_end(co_node_t *node, const uint8_t *d)
         abort_cur(node, err);
         return;
     }
-    {
-        uint8_t r[8] = {0};
-        r[0] = (uint8_t)(CO_SDO_B0(CO_SDO_SCS_BLOCK_DOWNLOAD) | CO_SDO_BLK_END);
-        download_done(node, r);
-    }
+    download_done(node, (uint8_t)(CO_SDO_B0(CO_SDO_SCS_BLOCK_DOWNLOAD) | CO_SDO_BLK_END), 0U, 0U);
 }
 
 /* ------------------------------------------------------------ block upload */
@@ -931,6 +910,9 @@ static void sdo_rx(co_node_t *node, uint16_t arg, const co_frame_t *f)
     }
     if ((t->state == (uint8_t)S_IDLE) && (f->dlc == 8U)) {
         idle_request(node, d); /* (an abort: nothing is open, nothing to do) */
+        if (t->state == (uint8_t)S_IDLE) {
+            co_svc_untouch(node, CO_ROW_SDO); /* answered, nothing open: no timer */
+        }
         return;
     }
     if ((f->dlc >= 1U) && ((t->state != (uint8_t)S_BLK_DL) ? (CO_SDO_CS(d[0]) == CO_SDO_CS_ABORT)
@@ -969,7 +951,7 @@ static uint32_t sdo_process(co_node_t *node, uint32_t next)
     if (t->state == (uint8_t)S_IDLE) {
         return next;
     }
-    if (t->state == (uint8_t)S_STORE) {
+    if ((CO_STORAGE != 0) && (t->state == (uint8_t)S_STORE)) { /* (without storage never) */
         if (!co_store_busy(node)) {
             if (co_store_result(node) == CO_OK) {
                 uint8_t r[8];

@@ -85,6 +85,7 @@ static void send_code(co_node_t *node, uint16_t code, const uint8_t *mfr)
 static void history_push(co_node_t *node, uint16_t code, const uint8_t *mfr)
 {
     uint8_t n;
+    uint32_t carry;
 
     if ((node->emcy.hist == NULL) || (node->emcy.hist_count == NULL)) {
         return;
@@ -93,14 +94,19 @@ static void history_push(co_node_t *node, uint16_t code, const uint8_t *mfr)
     if (n < node->emcy.hist_depth) {
         n++;
     }
-    for (uint8_t i = (uint8_t)(n - 1U); i > 0U; i--) {
-        node->emcy.hist[i] = node->emcy.hist[i - 1U];
-    }
     /* bits 0..15 error code, 16..31 additional information (mfr bytes 0..1;
      * none with CO_HISTORY_CODE_ONLY) */
-    node->emcy.hist[0] = code;
+    carry = code;
     if ((mfr != NULL) && (CO_SET(node, emcy.history) == CO_HISTORY_CODE_AND_INFO)) {
-        node->emcy.hist[0] |= (uint32_t)co_get_u16(mfr) << 16U;
+        carry |= (uint32_t)co_get_u16(mfr) << 16U;
+    }
+    /* newest first: the others move one down, each carried (a plain copy
+     * loop becomes a call of the C library's memmove, 252 bytes of
+     * newlib-nano) */
+    for (uint8_t i = 0U; i < n; i++) {
+        uint32_t older = node->emcy.hist[i];
+        node->emcy.hist[i] = carry;
+        carry = older;
     }
     *node->emcy.hist_count = n;
 }
@@ -175,9 +181,18 @@ static uint32_t emcy_process(co_node_t *node, uint32_t next)
         if ((node->nmt != (uint8_t)CO_NMT_STOPPED) && ((cob & 0x80000000UL) == 0U)) {
             co_tx(node, cob & 0x7FFUL, node->emcy.q[0].data, 8U);
         }
+        /* the others move one up, each carried from the last (a plain copy
+         * loop becomes a call of the C library's memmove) */
         node->emcy.n_q--;
-        for (uint8_t i = 0U; i < node->emcy.n_q; i++) {
-            node->emcy.q[i] = node->emcy.q[i + 1U];
+        {
+            uint8_t carry[8];
+            (void)memcpy(carry, node->emcy.q[node->emcy.n_q].data, 8U);
+            for (uint8_t i = node->emcy.n_q; i > 0U; i--) {
+                uint8_t newer[8];
+                (void)memcpy(newer, node->emcy.q[i - 1U].data, 8U);
+                (void)memcpy(node->emcy.q[i - 1U].data, carry, 8U);
+                (void)memcpy(carry, newer, 8U);
+            }
         }
         node->emcy.next = node->now + inhibit_us(node);
     }

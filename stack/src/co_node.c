@@ -18,38 +18,45 @@ static bool hal_send(co_node_t *node, const co_frame_t *f)
  * controller that frees a mailbox gets the frame that would win arbitration. */
 static void tx_drain(co_node_t *node)
 {
-    uint8_t sent = 0U;
+    uint8_t kept = 0U;
 
-    while ((sent < node->txq_len) && hal_send(node, &node->txq[sent])) {
-        sent++;
+    /* in order until the controller refuses one; that one and the rest move
+     * to the front (in this loop: no call of the C library's memmove) */
+    for (uint8_t k = 0U; k < node->txq_len; k++) {
+        if ((kept == 0U) && hal_send(node, &node->txq[k])) {
+            continue;
+        }
+        if (kept != k) {
+            node->txq[kept] = node->txq[k];
+        }
+        kept++;
     }
-    if (sent > 0U) {
-        node->txq_len = (uint8_t)(node->txq_len - sent);
-        (void)memmove(&node->txq[0], &node->txq[sent], (size_t)node->txq_len * sizeof node->txq[0]);
-    }
+    node->txq_len = kept;
 }
 
 void co_tx_frame(co_node_t *node, const co_frame_t *f)
 {
     uint32_t cob = co_frame_cob(f);
-    uint8_t at = node->txq_len;
+    uint8_t at;
 
     if ((node->txq_len == 0U) && hal_send(node, f)) {
         return;
     }
-    while ((at > 0U) && (co_frame_cob(&node->txq[at - 1U]) > cob)) {
-        at--;
-    }
     if (node->txq_len == CO_TXQ_LEN) {
         /* full: the frame of lowest priority is lost (the new one, when
          * nothing waiting ranks below it) */
-        if (at == CO_TXQ_LEN) {
+        if (co_frame_cob(&node->txq[CO_TXQ_LEN - 1U]) <= cob) {
             return;
         }
         node->txq_len--;
     }
-    (void)memmove(&node->txq[at + 1U], &node->txq[at],
-                  (size_t)(node->txq_len - at) * sizeof node->txq[0]);
+    /* behind the frames of the same or a higher priority; the ones of
+     * lower priority move back as they are passed (no memmove) */
+    at = node->txq_len;
+    while ((at > 0U) && (co_frame_cob(&node->txq[at - 1U]) > cob)) {
+        node->txq[at] = node->txq[at - 1U];
+        at--;
+    }
     node->txq[at] = *f;
     node->txq_len++;
     tx_drain(node); /* the controller may have room again */
@@ -333,7 +340,9 @@ uint32_t co_node_process(co_node_t *node, uint32_t now_us)
 
     co_node_clock(node, now_us);
     co_rx_settle(node); /* COB-IDs the application changed since */
-    tx_drain(node);
+    if (node->txq_len != 0U) {
+        tx_drain(node);
+    }
     run = services_due(node, now_us);
     if (run == 0U) {
         next = node->due;

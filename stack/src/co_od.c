@@ -514,7 +514,10 @@ static co_err_t commit_streamed(co_node_t *node, const co_od_entry_t *e, const c
         }
     }
     if ((end > 0U) && (data != v)) {
-        (void)memmove(v, data, end);
+        /* the data are a frame, the SDO server's buffer, the staging area
+         * or the application's: never a part of this value (gathered in
+         * place, they are the value itself, data == v) */
+        (void)memcpy(v, data, end);
     }
     if (end < s->size) {
         (void)memset(&v[end], 0, s->size - end);

@@ -26,7 +26,7 @@ static void event(co_node_t *node, co_hb_event_t ev, uint8_t id, uint8_t state)
  * is lost, and cleared when the last one comes back. */
 static void update_error(co_node_t *node)
 {
-    bool lost = (node->errctl.guard_state == (uint8_t)GUARD_LOST);
+    bool lost = (CO_NODE_GUARDING != 0) && (node->errctl.guard_state == (uint8_t)GUARD_LOST);
 
     for (uint8_t k = 0U; (k < node->errctl.n_hb_cons) && !lost; k++) {
         lost = (node->errctl.hbc[k].state == (uint8_t)HBC_LOST);
@@ -72,7 +72,8 @@ static uint32_t life_ms(const co_node_t *node)
  * that nothing can ever clear would stay in 0x1001 for good. */
 static void guard_check(co_node_t *node)
 {
-    if ((node->errctl.guard_state != (uint8_t)GUARD_OFF) &&
+    /* (without guarding never armed: not built) */
+    if ((CO_NODE_GUARDING != 0) && (node->errctl.guard_state != (uint8_t)GUARD_OFF) &&
         ((life_ms(node) == 0U) || !guarding_answered(node))) {
         bool was_lost = (node->errctl.guard_state == (uint8_t)GUARD_LOST);
         node->errctl.guard_state = (uint8_t)GUARD_OFF;
@@ -241,7 +242,7 @@ static uint32_t errctl_process(co_node_t *node, uint32_t next)
     /* 0x100C/0x100D written since the last call (errctl_written keeps a
      * lost state so that the next request can end it) */
     guard_check(node);
-    if (node->errctl.guard_state == (uint8_t)GUARD_ARMED) {
+    if ((CO_NODE_GUARDING != 0) && (node->errctl.guard_state == (uint8_t)GUARD_ARMED)) {
         if (co_time_reached(now, node->errctl.guard_deadline)) {
             node->errctl.guard_state = (uint8_t)GUARD_LOST;
             update_error(node);
@@ -367,7 +368,8 @@ static co_err_t errctl_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
         consumers_changed(node);
     } else if (e->index == 0x1017U) {
         producer_changed(node);
-    } else if ((e->index != 0x1016U) && (c->guard_state == (uint8_t)GUARD_ARMED)) {
+    } else if ((CO_NODE_GUARDING != 0) && (e->index != 0x1016U) &&
+               (c->guard_state == (uint8_t)GUARD_ARMED)) {
         /* 0x100C / 0x100D: life guarding is re-armed with the new life time
          * by the next guarding request. A lost state is kept: that request
          * must still end the error (errctl_process ends it if life guarding
@@ -380,11 +382,13 @@ static co_err_t errctl_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
 }
 
 static const co_svc_hook_t errctl_hooks[] = {
+#if CO_NODE_GUARDING
     {0x100CU, 0x100DU, CO_SVC_CHECK | CO_SVC_WRITTEN, errctl_obj, CO_ROW_ERRCTL},
+#endif
     {0x1016U, 0x1017U, CO_SVC_CHECK | CO_SVC_WRITTEN, errctl_obj, CO_ROW_ERRCTL},
 };
 
 const co_service_t co_svc_errctl = {
     errctl_bind,   errctl_reset, errctl_rx_slots, errctl_rx, errctl_process,
-    NULL,          errctl_hooks, 2U,
+    NULL,          errctl_hooks, (uint8_t)(sizeof errctl_hooks / sizeof errctl_hooks[0]),
 };

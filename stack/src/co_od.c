@@ -607,7 +607,9 @@ void co_od_restore(co_node_t *node, uint16_t from, uint16_t to)
                 (s->off >= from) && (s->off < to)) {
                 uint8_t n = co_type_len(s->type);
                 uint8_t *p = &node->ram[s->off];
-                uint8_t id = is_pdo_emcy_cob(e->index, s->sub) ? node->cob_base : node->node_id;
+                /* (the COB-ID base differs from the node-ID only with LSS) */
+                uint8_t id = ((CO_LSS != 0) && is_pdo_emcy_cob(e->index, s->sub)) ? node->cob_base
+                                                                                 : node->node_id;
                 /* 16/32-bit values are native integers in RAM */
                 if (n == 1U) {
                     p[0] = (uint8_t)(p[0] + id);

@@ -435,13 +435,28 @@ void co_store_forget_comm(co_node_t *node);
 /* True for a sub-entry of 0x1010 / 0x1011 the core acts on (sub >= 1,
  * UNSIGNED32 in RAM): a write saves or restores, the value is never stored. */
 bool co_store_is_command(const co_od_entry_t *e, const co_od_sub_t *s);
-/* The result of the last command, once co_store_busy() is false (an
- * asynchronous HAL: the SDO server answers with it). */
+/* co_store_result: the result of the last command, once co_store_busy() is
+ * false (an asynchronous HAL: the SDO server answers with it).
+ * co_store_damaged: the newest parameter set found at the last reset was
+ * damaged (an older one or the defaults were loaded), and no save has
+ * written a whole one since: the EMCY service reports it (EMCY 0x5530). */
+#if CO_STORAGE
 co_err_t co_store_result(const co_node_t *node);
-/* The newest parameter set found at the last reset was damaged (an older
- * one or the defaults were loaded), and no save has written a whole one
- * since: the EMCY service reports it (EMCY 0x5530). */
 bool co_store_damaged(const co_node_t *node);
+#else
+/* without storage no command is ever written and no set ever loaded: the
+ * callers' code for them is not built */
+static inline co_err_t co_store_result(const co_node_t *node)
+{
+    (void)node;
+    return CO_OK;
+}
+static inline bool co_store_damaged(const co_node_t *node)
+{
+    (void)node;
+    return false;
+}
+#endif
 
 /* ---- what one service asks of another (no cycles: tools/core-callgraph) */
 /* A serious error of 0x1029 class @p sub: the NMT reaction it configures

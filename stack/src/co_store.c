@@ -312,20 +312,24 @@ static co_err_t store_finish(co_node_t *node, co_err_t err)
     return err;
 }
 
+#if CO_STORAGE
 bool co_store_damaged(const co_node_t *node)
 {
     return node->store.damaged != 0U;
 }
+#endif
 
 bool co_store_busy(const co_node_t *node)
 {
     return (node->store.step == (uint8_t)STEP_ERASE) || (node->store.step == (uint8_t)STEP_WRITE);
 }
 
+#if CO_STORAGE
 co_err_t co_store_result(const co_node_t *node)
 {
     return node->store.result;
 }
+#endif
 
 /* Start the command node->store describes: erase the bank it writes (with
  * nv_erase), write the set, and with an asynchronous HAL (nv_poll) leave
@@ -505,5 +509,5 @@ static const co_svc_hook_t store_hooks[] = {
 };
 
 const co_service_t co_svc_store = {
-    NULL, store_reset, NULL, NULL, store_process, NULL, store_hooks, 1U,
+    NULL, store_reset, NULL, NULL, (CO_STORAGE != 0) ? store_process : NULL, NULL, store_hooks, 1U,
 };

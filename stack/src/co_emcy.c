@@ -277,6 +277,11 @@ static co_err_t emcy_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
     co_err_t err = CO_OK;
 
     if (e->index != 0x1003U) {
+        /* 0x1014 / 0x1015 (CO_SVC_SELF): a new COB-ID or inhibit time
+         * concerns emcy_process only for an EMCY that waits */
+        if (m->n_q > 0U) {
+            co_svc_touch(node, CO_ROW_EMCY);
+        }
         if ((e->index == 0x1014U) && (sub == 0U) && (len == 4U) && (m->cob != NULL)) {
             err = co_check_cob(*m->cob, co_get_u32(data), 0x80000000UL, false, 0x40000000UL,
                                false);
@@ -301,7 +306,7 @@ static co_err_t emcy_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
 
 static const co_svc_hook_t emcy_hooks[] = {
     {0x1003U, 0x1003U, CO_SVC_READ | CO_SVC_CHECK | CO_SVC_WRITTEN, emcy_obj, CO_ROW_EMCY},
-    {0x1014U, 0x1015U, CO_SVC_CHECK, emcy_obj, CO_ROW_EMCY},
+    {0x1014U, 0x1015U, CO_SVC_CHECK | CO_SVC_SELF, emcy_obj, CO_ROW_EMCY},
 };
 
 const co_service_t co_svc_emcy = {

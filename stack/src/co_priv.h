@@ -233,8 +233,11 @@ static inline void co_svc_touch(co_node_t *node, uint8_t k)
  * co_node_process for it (when every row runs, it runs too). */
 static inline void co_svc_untouch(co_node_t *node, uint8_t k)
 {
-    if (node->svc_run != CO_SVC_ALL) {
-        node->svc_run &= (uint16_t)~(1U << k);
+    uint32_t run = node->svc_run;
+
+    if (run != CO_SVC_ALL) {
+        run &= ~((uint32_t)1U << k);
+        node->svc_run = (uint16_t)run;
     }
 }
 /* A service's deadline that moved to @p when without the service running

@@ -245,7 +245,8 @@ static void send_expedited(co_node_t *node, uint16_t index, uint8_t sub, uint32_
     uint32_t data = co_get_u32(node->sdo.buf);
 
     if (size < 4U) {
-        data &= (uint32_t)((1UL << (8U * size)) - 1U);
+        uint32_t keep = ((uint32_t)1U << (8U * size)) - 1U;
+        data &= keep;
     }
     reply(node,
           (uint8_t)(CO_SDO_B0(CO_SDO_SCS_UPLOAD_INITIATE) | CO_SDO_EXPEDITED | CO_SDO_SIZE_IND |

@@ -449,6 +449,22 @@ static void inhibit_time_delays(void **state)
     tb_expect_none(BUS);
 }
 
+/* The inhibit time lowered while an EMCY waits: it goes at the next
+ * processing, not when the old inhibit time would have ended. */
+static void inhibit_time_lowered_releases_the_queue(void **state)
+{
+    tb_xfer(BUS, "601 2B 15 10 00 0A 00 00 00", "581 60 15 10 00 00 00 00 00");
+    co_emcy_raise(NODE, 0x2310U, CO_ERREG_CURRENT, NULL);
+    tb_expect(BUS, "081 10 23 03 00 00 00 00 00");
+    co_emcy_raise(NODE, 0x4210U, CO_ERREG_TEMPERATURE, NULL);
+    tb_advance(BUS, 0U);
+    tb_expect_none(BUS);
+    tb_xfer(BUS, "601 2B 15 10 00 00 00 00 00", "581 60 15 10 00 00 00 00 00");
+    tb_advance(BUS, 0U);
+    tb_expect(BUS, "081 10 42 0B 00 00 00 00 00");
+    tb_expect_none(BUS);
+}
+
 static void inhibit_time_zero_is_none(void **state)
 {
     for (uint16_t i = 0; i < 6U; i++) {
@@ -505,6 +521,7 @@ int main(void)
         cmocka_unit_test_setup(cob_id_change_only_while_invalid, setup),
         cmocka_unit_test_setup(cob_id_bad_values, setup),
         cmocka_unit_test_setup(inhibit_time_delays, setup),
+        cmocka_unit_test_setup(inhibit_time_lowered_releases_the_queue, setup),
         cmocka_unit_test_setup(inhibit_time_zero_is_none, setup),
         cmocka_unit_test_setup(inhibit_time_after_long_silence, setup),
         cmocka_unit_test_setup(inhibit_queue_dropped_when_stopped, setup),

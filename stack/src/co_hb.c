@@ -45,6 +45,7 @@ static bool heartbeat_producing(const co_node_t *node)
     return (node->errctl.hb_prod != NULL) && (*node->errctl.hb_prod != 0U);
 }
 
+#if CO_NODE_GUARDING
 /* CiA 301: with a non-zero heartbeat producer time the node uses the
  * heartbeat protocol, not node guarding (unless the device's option says it
  * answers both). */
@@ -64,6 +65,7 @@ static uint32_t life_ms(const co_node_t *node)
     }
     return life;
 }
+#endif
 
 /* Life guarding ends when it is switched off (life time 0) or when the node
  * stops answering guarding requests (heartbeat producer time set). CiA 301
@@ -72,8 +74,8 @@ static uint32_t life_ms(const co_node_t *node)
  * that nothing can ever clear would stay in 0x1001 for good. */
 static void guard_check(co_node_t *node)
 {
-    /* (without guarding never armed: not built) */
-    if ((CO_NODE_GUARDING != 0) && (node->errctl.guard_state != (uint8_t)GUARD_OFF) &&
+#if CO_NODE_GUARDING
+    if ((node->errctl.guard_state != (uint8_t)GUARD_OFF) &&
         ((life_ms(node) == 0U) || !guarding_answered(node))) {
         bool was_lost = (node->errctl.guard_state == (uint8_t)GUARD_LOST);
         node->errctl.guard_state = (uint8_t)GUARD_OFF;
@@ -82,6 +84,9 @@ static void guard_check(co_node_t *node)
             event(node, CO_GUARD_RECOVERED, 0U, node->nmt);
         }
     }
+#else
+    (void)node; /* never armed without guarding */
+#endif
 }
 
 /* 0x1017 written (CiA 301: the producer's cycle time). Switched on, the
@@ -131,7 +136,9 @@ static void consumers_changed(co_node_t *node)
  * co_nmt_boot ends that error once the node is in Pre-operational. */
 static void hb_reset(co_node_t *node)
 {
+#if CO_NODE_GUARDING
     node->errctl.guard_toggle = 0U;
+#endif
     node->errctl.guard_state = (uint8_t)GUARD_OFF;
     /* The boot-up frame counts as the first heartbeat. */
     node->errctl.hb_last = node->now;
@@ -242,7 +249,8 @@ static uint32_t errctl_process(co_node_t *node, uint32_t next)
     /* 0x100C/0x100D written since the last call (errctl_written keeps a
      * lost state so that the next request can end it) */
     guard_check(node);
-    if ((CO_NODE_GUARDING != 0) && (node->errctl.guard_state == (uint8_t)GUARD_ARMED)) {
+#if CO_NODE_GUARDING
+    if (node->errctl.guard_state == (uint8_t)GUARD_ARMED) {
         if (co_time_reached(now, node->errctl.guard_deadline)) {
             node->errctl.guard_state = (uint8_t)GUARD_LOST;
             update_error(node);
@@ -252,6 +260,7 @@ static uint32_t errctl_process(co_node_t *node, uint32_t next)
             next = co_deadline_min(now, next, node->errctl.guard_deadline);
         }
     }
+#endif
     return next;
 }
 
@@ -390,5 +399,5 @@ static const co_svc_hook_t errctl_hooks[] = {
 
 const co_service_t co_svc_errctl = {
     errctl_bind,   errctl_reset, errctl_rx_slots, errctl_rx, errctl_process,
-    NULL,          errctl_hooks, (uint8_t)(sizeof errctl_hooks / sizeof errctl_hooks[0]),
+    NULL,          errctl_hooks, (uint8_t)(sizeof(errctl_hooks) / sizeof(errctl_hooks[0])),
 };

@@ -214,8 +214,9 @@ static co_err_t check_comm_write(const co_node_t *node, uint16_t i, uint8_t sub,
          * invalid (on a device with set.pdo.cob_id_while_valid also while
          * valid: the current one counts as not in use); a valid one is not
          * a restricted one */
-        uint32_t was = (CO_SET(node, pdo.cob_id_while_valid) != 0U) ? (cur | CO_PDO_COB_INVALID)
-                                                                     : cur;
+        uint32_t was = (CO_SET(node, pdo.cob_id_while_valid) != 0U)
+                           ? (cur | (uint32_t)CO_PDO_COB_INVALID)
+                           : cur;
         return co_check_cob(was, co_get_u32(data), CO_PDO_COB_INVALID, false, 0U, false);
     } else if ((sub == 2U) && (len == 1U)) {
         uint8_t t = data[0];

@@ -256,12 +256,14 @@ typedef struct co_sdo_srv {
 typedef struct co_errctl {
     uint32_t *hb_cons;       /**< 0x1016 sub1.. */
     uint16_t *hb_prod;       /**< 0x1017 */
+    uint32_t hb_last;        /**< time of the last heartbeat (or boot-up) */
+#if CO_NODE_GUARDING
     uint16_t *guard_time;    /**< 0x100C */
     uint8_t *life_factor;    /**< 0x100D */
-    uint32_t hb_last;        /**< time of the last heartbeat (or boot-up) */
     uint32_t guard_deadline;
-    uint8_t n_hb_cons;
     uint8_t guard_toggle;
+#endif
+    uint8_t n_hb_cons;
     uint8_t guard_state;     /**< 0 off, 1 armed (first RTR seen), 2 lost */
     uint8_t hb_flags;        /**< co_hb.c: producer running (0x01), heartbeats held back
                                   (0x02, co_node_hb_mute) */

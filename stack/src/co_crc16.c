@@ -2,15 +2,14 @@
 
 uint16_t co_crc16(uint16_t crc, const uint8_t *data, uint32_t len)
 {
-    /* Nibble table: 32 bytes of flash instead of 512. */
-    static const uint16_t tab[16] = {
-        0x0000U, 0x1021U, 0x2042U, 0x3063U, 0x4084U, 0x50A5U, 0x60C6U, 0x70E7U,
-        0x8108U, 0x9129U, 0xA14AU, 0xB16BU, 0xC18CU, 0xD1ADU, 0xE1CEU, 0xF1EFU
-    };
-
+    /* CRC-16/CCITT (polynomial 0x1021) a byte at a time without a table:
+     * x^16 = x^12 + x^5 + 1 folds the byte's eight polynomial steps into
+     * x ^= x >> 4 and three shifted copies of x. */
     for (uint32_t i = 0U; i < len; i++) {
-        crc = (uint16_t)((uint16_t)(crc << 4U) ^ tab[((crc >> 12U) ^ (data[i] >> 4U)) & 0x0FU]);
-        crc = (uint16_t)((uint16_t)(crc << 4U) ^ tab[((crc >> 12U) ^ (data[i] & 0x0FU)) & 0x0FU]);
+        uint8_t x = (uint8_t)((crc >> 8U) ^ data[i]);
+        x ^= (uint8_t)(x >> 4U);
+        crc = (uint16_t)((uint16_t)(crc << 8U) ^ (uint16_t)((uint16_t)x << 12U) ^
+                         (uint16_t)((uint16_t)x << 5U) ^ x);
     }
     return crc;
 }

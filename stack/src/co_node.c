@@ -86,14 +86,6 @@ void co_tx(co_node_t *node, uint32_t id, const uint8_t *data, uint8_t len)
     co_tx_frame(node, &f);
 }
 
-bool co_tx_try(co_node_t *node, uint32_t id, const uint8_t *data, uint8_t len)
-{
-    co_frame_t f;
-
-    co_frame_set(&f, id, data, len);
-    return co_tx_now(node, &f);
-}
-
 /* A COB-ID write (CiA 301 7.5.2), for the services' checks. */
 co_err_t co_check_cob(uint32_t cur, uint32_t v, uint32_t use_bits, bool use_when_set,
                       uint32_t reserved, bool always)

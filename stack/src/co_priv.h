@@ -183,8 +183,6 @@ static inline bool co_tx_now(co_node_t *node, const co_frame_t *f)
 /* Send @p f, or hold it back while the TX path is full (CO_TXQ_LEN). */
 void co_tx_frame(co_node_t *node, const co_frame_t *f);
 void co_tx(co_node_t *node, uint32_t id, const uint8_t *data, uint8_t len);
-/* Send now or not at all (nothing held back): for streams that resume later. */
-bool co_tx_try(co_node_t *node, uint32_t id, const uint8_t *data, uint8_t len);
 /* The receive table is out of date (a COB-ID changed): the node rebuilds it
  * from the services' rx_slots before it looks up the next frame. */
 void co_rx_invalidate(co_node_t *node);

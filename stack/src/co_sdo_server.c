@@ -19,6 +19,7 @@
 
 #define SDO_BLKSIZE 127U /* segments per block the server asks for */
 #define SEG 7U           /* data bytes per segment */
+#define SDO_CHUNK 8U     /* block upload: segments read from the value at once */
 
 enum {
     S_IDLE = 0,
@@ -254,33 +255,31 @@ static void send_expedited(co_node_t *node, uint16_t index, uint8_t sub, uint32_
     send8(node, d);
 }
 
-/* Read up to SEG bytes of the value at byte @p at into @p buf (SEG bytes). */
-static co_err_t read_seg(co_node_t *node, uint32_t at, uint8_t *buf, uint32_t *got, bool *last)
+/* Read up to @p cap bytes of the value at byte @p at into @p buf; the rest
+ * of the @p cap bytes are zeros. */
+static co_err_t read_seg(co_node_t *node, uint32_t at, uint8_t *buf, uint32_t cap, uint32_t *got,
+                         bool *last)
 {
     co_sdo_srv_t *t = &node->sdo;
-    co_od_chunk_t c = {buf, at, SEG, 0U, 0U, false};
-    co_err_t err;
+    co_od_chunk_t c = {buf, at, cap, 0U, 0U, false};
+    co_err_t err = CO_OK;
 
     if ((at == 0U) && ((t->flags & F_STAGED) != 0U)) {
-        *got = t->buf_len;
-        if (((t->flags & F_SIZE) != 0U) && (*got > t->size)) {
-            *got = t->size; /* never beyond the size announced */
-        }
-        (void)memcpy(buf, t->buf, *got);
-        *last = ((t->flags & F_SIZE) != 0U) && (*got >= t->size);
-        return CO_OK;
+        c.len = t->buf_len; /* the first chunk, read when the upload opened */
+        (void)memcpy(buf, t->buf, c.len);
+    } else {
+        err = co_od_read_part(node, t->entry, t->desc, &c);
     }
-    err = co_od_read_part(node, t->entry, t->desc, &c);
     *got = c.len;
     *last = c.last;
-    if ((err == CO_OK) && ((t->flags & F_SIZE) != 0U)) {
+    if ((t->flags & F_SIZE) != 0U) {
         if ((at + *got) > t->size) {
             /* never beyond the size announced (a hook reported a smaller total) */
             *got = (at < t->size) ? (t->size - at) : 0U;
-            (void)memset(&buf[*got], 0, SEG - *got);
         }
         *last = (at + *got) >= t->size;
     }
+    (void)memset(&buf[*got], 0, cap - *got);
     return err;
 }
 
@@ -431,7 +430,7 @@ static void upload_segment(co_node_t *node, const uint8_t *d)
         abort_cur(node, CO_ERR_TOGGLE);
         return;
     }
-    err = read_seg(node, t->offset, &r[1], &got, &last);
+    err = read_seg(node, t->offset, &r[1], SEG, &got, &last);
     if (err != CO_OK) {
         abort_cur(node, err);
         return;
@@ -615,33 +614,54 @@ CO_NOINLINE static void block_upload_initiate(co_node_t *node, const uint8_t *d,
 }
 
 /* Send segments of the current sub-block until it is complete or the TX
- * path is full (then co_sdo_process resumes). */
+ * path is full (then co_sdo_process resumes). The value is read a chunk of
+ * up to SDO_CHUNK segments at a time (a read hook runs once per chunk, not
+ * per segment); what the TX path did not take is read again later. */
 static void block_upload_send(co_node_t *node)
 {
     co_sdo_srv_t *t = &node->sdo;
+    uint8_t buf[SDO_CHUNK * SEG];
+    uint32_t from = 0U; /* offset of buf[0] in the value */
+    uint32_t have = 0U; /* bytes in buf */
+    bool end = false;   /* buf reaches the end of the value */
+    co_frame_t f;
 
+    f.id = tx_cob(node);
+    f.dlc = 8U;
     while ((t->seqno < t->blksize) && ((t->flags & F_LAST) == 0U)) {
-        uint8_t d[8] = {0};
-        uint32_t got = 0U;
-        bool last = false;
         uint32_t at = t->offset + ((uint32_t)t->seqno * SEG);
-        co_err_t err = read_seg(node, at, &d[1], &got, &last);
-        if (err != CO_OK) {
-            abort_cur(node, err);
-            return;
+        uint32_t got;
+        bool last;
+
+        if (!end && ((at + SEG) > (from + have))) {
+            /* the segment is not in buf: the next chunk, up to the end of
+             * the sub-block */
+            uint32_t cap = (uint32_t)(t->blksize - t->seqno) * SEG;
+            co_err_t err = read_seg(node, at, buf, (cap < sizeof buf) ? cap : sizeof buf, &have, &end);
+            if (err != CO_OK) {
+                abort_cur(node, err);
+                return;
+            }
+            from = at;
         }
+        got = from + have - at;
+        if (got > SEG) {
+            got = SEG;
+        }
+        last = end && ((at + got) >= (from + have));
         if (!last && (got < SEG)) {
             abort_cur(node, CO_ERR_GENERAL); /* a hook produced a short chunk mid-stream */
             return;
         }
-        d[0] = (uint8_t)((uint8_t)(t->seqno + 1U) | (last ? CO_SDO_BLK_LAST : 0U));
-        if (!co_tx_try(node, tx_cob(node), d, 8U)) {
-            return;
+        f.data[0] = (uint8_t)((uint8_t)(t->seqno + 1U) | (last ? CO_SDO_BLK_LAST : 0U));
+        (void)memcpy(&f.data[1], &buf[at - from], SEG); /* zeros after the end */
+        if (!co_tx_now(node, &f)) {
+            return; /* nothing held back: co_sdo_process sends it again */
         }
         if ((t->flags & F_CRC) != 0U) {
             /* the CRC as the segments go out (an acknowledge of all of them
              * takes it over, co_crc16 need not read them again) */
-            t->crc_sent = co_crc16(t->crc_sent, &d[1], got);
+            t->crc_sent = co_crc16(t->crc_sent, &f.data[1], got);
         }
         t->seqno++;
         /* the client's answer is due one timeout after the last segment */
@@ -664,7 +684,7 @@ static co_err_t crc_range(co_node_t *node, uint32_t from, uint32_t len)
     while (len > 0U) {
         uint32_t got = 0U;
         bool last = false;
-        co_err_t err = read_seg(node, from, b, &got, &last);
+        co_err_t err = read_seg(node, from, b, SEG, &got, &last);
         if (err != CO_OK) {
             return err;
         }

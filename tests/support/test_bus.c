@@ -14,7 +14,9 @@ static int tb_hal_send(void *ctx, const co_frame_t *f)
     tb_port_t *p = (tb_port_t *)ctx;
     tb_bus_t *bus = p->bus;
 
-    if (bus->refuse > 0U) {
+    if ((bus->refuse > 0U) && (bus->refuse_after > 0U)) {
+        bus->refuse_after--;
+    } else if (bus->refuse > 0U) {
         bus->refuse--;
         bus->refused++;
         return 1;

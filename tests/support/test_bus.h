@@ -43,6 +43,7 @@ struct tb_bus {
     size_t n_nodes;
     uint32_t now;
     unsigned refuse;           /**< refuse this many send() calls (TX full) */
+    unsigned refuse_after;     /**< ... after this many more are taken */
     unsigned refused;          /**< how many were refused */
     uint8_t nv[TB_NV_SIZE];        /**< NV of port 0 */
     uint8_t nv_port[TB_NODES_MAX - 1U][TB_NV_SIZE]; /**< NV of ports 1.. */

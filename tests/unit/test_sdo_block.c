@@ -36,9 +36,7 @@ typedef struct dom {
     uint32_t writes;     /**< write hook calls */
     uint32_t last_writes; /**< ... of which with io->last */
     uint32_t reads;      /**< read hook calls */
-    uint32_t full_at;    /**< a read at this offset makes the TX path full ... */
-    unsigned full_n;     /**< ... for this many send() calls (0: never) */
-    tb_bus_t *bus;
+    uint32_t max_read;   /**< a read produces at most this many bytes (0: no limit) */
 } dom_t;
 
 typedef struct fx {
@@ -61,15 +59,14 @@ static co_err_t dom_read(void *ctx, co_od_io_t *io)
         if (n > io->len) {
             n = io->len;
         }
+        if ((d->max_read != 0U) && (n > d->max_read)) {
+            n = d->max_read;
+        }
         (void)memcpy(io->buf, &d->data[io->offset], n);
     }
     io->len = n;
     io->total = d->tell_total ? ((d->fake_total != 0U) ? d->fake_total : d->len) : 0U;
     io->last = (io->offset + n) >= d->len;
-    if ((d->full_n != 0U) && (io->offset == d->full_at)) {
-        d->bus->refuse = d->full_n; /* the TX path fills up just now */
-        d->full_n = 0U;
-    }
     return CO_OK;
 }
 
@@ -103,7 +100,6 @@ static int setup(void **state)
     tb_init(&fx.bus);
     td_start(&fx.n, &fx.bus, 0, 1, NULL);
     tb_flush(&fx.bus);
-    fx.dom.bus = &fx.bus;
     fx.dom.tell_total = true;
     hook.read = dom_read;
     hook.write = dom_write;
@@ -947,10 +943,10 @@ static void upload_tx_full_mid_sub_block(void **state)
         DOM.data[i] = (uint8_t)i;
     }
     DOM.len = 100U; /* 15 segments, 2 bytes in the last */
-    /* the TX path fills up when the sixth segment is read */
-    DOM.full_at = 35U;
-    DOM.full_n = 4U;
     tb_xfer(BUS, "601 A4 00 22 00 7F 00 00 00", "581 C6 00 22 00 64 00 00 00");
+    /* the TX path fills up after the fifth segment */
+    BUS->refuse_after = 5U;
+    BUS->refuse = 4U;
     tb_send(BUS, "601 A3 00 00 00 00 00 00 00");
     for (uint32_t k = 0U; k < 5U; k++) {
         (void)memset(r, 0, sizeof r);
@@ -976,6 +972,66 @@ static void upload_tx_full_mid_sub_block(void **state)
     EXPECT_BYTES(BUS, r);
     tb_expect_none(BUS);
     tb_send(BUS, "601 A1 00 00 00 00 00 00 00");
+    tb_expect_none(BUS);
+}
+
+/* The server reads the value a chunk of segments at a time: the hook runs
+ * once per chunk, whatever the block size, a retransmission starts a chunk
+ * where it resumes, and a hook that produces less than asked goes on where
+ * it stopped. */
+static void upload_reads_chunks(void **state)
+{
+    static const uint8_t sizes[] = {1U, 2U, 7U, 8U, 9U, 127U};
+    static uint8_t src[1000];
+    static uint8_t back[1000 + 7];
+    uint32_t n;
+
+    fill_random(src, sizeof src, 0xC0FFEEU);
+    (void)memcpy(DOM.data, src, sizeof src);
+    DOM.len = 100U; /* 15 segments: the first read at the initiate (7
+                       bytes), then 7..62 and 63..99 */
+    {
+        const ul_cfg_t ul = {true, 127U, 0U, 0U};
+        n = client_block_upload(BUS, 0x2200U, 0U, back, 100U, true, 100U, &ul);
+        assert_int_equal(n, 100U);
+        assert_memory_equal(back, src, 100U);
+        assert_int_equal(DOM.reads, 3U);
+    }
+    /* 1000 bytes, block sizes from 1 to 127, half of the first block
+     * acknowledged (none of it with 1): frames and the CRC of the end frame
+     * exact (client_block_upload) */
+    DOM.len = sizeof src;
+    for (uint32_t k = 0U; k < sizeof sizes; k++) {
+        const ul_cfg_t ul = {true, sizes[k], 1U, (uint8_t)(sizes[k] / 2U)};
+        (void)memset(back, 0, sizeof back);
+        n = client_block_upload(BUS, 0x2200U, 0U, back, sizeof src, true, sizeof src, &ul);
+        assert_int_equal(n, sizeof src);
+        assert_memory_equal(back, src, sizeof src);
+    }
+    /* a hook that produces at most 10 bytes a read: the same frames */
+    DOM.max_read = 10U;
+    {
+        const ul_cfg_t ul = {true, 127U, 1U, 100U};
+        (void)memset(back, 0, sizeof back);
+        n = client_block_upload(BUS, 0x2200U, 0U, back, sizeof src, true, sizeof src, &ul);
+        assert_int_equal(n, sizeof src);
+        assert_memory_equal(back, src, sizeof src);
+    }
+    /* ... at most 5 bytes: a segment would be short before the end */
+    DOM.max_read = 5U;
+    tb_xfer(BUS, "601 A4 00 22 00 7F 00 00 00", "581 C6 00 22 00 E8 03 00 00");
+    tb_xfer(BUS, "601 A3 00 00 00 00 00 00 00", "581 80 00 22 00 00 00 00 08");
+    /* ... and in the middle of the value */
+    DOM.max_read = 0U;
+    tb_xfer(BUS, "601 A4 00 22 00 7F 00 00 00", "581 C6 00 22 00 E8 03 00 00");
+    DOM.max_read = 3U;
+    tb_send(BUS, "601 A3 00 00 00 00 00 00 00");
+    {
+        uint8_t r[8] = {0x01U};
+        (void)memcpy(&r[1], src, 7U);
+        EXPECT_BYTES(BUS, r);
+    }
+    tb_expect(BUS, "581 80 00 22 00 00 00 00 08");
     tb_expect_none(BUS);
 }
 
@@ -1067,6 +1123,7 @@ int main(void)
         cmocka_unit_test_setup(block_timeouts, setup),
         cmocka_unit_test_setup(upload_tx_full_loses_nothing, setup),
         cmocka_unit_test_setup(upload_tx_full_mid_sub_block, setup),
+        cmocka_unit_test_setup(upload_reads_chunks, setup),
         cmocka_unit_test_setup(options_disable_block_transfers, setup),
         cmocka_unit_test_setup(client_abort_and_wrong_commands, setup),
     };

@@ -114,17 +114,11 @@ void co_rx_add(co_node_t *node, uint16_t cob, uint8_t svc, uint8_t arg)
     if (i >= CO_RX_SLOTS_MAX) {
         return;
     }
-    /* insertion keeps the table sorted by COB-ID */
-    while ((i > 0U) && (node->rx[i - 1U].cob > cob)) {
-        node->rx[i] = node->rx[i - 1U];
-        i--;
-    }
     node->rx[i].cob = cob;
     node->rx[i].kind = svc;
     node->rx[i].arg = arg;
     node->n_rx++;
-    co_rx_accept(node, cob);
-    node->rx_fc |= (uint16_t)(1U << (cob >> 7U));
+    co_rx_accept(node, cob, (i < (CO_RX_AT_PDO - 1U)) ? (uint8_t)(i + 1U) : CO_RX_AT_MANY);
 }
 
 /* The rows of co_services[] that run: all, or only LSS while unconfigured. */
@@ -133,14 +127,13 @@ static uint8_t services_running(const co_node_t *node)
     return (node->node_id == CO_NODE_ID_UNCONFIGURED) ? CO_SVC_UNCONFIGURED_ROWS : co_n_services;
 }
 
-/* Until the table is rebuilt, every frame passes the filter and finds no
- * slot: the first one rebuilds it (co_rx_dispatch). */
+/* Until the table is rebuilt, every frame goes the way of a function code
+ * with several slots and finds the table stale: the first one rebuilds it
+ * (co_node_rx). */
 void co_rx_invalidate(co_node_t *node)
 {
     node->rx_dirty = 1U;
-    node->rx_fc = 0U;
-    node->pdo.fc = 0U;
-    (void)memset(node->rx_filter, 0xFF, sizeof node->rx_filter);
+    (void)memset(node->rx_at, (int)CO_RX_AT_MANY, sizeof node->rx_at);
 }
 
 /* Every service adds its slots, in table order; then the port hears of the
@@ -149,9 +142,8 @@ void co_rx_rebuild(co_node_t *node)
 {
     node->rx_dirty = 0U;
     node->n_rx = 0U;
-    node->rx_fc = 0U;
-    node->pdo.fc = 0U;
-    (void)memset(node->rx_filter, 0, sizeof node->rx_filter);
+    node->pdo.n_rx = 0U;
+    (void)memset(node->rx_at, (int)CO_RX_AT_NONE, sizeof node->rx_at);
     for (uint8_t k = 0U; k < services_running(node); k++) {
         if (co_services[k]->rx_slots != NULL) {
             co_services[k]->rx_slots(node, k);
@@ -178,105 +170,78 @@ bool co_node_rx_cob(const co_node_t *node, uint16_t i, uint16_t *cob)
     return found;
 }
 
-static const co_rx_slot_t *rx_find(const co_node_t *node, uint16_t cob)
+/* A frame on a service's slot. */
+static void rx_svc(co_node_t *node, const co_rx_slot_t *slot, const co_frame_t *f,
+                   uint32_t now_us)
 {
-    uint32_t lo = 0U;
-    uint32_t hi = node->n_rx;
-
-    while (lo < hi) {
-        uint32_t mid = (lo + hi) >> 1U;
-        uint16_t at = node->rx[mid].cob;
-        if (at == cob) {
-            return &node->rx[mid];
-        }
-        if (at < cob) {
-            lo = mid + 1U;
-        } else {
-            hi = mid;
-        }
+    co_node_clock(node, now_us);
+    if (slot->kind != CO_ROW_SYNC) {
+        /* its timers may have changed (a SYNC received changes none: the
+         * producer's run from its own period) */
+        co_svc_touch(node, slot->kind);
     }
-    return NULL;
+    co_services[slot->kind]->rx(node, slot->arg, f);
 }
 
-static const co_pdo_slot_t *pdo_find(const co_node_t *node, uint16_t cob)
+/* A frame on a PDO's COB-ID: the PDO service's receive entry with the
+ * PDO's number. */
+static void rx_pdo(co_node_t *node, const co_pdo_slot_t *ps, const co_frame_t *f,
+                   uint32_t now_us)
 {
-    uint32_t lo = 0U;
-    uint32_t hi = node->pdo.n_rx;
-
-    while (lo < hi) {
-        uint32_t mid = (lo + hi) >> 1U;
-        uint16_t at = node->pdo.rx[mid].cob;
-        if (at == cob) {
-            return &node->pdo.rx[mid];
-        }
-        if (at < cob) {
-            lo = mid + 1U;
-        } else {
-            hi = mid;
-        }
-    }
-    return NULL;
+    co_node_clock(node, now_us);
+    co_svc_pdo.rx(node, ps->pdo, f);
 }
 
-/* A frame that may be on a PDO's COB-ID: the PDO service's receive entry
- * (which its rx_slots left in node->pdo.recv, with the table) with the PDO's
- * number. */
-static void rx_pdo(co_node_t *node, uint16_t cob, const co_frame_t *f, uint32_t now_us)
+/* A function code with several slots (or a stale table): the services'
+ * slots, then the PDOs'. */
+CO_NOINLINE static void rx_many(co_node_t *node, const co_frame_t *f, uint16_t cob,
+                                uint32_t now_us)
 {
-    const co_pdo_slot_t *ps = pdo_find(node, cob);
-
-    if (ps != NULL) {
-        co_node_clock(node, now_us);
-        node->pdo.recv(node, ps->pdo, f);
+    if (node->rx_dirty != 0U) {
+        /* a frame that came while the table was out of date: rebuild, look again */
+        co_rx_rebuild(node);
+        co_node_rx(node, f, now_us);
+        return;
+    }
+    for (uint8_t k = 0U; k < node->n_rx; k++) {
+        if (node->rx[k].cob == cob) {
+            rx_svc(node, &node->rx[k], f, now_us);
+            return;
+        }
+    }
+    for (uint16_t k = 0U; k < node->pdo.n_rx; k++) {
+        if (node->pdo.rx[k].cob == cob) {
+            rx_pdo(node, &node->pdo.rx[k], f, now_us);
+            return;
+        }
     }
 }
 
-/* A frame that came while the table was out of date: rebuild, look again. */
-CO_NOINLINE static void rx_stale(co_node_t *node, const co_frame_t *f, uint16_t cob,
-                                 uint32_t now_us)
-{
-    co_rx_rebuild(node);
-    co_rx_dispatch(node, f, cob, now_us);
-}
-
-/* A frame the filter let through: find what it is for. (Not static, so
- * that the filter's reject path stays a leaf.) */
-void co_rx_dispatch(co_node_t *node, const co_frame_t *f, uint16_t cob, uint32_t now_us)
-{
-    const co_rx_slot_t *slot = NULL;
-    /* the function code tells which table can hold the COB-ID */
-    uint16_t fc = (uint16_t)(1U << (cob >> 7U));
-
-    if ((node->rx_fc & fc) != 0U) {
-        slot = rx_find(node, cob);
-    }
-    if (slot != NULL) {
-        co_node_clock(node, now_us);
-        if (slot->kind != CO_ROW_SYNC) {
-            /* its timers may have changed (a SYNC received changes none: the
-             * producer's run from its own period) */
-            co_svc_touch(node, slot->kind);
-        }
-        co_services[slot->kind]->rx(node, slot->arg, f);
-    } else if ((node->pdo.fc & fc) != 0U) {
-        rx_pdo(node, cob, f, now_us);
-    } else if (node->rx_dirty != 0U) {
-        rx_stale(node, f, cob, now_us);
-    } else {
-        /* not for this node */
-    }
-}
-
+/* The function code's only slot, or a search where it has several. (The
+ * reject path, a function code without a slot, is a leaf.) */
 void co_node_rx(co_node_t *node, const co_frame_t *f, uint32_t now_us)
 {
     uint16_t cob;
+    uint8_t at;
 
     if ((f->id & CO_FRAME_EFF) != 0U) {
         return; /* the predefined connection set is 11-bit only */
     }
     cob = (uint16_t)(f->id & 0x7FFU);
-    if ((node->rx_filter[(cob & 0x7FU) >> 3U] & (uint8_t)(1U << (cob & 7U))) != 0U) {
-        co_rx_dispatch(node, f, cob, now_us);
+    at = node->rx_at[cob >> 7U];
+    if (at < CO_RX_AT_PDO) {
+        /* the only slot, rx[at - 1]; CO_RX_AT_NONE: not for this node */
+        uint8_t k = (uint8_t)(at - 1U);
+        if ((k < node->n_rx) && (node->rx[k].cob == cob)) {
+            rx_svc(node, &node->rx[k], f, now_us);
+        }
+    } else if (at != CO_RX_AT_MANY) {
+        const co_pdo_slot_t *ps = &node->pdo.rx[at - CO_RX_AT_PDO];
+        if (ps->cob == cob) {
+            rx_pdo(node, ps, f, now_us);
+        }
+    } else {
+        rx_many(node, f, cob, now_us);
     }
 }
 

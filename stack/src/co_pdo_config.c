@@ -337,42 +337,33 @@ static void pdo_nmt(co_node_t *node, co_nmt_state_t from)
     }
 }
 
-static void pdo_rx(co_node_t *node, uint16_t i, const co_frame_t *f);
-
 static void pdo_rx_slots(co_node_t *node, uint8_t svc)
 {
     uint16_t n = (uint16_t)(node->dev->n_rpdo + node->dev->n_tpdo);
     uint16_t used = 0U;
-    uint16_t fc = 0U;
 
     (void)svc;
-    node->pdo.recv = pdo_rx;
     if (node->pdo.rx == NULL) {
         return;
     }
     for (uint16_t i = 0U; i < n; i++) {
         uint32_t cob = co_pdo_cob(node, i);
         uint16_t id = (uint16_t)(cob & 0x7FFU);
-        uint16_t at = used;
         if (((cob & CO_PDO_COB_INVALID) != 0U) ||
             (is_tpdo(node, i) && ((cob & CO_PDO_COB_NO_RTR) != 0U))) {
             continue; /* not received: invalid, or a TPDO that answers no RTR */
         }
-        while ((at > 0U) && (node->pdo.rx[at - 1U].cob > id)) {
-            node->pdo.rx[at] = node->pdo.rx[at - 1U];
-            at--;
-        }
-        node->pdo.rx[at].cob = id;
-        node->pdo.rx[at].pdo = i;
+        node->pdo.rx[used].cob = id;
+        node->pdo.rx[used].pdo = i;
+        co_rx_accept(node, id,
+                     (used < (CO_RX_AT_MANY - CO_RX_AT_PDO)) ? (uint8_t)(CO_RX_AT_PDO + used)
+                                                             : CO_RX_AT_MANY);
         used++;
-        co_rx_accept(node, id);
-        fc |= (uint16_t)(1U << (id >> 7U));
     }
-    node->pdo.fc = fc;
     node->pdo.n_rx = used;
 }
 
-/* A frame on the COB-ID of PDO @p i (the node's PDO table). */
+/* A frame on the COB-ID of PDO @p i (the node's PDO table, co_node_rx). */
 static void pdo_rx(co_node_t *node, uint16_t i, const co_frame_t *f)
 {
     if (i < node->dev->n_rpdo) {

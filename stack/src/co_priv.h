@@ -199,12 +199,20 @@ static inline void co_rx_settle(co_node_t *node)
 /* From a service's rx_slots: frames on @p cob go to service @p svc's rx
  * with @p arg. */
 void co_rx_add(co_node_t *node, uint16_t cob, uint8_t svc, uint8_t arg);
-/* Mark @p cob in the node's quick-reject filter (the PDO table's COB-IDs). */
-static inline void co_rx_accept(co_node_t *node, uint16_t cob)
+/* co_node_t.rx_at, per function code (COB-ID >> 7): no slot, the only
+ * slot (the node's rx[k]: 1 + k; the PDO table's pdo.rx[k]: CO_RX_AT_PDO +
+ * k), or several (CO_RX_AT_MANY: a search of both tables, also for a slot
+ * whose index does not fit). */
+#define CO_RX_AT_NONE 0x00U
+#define CO_RX_AT_PDO  0x80U
+#define CO_RX_AT_MANY 0xFFU
+/* Frames on @p cob go to slot @p at (a CO_RX_AT_* code) of the tables. */
+static inline void co_rx_accept(co_node_t *node, uint16_t cob, uint8_t at)
 {
-    node->rx_filter[(cob & 0x7FU) >> 3U] |= (uint8_t)(1U << (cob & 7U));
+    uint8_t *fc = &node->rx_at[cob >> 7U];
+
+    *fc = (*fc == CO_RX_AT_NONE) ? at : CO_RX_AT_MANY;
 }
-void co_rx_dispatch(co_node_t *node, const co_frame_t *f, uint16_t cob, uint32_t now_us);
 /* Change the NMT state: the services' nmt entries in table order, then the
  * application's callback. */
 void co_node_set_state(co_node_t *node, co_nmt_state_t st);

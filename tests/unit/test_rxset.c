@@ -93,10 +93,60 @@ static void set_follows_the_configuration(void **state)
     assert_string_equal(text, "000 080 185 205 285 605 705 709 7E5");
 }
 
+/* The receive dispatch by function code (COB-ID >> 7): a frame reaches its
+ * slot whether the function code has one slot (a neighbouring COB-ID of it
+ * is another node's) or several (a service and a PDO, several services),
+ * also the first frame after an application's COB-ID change. */
+static void frames_reach_their_slot(void **state)
+{
+    static const uint8_t sync_1f0[4] = {0xF0, 0x01, 0x00, 0x00};
+    /* TPDO1 synchronous (type 1), Operational */
+    tb_xfer(BUS, "605 2F 00 18 02 01 00 00 00", "585 60 00 18 02 00 00 00 00");
+    tb_send(BUS, "000 01 05");
+    tb_flush(BUS);
+    /* one slot per function code: 0x204 and 0x206 are not RPDO1's */
+    tb_send(BUS, "204 11 22 00 33 00 00 00");
+    tb_send(BUS, "206 11 22 00 33 00 00 00");
+    tb_xfer(BUS, "605 40 00 21 00 00 00 00 00", "585 4F 00 21 00 00 00 00 00");
+    tb_send(BUS, "205 11 22 00 33 00 00 00");
+    tb_xfer(BUS, "605 40 00 21 00 00 00 00 00", "585 4F 00 21 00 11 00 00 00");
+    tb_send(BUS, "080");
+    tb_expect(BUS, "185 00 11 22 00 00 00 00 00");
+    tb_expect_none(BUS);
+    /* SYNC on 0x1F0 (written by the application: the first frame finds the
+     * table stale) shares function code 3 with TPDO1's remote requests */
+    assert_int_equal(co_od_write(NODE, 0x1005U, 0U, sync_1f0, 4U, false), CO_OK);
+    tb_send(BUS, "1F0");
+    tb_expect(BUS, "185 00 11 22 00 00 00 00 00");
+    tb_expect_none(BUS);
+    tb_send(BUS, "080");
+    tb_send(BUS, "1F1");
+    tb_send(BUS, "186 R8");
+    tb_expect_none(BUS);
+    tb_send(BUS, "185 R8");
+    tb_expect(BUS, "185 00 11 22 00 00 00 00 00");
+    tb_send(BUS, "1F0");
+    tb_expect(BUS, "185 00 11 22 00 00 00 00 00");
+    tb_expect_none(BUS);
+    /* guarding (0x705) and a heartbeat consumer (0x709) share function code
+     * 14: each frame reaches its own */
+    tb_xfer(BUS, "605 23 16 10 01 64 00 09 00", "585 60 16 10 01 00 00 00 00");
+    tb_send(BUS, "709 05");
+    tb_send(BUS, "706 R1");
+    tb_expect_none(BUS);
+    tb_send(BUS, "705 R1");
+    tb_expect(BUS, "705 05");
+    tb_expect_none(BUS);
+    /* node 9's heartbeat stops: the consumer (100 ms) reports it */
+    tb_advance(BUS, 100000U);
+    tb_expect(BUS, "085 30 81 11 00 00 00 00 00");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_setup(set_follows_the_configuration, setup),
+        cmocka_unit_test_setup(frames_reach_their_slot, setup),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

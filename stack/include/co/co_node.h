@@ -317,14 +317,11 @@ typedef struct co_time {
 /** PDO (co_pdo_config.c, co_rpdo.c, co_tpdo.c). */
 typedef struct co_pdo_svc {
     co_pdo_t *p;             /**< dev->n_rpdo + dev->n_tpdo */
-    co_pdo_slot_t *rx;       /**< PDO COB-IDs, sorted */
+    co_pdo_slot_t *rx;       /**< the COB-IDs the PDOs receive (n_rx) */
     uint16_t n_rx;
-    uint16_t fc;             /**< bit per function code in rx[] */
     uint8_t buffered;        /**< some RPDO may hold data for the next SYNC */
     uint8_t poll;            /**< 1: event-driven TPDOs compare their data at every
                                   co_node_process (change detection) */
-    /** the PDO service's receive entry, for frames found in rx[] */
-    void (*recv)(struct co_node *node, uint16_t i, const co_frame_t *f);
 } co_pdo_svc_t;
 
 struct co_svc_hook;
@@ -350,8 +347,8 @@ typedef struct co_node {
     uint8_t txq_len;
     uint8_t n_svc_hooks;
     uint8_t n_svc_rd;        /**< 1 once a service hook with a read hook is registered */
-    uint8_t rx_filter[16];   /**< bit per (COB-ID & 0x7F): quick reject */
-    uint16_t rx_fc;          /**< bit per function code (COB-ID >> 7) in rx[] */
+    uint8_t rx_at[16];       /**< per function code (COB-ID >> 7): its only slot,
+                                  none, or several (co_node.c) */
     /** co_node_process: bit k: service row k has something new since it
      *  last ran (a frame, a write of its objects); CO_SVC_ALL: every row,
      *  and 'due' is stale. */

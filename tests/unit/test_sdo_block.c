@@ -117,7 +117,7 @@ static int setup(void **state)
 /* ---------------------------------------------------------- helpers */
 
 /* CRC-16 CCITT, polynomial 0x1021, initial value 0, bit by bit: the
- * reference the server's table-driven CRC is checked against. */
+ * reference the server's CRC (a byte at a time, by shifts) is checked against. */
 static uint16_t ref_crc(const uint8_t *p, uint32_t n)
 {
     uint16_t crc = 0U;

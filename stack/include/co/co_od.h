@@ -120,7 +120,10 @@ typedef struct co_od_io {
  * Hooks of one entry.
  * read: for a stored value, called once before the value is read (it may
  *   refresh it, or veto with an error); with CO_SUB_HOOKIO called for every
- *   chunk to produce the data.
+ *   chunk to produce the data, at any offset (again for a retransmission) and
+ *   with the capacity the reader has (an SDO block upload asks for up to 56
+ *   bytes at a time); fewer bytes than asked are fine, but a chunk shorter
+ *   than 7 bytes before io->last ends an SDO block upload with 0x08000000.
  * Data in io->buf is always the wire image (little-endian); io->value points
  * at the stored value (native integers for 16/32/64-bit types).
  * write: for a stored value, called with the complete new value (already

@@ -16,7 +16,7 @@ static uint8_t errreg_now(const co_node_t *node)
     uint8_t r = 0U;
 
     for (uint8_t i = 0U; i < node->emcy.n_active; i++) {
-        uint8_t bits = node->emcy.active[i].reg;
+        uint8_t bits = node->emcy.active_reg[i];
         r |= (uint8_t)(bits | (((bits == 0U) || generic) ? CO_ERREG_GENERIC : 0U));
     }
     return r;
@@ -120,8 +120,8 @@ void co_emcy_raise(co_node_t *node, uint16_t code, uint8_t reg_bits, const uint8
         return;
     }
     if (node->emcy.n_active < CO_EMCY_ACTIVE_MAX) {
-        node->emcy.active[node->emcy.n_active].code = code;
-        node->emcy.active[node->emcy.n_active].reg = reg_bits;
+        node->emcy.active_code[node->emcy.n_active] = code;
+        node->emcy.active_reg[node->emcy.n_active] = reg_bits;
         node->emcy.n_active++;
     }
     update_errreg(node);
@@ -143,14 +143,15 @@ void co_emcy_clear(co_node_t *node, uint16_t code)
 {
     uint8_t i = 0U;
 
-    while ((i < node->emcy.n_active) && (node->emcy.active[i].code != code)) {
+    while ((i < node->emcy.n_active) && (node->emcy.active_code[i] != code)) {
         i++;
     }
     if (i == node->emcy.n_active) {
         return;
     }
     node->emcy.n_active--;
-    node->emcy.active[i] = node->emcy.active[node->emcy.n_active];
+    node->emcy.active_code[i] = node->emcy.active_code[node->emcy.n_active];
+    node->emcy.active_reg[i] = node->emcy.active_reg[node->emcy.n_active];
     update_errreg(node);
     co_svc_touch_all(node);
     if ((node->emcy.n_active == 0U) || (CO_SET(node, emcy.reset) == CO_EMCY_RESET_EACH_CLEAR)) {
@@ -161,7 +162,7 @@ void co_emcy_clear(co_node_t *node, uint16_t code)
 bool co_emcy_is_active(const co_node_t *node, uint16_t code)
 {
     for (uint8_t i = 0U; i < node->emcy.n_active; i++) {
-        if (node->emcy.active[i].code == code) {
+        if (node->emcy.active_code[i] == code) {
             return true;
         }
     }
@@ -181,18 +182,11 @@ static uint32_t emcy_process(co_node_t *node, uint32_t next)
         if ((node->nmt != (uint8_t)CO_NMT_STOPPED) && ((cob & 0x80000000UL) == 0U)) {
             co_tx(node, cob & 0x7FFUL, node->emcy.q[0].data, 8U);
         }
-        /* the others move one up, each carried from the last (a plain copy
-         * loop becomes a call of the C library's memmove) */
+        /* the others move one up (element by element: a copy of the
+         * whole would be a call of the C library's memmove) */
         node->emcy.n_q--;
-        {
-            uint8_t carry[8];
-            (void)memcpy(carry, node->emcy.q[node->emcy.n_q].data, 8U);
-            for (uint8_t i = node->emcy.n_q; i > 0U; i--) {
-                uint8_t newer[8];
-                (void)memcpy(newer, node->emcy.q[i - 1U].data, 8U);
-                (void)memcpy(node->emcy.q[i - 1U].data, carry, 8U);
-                (void)memcpy(carry, newer, 8U);
-            }
+        for (uint8_t i = 0U; i < node->emcy.n_q; i++) {
+            (void)memcpy(node->emcy.q[i].data, node->emcy.q[i + 1U].data, 8U);
         }
         node->emcy.next = node->now + inhibit_us(node);
     }

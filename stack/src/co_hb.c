@@ -29,7 +29,7 @@ static void update_error(co_node_t *node)
     bool lost = (CO_NODE_GUARDING != 0) && (node->errctl.guard_state == (uint8_t)GUARD_LOST);
 
     for (uint8_t k = 0U; (k < node->errctl.n_hb_cons) && !lost; k++) {
-        lost = (node->errctl.hbc[k].state == (uint8_t)HBC_LOST);
+        lost = (node->errctl.hbc_state[k] == (uint8_t)HBC_LOST);
     }
     if (lost) {
         co_emcy_raise(node, CO_EMCY_HB_GUARD, CO_ERREG_COMM, NULL);
@@ -45,6 +45,7 @@ static bool heartbeat_producing(const co_node_t *node)
     return (node->errctl.hb_prod != NULL) && (*node->errctl.hb_prod != 0U);
 }
 
+#if CO_NODE_GUARDING
 /* CiA 301: with a non-zero heartbeat producer time the node uses the
  * heartbeat protocol, not node guarding (unless the device's option says it
  * answers both). */
@@ -64,6 +65,7 @@ static uint32_t life_ms(const co_node_t *node)
     }
     return life;
 }
+#endif
 
 /* Life guarding ends when it is switched off (life time 0) or when the node
  * stops answering guarding requests (heartbeat producer time set). CiA 301
@@ -72,8 +74,8 @@ static uint32_t life_ms(const co_node_t *node)
  * that nothing can ever clear would stay in 0x1001 for good. */
 static void guard_check(co_node_t *node)
 {
-    /* (without guarding never armed: not built) */
-    if ((CO_NODE_GUARDING != 0) && (node->errctl.guard_state != (uint8_t)GUARD_OFF) &&
+#if CO_NODE_GUARDING
+    if ((node->errctl.guard_state != (uint8_t)GUARD_OFF) &&
         ((life_ms(node) == 0U) || !guarding_answered(node))) {
         bool was_lost = (node->errctl.guard_state == (uint8_t)GUARD_LOST);
         node->errctl.guard_state = (uint8_t)GUARD_OFF;
@@ -82,6 +84,9 @@ static void guard_check(co_node_t *node)
             event(node, CO_GUARD_RECOVERED, 0U, node->nmt);
         }
     }
+#else
+    (void)node; /* never armed without guarding */
+#endif
 }
 
 /* 0x1017 written (CiA 301: the producer's cycle time). Switched on, the
@@ -107,15 +112,15 @@ static void consumers_restart(co_node_t *node)
     for (uint8_t k = 0U; k < node->errctl.n_hb_cons; k++) {
         uint32_t v = node->errctl.hb_cons[k];
         bool used = ((v & 0xFFFFU) != 0U) && (((v >> 16U) & 0xFFU) != 0U);
-        if (node->errctl.hbc[k].state == (uint8_t)HBC_UNUSED) {
-            node->errctl.hbc[k].state = used ? (uint8_t)HBC_WAITING : (uint8_t)HBC_UNUSED;
-            node->errctl.hbc[k].nmt = (uint8_t)CO_NMT_INITIALISING;
+        if (node->errctl.hbc_state[k] == (uint8_t)HBC_UNUSED) {
+            node->errctl.hbc_state[k] = used ? (uint8_t)HBC_WAITING : (uint8_t)HBC_UNUSED;
+            node->errctl.hbc_nmt[k] = (uint8_t)CO_NMT_INITIALISING;
         }
     }
     co_rx_invalidate(node);
 }
 
-/* After a write of 0x1016 sub k, errctl_written has set hbc[k-1].state to
+/* After a write of 0x1016 sub k, errctl_written has set hbc_state[k-1] to
  * HBC_UNUSED: only that entry starts over. CiA 301 does not say what a write
  * does to the other entries; restarting them would pause their monitoring
  * and end a pending timeout of a producer that is still silent. */
@@ -131,34 +136,36 @@ static void consumers_changed(co_node_t *node)
  * co_nmt_boot ends that error once the node is in Pre-operational. */
 static void hb_reset(co_node_t *node)
 {
+#if CO_NODE_GUARDING
     node->errctl.guard_toggle = 0U;
+#endif
     node->errctl.guard_state = (uint8_t)GUARD_OFF;
     /* The boot-up frame counts as the first heartbeat. */
     node->errctl.hb_last = node->now;
     node->errctl.hb_flags = (uint8_t)((node->errctl.hb_flags & ~HB_ON) |
                                       (heartbeat_producing(node) ? HB_ON : 0U));
     for (uint8_t k = 0U; k < node->errctl.n_hb_cons; k++) {
-        node->errctl.hbc[k].state = (uint8_t)HBC_UNUSED;
+        node->errctl.hbc_state[k] = (uint8_t)HBC_UNUSED;
     }
     consumers_restart(node);
 }
 
 static void hb_rx(co_node_t *node, uint8_t slot, const co_frame_t *f)
 {
-    co_hb_consumer_t *c = &node->errctl.hbc[slot];
+    co_errctl_t *c = &node->errctl;
     uint8_t st;
     uint8_t id;
     uint8_t prev;
 
-    if (co_frame_is_rtr(f) || (f->dlc < 1U) || (slot >= node->errctl.n_hb_cons) ||
-        (c->state == (uint8_t)HBC_UNUSED)) {
+    if (co_frame_is_rtr(f) || (f->dlc < 1U) || (slot >= c->n_hb_cons) ||
+        (c->hbc_state[slot] == (uint8_t)HBC_UNUSED)) {
         return;
     }
     st = (uint8_t)(f->data[0] & 0x7FU);
-    id = (uint8_t)((node->errctl.hb_cons[slot] >> 16U) & 0x7FU);
-    prev = c->state;
-    c->deadline = node->now + ms_to_us(node->errctl.hb_cons[slot] & 0xFFFFU);
-    c->state = (uint8_t)HBC_ACTIVE;
+    id = (uint8_t)((c->hb_cons[slot] >> 16U) & 0x7FU);
+    prev = c->hbc_state[slot];
+    c->hbc_deadline[slot] = node->now + ms_to_us(c->hb_cons[slot] & 0xFFFFU);
+    c->hbc_state[slot] = (uint8_t)HBC_ACTIVE;
     if (prev == (uint8_t)HBC_WAITING) {
         event(node, CO_HB_STARTED, id, st);
     } else if (prev == (uint8_t)HBC_LOST) {
@@ -167,8 +174,8 @@ static void hb_rx(co_node_t *node, uint8_t slot, const co_frame_t *f)
     } else {
         /* still alive */
     }
-    if (c->nmt != st) {
-        c->nmt = st;
+    if (c->hbc_nmt[slot] != st) {
+        c->hbc_nmt[slot] = st;
         if (prev != (uint8_t)HBC_WAITING) {
             event(node, CO_HB_STATE, id, st);
         }
@@ -227,22 +234,23 @@ static uint32_t errctl_process(co_node_t *node, uint32_t next)
         next = co_deadline_min(now, next, node->errctl.hb_last + period);
     }
     for (uint8_t k = 0U; k < node->errctl.n_hb_cons; k++) {
-        co_hb_consumer_t *c = &node->errctl.hbc[k];
-        if (c->state == (uint8_t)HBC_ACTIVE) {
-            if (co_time_reached(now, c->deadline)) {
-                c->state = (uint8_t)HBC_LOST;
+        co_errctl_t *c = &node->errctl;
+        if (c->hbc_state[k] == (uint8_t)HBC_ACTIVE) {
+            if (co_time_reached(now, c->hbc_deadline[k])) {
+                c->hbc_state[k] = (uint8_t)HBC_LOST;
                 update_error(node);
-                event(node, CO_HB_TIMEOUT, (uint8_t)((node->errctl.hb_cons[k] >> 16U) & 0x7FU), c->nmt);
+                event(node, CO_HB_TIMEOUT, (uint8_t)((c->hb_cons[k] >> 16U) & 0x7FU), c->hbc_nmt[k]);
                 co_nmt_error(node, CO_ERRBEH_COMM); /* 0x1029: a communication error */
             } else {
-                next = co_deadline_min(now, next, c->deadline);
+                next = co_deadline_min(now, next, c->hbc_deadline[k]);
             }
         }
     }
     /* 0x100C/0x100D written since the last call (errctl_written keeps a
      * lost state so that the next request can end it) */
     guard_check(node);
-    if ((CO_NODE_GUARDING != 0) && (node->errctl.guard_state == (uint8_t)GUARD_ARMED)) {
+#if CO_NODE_GUARDING
+    if (node->errctl.guard_state == (uint8_t)GUARD_ARMED) {
         if (co_time_reached(now, node->errctl.guard_deadline)) {
             node->errctl.guard_state = (uint8_t)GUARD_LOST;
             update_error(node);
@@ -252,6 +260,7 @@ static uint32_t errctl_process(co_node_t *node, uint32_t next)
             next = co_deadline_min(now, next, node->errctl.guard_deadline);
         }
     }
+#endif
     return next;
 }
 
@@ -364,7 +373,7 @@ static co_err_t errctl_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
                                          : CO_OK;
     }
     if (consumer) {
-        c->hbc[sub - 1U].state = (uint8_t)HBC_UNUSED; /* this entry starts over */
+        c->hbc_state[sub - 1U] = (uint8_t)HBC_UNUSED; /* this entry starts over */
         consumers_changed(node);
     } else if (e->index == 0x1017U) {
         producer_changed(node);
@@ -390,5 +399,5 @@ static const co_svc_hook_t errctl_hooks[] = {
 
 const co_service_t co_svc_errctl = {
     errctl_bind,   errctl_reset, errctl_rx_slots, errctl_rx, errctl_process,
-    NULL,          errctl_hooks, (uint8_t)(sizeof errctl_hooks / sizeof errctl_hooks[0]),
+    NULL,          errctl_hooks, (uint8_t)(sizeof(errctl_hooks) / sizeof(errctl_hooks[0])),
 };

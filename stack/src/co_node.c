@@ -259,8 +259,12 @@ CO_NOINLINE void co_node_stalled(co_node_t *node, uint32_t now_us)
         /* the next heartbeat due now */
         node->errctl.hb_last = now_us - co_dict_us(*node->errctl.hb_prod, 1000UL);
     }
+#if CO_NODE_GUARDING
     node->errctl.guard_deadline = now_us;
+#endif
+#if CO_SYNC_PRODUCER
     node->sync.deadline = now_us;
+#endif
     node->sync.last = now_us - (uint32_t)CO_HORIZON_US; /* the SYNC window is long closed */
     node->emcy.next = now_us;
     node->sdo.deadline = now_us;
@@ -269,7 +273,7 @@ CO_NOINLINE void co_node_stalled(co_node_t *node, uint32_t now_us)
     node->lss.switch_at = now_us;
 #endif
     for (uint8_t k = 0U; k < node->errctl.n_hb_cons; k++) {
-        node->errctl.hbc[k].deadline = now_us;
+        node->errctl.hbc_deadline[k] = now_us;
     }
     for (uint16_t i = 0U; i < n; i++) {
         node->pdo.p[i].timer = now_us;
@@ -457,28 +461,35 @@ static void reset(co_node_t *node, co_reset_t kind_asked)
 
 /* The application's notice before NMT command @p cs is executed: only
  * when it changes the state or resets. */
+/* The state NMT command @p cs enters (start, stop, pre-operational), else
+ * CO_NMT_INITIALISING (resets and unknown commands). */
+static uint8_t cmd_state(uint8_t cs)
+{
+    uint8_t to = (uint8_t)CO_NMT_INITIALISING;
+
+    if (cs == (uint8_t)CO_NMT_CMD_START) {
+        to = (uint8_t)CO_NMT_OPERATIONAL;
+    } else if (cs == (uint8_t)CO_NMT_CMD_STOP) {
+        to = (uint8_t)CO_NMT_STOPPED;
+    } else if (cs == (uint8_t)CO_NMT_CMD_PRE_OPERATIONAL) {
+        to = (uint8_t)CO_NMT_PRE_OPERATIONAL;
+    } else {
+        /* no state of its own */
+    }
+    return to;
+}
+
+static bool is_reset_cmd(uint8_t cs)
+{
+    return (cs == (uint8_t)CO_NMT_CMD_RESET_NODE) ||
+           (cs == (uint8_t)CO_NMT_CMD_RESET_COMMUNICATION);
+}
+
 void co_node_nmt_notice(co_node_t *node, uint8_t cs)
 {
-    bool change;
+    uint8_t to = cmd_state(cs);
+    bool change = is_reset_cmd(cs) || ((to != (uint8_t)CO_NMT_INITIALISING) && (node->nmt != to));
 
-    switch (cs) {
-    case CO_NMT_CMD_START:
-        change = (node->nmt != (uint8_t)CO_NMT_OPERATIONAL);
-        break;
-    case CO_NMT_CMD_STOP:
-        change = (node->nmt != (uint8_t)CO_NMT_STOPPED);
-        break;
-    case CO_NMT_CMD_PRE_OPERATIONAL:
-        change = (node->nmt != (uint8_t)CO_NMT_PRE_OPERATIONAL);
-        break;
-    case CO_NMT_CMD_RESET_NODE:
-    case CO_NMT_CMD_RESET_COMMUNICATION:
-        change = true;
-        break;
-    default:
-        change = false;
-        break;
-    }
     if (change && (node->cb.nmt_command != NULL)) {
         node->cb.nmt_command(node->cb.ctx, node, cs);
     }
@@ -486,26 +497,18 @@ void co_node_nmt_notice(co_node_t *node, uint8_t cs)
 
 void co_node_nmt_command(co_node_t *node, uint8_t cs, uint32_t now_us)
 {
+    uint8_t to = cmd_state(cs);
+
     co_node_clock(node, now_us);
     co_node_nmt_notice(node, cs);
-    switch (cs) {
-    case CO_NMT_CMD_START:
-        co_node_set_state(node, CO_NMT_OPERATIONAL);
-        break;
-    case CO_NMT_CMD_STOP:
-        co_node_set_state(node, CO_NMT_STOPPED);
-        break;
-    case CO_NMT_CMD_PRE_OPERATIONAL:
-        co_node_set_state(node, CO_NMT_PRE_OPERATIONAL);
-        break;
-    case CO_NMT_CMD_RESET_NODE:
+    if (to != (uint8_t)CO_NMT_INITIALISING) {
+        co_node_set_state(node, (co_nmt_state_t)to);
+    } else if (cs == (uint8_t)CO_NMT_CMD_RESET_NODE) {
         reset(node, CO_RESET_NODE);
-        break;
-    case CO_NMT_CMD_RESET_COMMUNICATION:
+    } else if (cs == (uint8_t)CO_NMT_CMD_RESET_COMMUNICATION) {
         reset(node, CO_RESET_COMMUNICATION);
-        break;
-    default:
-        break; /* unknown command specifier: ignored (CiA 301 defines no answer) */
+    } else {
+        /* unknown command specifier: ignored (CiA 301 defines no answer) */
     }
     co_rx_settle(node);
 }

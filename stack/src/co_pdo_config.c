@@ -223,18 +223,14 @@ static co_err_t check_comm_write(const co_node_t *node, uint16_t i, uint8_t sub,
     bool tx = is_tpdo(node, i);
 
     if ((sub == 1U) && (len == 4U)) {
-        uint32_t v = co_get_u32(data);
-        bool new_valid = (v & CO_PDO_COB_INVALID) == 0U;
-        if ((v & 0x3FFFF800UL) != 0U) {
-            return CO_ERR_VALUE; /* 29-bit identifiers are not supported */
-        }
-        if (valid && new_valid && ((v & 0x7FFUL) != (cur & 0x7FFUL)) &&
-            (CO_SET(node, pdo.cob_id_while_valid) == 0U)) {
-            return CO_ERR_VALUE; /* the CAN-ID changes only while invalid */
-        }
-        if (new_valid && co_cob_restricted(v & 0x7FFUL)) {
-            return CO_ERR_VALUE;
-        }
+        /* 29-bit identifiers are not supported; the CAN-ID changes only while
+         * invalid (on a device with set.pdo.cob_id_while_valid also while
+         * valid: the current one counts as not in use); a valid one is not
+         * a restricted one */
+        uint32_t was = (CO_SET(node, pdo.cob_id_while_valid) != 0U)
+                           ? (cur | (uint32_t)CO_PDO_COB_INVALID)
+                           : cur;
+        return co_check_cob(was, co_get_u32(data), CO_PDO_COB_INVALID, false, 0U, false);
     } else if ((sub == 2U) && (len == 1U)) {
         uint8_t t = data[0];
         if ((t > 240U) && (t < (tx ? 252U : 254U))) {

@@ -309,6 +309,10 @@ static co_err_t store_finish(co_node_t *node, co_err_t err)
     if (err == CO_OK) {
         node->store.damaged = 0U;
     }
+    /* the SDO server waiting for the end of an asynchronous command answers
+     * in this round (its row comes before this one: co_node_process runs
+     * a row touched during the pass once more), not at its next poll */
+    co_svc_touch(node, CO_ROW_SDO);
     return err;
 }
 

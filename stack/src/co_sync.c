@@ -17,22 +17,32 @@ static uint8_t overflow(const co_node_t *node)
     return (node->sync.overflow != NULL) ? *node->sync.overflow : 0U;
 }
 
-static bool producing(const co_node_t *node)
+/* A SYNC period is set (0x1006 non-zero; never without the producer). */
+static bool producing_period(const co_node_t *node)
 {
 #if CO_SYNC_PRODUCER
-    return (node->sync.cob != NULL) && ((*node->sync.cob & COB_SYNC_GEN) != 0U) &&
-           (node->sync.period != NULL) && (*node->sync.period != 0U);
+    return (node->sync.period != NULL) && (*node->sync.period != 0U);
 #else
     (void)node;
     return false;
 #endif
 }
 
+#if CO_SYNC_PRODUCER
+static bool producing(const co_node_t *node)
+{
+    return (node->sync.cob != NULL) && ((*node->sync.cob & COB_SYNC_GEN) != 0U) &&
+           producing_period(node);
+}
+#endif
+
+#if CO_SYNC_PRODUCER
 /* The communication cycle period 0x1006 in us, within the timer horizon. */
 static uint32_t period_us(const co_node_t *node)
 {
     return co_dict_us(*node->sync.period, 1U);
 }
+#endif
 
 /* Everything a SYNC sets in motion, received or produced here. */
 static void on_sync(co_node_t *node, uint8_t counter)
@@ -51,11 +61,13 @@ static void on_sync(co_node_t *node, uint8_t counter)
 
 static void sync_reset(co_node_t *node)
 {
-    node->sync.counter = 1U;
     node->sync.last = node->now;
+#if CO_SYNC_PRODUCER
+    node->sync.counter = 1U;
     if (producing(node)) {
         node->sync.deadline = node->now + period_us(node);
     }
+#endif
 }
 
 static void sync_rx(co_node_t *node, const co_frame_t *f)
@@ -77,6 +89,7 @@ static void sync_rx(co_node_t *node, const co_frame_t *f)
     on_sync(node, (want != 0U) ? f->data[0] : 0U);
 }
 
+#if CO_SYNC_PRODUCER
 static uint32_t sync_process(co_node_t *node, uint32_t next)
 {
     if (!producing(node)) {
@@ -101,6 +114,7 @@ static uint32_t sync_process(co_node_t *node, uint32_t next)
     }
     return co_deadline_min(node->now, next, node->sync.deadline);
 }
+#endif
 
 bool co_sync_window_open(const co_node_t *node)
 {
@@ -114,11 +128,12 @@ static co_err_t sync_bind(co_node_t *node)
     co_sync_t *y = &node->sync;
 
     y->cob = (uint32_t *)co_od_ram_of(node, 0x1005U, 0U, (uint8_t)CO_UNSIGNED32);
-    y->period = (uint32_t *)co_od_ram_of(node, 0x1006U, 0U, (uint8_t)CO_UNSIGNED32);
     y->window = (uint32_t *)co_od_ram_of(node, 0x1007U, 0U, (uint8_t)CO_UNSIGNED32);
     y->overflow = (uint8_t *)co_od_ram_of(node, 0x1019U, 0U, (uint8_t)CO_UNSIGNED8);
-#if !CO_SYNC_PRODUCER
-    if (y->period != NULL) {
+#if CO_SYNC_PRODUCER
+    y->period = (uint32_t *)co_od_ram_of(node, 0x1006U, 0U, (uint8_t)CO_UNSIGNED32);
+#else
+    if (co_od_ram_of(node, 0x1006U, 0U, (uint8_t)CO_UNSIGNED32) != NULL) {
         return CO_ERR_DEV_INCOMPAT;
     }
 #endif
@@ -169,7 +184,7 @@ static co_err_t sync_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
     } else if ((index == 0x1019U) && (len == 1U)) {
         if ((data[0] == 1U) || (data[0] > 240U)) {
             err = CO_ERR_VALUE;
-        } else if ((node->sync.period != NULL) && (*node->sync.period != 0U)) {
+        } else if (producing_period(node)) {
             err = CO_ERR_STORE_STATE;
         } else {
             /* allowed */
@@ -186,5 +201,11 @@ static const co_svc_hook_t sync_hooks[] = {
 };
 
 const co_service_t co_svc_sync = {
-    sync_bind, sync_reset_kind, sync_rx_slots, sync_rx_frame, sync_process, NULL, sync_hooks, 2U,
+    sync_bind, sync_reset_kind, sync_rx_slots, sync_rx_frame,
+#if CO_SYNC_PRODUCER
+    sync_process,
+#else
+    NULL, /* the consumer has no timer */
+#endif
+    NULL, sync_hooks, 2U,
 };

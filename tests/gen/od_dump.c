@@ -85,6 +85,8 @@ int main(int argc, char **argv)
     co_node_config_t cfg;
     unsigned long id = (argc > 1) ? strtoul(argv[1], NULL, 0) : 5UL;
     co_result_t res;
+    int guard_time = 0;
+    int life_factor = 0;
     co_err_t err;
 
     if ((id < 1UL) || (id > 127UL)) {
@@ -123,6 +125,11 @@ int main(int argc, char **argv)
            "\"app_end\": %u, \"n_hooks\": %u,\n",
            dev->name, id, (unsigned)dev->ram_size, (unsigned)dev->comm_end,
            (unsigned)dev->app_end, (unsigned)dev->n_hooks);
+    /* (a core without guarding refuses a device with 0x100C / 0x100D) */
+#if CO_NODE_GUARDING
+    guard_time = node->errctl.guard_time != NULL;
+    life_factor = node->errctl.life_factor != NULL;
+#endif
     /* the personality (co_settings.h), one part per service */
     printf(" \"set\": {\"nmt\": {\"bootup\": %u, \"boot_emcy\": %u, \"guarding_with_hb\": %u, "
            "\"guarding_hb_exclusive\": %u}, \"sdo\": {\"refused\": %u, \"unknown_object\": %u, "
@@ -136,8 +143,8 @@ int main(int argc, char **argv)
            "\"emcy_cob\": %d, \"hb_prod\": %d, \"guard_time\": %d, \"life_factor\": %d, "
            "\"emcy_inhibit\": %d, \"frames\": %u, \"first_id\": %lu, \"nmt\": %u},\n",
            node->emcy.errreg != NULL, (unsigned)node->emcy.hist_depth, (unsigned)node->errctl.n_hb_cons,
-           node->emcy.cob != NULL, node->errctl.hb_prod != NULL, node->errctl.guard_time != NULL,
-           node->errctl.life_factor != NULL, node->emcy.inhibit != NULL, frames_sent,
+           node->emcy.cob != NULL, node->errctl.hb_prod != NULL, guard_time, life_factor,
+           node->emcy.inhibit != NULL, frames_sent,
            (unsigned long)first_id, (unsigned)co_node_nmt_state(node));
     printf(" \"entries\": [\n");
     for (uint16_t i = 0U; i < dev->od_count; i++) {

@@ -981,6 +981,28 @@ static void async_save_serves_the_bus(void **state)
     expect_app(BUS, &SET_B);
 }
 
+/* The answer comes in the co_node_process call whose poll of the HAL finds
+ * the set durable, not at the SDO server's next look one millisecond later
+ * (the SDO row runs before the storage row in a pass: the end of the
+ * command makes it run once more). */
+static void async_save_answers_when_durable(void **state)
+{
+    unsigned steps = 0U;
+
+    (void)state;
+    write_set(BUS, &SET_A);
+    tb_send(BUS, SAVE_ALL);
+    tb_expect_none(BUS);
+    while (co_store_busy(&fx.n.node) && (steps < 1000U)) {
+        tb_expect_none(BUS);
+        tb_advance(BUS, 1000U); /* the storage service polls the HAL every 1 ms */
+        steps++;
+    }
+    assert_false(co_store_busy(&fx.n.node));
+    tb_expect(BUS, SAVED_ALL); /* in that same step */
+    tb_expect_none(BUS);
+}
+
 /* The HAL reports a failed write: the save answers 0x06060000, the old set stays. */
 static void async_save_failure(void **state)
 {
@@ -1096,6 +1118,7 @@ int main(void)
         cmocka_unit_test_setup(stored_pdo_mapping_after_power_on, setup),
         cmocka_unit_test_setup(async_save_serves_the_bus, setup_async),
         cmocka_unit_test_setup(async_save_failure, setup_async),
+        cmocka_unit_test_setup(async_save_answers_when_durable, setup_async),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -271,6 +271,7 @@ def generate(dev: Device, toml_name: str, warn=None) -> tuple[str, str]:
     # goes in the RAM image (co_dev_t.default_at); the core zeroes the rest
     inits = [(f, field_init(f)) for f in ram if f.subs]
     inits = sorted([(f, v) for f, v in inits if v is not None], key=lambda fv: -fv[0].align)
+    n_default_at = 0
     c += [f"#define F(field) ((uint16_t)offsetof({cn}_ram_t, field))", ""]
     if inits:
         c += ["/* Defaults of the RAM image that are not zero ($NODEID defaults hold the",
@@ -286,8 +287,30 @@ def generate(dev: Device, toml_name: str, warn=None) -> tuple[str, str]:
         c += [f"typedef char {cn}_defaults_packed[(offsetof({cn}_defaults_t, {last}) + "
               f"sizeof defaults.{last} == {size}) ? 1 : -1];",
               "static const co_od_default_t default_at[] = {"]
-        c += [f"    {{F({f.name}), (uint16_t)sizeof defaults.{f.name}}}," for f, _ in inits]
-        c += ["};", ""]
+        # values next to each other in the RAM image (declared one after the
+        # other in one region, the second of no larger alignment: no padding
+        # between them on any ABI) go in one run, one default_at entry
+        order = [f.name for region, _ in REGIONS for f in ram if f.region == region]
+        runs = []
+        for f, _ in inits:
+            if runs and order.index(f.name) == order.index(runs[-1][-1].name) + 1 and \
+                    f.align <= runs[-1][-1].align and f.region == runs[-1][-1].region:
+                runs[-1].append(f)
+            else:
+                runs.append([f])
+        n_default_at = len(runs)
+        for r in runs:
+            size = " + ".join(f"sizeof defaults.{f.name}" for f in r)
+            c.append(f"    {{F({r[0].name}), (uint16_t)({size})}},")
+        c += ["};"]
+        merged = [r for r in runs if len(r) > 1]
+        if merged:
+            c += ["/* each run is one stretch of the RAM image */",
+                  f"typedef char {cn}_default_runs[(" + " && ".join(
+                      f"(F({r[-1].name}) + sizeof defaults.{r[-1].name} == F({r[0].name}) + " +
+                      " + ".join(f"sizeof defaults.{f.name}" for f in r) + ")" for r in merged) +
+                  ") ? 1 : -1];"]
+        c += [""]
     else:
         c += ["/* Every value of the RAM image defaults to 0. */",
               "static const co_od_default_t default_at[1] = {{0U, 0U}};", ""]
@@ -373,7 +396,7 @@ def generate(dev: Device, toml_name: str, warn=None) -> tuple[str, str]:
           f"    .stage = {'F(sdo_stage)' if stage else '0U'},",
           f"    .stage_size = {stage}U,",
           "    .default_at = default_at,",
-          f"    .n_defaults = {len(inits)}U,",
+          f"    .n_defaults = {n_default_at}U,",
           "};", "",
           f"void {cn}_config({cn}_node_t *n, co_node_config_t *cfg)",
           "{",

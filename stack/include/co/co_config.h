@@ -44,9 +44,10 @@
                                     sub-entries beyond are not monitored) */
 #endif
 #ifndef CO_RX_SLOTS_MAX
-/** Receive table of the core's services: NMT, SDO, guarding, SYNC, TIME,
- *  LSS and the heartbeat consumers. */
-#define CO_RX_SLOTS_MAX (5U + (unsigned)(CO_LSS) + CO_HB_CONSUMERS_MAX)
+/** Receive table of the core's services: NMT, SDO, SYNC, and guarding,
+ *  TIME and LSS where the build has them, and the heartbeat consumers. */
+#define CO_RX_SLOTS_MAX (3U + (unsigned)(CO_NODE_GUARDING) + (unsigned)(CO_TIME) + \
+                         (unsigned)(CO_LSS) + CO_HB_CONSUMERS_MAX)
 #endif
 #ifndef CO_SVC_HOOKS_MAX
 /** Object ranges the services compiled in hook (co_node_t.svc_hooks): the

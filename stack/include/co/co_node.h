@@ -252,32 +252,27 @@ typedef struct co_sdo_srv {
     uint8_t held[7];     /**< block download: the last segment until its size is known */
 } co_sdo_srv_t;
 
-typedef struct co_hb_consumer {
-    uint32_t deadline;
-    uint8_t state;       /**< 0 unused, 1 waiting for first, 2 active, 3 timed out */
-    uint8_t nmt;         /**< producer's last state */
-} co_hb_consumer_t;
-
 /** Error control (co_hb.c): heartbeat producer and consumers, node and life guarding. */
 typedef struct co_errctl {
     uint32_t *hb_cons;       /**< 0x1016 sub1.. */
     uint16_t *hb_prod;       /**< 0x1017 */
+    uint32_t hb_last;        /**< time of the last heartbeat (or boot-up) */
+#if CO_NODE_GUARDING
     uint16_t *guard_time;    /**< 0x100C */
     uint8_t *life_factor;    /**< 0x100D */
-    uint32_t hb_last;        /**< time of the last heartbeat (or boot-up) */
     uint32_t guard_deadline;
-    uint8_t n_hb_cons;
     uint8_t guard_toggle;
+#endif
+    uint8_t n_hb_cons;
     uint8_t guard_state;     /**< 0 off, 1 armed (first RTR seen), 2 lost */
     uint8_t hb_flags;        /**< co_hb.c: producer running (0x01), heartbeats held back
                                   (0x02, co_node_hb_mute) */
-    co_hb_consumer_t hbc[CO_HB_CONSUMERS_MAX];
+    /* the heartbeat consumers, one element each (three arrays: no padding) */
+    uint32_t hbc_deadline[CO_HB_CONSUMERS_MAX];
+    uint8_t hbc_state[CO_HB_CONSUMERS_MAX]; /**< 0 unused, 1 waiting for first, 2 active,
+                                                 3 timed out */
+    uint8_t hbc_nmt[CO_HB_CONSUMERS_MAX];   /**< producer's last state */
 } co_errctl_t;
-
-typedef struct co_emcy_active {
-    uint16_t code;
-    uint8_t reg;
-} co_emcy_active_t;
 
 typedef struct co_emcy_pending {
     uint8_t data[8];
@@ -295,19 +290,23 @@ typedef struct co_emcy {
     uint8_t n_active;
     uint8_t n_q;
     uint8_t store_report;    /**< EMCY 0x5530 raised for a damaged parameter set */
-    co_emcy_active_t active[CO_EMCY_ACTIVE_MAX];
+    /* the active errors (two arrays: no padding) */
+    uint16_t active_code[CO_EMCY_ACTIVE_MAX];
+    uint8_t active_reg[CO_EMCY_ACTIVE_MAX]; /**< the 0x1001 bits each sets */
     co_emcy_pending_t q[CO_EMCY_QUEUE_LEN];
 } co_emcy_t;
 
 /** SYNC consumer and producer (co_sync.c): 0x1005, 0x1006, 0x1007, 0x1019. */
 typedef struct co_sync {
     uint32_t *cob;           /**< 0x1005 */
-    uint32_t *period;        /**< 0x1006 */
     uint32_t *window;        /**< 0x1007 */
     uint8_t *overflow;       /**< 0x1019 */
-    uint32_t deadline;       /**< producer: next SYNC */
     uint32_t last;           /**< time of the last SYNC (window) */
+#if CO_SYNC_PRODUCER
+    uint32_t *period;        /**< 0x1006 */
+    uint32_t deadline;       /**< producer: next SYNC */
     uint8_t counter;         /**< counter of the SYNC produced next */
+#endif
 } co_sync_t;
 
 /** TIME consumer and producer (co_time.c): 0x1012. */

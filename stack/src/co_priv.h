@@ -642,7 +642,8 @@ CO_INLINE void co_pdo_sample_direct(const co_node_t *node, uint16_t i, uint8_t *
     uint32_t count = co_ram_u8(node, node->dev->pdo[i].count);
 
     /* (a PDO with more entries is not direct: only the compiler needs to know) */
-    for (uint32_t k = 0U; (k < count) && (k < CO_PDO_FAST_MAX); k++) {
+    count = (count <= CO_PDO_FAST_MAX) ? count : 0U;
+    for (uint32_t k = 0U; k < count; k++) {
         at = &at[co_pdo_get_direct(node, co_pdo_code(p, (uint8_t)k), at)];
     }
 #else
@@ -661,6 +662,8 @@ CO_INLINE void co_pdo_store_direct(co_node_t *node, uint16_t i, const uint8_t *d
     uint8_t avail = (dlc > 8U) ? 8U : dlc;
     uint8_t at = 0U;
 
+    /* (a PDO with more entries is not direct: only the compiler needs to know) */
+    count = (count <= CO_PDO_FAST_MAX) ? count : 0U;
     for (uint8_t k = 0U; k < count; k++) {
         uint8_t n = (uint8_t)((co_ram_u32(node, (uint16_t)(d->map + (4U * k))) & 0xFFU) >> 3U);
         uint16_t code = co_pdo_code(p, k);

@@ -97,7 +97,8 @@ static co_err_t check_entry(const co_node_t *node, bool tx, uint32_t v, uint8_t 
  * the dictionary already), mapped in whole bytes at a byte boundary (the
  * low bytes of a longer value: a TPDO sends them, an RPDO extends them to
  * the value's size, by the sign for signed types). A TPDO reads it directly
- * when no service reads the object first (CO_SVC_READ); an RPDO writes it
+ * when no service reads the object first (CO_SVC_READ) (on a big-endian
+ * CPU only when it maps the whole value); an RPDO writes it
  * directly when no service hooks the object at all, the value has no
  * limits and is not a BOOLEAN (the dictionary refuses values above 1). */
 static uint16_t direct_code(const co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
@@ -111,9 +112,21 @@ static uint16_t direct_code(const co_node_t *node, const co_od_entry_t *e, const
         ((bits & 7U) != 0U)) {
         return CO_PDO_SLOW;
     }
-    if (tx ? ((svc & CO_SVC_READ) != 0U)
-           : ((svc != 0U) || ((s->flags & CO_SUB_LIMIT) != 0U) ||
-              (s->type == (uint8_t)CO_BOOLEAN))) {
+    if (tx) {
+        /* on a little-endian CPU 8 bytes are read at once (co_pdo_get_direct),
+         * which a RAM image of fewer than 16 bytes may not have; whole values
+         * only on a big-endian one */
+        uint32_t end = (uint32_t)s->off + 8U;
+        bool at_end = end > node->dev->ram_size;
+        if (((svc & CO_SVC_READ) != 0U) ||
+            (CO_NATIVE_LE ? (at_end && (((uint32_t)s->off + ((uint32_t)bits >> 3U)) < 8U))
+                          : (bits != (uint8_t)(size * 8U)))) {
+            return CO_PDO_SLOW;
+        }
+        return (uint16_t)((uint32_t)s->off | ((((uint32_t)bits >> 3U) - 1U) << 12U) |
+                          (at_end ? (uint32_t)CO_PDO_AT_END : 0U));
+    }
+    if ((svc != 0U) || ((s->flags & CO_SUB_LIMIT) != 0U) || (s->type == (uint8_t)CO_BOOLEAN)) {
         return CO_PDO_SLOW;
     }
     return (uint16_t)((uint32_t)s->off | (((uint32_t)size - 1U) << 12U) |

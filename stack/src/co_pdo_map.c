@@ -104,7 +104,10 @@ void co_pdo_sample(co_node_t *node, uint16_t i, uint8_t *out)
         uint32_t v = co_ram_u32(node, entry);
         uint16_t code = co_pdo_code(p, k);
         if (code < CO_PDO_DUMMY) {
-            co_pdo_get_direct(node, code, &out[pos >> 3U], (uint8_t)((v & 0xFFU) >> 3U));
+            uint8_t tmp[8];
+            uint8_t n = (uint8_t)co_tpdo_code_len(code);
+            (void)co_pdo_get_direct(node, code, tmp);
+            (void)memcpy(&out[pos >> 3U], tmp, n);
         } else {
             sample(node, v, pos, out);
         }

@@ -509,14 +509,18 @@ static inline void co_nmt_error(co_node_t *node, uint8_t sub)
 /* Mapping entries resolved when the mapping is enabled (co_pdo_t.plain[k],
  * the first CO_PDO_FAST_MAX entries): a RAM value the PDO copies directly
  * between frame and RAM image, with the dictionary path's result, is coded
- * as its RAM offset (bits 0..11), its type's size - 1 (bits 12..14) and
- * whether it is signed (bit 15); CO_PDO_SLOW: through the dictionary;
- * CO_PDO_DUMMY: a dummy entry. */
+ * as its RAM offset (bits 0..11) and, for an RPDO, its type's size - 1
+ * (bits 12..14) and whether it is signed (bit 15); for a TPDO, the bytes it
+ * maps - 1 (bits 12..14) and where the 8 bytes read at once lie (bit 15,
+ * CO_PDO_AT_END: the RAM image ends within 8 bytes of the offset, so they
+ * end with the mapped bytes instead of starting with them).
+ * CO_PDO_SLOW: through the dictionary; CO_PDO_DUMMY: a dummy entry. */
 #define CO_PDO_SLOW     0xFFFFU
 #define CO_PDO_DUMMY    0xFFFEU /* an RPDO's dummy entry: nothing to write */
 #define CO_PDO_OFF_MASK 0x0FFFU
 #define CO_PDO_OFF_END  0x0FFEU /* direct entries have offsets below */
 #define CO_PDO_SIGNED   0x8000U
+#define CO_PDO_AT_END   0x8000U
 CO_INLINE uint16_t co_pdo_code(const co_pdo_t *p, uint8_t k)
 {
 #if CO_PDO_FAST_MAX > 0
@@ -592,23 +596,37 @@ CO_INLINE void co_copy_small(uint8_t *dst, const uint8_t *src, uint8_t n)
     }
 }
 
-/* A resolved entry (co_pdo_code @p code), @p n bytes of the frame at @p at:
- * the low @p n bytes of the value's wire image (on a little-endian CPU the
- * first @p n bytes of the native value). */
-CO_INLINE void co_pdo_get_direct(const co_node_t *node, uint16_t code, uint8_t *at, uint8_t n)
+/* The bytes a resolved TPDO entry (co_pdo_code @p code) maps. */
+CO_INLINE uint32_t co_tpdo_code_len(uint32_t code)
 {
-    const uint8_t *v = &node->ram[code & CO_PDO_OFF_MASK];
-    uint8_t size = (uint8_t)(((code >> 12U) & 7U) + 1U);
+    return ((code >> 12U) & 7U) + 1U;
+}
+
+/* A resolved TPDO entry into the frame at @p at (8 bytes of room): the low
+ * bytes of the value's wire image (on a little-endian CPU the first bytes
+ * of the native value; on a big-endian CPU the entry maps the whole value).
+ * On a little-endian CPU 8 bytes are read at once, the ones past the
+ * entry's for the next entry or the padding to overwrite. Returns the
+ * entry's length. */
+CO_INLINE uint32_t co_pdo_get_direct(const co_node_t *node, uint32_t code, uint8_t *at)
+{
+    uint32_t off = code & CO_PDO_OFF_MASK;
+    uint32_t n = co_tpdo_code_len(code);
 
     if (CO_NATIVE_LE) {
-        co_copy_small(at, v, n);
-    } else if (n == size) {
-        co_pdo_to_wire(at, v, size);
+        uint64_t x;
+        if ((code & CO_PDO_AT_END) == 0U) {
+            (void)memcpy(&x, &node->ram[off], 8U);
+        } else {
+            uint32_t shift = 8U * (8U - n);
+            (void)memcpy(&x, &node->ram[(off + n) - 8U], 8U);
+            x >>= shift;
+        }
+        (void)memcpy(at, &x, 8U);
     } else {
-        uint8_t wire[8];
-        co_to_wire(wire, v, size);
-        (void)memcpy(at, wire, n); /* the low bytes */
+        co_pdo_to_wire(at, &node->ram[off], (uint8_t)n);
     }
+    return n;
 }
 
 CO_INLINE void co_pdo_put_direct(co_node_t *node, uint16_t code, const uint8_t *at, uint8_t n)
@@ -633,21 +651,28 @@ CO_INLINE void co_pdo_put_direct(co_node_t *node, uint16_t code, const uint8_t *
 }
 
 /* PDO i has CO_PDO_F_DIRECT (every entry resolved, co_pdo_code): its
- * mapped objects straight into @p out (zeroed by the caller), or from
- * @p data (@p dlc bytes, the entries the frame covers; dummies are gaps),
- * without a call. */
+ * mapped objects straight into @p out (8 bytes, zero past the mapping), or
+ * from @p data (@p dlc bytes, the entries the frame covers; dummies are
+ * gaps), without a call. */
 CO_INLINE void co_pdo_sample_direct(const co_node_t *node, uint16_t i, uint8_t *out)
 {
-    const co_pdo_desc_t *d = &node->dev->pdo[i];
+    uint8_t buf[16]; /* room for the 8 bytes written at the last entry */
+    uint8_t *at = buf;
+#if CO_PDO_FAST_MAX > 0
     const co_pdo_t *p = &node->pdo.p[i];
-    uint8_t count = co_ram_u8(node, d->count);
-    uint8_t at = 0U;
+    uint32_t count = co_ram_u8(node, node->dev->pdo[i].count);
 
-    for (uint8_t k = 0U; k < count; k++) {
-        uint8_t n = (uint8_t)((co_ram_u32(node, (uint16_t)(d->map + (4U * k))) & 0xFFU) >> 3U);
-        co_pdo_get_direct(node, co_pdo_code(p, k), &out[at], n);
-        at = (uint8_t)(at + n);
+    /* (a PDO with more entries is not direct: only the compiler needs to know) */
+    count = (count <= CO_PDO_FAST_MAX) ? count : 0U;
+    for (uint32_t k = 0U; k < count; k++) {
+        at = &at[co_pdo_get_direct(node, co_pdo_code(p, (uint8_t)k), at)];
     }
+#else
+    (void)node;
+    (void)i;
+#endif
+    (void)memset(at, 0, 8U);
+    (void)memcpy(out, buf, 8U);
 }
 
 CO_INLINE void co_pdo_store_direct(co_node_t *node, uint16_t i, const uint8_t *data, uint8_t dlc)
@@ -658,6 +683,8 @@ CO_INLINE void co_pdo_store_direct(co_node_t *node, uint16_t i, const uint8_t *d
     uint8_t avail = (dlc > 8U) ? 8U : dlc;
     uint8_t at = 0U;
 
+    /* (a PDO with more entries is not direct: only the compiler needs to know) */
+    count = (count <= CO_PDO_FAST_MAX) ? count : 0U;
     for (uint8_t k = 0U; k < count; k++) {
         uint8_t n = (uint8_t)((co_ram_u32(node, (uint16_t)(d->map + (4U * k))) & 0xFFU) >> 3U);
         uint16_t code = co_pdo_code(p, k);

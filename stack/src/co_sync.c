@@ -50,7 +50,9 @@ static void on_sync(co_node_t *node, uint8_t counter)
     node->sync.last = node->now;
     /* CiA 301: synchronous RPDOs received before this SYNC take effect, the
      * application runs its cycle, then synchronous TPDOs are sampled. */
-    co_rpdo_sync(node);
+    if (node->pdo.buffered != 0U) {
+        co_rpdo_sync(node);
+    }
     if (node->cb.sync != NULL) {
         node->cb.sync(node->cb.ctx, node, counter);
     }
@@ -81,7 +83,7 @@ static void sync_rx(co_node_t *node, const co_frame_t *f)
         co_emcy_raise(node, CO_EMCY_SYNC_LENGTH, CO_ERREG_COMM, NULL);
         return;
     }
-    if (co_emcy_is_active(node, CO_EMCY_SYNC_LENGTH)) {
+    if ((node->emcy.n_active != 0U) && co_emcy_is_active(node, CO_EMCY_SYNC_LENGTH)) {
         co_emcy_clear(node, CO_EMCY_SYNC_LENGTH);
     }
     on_sync(node, (want != 0U) ? f->data[0] : 0U);

@@ -16,10 +16,10 @@
 /* Sample the mapped objects into @p out (8 bytes, zero-padded). */
 static void build(co_node_t *node, uint16_t i, uint8_t *out)
 {
-    (void)memset(out, 0, 8U);
     if ((node->pdo.p[i].flags & CO_PDO_F_DIRECT) != 0U) {
         co_pdo_sample_direct(node, i, out);
     } else {
+        (void)memset(out, 0, 8U);
         co_pdo_sample(node, i, out);
     }
 }
@@ -74,10 +74,10 @@ static void send_sync(co_node_t *node, uint16_t i)
     co_frame_t f;
 
     /* sampled straight into the frame (the usual case without a call) */
-    (void)memset(f.data, 0, 8U);
     if ((p->flags & CO_PDO_F_DIRECT) != 0U) {
         co_pdo_sample_direct(node, i, f.data);
     } else {
+        (void)memset(f.data, 0, 8U);
         co_pdo_sample(node, i, f.data);
     }
     f.id = co_pdo_cob(node, i) & 0x7FFUL;

@@ -16,6 +16,7 @@
 
 #include <cmocka.h>
 
+#include "cia401.h"
 #include "pdo_fx.h"
 
 static pfx_t fx;
@@ -245,9 +246,71 @@ static void partial_entries(void **state)
     tb_expect_none(BUS);
 }
 
+/* Values in the last 8 bytes of the RAM image (the cia401 inputs 0x6000):
+ * a TPDO reads the bytes that end with them, next to an entry read from the
+ * middle of the image (the analogue input 0x6401:01). */
+static void tpdo_values_at_the_end_of_the_ram_image(void **state)
+{
+    static cia401_node_t n;
+    static tb_bus_t bus;
+    co_node_config_t cfg;
+    co_node_t *node = &n.node;
+    uint8_t *in1;
+    uint8_t *in2;
+    uint8_t *ain1;
+    (void)state;
+    tb_init(&bus);
+    cia401_config(&n, &cfg);
+    cfg.hal = tb_hal(&bus, 0);
+    cfg.node_id = 1U;
+    assert_int_equal(co_node_init(node, &cfg, 0U), CO_RESULT_OK);
+    tb_attach(&bus, 0, node);
+    tb_flush(&bus);
+    in1 = (uint8_t *)co_od_value_ptr(node, 0x6000U, 1U);
+    in2 = (uint8_t *)co_od_value_ptr(node, 0x6000U, 2U);
+    ain1 = (uint8_t *)co_od_value_ptr(node, 0x6401U, 1U);
+    assert_non_null(in1);
+    assert_non_null(in2);
+    assert_non_null(ain1);
+    /* the layout the test is about */
+    assert_true((size_t)(in1 - node->ram) + 8U > node->dev->ram_size);
+    assert_true((size_t)(in2 - node->ram) + 8U > node->dev->ram_size);
+    assert_true((size_t)(ain1 - node->ram) + 8U <= node->dev->ram_size);
+    *in1 = 0x12U;
+    *in2 = 0x34U;
+    /* TPDO1: 0x6000:01, 0x6000:02 (the default) */
+    tb_send(&bus, "000 01 01");
+    tb_expect(&bus, "181 12 34");
+    tb_expect(&bus, "281 00 00 00 00 00 00 00 00"); /* TPDO2: the analogue inputs */
+    tb_expect_none(&bus);
+    *in2 = 0x35U;
+    tb_advance(&bus, 0);
+    tb_expect(&bus, "181 12 35");
+    tb_expect_none(&bus);
+    /* 0x6000:02, 0x6401:01, 0x6000:01 */
+    tb_send(&bus, "000 80 01");
+    tb_xfer(&bus, "601 23 00 18 01 81 01 00 80", "581 60 00 18 01 00 00 00 00");
+    tb_xfer(&bus, "601 2F 00 1A 00 00 00 00 00", "581 60 00 1A 00 00 00 00 00");
+    tb_xfer(&bus, "601 23 00 1A 01 08 02 00 60", "581 60 00 1A 01 00 00 00 00");
+    tb_xfer(&bus, "601 23 00 1A 02 10 01 01 64", "581 60 00 1A 02 00 00 00 00");
+    tb_xfer(&bus, "601 23 00 1A 03 08 01 00 60", "581 60 00 1A 03 00 00 00 00");
+    tb_xfer(&bus, "601 2F 00 1A 00 03 00 00 00", "581 60 00 1A 00 00 00 00 00");
+    tb_xfer(&bus, "601 23 00 18 01 81 01 00 00", "581 60 00 18 01 00 00 00 00");
+    (void)memcpy(ain1, &(const uint16_t){0x5678U}, 2U); /* in the CPU's order */
+    tb_send(&bus, "000 01 01");
+    tb_expect(&bus, "181 35 78 56 12");
+    tb_expect(&bus, "281 78 56 00 00 00 00 00 00");
+    tb_expect_none(&bus);
+    *in1 = 0xA1U;
+    tb_advance(&bus, 0);
+    tb_expect(&bus, "181 35 78 56 A1");
+    tb_expect_none(&bus);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(tpdo_values_at_the_end_of_the_ram_image),
         cmocka_unit_test(mixed_tpdo),
         cmocka_unit_test(mixed_rpdo),
         cmocka_unit_test(rpdo_more_entries_than_resolved),

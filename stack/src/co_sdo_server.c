@@ -44,18 +44,24 @@ static uint32_t tx_cob(const co_node_t *node)
     return 0x580UL + node->node_id;
 }
 
-/* An answer: command byte, index, sub-index, four data bytes (written into
- * the frame: no 8-byte image copied). */
+/* The eight bytes of an answer: command byte, index, sub-index, four data
+ * bytes. */
+static void pack_answer(uint8_t *d, uint8_t cmd, uint16_t index, uint8_t sub, uint32_t data)
+{
+    d[0] = cmd;
+    co_put_u16(&d[1], index);
+    d[3] = sub;
+    co_put_u32(&d[4], data);
+}
+
+/* An answer, packed into the frame (no 8-byte image copied). */
 static void reply(co_node_t *node, uint8_t cmd, uint16_t index, uint8_t sub, uint32_t data)
 {
     co_frame_t f;
 
     f.id = tx_cob(node);
     f.dlc = 8U;
-    f.data[0] = cmd;
-    co_put_u16(&f.data[1], index);
-    f.data[3] = sub;
-    co_put_u32(&f.data[4], data);
+    pack_answer(f.data, cmd, index, sub, data);
     co_tx_frame(node, &f);
 }
 
@@ -150,10 +156,7 @@ static void download_done(co_node_t *node, uint8_t cmd, uint16_t index, uint8_t 
 
     if ((CO_STORAGE != 0) && ((t->entry->index & 0xFFFEU) == 0x1010U) &&
         co_store_is_command(t->entry, t->desc) && co_store_busy(node)) {
-        t->buf[0] = cmd;
-        co_put_u16(&t->buf[1], index);
-        t->buf[3] = sub;
-        co_put_u32(&t->buf[4], 0U);
+        pack_answer(t->buf, cmd, index, sub, 0U);
         t->state = (uint8_t)S_STORE;
         return;
     }
@@ -188,16 +191,23 @@ static co_err_t open_download(co_node_t *node, const co_od_entry_t *e, const co_
     return CO_OK;
 }
 
+/* @p index / @p sub in the dictionary, readable or (@p write) writable:
+ * the lookup and access check of every initiate. */
+CO_INLINE co_err_t find_for(const co_node_t *node, uint16_t index, uint8_t sub, bool write,
+                           const co_od_entry_t **e, const co_od_sub_t **s)
+{
+    co_err_t err = co_od_lookup(node, index, sub, e, s);
+
+    return (err == CO_OK) ? co_od_check_access(node, *s, write) : err;
+}
+
 /* Checks common to every upload initiate; reads the first chunk into t->buf
  * (which also runs the read hook once). */
 static co_err_t stage_upload(co_node_t *node, uint16_t index, uint8_t sub, co_od_chunk_t *c,
                              const co_od_entry_t **e, const co_od_sub_t **s)
 {
-    co_err_t err = co_od_lookup(node, index, sub, e, s);
+    co_err_t err = find_for(node, index, sub, false, e, s);
 
-    if (err == CO_OK) {
-        err = co_od_check_access(node, *s, false);
-    }
     if (err == CO_OK) {
         c->buf = node->sdo.buf;
         c->offset = 0U;
@@ -306,10 +316,7 @@ static void initiate_download(co_node_t *node, const uint8_t *d, uint16_t index,
     } else {
         /* segmented: the size in the request */
     }
-    err = co_od_lookup(node, index, sub, &e, &s);
-    if (err == CO_OK) {
-        err = co_od_check_access(node, s, true);
-    }
+    err = find_for(node, index, sub, true, &e, &s);
     if ((err == CO_OK) && expedited) {
         uint8_t fixed = co_type_len(s->type);
         if (fixed != 0U) {
@@ -474,10 +481,7 @@ static void block_download_initiate(co_node_t *node, const uint8_t *d, uint16_t 
         abort_at(node, index, sub, CO_ERR_CMD); /* end without a transfer */
         return;
     }
-    err = co_od_lookup(node, index, sub, &e, &s);
-    if (err == CO_OK) {
-        err = co_od_check_access(node, s, true);
-    }
+    err = find_for(node, index, sub, true, &e, &s);
     if (err == CO_OK) {
         err = open_download(node, e, s, size_ind, co_get_u32(&d[4]));
     }

@@ -20,6 +20,13 @@
 #define CO_INLINE static inline
 #endif
 #endif
+/* Per-frame paths with several callers: inlined where the build asks for
+ * speed; at -Os the compiler decides (one copy instead of one per caller). */
+#if defined(__GNUC__) && !defined(__OPTIMIZE_SIZE__)
+#define CO_HOT static inline __attribute__((always_inline))
+#else
+#define CO_HOT static inline
+#endif
 /* Rare paths kept out of the per-frame functions they would otherwise be
  * inlined into (their stack frame and saved registers would be paid on
  * every frame). */

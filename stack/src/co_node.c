@@ -8,6 +8,8 @@
 
 /* ------------------------------------------------------------------ TX */
 
+static uint32_t run_rows(co_node_t *node, uint16_t run, uint32_t next);
+
 static bool hal_send(co_node_t *node, const co_frame_t *f)
 {
     return node->hal.ops->send(node->hal.ctx, f) == 0;
@@ -69,11 +71,7 @@ void co_node_tx_ready(co_node_t *node, uint32_t now_us)
     if (node->txq_len == 0U) {
         /* a stream stalled on the full TX path (SDO block upload) goes on:
          * the services' timers, as an extra co_node_process would */
-        for (uint8_t k = 0U; k < co_n_services; k++) {
-            if (co_services[k]->process != NULL) {
-                (void)co_services[k]->process(node, CO_NO_DEADLINE);
-            }
-        }
+        (void)run_rows(node, CO_SVC_ALL, CO_NO_DEADLINE);
         co_svc_touch_all(node); /* their deadlines, taken anew by co_node_process */
     }
 }

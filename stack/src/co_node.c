@@ -88,10 +88,12 @@ void co_tx(co_node_t *node, uint32_t id, const uint8_t *data, uint8_t len)
 co_err_t co_check_cob(uint32_t cur, uint32_t v, uint32_t use_bits, bool use_when_set,
                       uint32_t reserved, bool always)
 {
-    bool cur_used = use_when_set ? ((cur & use_bits) != 0U) : ((cur & use_bits) == 0U);
-    bool new_used = use_when_set ? ((v & use_bits) != 0U) : ((v & use_bits) == 0U);
+    /* in use: a bit of use_bits set, or (!use_when_set) the one bit clear */
+    uint32_t flip = use_when_set ? 0U : use_bits;
+    bool cur_used = ((cur ^ flip) & use_bits) != 0U;
+    bool new_used = ((v ^ flip) & use_bits) != 0U;
 
-    if (((v & 0x20000000UL) != 0U) || ((v & 0x1FFFF800UL) != 0U) || ((v & reserved) != 0U)) {
+    if ((v & (0x3FFFF800UL | reserved)) != 0U) {
         return CO_ERR_VALUE;
     }
     if (cur_used && new_used && ((v & 0x7FFUL) != (cur & 0x7FFUL))) {

@@ -419,7 +419,7 @@ uint8_t co_od_array_len(const co_node_t *node, uint16_t index, uint8_t type, uin
 /* A COB-ID write (CiA 301 7.5.2): 29-bit identifiers are not supported,
  * bits 11..28 are 0, @p reserved bits must be 0, and the CAN-ID may not change
  * while the object is in use: in use is any of @p use_bits set (@p use_when_set)
- * or all of them clear (!use_when_set, the EMCY 'valid' bit). A CAN-ID in use
+ * or its one bit clear (!use_when_set: a single bit, the 'valid' bit of EMCY and PDO). A CAN-ID in use
  * (or @p always in use, the SYNC consumer) may not be a restricted one
  * (CiA 301 7.3.5). */
 co_err_t co_check_cob(uint32_t cur, uint32_t v, uint32_t use_bits, bool use_when_set,

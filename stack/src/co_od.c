@@ -49,6 +49,14 @@ const co_od_sub_t *co_od_find_sub(const co_od_entry_t *e, uint8_t sub)
     return find_sub(e, sub);
 }
 
+uint8_t co_od_obj_code(const co_od_entry_t *e)
+{
+    static const uint8_t codes[4] = {CO_OBJ_VAR, CO_OBJ_ARRAY, CO_OBJ_RECORD, CO_OBJ_DOMAIN};
+
+    return (e->nsubs == 0U) ? (uint8_t)CO_OBJ_VAR
+                            : codes[(e->subs[0].flags & CO_SUB_OBJ_MASK) >> CO_SUB_OBJ_SHIFT];
+}
+
 /* Indexed by type 0x00..0x1B; 0 for variable-length types. */
 const uint8_t co_type_sizes[CO_TYPE_SIZES] = {
     0, 1, 1, 2, 4, 1, 2, 4, 4, 0, 0, 0, 6, 6, 0, 0,
@@ -559,51 +567,30 @@ co_err_t co_od_write_part(co_node_t *node, const co_od_entry_t *e, const co_od_s
     }
 }
 
-/* The COB-ID of a PDO (communication parameter sub 1) or of the EMCY: its
- * $NODEID default uses the node's COB-ID base (CO_LSS_COBS_KEEP). */
-static bool is_pdo_emcy_cob(uint16_t index, uint8_t sub)
-{
-    bool pdo = ((index >= 0x1400U) && (index <= 0x15FFU)) ||
-               ((index >= 0x1800U) && (index <= 0x19FFU));
-
-    return (pdo && (sub == 1U)) || (index == 0x1014U);
-}
-
+/* Restore [from, to) of the RAM image: zeros, then the default runs that
+ * start inside it; a $NODEID run gets the node-ID (a PDO or EMCY COB-ID the
+ * COB-ID base, which differs from it only with LSS) added to its value, a
+ * native integer of 1, 2 or 4 bytes. */
 void co_od_restore(co_node_t *node, uint16_t from, uint16_t to)
 {
     const co_dev_t *dev = node->dev;
     const uint8_t *def = (const uint8_t *)dev->defaults;
+    uint32_t at = 0U;
 
-    if ((to <= from) || ((def == NULL) && (dev->default_at == NULL))) {
+    if (to <= from) {
         return;
     }
-    if (dev->default_at == NULL) {
-        (void)memcpy(&node->ram[from], &def[from], (size_t)to - from);
-    } else {
-        /* sparse: zeros, then the values that are not */
-        uint32_t at = 0U;
-        (void)memset(&node->ram[from], 0, (size_t)to - from);
-        for (uint16_t i = 0U; i < dev->n_defaults; i++) {
-            const co_od_default_t *d = &dev->default_at[i];
-            if ((d->off >= from) && (d->off < to)) {
-                (void)memcpy(&node->ram[d->off], &def[at], d->size);
-            }
-            at += d->size;
-        }
-    }
-    /* $NODEID-relative defaults inside the restored range. */
-    for (uint16_t i = 0U; i < dev->od_count; i++) {
-        const co_od_entry_t *e = &dev->od[i];
-        for (uint8_t k = 0U; k < e->nsubs; k++) {
-            const co_od_sub_t *s = &e->subs[k];
-            if (((s->flags & (CO_SUB_NODEID | CO_SUB_ROM | CO_SUB_HOOKIO)) == CO_SUB_NODEID) &&
-                (s->off >= from) && (s->off < to)) {
-                uint8_t n = co_type_len(s->type);
-                uint8_t *p = &node->ram[s->off];
-                /* (the COB-ID base differs from the node-ID only with LSS) */
-                uint8_t id = ((CO_LSS != 0) && is_pdo_emcy_cob(e->index, s->sub)) ? node->cob_base
-                                                                                 : node->node_id;
-                /* 16/32-bit values are native integers in RAM */
+    (void)memset(&node->ram[from], 0, (size_t)to - from);
+    for (uint16_t i = 0U; i < dev->n_defaults; i++) {
+        const co_od_default_t *d = &dev->default_at[i];
+        uint32_t n = d->size & CO_OD_DEF_SIZE;
+        if ((d->off >= from) && (d->off < to)) {
+            uint8_t *p = &node->ram[d->off];
+            (void)memcpy(p, &def[at], n);
+            if ((d->size & CO_OD_DEF_NODEID) != 0U) {
+                uint8_t id = ((CO_LSS != 0) && ((d->size & CO_OD_DEF_COB) != 0U))
+                                 ? node->cob_base
+                                 : node->node_id;
                 if (n == 1U) {
                     p[0] = (uint8_t)(p[0] + id);
                 } else if (n == 2U) {
@@ -611,16 +598,15 @@ void co_od_restore(co_node_t *node, uint16_t from, uint16_t to)
                     (void)memcpy(&v, p, 2U);
                     v = (uint16_t)(v + id);
                     (void)memcpy(p, &v, 2U);
-                } else if (n == 4U) {
+                } else {
                     uint32_t v;
                     (void)memcpy(&v, p, 4U);
                     v += id;
                     (void)memcpy(p, &v, 4U);
-                } else {
-                    /* $NODEID only makes sense on 8/16/32-bit values */
                 }
             }
         }
+        at += n;
     }
 }
 

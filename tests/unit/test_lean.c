@@ -158,7 +158,6 @@ static void refuses_what_is_left_out(void **state)
                 od[n].index = 0x1029U;
                 od[n].nsubs = 1U;
                 od[n].hook = 0U;
-                od[n].code = (uint8_t)CO_OBJ_ARRAY;
                 od[n].subs = s1029;
                 n++;
                 added = true;

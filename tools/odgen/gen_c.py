@@ -13,7 +13,7 @@ import struct
 from dataclasses import dataclass, field
 
 import personality
-from model import F_W, FLAG_NAMES, DescError, Device, Sub, encoded_default
+from model import F_NODEID, F_W, FLAG_NAMES, DescError, Device, Sub, encoded_default
 
 REGIONS = (("comm", "communication parameters (stored)"),
            ("app", "application values (stored)"),
@@ -155,8 +155,16 @@ def field_init(f: Field) -> str | None:
     return c_value(f.subs[0])
 
 
-def flags_expr(flags: int) -> str:
+OBJ_FLAGS = {"VAR": None, "ARRAY": "CO_SUB_OBJ_ARRAY", "RECORD": "CO_SUB_OBJ_RECORD",
+             "DOMAIN": "CO_SUB_OBJ_DOMAIN"}
+
+
+def flags_expr(flags: int, obj_code: str = "VAR") -> str:
+    """The flags of a sub-entry; the first one of an object also carries the
+    object's code (CO_SUB_OBJ_*, the entry has no byte for it)."""
     names = [n for bit, n in FLAG_NAMES if flags & bit]
+    if OBJ_FLAGS[obj_code]:
+        names.append(OBJ_FLAGS[obj_code])
     return "(uint16_t)(" + " | ".join(names) + ")" if names else "0U"
 
 
@@ -239,7 +247,7 @@ def generate(dev: Device, toml_name: str, warn=None) -> tuple[str, str]:
           f"typedef struct {cn}_node {{",
           "    co_node_t node;",
           f"    {cn}_ram_t ram;",
-          f"    co_od_hook_t hooks[{max(n_hooks, 1)}U];",
+          *([f"    co_od_hook_t hooks[{n_hooks}U];"] if n_hooks else []),
           f"    co_pdo_t pdo[{max(n_pdo_h, 1)}U];",
           f"    co_pdo_slot_t pdo_rx[{max(n_pdo_h, 1)}U];",
           f"}} {cn}_node_t;", "",
@@ -268,47 +276,80 @@ def generate(dev: Device, toml_name: str, warn=None) -> tuple[str, str]:
         c += ["};", ""]
     # sparse defaults: only the values that are not zero, largest alignment
     # first so that they follow each other without padding, and where each
-    # goes in the RAM image (co_dev_t.default_at); the core zeroes the rest
-    inits = [(f, field_init(f)) for f in ram if f.subs]
-    inits = sorted([(f, v) for f, v in inits if v is not None], key=lambda fv: -fv[0].align)
+    # goes in the RAM image (co_dev_t.default_at); the core zeroes the rest.
+    # A $NODEID value is a run of its own, marked for the core to add the
+    # node-ID (or, for a PDO or EMCY COB-ID, the COB-ID base of LSS) to it:
+    # the core never walks the dictionary to find them.
+    nodeid = [s for f in ram for s in f.subs
+              if (s.flags & F_NODEID) and not s.rom and not s.hookio and s.fixed in (1, 2, 4)]
+    nodeid_fields = {s.field for s in nodeid if s.elem < 0}
+    items = []   # (member name, declaration, value, align, field or None, nodeid sub or None)
+    for f in ram:
+        if f.subs and f.name not in nodeid_fields:
+            v = field_init(f)
+            if v is not None:
+                items.append((f.name, f.decl(), v, f.align, f, None))
+    for s in nodeid:
+        ctype, dims, align = scalar_ctype(s)
+        name = f"id{s.index:04X}_{s.sub:02X}"
+        items.append((name, f"{ctype} {name}", c_value(s) or "0U", align, None, s))
+    items.sort(key=lambda it: -it[3])
     n_default_at = 0
     c += [f"#define F(field) ((uint16_t)offsetof({cn}_ram_t, field))", ""]
-    if inits:
-        c += ["/* Defaults of the RAM image that are not zero ($NODEID defaults hold the",
-              " * offset; the core adds the node-ID when it restores them), one after the",
-              " * other without padding, and where each goes. */",
+    if items:
+        c += ["/* Defaults of the RAM image that are not zero and the $NODEID ones (they",
+              " * hold the offset; the core adds the node-ID when it restores them), one",
+              " * after the other without padding, and where each goes. */",
               f"typedef struct {cn}_defaults {{"]
-        c += [f"    {f.decl()};" for f, _ in inits]
+        c += [f"    {decl};" for _, decl, _, _, _, _ in items]
         c += [f"}} {cn}_defaults_t;", f"static const {cn}_defaults_t defaults = {{"]
-        c += [f"    .{f.name} = {v}," for f, v in inits]
+        c += [f"    .{name} = {v}," for name, _, v, _, _, _ in items]
         c += ["};"]
-        last = inits[-1][0].name
-        size = " + ".join(f"sizeof defaults.{f.name}" for f, _ in inits)
+        last = items[-1][0]
+        size = " + ".join(f"sizeof defaults.{it[0]}" for it in items)
         c += [f"typedef char {cn}_defaults_packed[(offsetof({cn}_defaults_t, {last}) + "
               f"sizeof defaults.{last} == {size}) ? 1 : -1];",
               "static const co_od_default_t default_at[] = {"]
         # values next to each other in the RAM image (declared one after the
         # other in one region, the second of no larger alignment: no padding
-        # between them on any ABI) go in one run, one default_at entry
+        # between them on any ABI) go in one run, one default_at entry, of at
+        # most CO_OD_DEF_SIZE bytes
         order = [f.name for region, _ in REGIONS for f in ram if f.region == region]
         runs = []
-        for f, _ in inits:
-            if runs and order.index(f.name) == order.index(runs[-1][-1].name) + 1 and \
-                    f.align <= runs[-1][-1].align and f.region == runs[-1][-1].region:
-                runs[-1].append(f)
+        for it in items:
+            f = it[4]
+            prev = runs[-1][-1][4] if runs else None
+            if f is not None and prev is not None and \
+                    order.index(f.name) == order.index(prev.name) + 1 and \
+                    f.align <= prev.align and f.region == prev.region and \
+                    sum(x[4].size for x in runs[-1]) + f.size <= DEF_SIZE_MAX:
+                runs[-1].append(it)
             else:
-                runs.append([f])
-        n_default_at = len(runs)
+                runs.append([it])
         for r in runs:
-            size = " + ".join(f"sizeof defaults.{f.name}" for f in r)
-            c.append(f"    {{F({r[0].name}), (uint16_t)({size})}},")
+            f, s = r[0][4], r[0][5]
+            if s is not None:
+                kind = "CO_OD_DEF_NODEID" + (" | CO_OD_DEF_COB" if is_pdo_emcy_cob(s) else "")
+                c.append(f"    {{{off_expr(s)}, (uint16_t)(sizeof defaults.{r[0][0]} | {kind})}},")
+                n_default_at += 1
+                continue
+            if f.size > DEF_SIZE_MAX:
+                # one value longer than a run: in pieces
+                for at in range(0, f.size, DEF_SIZE_MAX):
+                    n = min(DEF_SIZE_MAX, f.size - at)
+                    c.append(f"    {{(uint16_t)(F({f.name}) + {at}U), {n}U}},")
+                    n_default_at += 1
+                continue
+            size = " + ".join(f"sizeof defaults.{it[0]}" for it in r)
+            c.append(f"    {{F({f.name}), (uint16_t)({size})}},")
+            n_default_at += 1
         c += ["};"]
         merged = [r for r in runs if len(r) > 1]
         if merged:
             c += ["/* each run is one stretch of the RAM image */",
                   f"typedef char {cn}_default_runs[(" + " && ".join(
-                      f"(F({r[-1].name}) + sizeof defaults.{r[-1].name} == F({r[0].name}) + " +
-                      " + ".join(f"sizeof defaults.{f.name}" for f in r) + ")" for r in merged) +
+                      f"(F({r[-1][0]}) + sizeof defaults.{r[-1][0]} == F({r[0][0]}) + " +
+                      " + ".join(f"sizeof defaults.{it[0]}" for it in r) + ")" for r in merged) +
                   ") ? 1 : -1];"]
         c += [""]
     else:
@@ -327,7 +368,7 @@ def generate(dev: Device, toml_name: str, warn=None) -> tuple[str, str]:
     for o in dev.objects:
         c.append(f"/* 0x{o.index:04X} {comment(o.name)} ({o.code}) */")
         c.append(f"static const co_od_sub_t s{o.index:04X}[] = {{")
-        for s in o.subs:
+        for k, s in enumerate(o.subs):
             if s.hookio:
                 off = "0U"
             else:
@@ -335,14 +376,15 @@ def generate(dev: Device, toml_name: str, warn=None) -> tuple[str, str]:
                 off = f"{m}({s.field})" if s.elem <= 0 else \
                     f"(uint16_t)({m}({s.field}) + {s.elem * s.size}U)"
             lim = f"{s.limit_slot}U" if s.limit_slot >= 0 else "0U"
-            c.append(f"    CO_OD_SUB(0x{s.sub:02X}U, (uint8_t)CO_{s.type}, {flags_expr(s.flags)}, "
+            c.append(f"    CO_OD_SUB(0x{s.sub:02X}U, (uint8_t)CO_{s.type}, "
+                     f"{flags_expr(s.flags, o.code if k == 0 else 'VAR')}, "
                      f"{s.size}U, {off}, {lim}), /* {comment(s.name)} */")
         c.append("};")
     c += ["", "static const co_od_entry_t od[] = {"]
     for o in dev.objects:
         hook = f"{o.hook_slot + 1}U" if o.hook else "0U"
-        c.append(f"    {{0x{o.index:04X}U, {len(o.subs)}U, {hook}, (uint8_t)CO_OBJ_{o.code}, "
-                 f"s{o.index:04X}}},")
+        c.append(f"    CO_OD_ENTRY(0x{o.index:04X}U, {len(o.subs)}U, {hook}, s{o.index:04X}), "
+                 f"/* {o.code} */")
     c += ["};", ""]
 
     pdos = pdos_h
@@ -381,7 +423,7 @@ def generate(dev: Device, toml_name: str, warn=None) -> tuple[str, str]:
           f"    .ram_size = (uint16_t)sizeof({cn}_ram_t),",
           f"    .comm_end = {first(('app', 'none'))},",
           f"    .app_end = {first(('none',))},",
-          f"    .defaults = {'&defaults' if inits else 'NULL'},",
+          f"    .defaults = {'&defaults' if items else 'NULL'},",
           f"    .rom = {'(const uint8_t *)&rom' if rom else 'NULL'},",
           f"    .limits = {'limits' if dev.limits else 'NULL'},",
           f"    .n_hooks = {up}_N_HOOKS,",
@@ -403,7 +445,7 @@ def generate(dev: Device, toml_name: str, warn=None) -> tuple[str, str]:
           "    (void)memset(cfg, 0, sizeof *cfg);",
           f"    cfg->dev = &{cn}_dev;",
           "    cfg->ram = &n->ram;",
-          "    cfg->hooks = n->hooks;",
+          f"    cfg->hooks = {'n->hooks' if n_hooks else 'NULL'}; /* {n_hooks} hook slots */",
           "    cfg->pdo = n->pdo;",
           "    cfg->pdo_rx = n->pdo_rx;",
           "}", ""]
@@ -434,6 +476,16 @@ def mask_table(dev: Device, n_tpdo: int) -> list:
                             "of two UNSIGNED32)")
         out.append(s1)
     return out
+
+
+DEF_SIZE_MAX = 0x3FFF   # CO_OD_DEF_SIZE: the bytes of one default run
+
+
+def is_pdo_emcy_cob(s) -> bool:
+    """The COB-ID of a PDO (communication parameter sub 1) or of the EMCY: its
+    $NODEID default uses the node's COB-ID base (CO_LSS_COBS_KEEP)."""
+    pdo = 0x1400 <= s.index <= 0x15FF or 0x1800 <= s.index <= 0x19FF
+    return (pdo and s.sub == 1) or s.index == 0x1014
 
 
 def off_expr(s) -> str:

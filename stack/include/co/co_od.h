@@ -61,6 +61,15 @@ typedef enum co_type {
 #define CO_OBJ_RECORD  0x09U
 #define CO_OBJ_DOMAIN  0x02U
 
+/* The object's code rides in the flags of its first sub-entry (the core
+ * never reads it; the EDS view does, co_od_obj_code): no byte of its own in
+ * every entry. VAR is 0, so a table without these bits is all VARs. */
+#define CO_SUB_OBJ_SHIFT  12U
+#define CO_SUB_OBJ_MASK   0x3000U
+#define CO_SUB_OBJ_ARRAY  0x1000U  /**< on sub-entry [0]: the object is an ARRAY */
+#define CO_SUB_OBJ_RECORD 0x2000U  /**< on sub-entry [0]: a RECORD */
+#define CO_SUB_OBJ_DOMAIN 0x3000U  /**< on sub-entry [0]: a DOMAIN */
+
 typedef struct co_od_sub {
     uint8_t  sub;    /**< sub-index */
     uint8_t  type;   /**< co_type_t */
@@ -82,19 +91,34 @@ typedef struct co_od_sub {
 #define CO_OD_SUB(sub, type, flags, size, off, limit) {(sub), (type), (flags), (size), (off)}
 #endif
 
-/** Where one value of a sparse default image goes (co_dev_t.default_at). */
+/** Where one run of the default image goes (co_dev_t.default_at). */
 typedef struct co_od_default {
     uint16_t off;  /**< offset into the RAM image */
-    uint16_t size; /**< bytes */
+    uint16_t size; /**< bytes (CO_OD_DEF_SIZE), and the CO_OD_DEF_* marks */
 } co_od_default_t;
 
+#define CO_OD_DEF_SIZE   0x3FFFU /**< co_od_default_t.size: the run's bytes */
+/** The run is one $NODEID-relative value of 1, 2 or 4 bytes (CO_SUB_NODEID):
+ *  the node-ID is added to it when it is restored. */
+#define CO_OD_DEF_NODEID 0x8000U
+/** With CO_OD_DEF_NODEID: a PDO or EMCY COB-ID, whose base is the node's
+ *  COB-ID base (it differs from the node-ID only with LSS). */
+#define CO_OD_DEF_COB    0x4000U
+
+/** One object: 8 bytes on a 32-bit CPU (the pointer first, no padding);
+ *  its object code is in the flags of subs[0] (CO_SUB_OBJ_*). */
 typedef struct co_od_entry {
+    const co_od_sub_t *subs; /**< sorted by sub-index */
     uint16_t index;
     uint8_t  nsubs;          /**< number of sub-entries in @ref subs */
     uint8_t  hook;           /**< hook slot + 1, or 0 for no hook */
-    uint8_t  code;           /**< CO_OBJ_* */
-    const co_od_sub_t *subs; /**< sorted by sub-index */
 } co_od_entry_t;
+
+/** Initialiser of one co_od_entry_t (the generated dictionaries use it). */
+#define CO_OD_ENTRY(index, nsubs, hook, subs) {(subs), (index), (nsubs), (hook)}
+
+/** The CiA 306 object code (CO_OBJ_VAR, _ARRAY, _RECORD, _DOMAIN) of @p e. */
+uint8_t co_od_obj_code(const co_od_entry_t *e);
 
 /** Value limits. Compared as signed or unsigned according to the type. */
 typedef struct co_od_limit {

@@ -49,14 +49,6 @@ const co_od_sub_t *co_od_find_sub(const co_od_entry_t *e, uint8_t sub)
     return find_sub(e, sub);
 }
 
-uint8_t co_od_obj_code(const co_od_entry_t *e)
-{
-    static const uint8_t codes[4] = {CO_OBJ_VAR, CO_OBJ_ARRAY, CO_OBJ_RECORD, CO_OBJ_DOMAIN};
-
-    return (e->nsubs == 0U) ? (uint8_t)CO_OBJ_VAR
-                            : codes[(e->subs[0].flags & CO_SUB_OBJ_MASK) >> CO_SUB_OBJ_SHIFT];
-}
-
 /* Indexed by type 0x00..0x1B; 0 for variable-length types. */
 const uint8_t co_type_sizes[CO_TYPE_SIZES] = {
     0, 1, 1, 2, 4, 1, 2, 4, 4, 0, 0, 0, 6, 6, 0, 0,
@@ -104,9 +96,9 @@ co_err_t co_od_check_access(const co_node_t *node, const co_od_sub_t *s, bool wr
     return CO_OK;
 }
 
-uint32_t co_od_data_size(const co_node_t *node, const co_od_sub_t *s)
+uint32_t co_od_data_size(const co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s)
 {
-    const uint8_t *v = (const uint8_t *)co_od_loc(node, s);
+    const uint8_t *v = (const uint8_t *)co_od_loc(node, e, s);
     uint32_t n = s->size;
 
     if (v == NULL) {
@@ -240,7 +232,7 @@ void *co_od_ram_of(co_node_t *node, uint16_t index, uint8_t sub, uint8_t type)
     if ((s == NULL) || (s->type != type) || ((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) != 0U)) {
         return NULL;
     }
-    return &node->ram[s->off];
+    return &node->ram[co_od_off(e, s)];
 }
 
 uint8_t co_od_array_len(const co_node_t *node, uint16_t index, uint8_t type, uint8_t max)
@@ -279,7 +271,7 @@ static void io_init(co_od_io_t *io, co_node_t *node, const co_od_entry_t *e, con
     io->node = node;
     io->entry = e;
     io->desc = s;
-    io->value = co_od_loc(node, s);
+    io->value = co_od_loc(node, e, s);
 }
 
 /* A chunk of a value the entry's hook produces (CO_SUB_HOOKIO). */
@@ -341,8 +333,8 @@ co_err_t co_od_read_part(co_node_t *node, const co_od_entry_t *e, const co_od_su
             return err;
         }
     }
-    v = (const uint8_t *)co_od_loc(node, s);
-    size = (fixed != 0U) ? s->size : co_od_data_size(node, s);
+    v = (const uint8_t *)co_od_loc(node, e, s);
+    size = (fixed != 0U) ? s->size : co_od_data_size(node, e, s);
     n = (offset < size) ? (size - offset) : 0U;
     if (n > c->cap) {
         n = c->cap;
@@ -470,14 +462,15 @@ co_err_t co_od_write_value(co_node_t *node, const co_od_entry_t *e, const co_od_
         touch_owner(node, sh);
         return sh->fn(node, CO_SVC_COMMIT, e, s, data, len); /* the service's commit */
     }
-    co_od_commit(node, s, data, len);
+    co_od_commit(node, e, s, data, len);
     svc_written(node, sh, e, s);
     return CO_OK;
 }
 
-void co_od_commit(co_node_t *node, const co_od_sub_t *s, const uint8_t *data, uint32_t len)
+void co_od_commit(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
+                  const uint8_t *data, uint32_t len)
 {
-    uint8_t *v = (uint8_t *)co_od_loc(node, s);
+    uint8_t *v = (uint8_t *)co_od_loc(node, e, s);
     uint8_t fixed = co_type_len(s->type);
 
     if ((v != NULL) && ((s->flags & CO_SUB_ROM) == 0U)) {
@@ -499,7 +492,7 @@ static co_err_t commit_streamed(co_node_t *node, const co_od_entry_t *e, const c
                                 const uint8_t *data, uint32_t end)
 {
     co_od_hook_t *h = hook_of(node, e);
-    uint8_t *v = (uint8_t *)co_od_loc(node, s);
+    uint8_t *v = (uint8_t *)co_od_loc(node, e, s);
 
     if ((h != NULL) && (h->write != NULL)) {
         co_od_io_t io;
@@ -533,7 +526,7 @@ co_err_t co_od_write_part(co_node_t *node, const co_od_entry_t *e, const co_od_s
 {
     co_od_hook_t *h = hook_of(node, e);
     co_od_io_t io;
-    uint8_t *v = (uint8_t *)co_od_loc(node, s);
+    uint8_t *v = (uint8_t *)co_od_loc(node, e, s);
 
     if ((s->flags & CO_SUB_HOOKIO) != 0U) {
         if ((h == NULL) || (h->write == NULL)) {
@@ -667,7 +660,7 @@ void *co_od_value_ptr(co_node_t *node, uint16_t index, uint8_t sub)
     if ((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) != 0U) {
         return NULL;
     }
-    return &node->ram[s->off];
+    return &node->ram[co_od_off(e, s)];
 }
 
 co_result_t co_od_bind_hook(co_node_t *node, uint16_t index, const co_od_hook_t *hook)

@@ -922,15 +922,6 @@ static int add_object(ctx_t *c, const sec_t *os, unsigned index)
     return 0;
 }
 
-/* The object code as the core keeps it: bits of the first sub-entry's flags. */
-static uint16_t obj_flags(uint8_t code)
-{
-    return (code == CO_OBJ_ARRAY)    ? (uint16_t)CO_SUB_OBJ_ARRAY
-           : (code == CO_OBJ_RECORD) ? (uint16_t)CO_SUB_OBJ_RECORD
-           : (code == CO_OBJ_DOMAIN) ? (uint16_t)CO_SUB_OBJ_DOMAIN
-                                     : 0U;
-}
-
 static int cmp_obj(const void *a, const void *b)
 {
     return (int)((const bobj_t *)a)->index - (int)((const bobj_t *)b)->index;
@@ -1081,6 +1072,7 @@ static eds_dev_t *build(ctx_t *c, const char *name, const char *text)
             d->entries[i].index = o->index;
             d->entries[i].nsubs = (uint8_t)o->n;
             d->entries[i].hook = 0U;
+            d->entries[i].code = o->code;
             d->entries[i].subs = &d->subs[ns];
             for (size_t k = 0U; k < o->n; k++) {
                 bsub_t *b = &c->sub[o->first + k];
@@ -1090,12 +1082,7 @@ static eds_dev_t *build(ctx_t *c, const char *name, const char *text)
                     d->limits[nlim++] = b->lim;
                 }
                 (void)memcpy(&d->defaults[b->s.off], b->val, b->s.size);
-                d->subs[ns] = b->s;
-                if (k == 0U) {
-                    /* the object code rides on the first sub-entry */
-                    d->subs[ns].flags |= obj_flags(o->code);
-                }
-                ns++;
+                d->subs[ns++] = b->s;
             }
         }
     }

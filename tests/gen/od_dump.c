@@ -150,7 +150,7 @@ int main(int argc, char **argv)
     for (uint16_t i = 0U; i < dev->od_count; i++) {
         const co_od_entry_t *e = &dev->od[i];
         printf("  {\"index\": %u, \"code\": %u, \"hook\": %u, \"subs\": [\n", (unsigned)e->index,
-               (unsigned)co_od_obj_code(e), (unsigned)e->hook);
+               (unsigned)e->code, (unsigned)e->hook);
         for (uint8_t k = 0U; k < e->nsubs; k++) {
             const co_od_sub_t *s = &e->subs[k];
             uint32_t len = 0U;
@@ -158,7 +158,7 @@ int main(int argc, char **argv)
             err = co_od_read(node, e->index, s->sub, buf, (uint32_t)sizeof buf, &len);
             printf("   {\"sub\": %u, \"type\": %u, \"flags\": %u, \"size\": %u, \"abort\": %lu, "
                    "\"value\": ",
-                   (unsigned)s->sub, (unsigned)s->type, (unsigned)(s->flags & ~CO_SUB_OBJ_MASK), (unsigned)s->size,
+                   (unsigned)s->sub, (unsigned)s->type, (unsigned)s->flags, (unsigned)s->size,
                    (unsigned long)err);
             if (err == CO_OK) {
                 hex(buf, len);

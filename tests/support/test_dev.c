@@ -173,10 +173,11 @@ static const co_od_sub_t s6099[] = {
     CO_OD_SUB(2, (uint8_t)CO_UNSIGNED32, CO_SUB_RW | CO_SUB_LIMIT, 4U, (uint16_t)(F(homing_speed) + 4U), 2U),
 };
 
-/* (the object code is left out: the core never reads it) */
-#define E(idx, subs, code) CO_OD_ENTRY((idx), (uint8_t)(sizeof(subs) / sizeof((subs)[0])), 0U, (subs))
+#define E(idx, subs, code) \
+    CO_OD_ENTRY((idx), (uint8_t)(sizeof(subs) / sizeof((subs)[0])), 0U, (code), (subs))
 #define EH(idx, subs, code, slot) \
-    CO_OD_ENTRY((idx), (uint8_t)(sizeof(subs) / sizeof((subs)[0])), (uint8_t)((slot) + 1U), (subs))
+    CO_OD_ENTRY((idx), (uint8_t)(sizeof(subs) / sizeof((subs)[0])), (uint8_t)((slot) + 1U), \
+                (code), (subs))
 
 static const co_od_entry_t od[] = {
     E(0x1000, s1000, CO_OBJ_VAR),    E(0x1001, s1001, CO_OBJ_VAR),

@@ -155,16 +155,8 @@ def field_init(f: Field) -> str | None:
     return c_value(f.subs[0])
 
 
-OBJ_FLAGS = {"VAR": None, "ARRAY": "CO_SUB_OBJ_ARRAY", "RECORD": "CO_SUB_OBJ_RECORD",
-             "DOMAIN": "CO_SUB_OBJ_DOMAIN"}
-
-
-def flags_expr(flags: int, obj_code: str = "VAR") -> str:
-    """The flags of a sub-entry; the first one of an object also carries the
-    object's code (CO_SUB_OBJ_*, the entry has no byte for it)."""
+def flags_expr(flags: int) -> str:
     names = [n for bit, n in FLAG_NAMES if flags & bit]
-    if OBJ_FLAGS[obj_code]:
-        names.append(OBJ_FLAGS[obj_code])
     return "(uint16_t)(" + " | ".join(names) + ")" if names else "0U"
 
 
@@ -186,8 +178,16 @@ def generate(dev: Device, toml_name: str, warn=None) -> tuple[str, str]:
     cn = dev.cname
     up = cn.upper()
     fields = build_fields(dev)
-    ram = [f for r, _ in REGIONS for f in sort_region(fields, r)]
-    rom = sort_region(fields, "rom")
+    pdos_h = pdo_table(dev, warn)
+    blocks, share, same = pdo_blocks(dev, fields, pdos_h)
+    in_block = {f.name for b in blocks for f in b}
+    ram = [f for b in blocks for f in b] + \
+        [f for r, _ in REGIONS for f in sort_region(fields, r) if f.name not in in_block]
+    # the const values only the tables of sharing PDOs name are left out: a
+    # shared table names the first PDO's
+    rom_used = {s.field for o in dev.objects
+                if share.get(o.index, (o.index,))[0] == o.index for s in o.subs if s.rom}
+    rom = [f for f in sort_region(fields, "rom") if f.name in rom_used]
     if not ram:
         ram = [Field(name="unused", ctype="uint8_t", dims=[], align=1, size=1, region="none")]
     # SDO downloads of strings and DOMAINs held in RAM arrive in parts: they
@@ -205,7 +205,6 @@ def generate(dev: Device, toml_name: str, warn=None) -> tuple[str, str]:
                         "(use hookio for large values)")
     if layout(rom) > 0xFFFF:
         raise DescError(f"ROM image is {layout(rom)} bytes; at most 65535")
-    pdos_h = pdo_table(dev, warn)
     n_pdo_h = len(pdos_h[0]) + len(pdos_h[1])
     hooked = [o for o in dev.objects if o.hook]
     n_hooks = len(hooked)
@@ -366,26 +365,44 @@ def generate(dev: Device, toml_name: str, warn=None) -> tuple[str, str]:
         c.append(f"#define R(field) ((uint16_t)offsetof({cn}_rom_t, field))")
     c.append("")
     for o in dev.objects:
-        c.append(f"/* 0x{o.index:04X} {comment(o.name)} ({o.code}) */")
+        sh = share.get(o.index)
+        if sh is not None and sh[0] != o.index:
+            continue    # the table of the first PDO of its shape
+        c.append(f"/* 0x{o.index:04X} {comment(o.name)} ({o.code})" +
+                 (f", its RAM offsets from F({sh[1]}): the table of every PDO of this shape"
+                  if sh is not None else "") + " */")
         c.append(f"static const co_od_sub_t s{o.index:04X}[] = {{")
-        for k, s in enumerate(o.subs):
+        for s in o.subs:
             if s.hookio:
                 off = "0U"
             else:
                 m = "R" if s.rom else "F"
                 off = f"{m}({s.field})" if s.elem <= 0 else \
                     f"(uint16_t)({m}({s.field}) + {s.elem * s.size}U)"
+                if sh is not None and not s.rom:
+                    off = f"(uint16_t)({off} - F({sh[1]}))"
             lim = f"{s.limit_slot}U" if s.limit_slot >= 0 else "0U"
             c.append(f"    CO_OD_SUB(0x{s.sub:02X}U, (uint8_t)CO_{s.type}, "
-                     f"{flags_expr(s.flags, o.code if k == 0 else 'VAR')}, "
+                     f"{flags_expr(s.flags)}, "
                      f"{s.size}U, {off}, {lim}), /* {comment(s.name)} */")
         c.append("};")
     c += ["", "static const co_od_entry_t od[] = {"]
     for o in dev.objects:
         hook = f"{o.hook_slot + 1}U" if o.hook else "0U"
-        c.append(f"    CO_OD_ENTRY(0x{o.index:04X}U, {len(o.subs)}U, {hook}, s{o.index:04X}), "
-                 f"/* {o.code} */")
+        sh = share.get(o.index)
+        if sh is None:
+            c.append(f"    CO_OD_ENTRY(0x{o.index:04X}U, {len(o.subs)}U, {hook}, "
+                     f"(uint8_t)CO_OBJ_{o.code}, s{o.index:04X}),")
+        else:
+            c.append(f"    CO_OD_ENTRY_AT(0x{o.index:04X}U, {len(o.subs)}U, {hook}, "
+                     f"(uint8_t)CO_OBJ_{o.code}, s{sh[0]:04X}, F({sh[1]})),")
     c += ["};", ""]
+    if same:
+        # every PDO that shares a table has its values where the table says
+        conds = [f"(F({f.name}) - F({b[0].name}) == F({lf.name}) - F({lb[0].name}))"
+                 for b, lb in same for f, lf in zip(b, lb)]
+        c += ["/* the PDOs that share a table have the same layout */",
+              f"typedef char {cn}_pdo_shapes[(" + " &&\n    ".join(conds) + ") ? 1 : -1];", ""]
 
     pdos = pdos_h
     n_pdo = len(pdos[0]) + len(pdos[1])
@@ -450,6 +467,75 @@ def generate(dev: Device, toml_name: str, warn=None) -> tuple[str, str]:
           "    cfg->pdo_rx = n->pdo_rx;",
           "}", ""]
     return "\n".join(h), "\n".join(c)
+
+
+def pdo_blocks(dev: Device, fields: list[Field], pdos):
+    """The RAM values of each PDO (both its objects) as one block at the start
+    of the communication region, sorted by alignment, so that PDOs of the
+    same shape (the same sub-entries, types, access, const values) have the
+    same layout and share one sub-entry table per object, its offsets
+    relative to the block's first value (co_od_entry_t.base): the tables of
+    the first PDO of each shape serve them all. Returns (blocks, share,
+    same): blocks [[Field]] in RAM order; share {object index: (index of the
+    object whose table it uses, name of its block's first value)} for every
+    object of a shape with more than one PDO; same [(block, first block of
+    its shape)] for the checks."""
+    by_name = {f.name: f for f in fields}
+    owners: dict[str, set[int]] = {}
+    for o in dev.objects:
+        for s in o.subs:
+            if s.field:
+                owners.setdefault(s.field, set()).add(o.index)
+    blocks, share, same = [], {}, []
+    first: dict = {}
+    pos: dict[str, int] = {}
+
+    def shape(o):
+        """What a shared table says about @p o: every sub-entry, the const
+        values, and where in its block each RAM value is."""
+        return (o.code, tuple((s.sub, s.type, s.flags, s.size, s.limit_slot, s.rom, s.hookio,
+                               s.elem, repr(s.default) if s.rom else pos.get(s.field))
+                              for s in o.subs))
+    for comm, mapping in pdos[0] + pdos[1]:
+        objs = {comm.index, mapping.index}
+        names: list[str] = []
+        for o in (comm, mapping):
+            for s in o.subs:
+                if s.field and not s.rom and s.field not in names:
+                    names.append(s.field)
+        block = [by_name[n] for n in names]
+        if not block or any(owners[n] - objs for n in names) or \
+                any(f.region != "comm" for f in block):
+            continue
+        block.sort(key=lambda f: (-f.align, f.subs[0].index, f.subs[0].sub))
+        blocks.append(block)
+        pos = {f.name: k for k, f in enumerate(block)}
+        sig = (shape(comm), shape(mapping), tuple((f.ctype, tuple(f.dims)) for f in block))
+        if sig not in first:
+            first[sig] = ((comm, mapping), block)
+            continue
+        lead, lb = first[sig]
+        for o, lo in zip((comm, mapping), lead):
+            share[lo.index] = (lo.index, lb[0].name)
+            share[o.index] = (lo.index, block[0].name)
+        same.append((block, lb))
+    # any other object whose RAM values are one value or array of its own
+    # (VARs, ARRAYs) shares the table of the first of its shape as well
+    in_block = {f.name for b in blocks for f in b}
+    for o in dev.objects:
+        names = sorted({s.field for s in o.subs if s.field and not s.rom})
+        if len(names) != 1 or names[0] in in_block or owners[names[0]] != {o.index}:
+            continue
+        f = by_name[names[0]]
+        pos = {f.name: 0}
+        sig = (shape(o), f.ctype, tuple(f.dims))
+        if sig not in first:
+            first[sig] = ((o,), [f])
+            continue
+        (lo,), lb = first[sig]
+        share[lo.index] = (lo.index, lb[0].name)
+        share[o.index] = (lo.index, f.name)
+    return blocks, share, same
 
 
 def mask_table(dev: Device, n_tpdo: int) -> list:

@@ -61,15 +61,6 @@ typedef enum co_type {
 #define CO_OBJ_RECORD  0x09U
 #define CO_OBJ_DOMAIN  0x02U
 
-/* The object's code rides in the flags of its first sub-entry (the core
- * never reads it; the EDS view does, co_od_obj_code): no byte of its own in
- * every entry. VAR is 0, so a table without these bits is all VARs. */
-#define CO_SUB_OBJ_SHIFT  12U
-#define CO_SUB_OBJ_MASK   0x3000U
-#define CO_SUB_OBJ_ARRAY  0x1000U  /**< on sub-entry [0]: the object is an ARRAY */
-#define CO_SUB_OBJ_RECORD 0x2000U  /**< on sub-entry [0]: a RECORD */
-#define CO_SUB_OBJ_DOMAIN 0x3000U  /**< on sub-entry [0]: a DOMAIN */
-
 typedef struct co_od_sub {
     uint8_t  sub;    /**< sub-index */
     uint8_t  type;   /**< co_type_t */
@@ -105,20 +96,31 @@ typedef struct co_od_default {
  *  COB-ID base (it differs from the node-ID only with LSS). */
 #define CO_OD_DEF_COB    0x4000U
 
-/** One object: 8 bytes on a 32-bit CPU (the pointer first, no padding);
- *  its object code is in the flags of subs[0] (CO_SUB_OBJ_*). */
+/** One object (12 bytes on a 32-bit CPU). Objects of the same shape (the
+ *  PDOs' parameters) share one table of sub-entries: the RAM offsets in it
+ *  count from @ref base, where each object's values start (0 for a table
+ *  of its own, whose offsets are the values' own). */
 typedef struct co_od_entry {
     const co_od_sub_t *subs; /**< sorted by sub-index */
     uint16_t index;
+    uint16_t base;           /**< added to the RAM offset of every sub-entry */
     uint8_t  nsubs;          /**< number of sub-entries in @ref subs */
     uint8_t  hook;           /**< hook slot + 1, or 0 for no hook */
+    uint8_t  code;           /**< CO_OBJ_* */
 } co_od_entry_t;
 
-/** Initialiser of one co_od_entry_t (the generated dictionaries use it). */
-#define CO_OD_ENTRY(index, nsubs, hook, subs) {(subs), (index), (nsubs), (hook)}
+/** Initialisers of one co_od_entry_t (the generated dictionaries use them):
+ *  a table of its own, and a shared one whose RAM offsets count from @p base. */
+#define CO_OD_ENTRY(index, nsubs, hook, code, subs) {(subs), (index), 0U, (nsubs), (hook), (code)}
+#define CO_OD_ENTRY_AT(index, nsubs, hook, code, subs, base) \
+    {(subs), (index), (base), (nsubs), (hook), (code)}
 
-/** The CiA 306 object code (CO_OBJ_VAR, _ARRAY, _RECORD, _DOMAIN) of @p e. */
-uint8_t co_od_obj_code(const co_od_entry_t *e);
+/** Offset of the value of @p s (an entry of @p e) in the RAM image, or in
+ *  the ROM image with CO_SUB_ROM. */
+static inline uint16_t co_od_off(const co_od_entry_t *e, const co_od_sub_t *s)
+{
+    return ((s->flags & CO_SUB_ROM) != 0U) ? s->off : (uint16_t)(e->base + s->off);
+}
 
 /** Value limits. Compared as signed or unsigned according to the type. */
 typedef struct co_od_limit {

@@ -470,10 +470,10 @@ co_err_t co_od_write_value(co_node_t *node, const co_od_entry_t *e, const co_od_
 void co_od_commit(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
                   const uint8_t *data, uint32_t len)
 {
-    uint8_t *v = (uint8_t *)co_od_loc(node, e, s);
     uint8_t fixed = co_type_len(s->type);
 
-    if ((v != NULL) && ((s->flags & CO_SUB_ROM) == 0U)) {
+    if ((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) == 0U) {
+        uint8_t *v = &node->ram[(uint16_t)(e->base + s->off)]; /* a RAM value */
         if (fixed != 0U) {
             co_pdo_from_wire(v, data, fixed); /* 1, 2 and 4 bytes without a call */
         } else {

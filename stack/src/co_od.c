@@ -104,22 +104,15 @@ uint32_t co_od_data_size(const co_node_t *node, const co_od_entry_t *e, const co
     if (v == NULL) {
         return 0U;
     }
-    if (s->type == (uint8_t)CO_VISIBLE_STRING) {
-        /* the text ends at the first NUL (a loop: memchr costs more flash) */
+    if ((s->type == (uint8_t)CO_VISIBLE_STRING) || (s->type == (uint8_t)CO_UNICODE_STRING)) {
+        /* the text ends at the first NUL character: a zero byte, a zero
+         * UTF-16 unit (a loop: memchr costs more flash) */
+        uint32_t w = (s->type == (uint8_t)CO_UNICODE_STRING) ? 2U : 1U;
         uint32_t i = 0U;
-        while ((i < n) && (v[i] != 0U)) {
-            i++;
+        while (((i + w) <= n) && ((v[i] != 0U) || (v[i + w - 1U] != 0U))) {
+            i += w;
         }
         n = i;
-    } else if (s->type == (uint8_t)CO_UNICODE_STRING) {
-        /* UTF-16 units: the text ends at the first zero unit */
-        uint32_t i = 0U;
-        while (((i + 1U) < n) && ((v[i] != 0U) || (v[i + 1U] != 0U))) {
-            i += 2U;
-        }
-        n = (i < n) ? i : n;
-    } else {
-        /* fixed length */
     }
     return n;
 }
@@ -229,7 +222,8 @@ void *co_od_ram_of(co_node_t *node, uint16_t index, uint8_t sub, uint8_t type)
     const co_od_entry_t *e = find(node->dev->od, node->dev->od_count, index);
     const co_od_sub_t *s = (e != NULL) ? find_sub(e, sub) : NULL;
 
-    if ((s == NULL) || (s->type != type) || ((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) != 0U)) {
+    if ((s == NULL) || ((type != 0U) && (s->type != type)) ||
+        ((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) != 0U)) {
         return NULL;
     }
     return &node->ram[co_od_off(e, s)];
@@ -274,42 +268,32 @@ static void io_init(co_od_io_t *io, co_node_t *node, const co_od_entry_t *e, con
     io->value = co_od_loc(node, e, s);
 }
 
-/* A chunk of a value the entry's hook produces (CO_SUB_HOOKIO). */
-CO_NOINLINE static co_err_t read_hookio(co_node_t *node, const co_od_entry_t *e,
-                                        const co_od_sub_t *s, co_od_chunk_t *c)
+/* The entry's read hook. With CO_SUB_HOOKIO (@p hookio) it produces the
+ * chunk @p c (no hook: no access); for a stored value it runs before the
+ * value is read (it may refresh or veto; no hook: nothing to do). */
+CO_NOINLINE static co_err_t read_hook(co_node_t *node, const co_od_entry_t *e,
+                                      const co_od_sub_t *s, co_od_chunk_t *c, bool hookio)
 {
     co_od_hook_t *h = hook_of(node, e);
     co_od_io_t io;
     co_err_t err;
 
     if ((h == NULL) || (h->read == NULL)) {
-        return CO_ERR_NO_ACCESS;
+        return hookio ? CO_ERR_NO_ACCESS : CO_OK;
     }
     io_init(&io, node, e, s);
-    io.offset = c->offset;
-    io.buf = c->buf;
-    io.len = c->cap;
+    if (hookio) {
+        io.offset = c->offset;
+        io.buf = c->buf;
+        io.len = c->cap;
+    }
     err = h->read(h->ctx, &io);
-    if (err == CO_OK) {
+    if ((err == CO_OK) && hookio) {
         c->len = (io.len > c->cap) ? c->cap : io.len;
         c->total = io.total;
         c->last = io.last;
     }
     return err;
-}
-
-/* The read hook of a stored value, before it is read (it may refresh or veto). */
-CO_NOINLINE static co_err_t read_hook(co_node_t *node, const co_od_entry_t *e,
-                                      const co_od_sub_t *s)
-{
-    co_od_hook_t *h = hook_of(node, e);
-    co_od_io_t io;
-
-    if ((h == NULL) || (h->read == NULL)) {
-        return CO_OK;
-    }
-    io_init(&io, node, e, s);
-    return h->read(h->ctx, &io);
 }
 
 co_err_t co_od_read_part(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
@@ -322,12 +306,12 @@ co_err_t co_od_read_part(co_node_t *node, const co_od_entry_t *e, const co_od_su
     uint32_t n;
 
     if ((s->flags & CO_SUB_HOOKIO) != 0U) {
-        return read_hookio(node, e, s, c);
+        return read_hook(node, e, s, c, true);
     }
     if (offset == 0U) {
         co_err_t err = svc_read(node, e, s);
         if ((err == CO_OK) && (e->hook != 0U)) {
-            err = read_hook(node, e, s);
+            err = read_hook(node, e, s, c, false);
         }
         if (err != CO_OK) {
             return err;
@@ -477,47 +461,15 @@ void co_od_commit(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
         if (fixed != 0U) {
             co_pdo_from_wire(v, data, fixed); /* 1, 2 and 4 bytes without a call */
         } else {
-            (void)memcpy(v, data, len);
+            if (data != v) {
+                /* (a value gathered in place is its own data) */
+                (void)memcpy(v, data, len);
+            }
             if (len < s->size) {
                 (void)memset(&v[len], 0, s->size - len);
             }
         }
     }
-}
-
-/* The complete new value @p data (@p end bytes) of a string or DOMAIN held
- * in RAM: the write hook may veto it (the value is unchanged then), else it
- * replaces the value, the rest zero-filled. */
-static co_err_t commit_streamed(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
-                                const uint8_t *data, uint32_t end)
-{
-    co_od_hook_t *h = hook_of(node, e);
-    uint8_t *v = (uint8_t *)co_od_loc(node, e, s);
-
-    if ((h != NULL) && (h->write != NULL)) {
-        co_od_io_t io;
-        co_err_t err;
-        io_init(&io, node, e, s);
-        io.buf = (uint8_t *)(uintptr_t)data;
-        io.len = end;
-        io.total = end;
-        io.last = true;
-        err = h->write(h->ctx, &io);
-        if (err != CO_OK) {
-            return err;
-        }
-    }
-    if ((end > 0U) && (data != v)) {
-        /* the data are a frame, the SDO server's buffer, the staging area
-         * or the application's: never a part of this value (gathered in
-         * place, they are the value itself, data == v) */
-        (void)memcpy(v, data, end);
-    }
-    if (end < s->size) {
-        (void)memset(&v[end], 0, s->size - end);
-    }
-    svc_written(node, svc_hook(node, e->index), e, s);
-    return CO_OK;
 }
 
 co_err_t co_od_write_part(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
@@ -547,7 +499,7 @@ co_err_t co_od_write_part(co_node_t *node, const co_od_entry_t *e, const co_od_s
         return CO_ERR_TYPE_TOO_LONG;
     }
     if ((offset == 0U) && last) {
-        return commit_streamed(node, e, s, data, len); /* whole: nothing to gather */
+        return co_od_write_value(node, e, s, data, len); /* whole: nothing to gather */
     }
     {
         /* parts gather in the staging area (co_dev_t.stage) when it holds the
@@ -556,7 +508,10 @@ co_err_t co_od_write_part(co_node_t *node, const co_od_entry_t *e, const co_od_s
         if (len > 0U) {
             (void)memcpy(&at[offset], data, len);
         }
-        return last ? commit_streamed(node, e, s, at, offset + len) : CO_OK;
+        /* complete: checked, hooked and committed as one value (the write
+         * hook may veto it, the value is unchanged then unless it was
+         * gathered in place) */
+        return last ? co_od_write_value(node, e, s, at, offset + len) : CO_OK;
     }
 }
 
@@ -651,16 +606,7 @@ co_err_t co_od_write(co_node_t *node, uint16_t index, uint8_t sub, const void *d
 
 void *co_od_value_ptr(co_node_t *node, uint16_t index, uint8_t sub)
 {
-    const co_od_entry_t *e;
-    const co_od_sub_t *s;
-
-    if (co_od_lookup(node, index, sub, &e, &s) != CO_OK) {
-        return NULL;
-    }
-    if ((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) != 0U) {
-        return NULL;
-    }
-    return &node->ram[co_od_off(e, s)];
+    return co_od_ram_of(node, index, sub, 0U);
 }
 
 co_result_t co_od_bind_hook(co_node_t *node, uint16_t index, const co_od_hook_t *hook)

@@ -234,17 +234,15 @@ uint8_t co_od_array_len(const co_node_t *node, uint16_t index, uint8_t type, uin
     const co_od_entry_t *e = find(node->dev->od, node->dev->od_count, index);
     uint8_t n = 0U;
 
-    if (e == NULL) {
-        return 0U;
-    }
-    for (uint8_t k = 1U; (k < e->nsubs) && (n < max); k++) {
-        const co_od_sub_t *s = &e->subs[k];
-        if ((s->sub != k) || (s->type != type) ||
-            ((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) != 0U) ||
-            (s->off != (uint16_t)(e->subs[1].off + ((uint16_t)(k - 1U) * co_type_len(type))))) {
-            break;
+    if (e != NULL) {
+        /* sub 1.. of that type, RAM values one after the other */
+        const co_od_sub_t *s = &e->subs[1];
+        uint32_t step = co_type_len(type);
+        while ((n < max) && (((uint32_t)n + 1U) < e->nsubs) && (s[n].sub == (uint8_t)(n + 1U)) &&
+               (s[n].type == type) && ((s[n].flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) == 0U) &&
+               (s[n].off == (uint16_t)(s[0].off + (n * step)))) {
+            n++;
         }
-        n++;
     }
     return n;
 }

@@ -20,6 +20,13 @@
 #define CO_INLINE static inline
 #endif
 #endif
+/* Per-frame paths with several callers: inlined where the build asks for
+ * speed; at -Os the compiler decides (one copy instead of one per caller). */
+#if defined(__GNUC__) && !defined(__OPTIMIZE_SIZE__)
+#define CO_HOT static inline __attribute__((always_inline))
+#else
+#define CO_HOT static inline
+#endif
 /* Rare paths kept out of the per-frame functions they would otherwise be
  * inlined into (their stack frame and saved registers would be paid on
  * every frame). */
@@ -315,9 +322,9 @@ typedef struct co_service {
 #define CO_ROW_ERRCTL ((uint8_t)(CO_ROW_NMT + 2U))
 #define CO_ROW_EMCY   ((uint8_t)(CO_ROW_NMT + 3U))
 #define CO_ROW_SYNC   ((uint8_t)(CO_ROW_NMT + 4U))
-#define CO_ROW_TIME   ((uint8_t)(CO_ROW_NMT + 5U))
-#define CO_ROW_PDO    ((uint8_t)(CO_ROW_NMT + 6U))
-#define CO_ROW_STORE  ((uint8_t)(CO_ROW_NMT + 7U))
+#define CO_ROW_TIME   ((uint8_t)(CO_ROW_NMT + 5U)) /* only with CO_TIME */
+#define CO_ROW_PDO    ((uint8_t)(CO_ROW_SYNC + 1U + (unsigned)(CO_TIME)))
+#define CO_ROW_STORE  ((uint8_t)(CO_ROW_PDO + 1U))
 extern const co_service_t *const co_services[];
 extern const uint8_t co_n_services;
 /* The services (one per file; co_services.c puts them in order). */
@@ -326,7 +333,9 @@ extern const co_service_t co_svc_sdo;
 extern const co_service_t co_svc_errctl;
 extern const co_service_t co_svc_emcy;
 extern const co_service_t co_svc_sync;
+#if CO_TIME
 extern const co_service_t co_svc_time;
+#endif
 extern const co_service_t co_svc_pdo;
 extern const co_service_t co_svc_store;
 #if CO_LSS

@@ -128,8 +128,9 @@ static void compact_dictionary(void **state)
 }
 
 /* Objects of the same shape share one table of sub-entries whose RAM
- * offsets count from each entry's base: RPDO1 and TPDO1 here (communication
- * and mapping parameters), 0x1010 and 0x1011. Every value still has a place
+ * offsets count from each entry's base: RPDO1 and TPDO1 here (their
+ * communication parameters, and their mapping parameters), 0x1010 and
+ * 0x1011. Every value still has a place
  * of its own: SDO writes land in the right field of the RAM image and a
  * reset communication restores each PDO's own defaults. */
 static void shared_sub_tables(void **state)
@@ -152,8 +153,8 @@ static void shared_sub_tables(void **state)
     assert_ptr_equal(st->subs, rs->subs);
     assert_int_equal(r->base, offsetof(lean_test_ram_t, x1400_cob_id_used_by_rpdo));
     assert_int_equal(t->base, offsetof(lean_test_ram_t, x1800_cob_id_used_by_tpdo));
-    assert_int_equal(rm->base, r->base);
-    assert_int_equal(tm->base, t->base);
+    assert_int_equal(rm->base, offsetof(lean_test_ram_t, x1600_rpdo1_mapping_parameter));
+    assert_int_equal(tm->base, offsetof(lean_test_ram_t, x1A00_tpdo1_mapping_parameter));
     assert_int_equal(r->code, CO_OBJ_RECORD);
     assert_int_equal(st->code, CO_OBJ_ARRAY);
     assert_int_equal(start(&lean_test_dev), CO_RESULT_OK);

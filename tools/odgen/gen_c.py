@@ -179,10 +179,11 @@ def generate(dev: Device, toml_name: str, warn=None) -> tuple[str, str]:
     up = cn.upper()
     fields = build_fields(dev)
     pdos_h = pdo_table(dev, warn)
-    blocks, share, same = pdo_blocks(dev, fields, pdos_h)
+    blocks = pdo_blocks(dev, fields, pdos_h)
     in_block = {f.name for b in blocks for f in b}
     ram = [f for b in blocks for f in b] + \
         [f for r, _ in REGIONS for f in sort_region(fields, r) if f.name not in in_block]
+    share, same = shared_tables(dev, ram)
     # the const values only the tables of sharing PDOs name are left out: a
     # shared table names the first PDO's
     rom_used = {s.field for o in dev.objects
@@ -397,12 +398,18 @@ def generate(dev: Device, toml_name: str, warn=None) -> tuple[str, str]:
             c.append(f"    CO_OD_ENTRY_AT(0x{o.index:04X}U, {len(o.subs)}U, {hook}, "
                      f"(uint8_t)CO_OBJ_{o.code}, s{sh[0]:04X}, F({sh[1]})),")
     c += ["};", ""]
-    if same:
-        # every PDO that shares a table has its values where the table says
-        conds = [f"(F({f.name}) - F({b[0].name}) == F({lf.name}) - F({lb[0].name}))"
-                 for b, lb in same for f, lf in zip(b, lb)]
-        c += ["/* the PDOs that share a table have the same layout */",
-              f"typedef char {cn}_pdo_shapes[(" + " &&\n    ".join(conds) + ") ? 1 : -1];", ""]
+    conds = []
+    for o, lead in same:
+        # every object that uses another's table has its values where it says
+        for s, ls in zip(o.subs, lead.subs):
+            # (one value or array of its own: the distances are its own)
+            if s.field and not s.rom and not s.hookio and \
+                    len({x.field for x in o.subs if x.field and not x.rom}) > 1:
+                conds.append(f"({off_expr(s)} - F({share[o.index][1]}) == "
+                             f"{off_expr(ls)} - F({share[lead.index][1]}))")
+    if conds:
+        c += ["/* the objects that share a table have the same layout */",
+              f"typedef char {cn}_shapes[(" + " &&\n    ".join(conds) + ") ? 1 : -1];", ""]
 
     pdos = pdos_h
     n_pdo = len(pdos[0]) + len(pdos[1])
@@ -469,33 +476,27 @@ def generate(dev: Device, toml_name: str, warn=None) -> tuple[str, str]:
     return "\n".join(h), "\n".join(c)
 
 
-def pdo_blocks(dev: Device, fields: list[Field], pdos):
-    """The RAM values of each PDO (both its objects) as one block at the start
-    of the communication region, sorted by alignment, so that PDOs of the
-    same shape (the same sub-entries, types, access, const values) have the
-    same layout and share one sub-entry table per object, its offsets
-    relative to the block's first value (co_od_entry_t.base): the tables of
-    the first PDO of each shape serve them all. Returns (blocks, share,
-    same): blocks [[Field]] in RAM order; share {object index: (index of the
-    object whose table it uses, name of its block's first value)} for every
-    object of a shape with more than one PDO; same [(block, first block of
-    its shape)] for the checks."""
-    by_name = {f.name: f for f in fields}
+def owners_of(dev: Device) -> dict[str, set[int]]:
+    """The objects whose sub-entries name each RAM/ROM field."""
     owners: dict[str, set[int]] = {}
     for o in dev.objects:
         for s in o.subs:
             if s.field:
                 owners.setdefault(s.field, set()).add(o.index)
-    blocks, share, same = [], {}, []
-    first: dict = {}
-    pos: dict[str, int] = {}
+    return owners
 
-    def shape(o):
-        """What a shared table says about @p o: every sub-entry, the const
-        values, and where in its block each RAM value is."""
-        return (o.code, tuple((s.sub, s.type, s.flags, s.size, s.limit_slot, s.rom, s.hookio,
-                               s.elem, repr(s.default) if s.rom else pos.get(s.field))
-                              for s in o.subs))
+
+def pdo_blocks(dev: Device, fields: list[Field], pdos) -> list[list[Field]]:
+    """The RAM values of each PDO (both its objects) as one block at the start
+    of the communication region, in an order that gives PDOs of the same
+    shape the same layout and, without padding for CiA 301's parameters, the
+    mapping parameters the same layout in RPDOs and TPDOs: the 4-byte values
+    (COB-ID), the mapping entries, the number of entries, then the rest by
+    growing alignment (transmission type, SYNC start value, inhibit time,
+    event timer)."""
+    by_name = {f.name: f for f in fields}
+    owners = owners_of(dev)
+    blocks = []
     for comm, mapping in pdos[0] + pdos[1]:
         objs = {comm.index, mapping.index}
         names: list[str] = []
@@ -507,35 +508,65 @@ def pdo_blocks(dev: Device, fields: list[Field], pdos):
         if not block or any(owners[n] - objs for n in names) or \
                 any(f.region != "comm" for f in block):
             continue
-        block.sort(key=lambda f: (-f.align, f.subs[0].index, f.subs[0].sub))
-        blocks.append(block)
-        pos = {f.name: k for k, f in enumerate(block)}
-        sig = (shape(comm), shape(mapping), tuple((f.ctype, tuple(f.dims)) for f in block))
-        if sig not in first:
-            first[sig] = ((comm, mapping), block)
-            continue
-        lead, lb = first[sig]
-        for o, lo in zip((comm, mapping), lead):
-            share[lo.index] = (lo.index, lb[0].name)
-            share[o.index] = (lo.index, block[0].name)
-        same.append((block, lb))
-    # any other object whose RAM values are one value or array of its own
-    # (VARs, ARRAYs) shares the table of the first of its shape as well
-    in_block = {f.name for b in blocks for f in b}
+        entries = [f for f in block if f.subs[0].index == mapping.index and f.dims]
+        count = [f for f in block if f.subs[0].index == mapping.index and not f.dims]
+        big = [f for f in block if f not in entries + count and f.align >= 4]
+        rest = [f for f in block if f not in entries + count + big]
+        big.sort(key=lambda f: (-f.align, f.subs[0].index, f.subs[0].sub))
+        rest.sort(key=lambda f: (f.align, f.subs[0].index, f.subs[0].sub))
+        blocks.append(big + entries + count + rest)
+    return blocks
+
+
+def offsets(ram: list[Field]) -> dict[str, int]:
+    """Where each field of the RAM image is with natural alignment (what a
+    C compiler does for 1-, 2- and 4-byte values; the generated source checks
+    every offset a shared table relies on)."""
+    out, off = {}, 0
+    for f in ram:
+        off = (off + f.align - 1) // f.align * f.align
+        out[f.name] = off
+        off += f.size
+    return out
+
+
+def shared_tables(dev: Device, ram: list[Field]):
+    """Objects of the same shape (the same sub-entries, types, access, const
+    values, and the same distances between their RAM values) share the table
+    of the first of them: its RAM offsets count from the object's first value
+    (co_od_entry_t.base). Returns (share, same): share {object index: (index
+    of the object whose table it uses, name of the object's first RAM
+    value)} for every object of a shape that more than one has; same
+    [(object, object whose table it uses)] for the compile-time checks."""
+    owners = owners_of(dev)
+    at = offsets(ram)
+    by_name = {f.name: f for f in ram}
+    share, same = {}, []
+    first: dict = {}
     for o in dev.objects:
-        names = sorted({s.field for s in o.subs if s.field and not s.rom})
-        if len(names) != 1 or names[0] in in_block or owners[names[0]] != {o.index}:
+        names = {s.field for s in o.subs if s.field and not s.rom and not s.hookio}
+        if not names or any(owners[n] != {o.index} or n not in by_name for n in names):
             continue
-        f = by_name[names[0]]
-        pos = {f.name: 0}
-        sig = (shape(o), f.ctype, tuple(f.dims))
+        if len(names) > 1 and any(by_name[n].align > 4 for n in names):
+            continue   # an 8-byte value's alignment differs between ABIs
+        base = min(names, key=lambda n: at[n])
+
+        def rel(s):
+            return at[s.field] + max(s.elem, 0) * s.size - at[base]
+        sig = (o.code, tuple((s.sub, s.type, s.flags, s.size, s.limit_slot, s.rom, s.hookio,
+                              repr(s.default) if s.rom else
+                              (None if s.hookio or not s.field else rel(s)))
+                             for s in o.subs))
         if sig not in first:
-            first[sig] = ((o,), [f])
+            first[sig] = o
             continue
-        (lo,), lb = first[sig]
-        share[lo.index] = (lo.index, lb[0].name)
-        share[o.index] = (lo.index, f.name)
-    return blocks, share, same
+        lead = first[sig]
+        lead_base = min((s.field for s in lead.subs if s.field and not s.rom and not s.hookio),
+                        key=lambda n: at[n])
+        share[lead.index] = (lead.index, lead_base)
+        share[o.index] = (lead.index, base)
+        same.append((o, lead))
+    return share, same
 
 
 def mask_table(dev: Device, n_tpdo: int) -> list:

@@ -323,7 +323,9 @@ co_err_t co_od_read_part(co_node_t *node, const co_od_entry_t *e, const co_od_su
     }
     if ((fixed != 0U) && (offset == 0U) && (n == fixed)) {
         co_to_wire(c->buf, v, fixed); /* the whole value */
-    } else if (fixed != 0U) {
+    } else if ((fixed != 0U) && !CO_NATIVE_LE) {
+        /* part of a number: from its wire image (on a little-endian CPU
+         * the stored bytes are the wire image: the copy below) */
         uint8_t wire[8];
         co_to_wire(wire, v, fixed);
         (void)memcpy(c->buf, &wire[offset], n);
@@ -537,18 +539,14 @@ void co_od_restore(co_node_t *node, uint16_t from, uint16_t to)
                 uint8_t id = ((CO_LSS != 0) && ((d->size & CO_OD_DEF_COB) != 0U))
                                  ? node->cob_base
                                  : node->node_id;
-                if (n == 1U) {
-                    p[0] = (uint8_t)(p[0] + id);
-                } else if (n == 2U) {
-                    uint16_t v;
-                    (void)memcpy(&v, p, 2U);
-                    v = (uint16_t)(v + id);
-                    (void)memcpy(p, &v, 2U);
-                } else {
-                    uint32_t v;
-                    (void)memcpy(&v, p, 4U);
-                    v += id;
-                    (void)memcpy(p, &v, 4U);
+                /* added byte by byte from the least significant one, as
+                 * the value's own width wraps it */
+                uint32_t sum = id;
+                for (uint32_t k = 0U; k < n; k++) {
+                    uint8_t *b = CO_NATIVE_LE ? &p[k] : &p[n - 1U - k];
+                    sum += *b;
+                    *b = (uint8_t)sum;
+                    sum >>= 8U;
                 }
             }
         }

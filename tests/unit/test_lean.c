@@ -201,6 +201,11 @@ static void refuses_what_is_left_out(void **state)
     assert_int_equal(start(&dev), CO_RESULT_DEV_INCOMPAT);
     tb_expect_none(BUS);
     dev.limits = NULL;
+    /* a node-ID object (a manufacturer's deviation, Wandfluh's 0x2000) */
+    dev.nodeid_index = 0x2000U;
+    assert_int_equal(start(&dev), CO_RESULT_DEV_INCOMPAT);
+    tb_expect_none(BUS);
+    dev.nodeid_index = 0U;
     /* error behaviour 0x1029 (the description's entries plus one) */
     {
         static const co_od_sub_t s1029[] = {

@@ -106,6 +106,8 @@ def check(dev: Device, build: dict[str, int]) -> None:
         # says (0x05040001): that setting is no deviation for it
         devs = [o for o in dev.options if o != "LSS" and
                 not (o == "SDO_NO_BLOCK" and not cfg.get("CO_SDO_BLOCK", 1))]
+        if dev.nodeid_object:
+            devs.append(f"nodeid_object 0x{dev.nodeid_object:04X}")
         if devs:
             missing.append("the personality " + ", ".join(devs) + " needs CO_PERSONALITY=1 "
                            "(this build: CO_PERSONALITY=0, CiA 301 behaviour only)")

@@ -224,7 +224,7 @@ static co_err_t check_comm_write(const co_node_t *node, uint16_t i, uint8_t sub,
                            : cur;
         return co_check_cob(was, co_get_u32(data), CO_PDO_COB_INVALID, false, 0U, false);
     }
-    if ((len == 1U) && (((sub == 2U) && (data[0] > 240U) && (data[0] < (tx ? 252U : 254U))) ||
+    if ((len == 1U) && (((sub == 2U) && (data[0] > 240U) && (data[0] < ((tx && CO_PDO_RTR) ? 252U : 254U))) ||
                         ((sub == 6U) && tx && (data[0] > 240U)))) {
         return CO_ERR_VALUE; /* reserved transmission types, SYNC start value */
     }
@@ -343,7 +343,8 @@ static void pdo_nmt(co_node_t *node, co_nmt_state_t from)
 
 static void pdo_rx_slots(co_node_t *node, uint8_t svc)
 {
-    uint16_t n = (uint16_t)(node->dev->n_rpdo + node->dev->n_tpdo);
+    /* TPDOs are received only for their remote requests */
+    uint16_t n = (uint16_t)(node->dev->n_rpdo + (CO_PDO_RTR ? node->dev->n_tpdo : 0U));
     uint16_t used = 0U;
 
     (void)svc;
@@ -354,7 +355,7 @@ static void pdo_rx_slots(co_node_t *node, uint8_t svc)
         uint32_t cob = co_pdo_cob(node, i);
         uint16_t id = (uint16_t)(cob & 0x7FFU);
         if (((cob & CO_PDO_COB_INVALID) != 0U) ||
-            (is_tpdo(node, i) && ((cob & CO_PDO_COB_NO_RTR) != 0U))) {
+            (is_tpdo(node, i) && (!CO_PDO_RTR || ((cob & CO_PDO_COB_NO_RTR) != 0U)))) {
             continue; /* not received: invalid, or a TPDO that answers no RTR */
         }
         node->pdo.rx[used].cob = id;
@@ -370,6 +371,7 @@ static void pdo_rx_slots(co_node_t *node, uint8_t svc)
 /* A frame on the COB-ID of PDO @p i (the node's PDO table, co_node_rx). */
 static void pdo_rx(co_node_t *node, uint16_t i, const co_frame_t *f)
 {
+#if CO_PDO_RTR
     if (i < node->dev->n_rpdo) {
         co_rpdo_rx(node, i, f);
     } else if (co_frame_is_rtr(f)) {
@@ -377,6 +379,9 @@ static void pdo_rx(co_node_t *node, uint16_t i, const co_frame_t *f)
     } else {
         /* another node's data frame on this TPDO's identifier */
     }
+#else
+    co_rpdo_rx(node, i, f); /* only RPDOs are received */
+#endif
 }
 
 static uint32_t pdo_process(co_node_t *node, uint32_t next)

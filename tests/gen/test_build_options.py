@@ -84,3 +84,21 @@ def test_accepted(tmp_path: Path) -> None:
     assert run_odgen(KOLLMORGEN, tmp_path, "--c", "--build=CO_SDO_BLOCK=0").returncode == 0
     # no build options: the full core
     assert run_odgen(GENERIC, tmp_path, "--c", "--build=").returncode == 0
+
+
+def test_tpdo_rtr(tmp_path: Path) -> None:
+    # a TPDO that defaults to an RTR-only type (252/253) needs CO_PDO_RTR;
+    # the lean-test device's TPDO (type 1) does not
+    text = LEAN.read_text(encoding="utf-8").replace(
+        '{ sub = 2, name = "Transmission type", type = "UNSIGNED8", default = 1 }',
+        '{ sub = 2, name = "Transmission type", type = "UNSIGNED8", default = 253 }')
+    assert "default = 253" in text
+    rtr = tmp_path / "rtr.toml"
+    rtr.write_text(text, encoding="utf-8")
+    out = tmp_path / "out"
+    out.mkdir()
+    r = run_odgen(rtr, out, "--c", "--build=CO_PDO_RTR=0")
+    assert r.returncode == 1
+    assert "TPDO transmission type 252/253 (0x1800) needs CO_PDO_RTR=1" in r.stderr
+    assert run_odgen(rtr, out, "--c", "--build=").returncode == 0
+    assert run_odgen(LEAN, out, "--c", "--build=CO_PDO_RTR=0").returncode == 0

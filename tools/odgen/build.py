@@ -111,6 +111,11 @@ def check(dev: Device, build: dict[str, int]) -> None:
         if devs:
             missing.append("the personality " + ", ".join(devs) + " needs CO_PERSONALITY=1 "
                            "(this build: CO_PERSONALITY=0, CiA 301 behaviour only)")
+    if not cfg.get("CO_PDO_RTR", 1):
+        rtr = [f"0x{o.index:04X}" for o in dev.objects if 0x1800 <= o.index <= 0x19FF
+               for s in o.subs if s.sub == 2 and s.default in (252, 253)]
+        if rtr:
+            need("CO_PDO_RTR", "TPDO transmission type 252/253 (" + ", ".join(rtr) + ")")
     if not cfg.get("CO_LSS", 1) and "LSS" in dev.options:
         need("CO_LSS", "LSS ([device] lss)")
     if missing:

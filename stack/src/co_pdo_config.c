@@ -97,9 +97,10 @@ static uint16_t direct_code(const co_node_t *node, const co_od_entry_t *e, const
 {
     uint8_t size = co_type_len(s->type);
     uint8_t svc = co_od_svc_ops(node, e->index);
+    uint16_t off = co_od_off(e, s);
 
     if ((e->hook != 0U) || ((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) != 0U) ||
-        (s->size != size) || (s->off >= CO_PDO_OFF_END) || ((pos & 7U) != 0U) ||
+        (s->size != size) || (off >= CO_PDO_OFF_END) || ((pos & 7U) != 0U) ||
         ((bits & 7U) != 0U)) {
         return CO_PDO_SLOW;
     }
@@ -107,20 +108,20 @@ static uint16_t direct_code(const co_node_t *node, const co_od_entry_t *e, const
         /* on a little-endian CPU 8 bytes are read at once (co_pdo_get_direct),
          * which a RAM image of fewer than 16 bytes may not have; whole values
          * only on a big-endian one */
-        uint32_t end = (uint32_t)s->off + 8U;
+        uint32_t end = (uint32_t)off + 8U;
         bool at_end = end > node->dev->ram_size;
         if (((svc & CO_SVC_READ) != 0U) ||
-            (CO_NATIVE_LE ? (at_end && (((uint32_t)s->off + ((uint32_t)bits >> 3U)) < 8U))
+            (CO_NATIVE_LE ? (at_end && (((uint32_t)off + ((uint32_t)bits >> 3U)) < 8U))
                           : (bits != (uint8_t)(size * 8U)))) {
             return CO_PDO_SLOW;
         }
-        return (uint16_t)((uint32_t)s->off | ((((uint32_t)bits >> 3U) - 1U) << 12U) |
+        return (uint16_t)((uint32_t)off | ((((uint32_t)bits >> 3U) - 1U) << 12U) |
                           (at_end ? (uint32_t)CO_PDO_AT_END : 0U));
     }
     if ((svc != 0U) || ((s->flags & CO_SUB_LIMIT) != 0U) || (s->type == (uint8_t)CO_BOOLEAN)) {
         return CO_PDO_SLOW;
     }
-    return (uint16_t)((uint32_t)s->off | (((uint32_t)size - 1U) << 12U) |
+    return (uint16_t)((uint32_t)off | (((uint32_t)size - 1U) << 12U) |
                       (co_type_is_signed(s->type) ? (uint32_t)CO_PDO_SIGNED : 0U));
 }
 #endif

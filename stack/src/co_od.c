@@ -312,6 +312,26 @@ CO_NOINLINE static co_err_t read_hook(co_node_t *node, const co_od_entry_t *e,
     return h->read(h->ctx, &io);
 }
 
+/* The write hook of a stored value (or of a HOOKIO value written whole):
+ * the complete new value, before it is committed; an error vetoes it.
+ * CO_SUB_HOOKIO without a hook to take it: refused. */
+CO_NOINLINE static co_err_t write_hook(co_node_t *node, const co_od_entry_t *e,
+                                       const co_od_sub_t *s, const uint8_t *data, uint32_t len)
+{
+    co_od_hook_t *h = hook_of(node, e);
+    co_od_io_t io;
+
+    if ((h == NULL) || (h->write == NULL)) {
+        return ((s->flags & CO_SUB_HOOKIO) != 0U) ? CO_ERR_NO_ACCESS : CO_OK;
+    }
+    io_init(&io, node, e, s);
+    io.buf = (uint8_t *)(uintptr_t)data;
+    io.len = len;
+    io.total = len;
+    io.last = true;
+    return h->write(h->ctx, &io);
+}
+
 co_err_t co_od_read_part(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
                          co_od_chunk_t *c)
 {
@@ -418,10 +438,10 @@ static co_err_t check_limits(const co_node_t *node, const co_od_sub_t *s, const 
 co_err_t co_od_write_value(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
                            const uint8_t *data, uint32_t len)
 {
-    co_od_hook_t *h = hook_of(node, e);
     const co_svc_hook_t *sh;
     co_err_t err;
     uint8_t fixed = co_type_len(s->type);
+    uint8_t ops;
 
     if (fixed != 0U) {
         if (len != fixed) {
@@ -435,21 +455,19 @@ co_err_t co_od_write_value(co_node_t *node, const co_od_entry_t *e, const co_od_
         /* fits */
     }
     err = check_limits(node, s, data, len);
-    sh = svc_hook(node, e->index);
-    if ((err == CO_OK) && (sh != NULL) && ((sh->ops & CO_SVC_CHECK) != 0U)) {
-        err = sh->fn(node, CO_SVC_CHECK, e, s, data, len);
-    }
     if (err != CO_OK) {
         return err;
     }
-    if ((h != NULL) && (h->write != NULL)) {
-        co_od_io_t io;
-        io_init(&io, node, e, s);
-        io.buf = (uint8_t *)(uintptr_t)data;
-        io.len = len;
-        io.total = len;
-        io.last = true;
-        err = h->write(h->ctx, &io);
+    sh = svc_hook(node, e->index);
+    ops = (sh != NULL) ? sh->ops : 0U;
+    if ((ops & CO_SVC_CHECK) != 0U) {
+        err = sh->fn(node, CO_SVC_CHECK, e, s, data, len);
+        if (err != CO_OK) {
+            return err;
+        }
+    }
+    if (e->hook != 0U) {
+        err = write_hook(node, e, s, data, len);
         if (err != CO_OK) {
             return err;
         }
@@ -458,7 +476,7 @@ co_err_t co_od_write_value(co_node_t *node, const co_od_entry_t *e, const co_od_
     } else {
         /* plain stored value */
     }
-    if ((sh != NULL) && ((sh->ops & CO_SVC_COMMIT) != 0U)) {
+    if ((ops & CO_SVC_COMMIT) != 0U) {
         touch_owner(node, sh);
         return sh->fn(node, CO_SVC_COMMIT, e, s, data, len); /* the service's commit */
     }
@@ -469,17 +487,17 @@ co_err_t co_od_write_value(co_node_t *node, const co_od_entry_t *e, const co_od_
 
 void co_od_commit(co_node_t *node, const co_od_sub_t *s, const uint8_t *data, uint32_t len)
 {
-    uint8_t *v = (uint8_t *)co_od_loc(node, s);
+    uint8_t *v = &node->ram[s->off];
     uint8_t fixed = co_type_len(s->type);
 
-    if ((v != NULL) && ((s->flags & CO_SUB_ROM) == 0U)) {
-        if (fixed != 0U) {
-            co_pdo_from_wire(v, data, fixed); /* 1, 2 and 4 bytes without a call */
-        } else {
-            (void)memcpy(v, data, len);
-            if (len < s->size) {
-                (void)memset(&v[len], 0, s->size - len);
-            }
+    if ((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) != 0U) {
+        /* no value in RAM */
+    } else if (fixed != 0U) {
+        co_pdo_from_wire(v, data, fixed); /* 1, 2 and 4 bytes without a call */
+    } else {
+        (void)memcpy(v, data, len);
+        if (len < s->size) {
+            (void)memset(&v[len], 0, s->size - len);
         }
     }
 }
@@ -490,18 +508,10 @@ void co_od_commit(co_node_t *node, const co_od_sub_t *s, const uint8_t *data, ui
 static co_err_t commit_streamed(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
                                 const uint8_t *data, uint32_t end)
 {
-    co_od_hook_t *h = hook_of(node, e);
     uint8_t *v = (uint8_t *)co_od_loc(node, s);
 
-    if ((h != NULL) && (h->write != NULL)) {
-        co_od_io_t io;
-        co_err_t err;
-        io_init(&io, node, e, s);
-        io.buf = (uint8_t *)(uintptr_t)data;
-        io.len = end;
-        io.total = end;
-        io.last = true;
-        err = h->write(h->ctx, &io);
+    if (e->hook != 0U) {
+        co_err_t err = write_hook(node, e, s, data, end);
         if (err != CO_OK) {
             return err;
         }

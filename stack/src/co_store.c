@@ -66,6 +66,7 @@ typedef struct store_bank {
     uint8_t idx;    /* 0, 1 or NO_BANK */
 } store_bank_t;
 
+#if CO_STORAGE
 /* Header byte 12: groups held, and the restored ones among them. */
 static bool groups_valid(uint8_t b)
 {
@@ -76,17 +77,11 @@ static bool groups_valid(uint8_t b)
            ((restored & (uint8_t)~held) == 0U);
 }
 
-/* Without CO_STORAGE the node behaves as with a HAL without NV, and the
- * code below that reads and writes sets is not built. */
 static bool has_nv(const co_node_t *node)
 {
-#if CO_STORAGE
     return (node->hal.ops->nv_read != NULL) && (node->hal.ops->nv_write != NULL);
-#else
-    (void)node;
-    return false;
-#endif
 }
+#endif
 
 /* Bytes of one bank: header and data, in whole erase units (at least 4). */
 static uint32_t bank_bytes(const co_dev_t *dev, uint32_t erase_unit)
@@ -132,6 +127,7 @@ uint32_t co_store_lss_unit(const co_node_t *node)
     return lss_stride(node->hal.ops->nv_erase_unit);
 }
 
+#if CO_STORAGE
 /* Identifies the RAM layout: sizes, the CPU's byte order (the image holds
  * native integers) and, for every stored value, where it is and what it is.
  * A set written with another layout is not loaded. */
@@ -316,24 +312,20 @@ static co_err_t store_finish(co_node_t *node, co_err_t err)
     return err;
 }
 
-#if CO_STORAGE
 bool co_store_damaged(const co_node_t *node)
 {
     return node->store.damaged != 0U;
 }
-#endif
 
 bool co_store_busy(const co_node_t *node)
 {
     return (node->store.step == (uint8_t)STEP_ERASE) || (node->store.step == (uint8_t)STEP_WRITE);
 }
 
-#if CO_STORAGE
 co_err_t co_store_result(const co_node_t *node)
 {
     return node->store.result;
 }
-#endif
 
 /* Start the command node->store describes: erase the bank it writes (with
  * nv_erase), write the set, and with an asynchronous HAL (nv_poll) leave
@@ -375,8 +367,7 @@ static uint32_t store_process(co_node_t *node, uint32_t next)
     uint32_t at = next;
     int r;
 
-    /* without CO_STORAGE never busy: none of this is built */
-    if ((CO_STORAGE == 0) || !co_store_busy(node)) {
+    if (!co_store_busy(node)) {
         return at;
     }
     r = node->hal.ops->nv_poll(node->hal.ctx);
@@ -399,6 +390,17 @@ static uint32_t store_process(co_node_t *node, uint32_t next)
     return at;
 }
 
+#else /* !CO_STORAGE */
+
+/* Without CO_STORAGE the node behaves as with a HAL without NV: no set is
+ * ever read or written, and none of that code is built. */
+bool co_store_busy(const co_node_t *node)
+{
+    (void)node;
+    return false;
+}
+#endif
+
 bool co_store_is_command(const co_od_entry_t *e, const co_od_sub_t *s)
 {
     return ((e->index == 0x1010U) || (e->index == 0x1011U)) && (s->sub != 0U) &&
@@ -406,6 +408,7 @@ bool co_store_is_command(const co_od_entry_t *e, const co_od_sub_t *s)
            ((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) == 0U);
 }
 
+#if CO_STORAGE
 /* The highest sub-index of 0x1010 / 0x1011 the core acts on. */
 static uint8_t last_sub(const co_node_t *node, uint16_t index)
 {
@@ -455,17 +458,27 @@ void co_store_forget_comm(co_node_t *node)
     }
 }
 
+#else
+void co_store_forget_comm(co_node_t *node)
+{
+    (void)node; /* no set to drop */
+}
+#endif
+
 static void store_reset(co_node_t *node, uint8_t kind)
 {
     const co_dev_t *dev = node->dev;
     bool all = (kind == (uint8_t)CO_RESET_NODE);
     uint16_t end = all ? dev->ram_size : dev->comm_end;
+#if CO_STORAGE
     uint32_t cap = has_nv(node) ? 1U : 0U; /* bit 0: on command */
+#endif
 
     if (kind == CO_SVC_START) {
         return; /* values are restored by the resets of a kind only */
     }
     co_od_restore(node, 0U, end);
+#if CO_STORAGE
     node->store.damaged = 0U;
     if (cap != 0U) {
         bool io_err = false; /* an unreadable bank counts as invalid */
@@ -480,12 +493,18 @@ static void store_reset(co_node_t *node, uint8_t kind)
          * EMCY 0x5530, 0x1001, 0x1003 */
         node->store.damaged = damaged ? 1U : 0U;
     }
-    /* What 0x1010 / 0x1011 read: the capability, whatever was written. */
+#endif
+    /* What 0x1010 / 0x1011 read: the capability, whatever was written
+     * (without CO_STORAGE none: 0). */
     for (uint16_t index = 0x1010U; index <= 0x1011U; index++) {
         const co_od_entry_t *e = co_od_find(dev->od, dev->od_count, index);
         for (uint8_t k = 0U; (e != NULL) && (k < e->nsubs); k++) {
             if (co_store_is_command(e, &e->subs[k])) {
+#if CO_STORAGE
                 uint32_t v = (e->subs[k].sub <= last_sub(node, index)) ? cap : 0U;
+#else
+                uint32_t v = 0U;
+#endif
                 (void)memcpy(&node->ram[e->subs[k].off], (const uint8_t *)&v, 4U);
             }
         }
@@ -505,7 +524,12 @@ static co_err_t store_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
         co_od_commit(node, s, data, len);
         return CO_OK;
     }
+#if CO_STORAGE
     return command(node, e->index, s->sub, data);
+#else
+    (void)data;
+    return CO_ERR_STORE; /* no non-volatile memory */
+#endif
 }
 
 static const co_svc_hook_t store_hooks[] = {
@@ -513,5 +537,9 @@ static const co_svc_hook_t store_hooks[] = {
 };
 
 const co_service_t co_svc_store = {
-    NULL, store_reset, NULL, NULL, (CO_STORAGE != 0) ? store_process : NULL, NULL, store_hooks, 1U,
+#if CO_STORAGE
+    NULL, store_reset, NULL, NULL, store_process, NULL, store_hooks, 1U,
+#else
+    NULL, store_reset, NULL, NULL, NULL, NULL, store_hooks, 1U,
+#endif
 };

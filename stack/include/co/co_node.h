@@ -366,7 +366,9 @@ typedef struct co_node {
     co_sync_t sync;
     co_time_t time;
     co_pdo_svc_t pdo;
+#if CO_STORAGE
     co_store_t store;
+#endif
 #if CO_LSS
     co_lss_t lss;
 #endif

@@ -412,10 +412,10 @@ static co_err_t hb_prod_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
 
 static const co_svc_hook_t errctl_hooks[] = {
 #if CO_NODE_GUARDING
-    {0x100CU, 0x100DU, CO_SVC_CHECK | CO_SVC_WRITTEN | CO_SVC_SELF, errctl_obj, CO_ROW_ERRCTL},
+    {0x100CU, 0x100DU, CO_SVC_CHECK | CO_SVC_WRITTEN | CO_SVC_SELF, CO_ROW_ERRCTL, errctl_obj},
 #endif
-    {0x1016U, 0x1016U, CO_SVC_CHECK | CO_SVC_WRITTEN | CO_SVC_SELF, errctl_obj, CO_ROW_ERRCTL},
-    {0x1017U, 0x1017U, CO_SVC_WRITTEN | CO_SVC_SELF, hb_prod_obj, CO_ROW_ERRCTL},
+    {0x1016U, 0x1016U, CO_SVC_CHECK | CO_SVC_WRITTEN | CO_SVC_SELF, CO_ROW_ERRCTL, errctl_obj},
+    {0x1017U, 0x1017U, CO_SVC_WRITTEN | CO_SVC_SELF, CO_ROW_ERRCTL, hb_prod_obj},
 };
 
 const co_service_t co_svc_errctl = {

@@ -6,21 +6,37 @@
 #include "co/co_endian.h"
 #include "co_priv.h"
 
-/* Binary search over the entries sorted by index: the range halves
- * without a branch on the comparison (a conditional move), and the one
- * entry left is compared at the end. */
-static const co_od_entry_t *find(const co_od_entry_t *od, uint32_t count, uint16_t index)
+/* The largest power of two not above @p n (> 0). */
+static inline uint32_t pow2_floor(uint32_t n)
+{
+#if defined(__GNUC__)
+    return 1UL << (31U - (uint32_t)__builtin_clz(n));
+#else
+    uint32_t p = 1U;
+    while ((p << 1U) <= n) {
+        p <<= 1U;
+    }
+    return p;
+#endif
+}
+
+/* Binary search over the entries sorted by index, in steps of powers of
+ * two: the first step leaves a range of a power of two entries, which each
+ * further step halves without a branch on the comparison (a conditional
+ * move); the one entry left is compared at the end. */
+CO_FAST_INLINE const co_od_entry_t *find(const co_od_entry_t *od, uint32_t count,
+                                         uint16_t index)
 {
     const co_od_entry_t *e = od;
-    uint32_t n = count;
+    uint32_t step;
 
-    if (n == 0U) {
+    if (count == 0U) {
         return NULL;
     }
-    while (n > 1U) {
-        uint32_t half = n >> 1U;
-        e = (e[half].index <= index) ? &e[half] : e;
-        n -= half;
+    step = pow2_floor(count);
+    e = (e[count - step].index <= index) ? &e[count - step] : e;
+    for (step >>= 1U; step != 0U; step >>= 1U) {
+        e = (e[step].index <= index) ? &e[step] : e;
     }
     return (e->index == index) ? e : NULL;
 }
@@ -43,6 +59,8 @@ const co_od_entry_t *co_od_find(const co_od_entry_t *od, uint16_t count, uint16_
 {
     return find(od, count, index);
 }
+
+/* (the other finds call co_od_find: in a build for size, the search is one function) */
 
 const co_od_sub_t *co_od_find_sub(const co_od_entry_t *e, uint8_t sub)
 {
@@ -69,8 +87,8 @@ bool co_type_is_signed(uint8_t type)
            (type == (uint8_t)CO_INTEGER56) || (type == (uint8_t)CO_INTEGER64);
 }
 
-co_err_t co_od_lookup(const co_node_t *node, uint16_t index, uint8_t sub,
-                      const co_od_entry_t **e, const co_od_sub_t **s)
+CO_FAST_INLINE co_err_t lookup(const co_node_t *node, uint16_t index, uint8_t sub,
+                               const co_od_entry_t **e, const co_od_sub_t **s)
 {
     *e = find(node->dev->od, node->dev->od_count, index);
     if (*e == NULL) {
@@ -81,7 +99,13 @@ co_err_t co_od_lookup(const co_node_t *node, uint16_t index, uint8_t sub,
     return (*s == NULL) ? CO_ERR_NO_SUB : CO_OK;
 }
 
-co_err_t co_od_check_access(const co_node_t *node, const co_od_sub_t *s, bool write)
+co_err_t co_od_lookup(const co_node_t *node, uint16_t index, uint8_t sub,
+                      const co_od_entry_t **e, const co_od_sub_t **s)
+{
+    return lookup(node, index, sub, e, s);
+}
+
+static co_err_t check_access(const co_node_t *node, const co_od_sub_t *s, bool write)
 {
     if (write) {
         if (((s->flags & CO_SUB_W) == 0U) || ((s->flags & (CO_SUB_CONST | CO_SUB_ROM)) != 0U)) {
@@ -94,6 +118,20 @@ co_err_t co_od_check_access(const co_node_t *node, const co_od_sub_t *s, bool wr
         /* readable */
     }
     return CO_OK;
+}
+
+CO_FAST_INLINE co_err_t lookup_for(const co_node_t *node, uint16_t index, uint8_t sub,
+                                   bool write, const co_od_entry_t **e, const co_od_sub_t **s)
+{
+    co_err_t err = CO_FAST ? lookup(node, index, sub, e, s) : co_od_lookup(node, index, sub, e, s);
+
+    return (err == CO_OK) ? check_access(node, *s, write) : err;
+}
+
+co_err_t co_od_lookup_for(const co_node_t *node, uint16_t index, uint8_t sub, bool write,
+                          const co_od_entry_t **e, const co_od_sub_t **s)
+{
+    return lookup_for(node, index, sub, write, e, s);
 }
 
 uint32_t co_od_data_size(const co_node_t *node, const co_od_sub_t *s)
@@ -126,22 +164,44 @@ uint32_t co_od_data_size(const co_node_t *node, const co_od_sub_t *s)
 
 /* ------------------------------------------------------ service hooks */
 
+/* The largest power of two not above CO_SVC_HOOKS_MAX (at most 32). */
+#define SVC_POW2 ((CO_SVC_HOOKS_MAX >= 32U) ? 32U : (CO_SVC_HOOKS_MAX >= 16U) ? 16U : \
+                  (CO_SVC_HOOKS_MAX >= 8U) ? 8U : (CO_SVC_HOOKS_MAX >= 4U) ? 4U : \
+                  (CO_SVC_HOOKS_MAX >= 2U) ? 2U : 1U)
+
+/* One step of svc_hook's search: @p k slots on if that one starts at or
+ * before @p index (k < SVC_POW2: a step of the search; no step for the
+ * others). */
+CO_INLINE const co_svc_hook_t *const *svc_step(const co_svc_hook_t *const *at, uint32_t k,
+                                               uint16_t index)
+{
+    if (k < SVC_POW2) {
+        at = (at[k]->first <= index) ? &at[k] : at;
+    }
+    return at;
+}
+
 /* The service hook whose range holds @p index, or NULL: the last
  * registered range that starts at or before it (the ranges are sorted and do
- * not overlap; a branch-free binary search), if it reaches that far. */
-static const co_svc_hook_t *svc_hook(const co_node_t *node, uint16_t index)
+ * not overlap), if it reaches that far. A branch-free binary search over all
+ * CO_SVC_HOOKS_MAX slots, a constant number of steps (co_od_register
+ * repeats the last range in the unused slots). */
+CO_FAST_INLINE const co_svc_hook_t *svc_hook(const co_node_t *node, uint16_t index)
 {
     const co_svc_hook_t *const *at = node->svc_hooks;
-    uint32_t n = node->n_svc_hooks;
 
-    if ((n == 0U) || (index < at[0]->first)) {
+    if ((node->n_svc_hooks == 0U) || (index < at[0]->first)) {
         return NULL;
     }
-    while (n > 1U) {
-        uint32_t half = n >> 1U;
-        at = (at[half]->first <= index) ? &at[half] : at;
-        n -= half;
+    if (CO_SVC_HOOKS_MAX > SVC_POW2) {
+        at = svc_step(at, CO_SVC_HOOKS_MAX - SVC_POW2, index);
     }
+    /* the steps SVC_POW2 / 2 .. 1, written out: the compiler leaves no loop */
+    at = svc_step(at, 16U, index);
+    at = svc_step(at, 8U, index);
+    at = svc_step(at, 4U, index);
+    at = svc_step(at, 2U, index);
+    at = svc_step(at, 1U, index);
     return (index <= (*at)->last) ? *at : NULL;
 }
 
@@ -171,6 +231,9 @@ co_result_t co_od_register(co_node_t *node, const co_svc_hook_t *h)
         at--;
     }
     node->svc_hooks[at] = h;
+    for (at = node->n_svc_hooks; at < CO_SVC_HOOKS_MAX; at++) {
+        node->svc_hooks[at] = node->svc_hooks[at - 1U]; /* (for svc_hook's search) */
+    }
     if ((h->ops & CO_SVC_READ) != 0U) {
         /* the span [svc_rd_lo, svc_rd_lo + svc_rd_span] grows to take it in */
         uint16_t hi = (uint16_t)(node->svc_rd_lo + node->svc_rd_span);
@@ -226,7 +289,7 @@ static inline void svc_written(co_node_t *node, const co_svc_hook_t *h, const co
 
 void *co_od_ram_of(co_node_t *node, uint16_t index, uint8_t sub, uint8_t type)
 {
-    const co_od_entry_t *e = find(node->dev->od, node->dev->od_count, index);
+    const co_od_entry_t *e = co_od_find(node->dev->od, node->dev->od_count, index);
     const co_od_sub_t *s = (e != NULL) ? find_sub(e, sub) : NULL;
 
     if ((s == NULL) || (s->type != type) || ((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) != 0U)) {
@@ -237,7 +300,7 @@ void *co_od_ram_of(co_node_t *node, uint16_t index, uint8_t sub, uint8_t type)
 
 uint8_t co_od_array_len(const co_node_t *node, uint16_t index, uint8_t type, uint8_t max)
 {
-    const co_od_entry_t *e = find(node->dev->od, node->dev->od_count, index);
+    const co_od_entry_t *e = co_od_find(node->dev->od, node->dev->od_count, index);
     uint8_t n = 0U;
 
     if (e == NULL) {
@@ -316,7 +379,7 @@ CO_NOINLINE static co_err_t read_hook(co_node_t *node, const co_od_entry_t *e,
  * the complete new value, before it is committed; an error vetoes it.
  * CO_SUB_HOOKIO without a hook to take it: refused. */
 CO_NOINLINE static co_err_t write_hook(co_node_t *node, const co_od_entry_t *e,
-                                       const co_od_sub_t *s, const uint8_t *data, uint32_t len)
+                                       const co_od_sub_t *s, const co_od_chunk_t *c)
 {
     co_od_hook_t *h = hook_of(node, e);
     co_od_io_t io;
@@ -325,11 +388,21 @@ CO_NOINLINE static co_err_t write_hook(co_node_t *node, const co_od_entry_t *e,
         return ((s->flags & CO_SUB_HOOKIO) != 0U) ? CO_ERR_NO_ACCESS : CO_OK;
     }
     io_init(&io, node, e, s);
-    io.buf = (uint8_t *)(uintptr_t)data;
-    io.len = len;
-    io.total = len;
-    io.last = true;
+    io.offset = c->offset;
+    io.buf = c->buf;
+    io.len = c->len;
+    io.total = c->total;
+    io.last = c->last;
     return h->write(h->ctx, &io);
+}
+
+/* The write hook of a complete value (@p len bytes at @p data). */
+static co_err_t write_hook_whole(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
+                                 const uint8_t *data, uint32_t len)
+{
+    co_od_chunk_t c = {(uint8_t *)(uintptr_t)data, 0U, 0U, len, len, true};
+
+    return write_hook(node, e, s, &c);
 }
 
 co_err_t co_od_read_part(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
@@ -435,8 +508,25 @@ static co_err_t check_limits(const co_node_t *node, const co_od_sub_t *s, const 
     return CO_OK;
 }
 
-co_err_t co_od_write_value(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
-                           const uint8_t *data, uint32_t len)
+void co_od_commit(co_node_t *node, const co_od_sub_t *s, const uint8_t *data, uint32_t len)
+{
+    uint8_t *v = &node->ram[s->off];
+    uint8_t fixed = co_type_len(s->type);
+
+    if ((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) != 0U) {
+        /* no value in RAM */
+    } else if (fixed != 0U) {
+        co_pdo_from_wire(v, data, fixed); /* 1, 2 and 4 bytes without a call */
+    } else {
+        (void)memcpy(v, data, len);
+        if (len < s->size) {
+            (void)memset(&v[len], 0, s->size - len);
+        }
+    }
+}
+
+CO_FAST_INLINE co_err_t write_value(co_node_t *node, const co_od_entry_t *e,
+                                    const co_od_sub_t *s, const uint8_t *data, uint32_t len)
 {
     const co_svc_hook_t *sh;
     co_err_t err;
@@ -467,7 +557,7 @@ co_err_t co_od_write_value(co_node_t *node, const co_od_entry_t *e, const co_od_
         }
     }
     if (e->hook != 0U) {
-        err = write_hook(node, e, s, data, len);
+        err = write_hook_whole(node, e, s, data, len);
         if (err != CO_OK) {
             return err;
         }
@@ -480,26 +570,42 @@ co_err_t co_od_write_value(co_node_t *node, const co_od_entry_t *e, const co_od_
         touch_owner(node, sh);
         return sh->fn(node, CO_SVC_COMMIT, e, s, data, len); /* the service's commit */
     }
-    co_od_commit(node, s, data, len);
+    if (CO_FAST && (fixed != 0U) && ((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) == 0U)) {
+        co_pdo_from_wire(&node->ram[s->off], data, fixed); /* a number: no call */
+    } else {
+        co_od_commit(node, s, data, len);
+    }
     svc_written(node, sh, e, s);
     return CO_OK;
 }
 
-void co_od_commit(co_node_t *node, const co_od_sub_t *s, const uint8_t *data, uint32_t len)
+co_err_t co_od_write_value(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
+                           const uint8_t *data, uint32_t len)
 {
-    uint8_t *v = &node->ram[s->off];
-    uint8_t fixed = co_type_len(s->type);
+    return write_value(node, e, s, data, len);
+}
 
-    if ((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) != 0U) {
-        /* no value in RAM */
-    } else if (fixed != 0U) {
-        co_pdo_from_wire(v, data, fixed); /* 1, 2 and 4 bytes without a call */
-    } else {
-        (void)memcpy(v, data, len);
-        if (len < s->size) {
-            (void)memset(&v[len], 0, s->size - len);
-        }
+co_err_t co_od_download(co_node_t *node, uint16_t index, uint8_t sub, const uint8_t *data,
+                        uint32_t size)
+{
+    const co_od_entry_t *e;
+    const co_od_sub_t *s;
+    co_err_t err = CO_FAST ? lookup_for(node, index, sub, true, &e, &s)
+                           : co_od_lookup_for(node, index, sub, true, &e, &s);
+    uint8_t fixed;
+
+    if (err != CO_OK) {
+        return err;
     }
+    fixed = co_type_len(s->type);
+    if (fixed == 0U) {
+        /* longer than the object: 0x06070012, size indicated or not */
+        return co_od_write_part(node, e, s, 0U, data, (size != 0U) ? size : 4U, size, true);
+    }
+    if (size == 0U) {
+        size = (fixed < 4U) ? fixed : 4U; /* size not indicated: what the object needs */
+    }
+    return CO_FAST ? write_value(node, e, s, data, size) : co_od_write_value(node, e, s, data, size);
 }
 
 /* The complete new value @p data (@p end bytes) of a string or DOMAIN held
@@ -511,7 +617,7 @@ static co_err_t commit_streamed(co_node_t *node, const co_od_entry_t *e, const c
     uint8_t *v = (uint8_t *)co_od_loc(node, s);
 
     if (e->hook != 0U) {
-        co_err_t err = write_hook(node, e, s, data, end);
+        co_err_t err = write_hook_whole(node, e, s, data, end);
         if (err != CO_OK) {
             return err;
         }
@@ -533,21 +639,11 @@ co_err_t co_od_write_part(co_node_t *node, const co_od_entry_t *e, const co_od_s
                           uint32_t offset, const uint8_t *data, uint32_t len, uint32_t total,
                           bool last)
 {
-    co_od_hook_t *h = hook_of(node, e);
-    co_od_io_t io;
     uint8_t *v = (uint8_t *)co_od_loc(node, s);
 
     if ((s->flags & CO_SUB_HOOKIO) != 0U) {
-        if ((h == NULL) || (h->write == NULL)) {
-            return CO_ERR_NO_ACCESS;
-        }
-        io_init(&io, node, e, s);
-        io.offset = offset;
-        io.buf = (uint8_t *)(uintptr_t)data;
-        io.len = len;
-        io.total = total;
-        io.last = last;
-        return h->write(h->ctx, &io);
+        co_od_chunk_t c = {(uint8_t *)(uintptr_t)data, offset, 0U, len, total, last};
+        return write_hook(node, e, s, &c); /* (without a hook: refused) */
     }
     if ((v == NULL) || ((s->flags & CO_SUB_ROM) != 0U)) {
         return CO_ERR_NO_ACCESS;
@@ -665,7 +761,7 @@ co_err_t co_od_write(co_node_t *node, uint16_t index, uint8_t sub, const void *d
     co_err_t err = co_od_lookup(node, index, sub, &e, &s);
 
     if ((err == CO_OK) && !as_app) {
-        err = co_od_check_access(node, s, true);
+        err = check_access(node, s, true);
     }
     if ((err == CO_OK) && as_app && ((s->flags & CO_SUB_ROM) != 0U)) {
         err = CO_ERR_READ_ONLY;

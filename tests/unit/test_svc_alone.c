@@ -100,7 +100,7 @@ static co_err_t rec_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
 }
 
 static const co_svc_hook_t rec_hooks[] = {
-    {0x2000U, 0x2000U, CO_SVC_READ | CO_SVC_CHECK | CO_SVC_WRITTEN, rec_obj, 0U}};
+    {0x2000U, 0x2000U, CO_SVC_READ | CO_SVC_CHECK | CO_SVC_WRITTEN, 0U, rec_obj}};
 static const co_service_t rec_svc = {NULL, NULL, NULL, NULL, NULL, NULL, rec_hooks, 1U};
 
 const co_service_t *const co_services[] = {&rec_svc, &co_svc_store};
@@ -210,10 +210,10 @@ static void test_service_veto_first(void **state)
 /* two services on one object, or overlapping ranges: refused, the first stays */
 static void test_register_conflict(void **state)
 {
-    static const co_svc_hook_t same[] = {{0x2000U, 0x2000U, 0U, NULL, 0U}};
-    static const co_svc_hook_t overlap[] = {{0x1FFFU, 0x2001U, 0U, NULL, 0U}};
-    static const co_svc_hook_t inside[] = {{0x1011U, 0x1011U, 0U, NULL, 0U}};
-    static const co_svc_hook_t free_range[] = {{0x3000U, 0x3000U, 0U, NULL, 0U}};
+    static const co_svc_hook_t same[] = {{0x2000U, 0x2000U, 0U, 0U, NULL}};
+    static const co_svc_hook_t overlap[] = {{0x1FFFU, 0x2001U, 0U, 0U, NULL}};
+    static const co_svc_hook_t inside[] = {{0x1011U, 0x1011U, 0U, 0U, NULL}};
+    static const co_svc_hook_t free_range[] = {{0x3000U, 0x3000U, 0U, 0U, NULL}};
     static co_svc_hook_t filler[CO_SVC_HOOKS_MAX];
 
     (void)state;
@@ -232,7 +232,7 @@ static void test_register_conflict(void **state)
         assert_int_equal(co_od_register(&node, f), CO_RESULT_OK);
     }
     {
-        static const co_svc_hook_t one_more[] = {{0x5000U, 0x5000U, 0U, NULL, 0U}};
+        static const co_svc_hook_t one_more[] = {{0x5000U, 0x5000U, 0U, 0U, NULL}};
         assert_int_equal(co_od_register(&node, one_more), CO_RESULT_NO_MEMORY);
     }
 }

@@ -51,23 +51,43 @@ static bool inhibited(const co_node_t *node)
     return (left != 0U) && (left <= inhibit_us(node));
 }
 
+/* The waiting EMCYs go out, oldest first, as far as the inhibit time lets
+ * them (more than one only when it is 0); the others wait for
+ * emcy_process. */
+static void drain(co_node_t *node)
+{
+    co_emcy_t *m = &node->emcy;
+
+    while ((m->n_q > 0U) && !inhibited(node)) {
+        uint32_t cob = cob_id(node);
+        if ((node->nmt != (uint8_t)CO_NMT_STOPPED) && ((cob & 0x80000000UL) == 0U)) {
+            co_tx(node, cob & 0x7FFUL, m->q[0].data, 8U);
+        }
+        /* the others move one up (element by element: a copy of the
+         * whole would be a call of the C library's memmove) */
+        m->n_q--;
+        for (uint8_t i = 0U; i < m->n_q; i++) {
+            (void)memcpy(m->q[i].data, m->q[i + 1U].data, 8U);
+        }
+        m->next = node->now + inhibit_us(node);
+    }
+}
+
+/* An EMCY joins the queue (lost when it is full) and goes out at once when
+ * nothing is ahead of it and no inhibit time runs. */
 static void send(co_node_t *node, const uint8_t *d)
 {
-    uint32_t cob = cob_id(node);
+    co_emcy_t *m = &node->emcy;
 
-    if ((node->nmt == (uint8_t)CO_NMT_STOPPED) || ((cob & 0x80000000UL) != 0U) ||
+    if ((node->nmt == (uint8_t)CO_NMT_STOPPED) || ((cob_id(node) & 0x80000000UL) != 0U) ||
         (node->node_id == CO_NODE_ID_UNCONFIGURED)) {
         return; /* no EMCY in Stopped; not valid; nothing while unconfigured */
     }
-    if ((node->emcy.n_q > 0U) || inhibited(node)) {
-        if (node->emcy.n_q < CO_EMCY_QUEUE_LEN) {
-            (void)memcpy(node->emcy.q[node->emcy.n_q].data, d, 8U);
-            node->emcy.n_q++;
-        }
-        return;
+    if (m->n_q < CO_EMCY_QUEUE_LEN) {
+        (void)memcpy(m->q[m->n_q].data, d, 8U);
+        m->n_q++;
     }
-    co_tx(node, cob & 0x7FFUL, d, 8U);
-    node->emcy.next = node->now + inhibit_us(node);
+    drain(node);
 }
 
 static void send_code(co_node_t *node, uint16_t code, const uint8_t *mfr)
@@ -176,20 +196,7 @@ static uint32_t emcy_process(co_node_t *node, uint32_t next)
         node->emcy.store_report = 0U;
         co_emcy_clear(node, CO_EMCY_STORE_DAMAGED);
     }
-    /* more than one only when the inhibit time was lowered to 0 meanwhile */
-    while ((node->emcy.n_q > 0U) && !inhibited(node)) {
-        uint32_t cob = cob_id(node);
-        if ((node->nmt != (uint8_t)CO_NMT_STOPPED) && ((cob & 0x80000000UL) == 0U)) {
-            co_tx(node, cob & 0x7FFUL, node->emcy.q[0].data, 8U);
-        }
-        /* the others move one up (element by element: a copy of the
-         * whole would be a call of the C library's memmove) */
-        node->emcy.n_q--;
-        for (uint8_t i = 0U; i < node->emcy.n_q; i++) {
-            (void)memcpy(node->emcy.q[i].data, node->emcy.q[i + 1U].data, 8U);
-        }
-        node->emcy.next = node->now + inhibit_us(node);
-    }
+    drain(node);
     return (node->emcy.n_q > 0U) ? co_deadline_min(node->now, next, node->emcy.next) : next;
 }
 

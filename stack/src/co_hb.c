@@ -297,12 +297,7 @@ static co_err_t errctl_bind(co_node_t *node)
 #if CO_NODE_GUARDING
     c->guard_time = (uint16_t *)co_od_ram_of(node, 0x100CU, 0U, (uint8_t)CO_UNSIGNED16);
     c->life_factor = (uint8_t *)co_od_ram_of(node, 0x100DU, 0U, (uint8_t)CO_UNSIGNED8);
-#else
-    if ((co_od_find(node->dev->od, node->dev->od_count, 0x100CU) != NULL) ||
-        (co_od_find(node->dev->od, node->dev->od_count, 0x100DU) != NULL)) {
-        return CO_ERR_DEV_INCOMPAT;
-    }
-#endif
+#endif /* (without guarding co_node_init refuses a device with 0x100C or 0x100D) */
     return CO_OK;
 }
 

@@ -73,18 +73,10 @@ const co_service_t co_svc_nmt = {
     NULL, NULL, nmt_rx_slots, nmt_rx, NULL, NULL, nmt_hooks, 1U,
 };
 
-#else /* !CO_ERROR_BEHAVIOUR */
-
-/* A device with 0x1029 is refused. */
-static co_err_t nmt_bind(co_node_t *node)
-{
-    return (co_od_find(node->dev->od, node->dev->od_count, 0x1029U) != NULL)
-               ? CO_ERR_DEV_INCOMPAT
-               : CO_OK;
-}
+#else /* !CO_ERROR_BEHAVIOUR: co_node_init refuses a device with 0x1029 */
 
 const co_service_t co_svc_nmt = {
-    nmt_bind, NULL, nmt_rx_slots, nmt_rx, NULL, NULL, NULL, 0U,
+    NULL, NULL, nmt_rx_slots, nmt_rx, NULL, NULL, NULL, 0U,
 };
 
 #endif

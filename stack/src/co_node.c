@@ -515,9 +515,29 @@ void co_node_nmt_command(co_node_t *node, uint8_t cs, uint32_t now_us)
 
 /* -------------------------------------------------------------- init */
 
+/* The objects of the services this build leaves out (co_config.h): a
+ * device that has one of them is refused. */
+static const uint16_t left_out[] = {
+#if !CO_NODE_GUARDING
+    0x100CU, 0x100DU,
+#endif
+#if !CO_TIME
+    0x1012U,
+#endif
+#if !CO_ERROR_BEHAVIOUR
+    0x1029U,
+#endif
+    0U /* the end */
+};
+
 /* Every service finds its objects and registers its hooks on them. */
 static co_result_t bind_services(co_node_t *node)
 {
+    for (uint8_t k = 0U; left_out[k] != 0U; k++) {
+        if (co_od_find(node->dev->od, node->dev->od_count, left_out[k]) != NULL) {
+            return CO_RESULT_DEV_INCOMPAT;
+        }
+    }
     for (uint8_t k = 0U; k < co_n_services; k++) {
         const co_service_t *svc = co_services[k];
         if ((svc->bind != NULL) && (svc->bind(node) != CO_OK)) {

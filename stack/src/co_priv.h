@@ -327,9 +327,9 @@ typedef struct co_service {
 #define CO_ROW_ERRCTL ((uint8_t)(CO_ROW_NMT + 2U))
 #define CO_ROW_EMCY   ((uint8_t)(CO_ROW_NMT + 3U))
 #define CO_ROW_SYNC   ((uint8_t)(CO_ROW_NMT + 4U))
-#define CO_ROW_TIME   ((uint8_t)(CO_ROW_NMT + 5U))
-#define CO_ROW_PDO    ((uint8_t)(CO_ROW_NMT + 6U))
-#define CO_ROW_STORE  ((uint8_t)(CO_ROW_NMT + 7U))
+#define CO_ROW_TIME   ((uint8_t)(CO_ROW_NMT + 5U)) /* only with CO_TIME */
+#define CO_ROW_PDO    ((uint8_t)(CO_ROW_SYNC + 1U + (unsigned)(CO_TIME)))
+#define CO_ROW_STORE  ((uint8_t)(CO_ROW_PDO + 1U))
 extern const co_service_t *const co_services[];
 extern const uint8_t co_n_services;
 /* The services (one per file; co_services.c puts them in order). */
@@ -338,7 +338,9 @@ extern const co_service_t co_svc_sdo;
 extern const co_service_t co_svc_errctl;
 extern const co_service_t co_svc_emcy;
 extern const co_service_t co_svc_sync;
+#if CO_TIME
 extern const co_service_t co_svc_time;
+#endif
 extern const co_service_t co_svc_pdo;
 extern const co_service_t co_svc_store;
 #if CO_LSS

@@ -16,7 +16,9 @@ const co_service_t *const co_services[] = {
     [CO_ROW_ERRCTL] = &co_svc_errctl, /* heartbeat, node / life guarding: 0x100C, 0x100D, 0x1016, 0x1017 */
     [CO_ROW_EMCY] = &co_svc_emcy,   /* EMCY: 0x1001, 0x1003, 0x1014, 0x1015 */
     [CO_ROW_SYNC] = &co_svc_sync,   /* SYNC: 0x1005..0x1007, 0x1019 */
+#if CO_TIME
     [CO_ROW_TIME] = &co_svc_time,   /* TIME: 0x1012 */
+#endif
     [CO_ROW_PDO] = &co_svc_pdo,    /* RPDO, TPDO: 0x1400..0x1BFF */
     [CO_ROW_STORE] = &co_svc_store,  /* parameter storage: 0x1010, 0x1011 */
 };

@@ -98,13 +98,6 @@ co_err_t co_time_send(co_node_t *node, uint32_t ms, uint16_t days)
     return CO_ERR_NO_ACCESS;
 }
 
-static co_err_t time_refuse(co_node_t *node)
-{
-    return (co_od_find(node->dev->od, node->dev->od_count, 0x1012U) != NULL)
-               ? CO_ERR_DEV_INCOMPAT
-               : CO_OK;
-}
-
-const co_service_t co_svc_time = {time_refuse, NULL, NULL, NULL, NULL, NULL, NULL, 0U};
+/* (no row in co_services[]: co_node_init refuses a device with 0x1012) */
 
 #endif

@@ -364,7 +364,9 @@ typedef struct co_node {
     co_errctl_t errctl;
     co_emcy_t emcy;
     co_sync_t sync;
+#if CO_TIME
     co_time_t time;
+#endif
     co_pdo_svc_t pdo;
 #if CO_STORAGE
     co_store_t store;

@@ -128,8 +128,9 @@ CO_FAST_INLINE co_err_t lookup_for(const co_node_t *node, uint16_t index, uint8_
     return (err == CO_OK) ? check_access(node, *s, write) : err;
 }
 
-co_err_t co_od_lookup_for(const co_node_t *node, uint16_t index, uint8_t sub, bool write,
-                          const co_od_entry_t **e, const co_od_sub_t **s)
+/* (one function at -Os: its callers stay small) */
+CO_NOINLINE co_err_t co_od_lookup_for(const co_node_t *node, uint16_t index, uint8_t sub,
+                                      bool write, const co_od_entry_t **e, const co_od_sub_t **s)
 {
     return lookup_for(node, index, sub, write, e, s);
 }

@@ -785,39 +785,21 @@ static void idle_request(co_node_t *node, const uint8_t *d)
 
     if (ccs == CO_SDO_CCS_DOWNLOAD_INITIATE) {
         initiate_download(node, d, index, sub); /* (the most frequent first) */
-        return;
-    }
-    switch (ccs) {
-    case CO_SDO_CCS_UPLOAD_INITIATE:
+    } else if (ccs == CO_SDO_CCS_UPLOAD_INITIATE) {
         initiate_upload(node, index, sub);
-        break;
-    case CO_SDO_CS_ABORT:
-        break; /* abort with nothing open: nothing to do */
+    } else if (ccs == CO_SDO_CS_ABORT) {
+        /* abort with nothing open: nothing to do */
 #if CO_SDO_BLOCK
-    case CO_SDO_CCS_BLOCK_UPLOAD:
-        if (blocks) {
-            block_upload_initiate(node, d, index, sub);
-        } else {
-            abort_at(node, index, sub, CO_ERR_CMD);
-        }
-        break;
-    case CO_SDO_CCS_BLOCK_DOWNLOAD:
-        if (blocks) {
-            block_download_initiate(node, d, index, sub);
-        } else {
-            abort_at(node, index, sub, CO_ERR_CMD);
-        }
-        break;
+    } else if (blocks && (ccs == CO_SDO_CCS_BLOCK_UPLOAD)) {
+        block_upload_initiate(node, d, index, sub);
+    } else if (blocks && (ccs == CO_SDO_CCS_BLOCK_DOWNLOAD)) {
+        block_download_initiate(node, d, index, sub);
 #endif
-    case CO_SDO_CCS_DOWNLOAD_SEGMENT:
-    case CO_SDO_CCS_UPLOAD_SEGMENT:
-        /* a segment without a transfer carries no index: answer with 0 */
-        abort_at(node, 0U, 0U, CO_ERR_CMD);
-        break;
-    default:
-        /* ccs 7 */
-        abort_at(node, index, sub, CO_ERR_CMD);
-        break;
+    } else {
+        /* ccs 7, block refused, or a segment without a transfer (it
+         * carries no index: answered with 0) */
+        bool seg = (ccs == CO_SDO_CCS_DOWNLOAD_SEGMENT) || (ccs == CO_SDO_CCS_UPLOAD_SEGMENT);
+        abort_at(node, seg ? 0U : index, seg ? 0U : sub, CO_ERR_CMD);
     }
 }
 

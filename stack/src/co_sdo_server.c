@@ -162,6 +162,8 @@ static void download_done(co_node_t *node, uint8_t cmd, uint16_t index, uint8_t 
             e = NULL;
         }
         if ((e != NULL) && co_store_is_command(e, s)) {
+            t->entry = e; /* (for an abort of the save: abort_cur) */
+            t->desc = s;
             pack_answer(t->buf, cmd, index, sub, 0U);
             t->state = (uint8_t)S_STORE;
             return;

@@ -10,7 +10,7 @@
 static inline uint32_t pow2_floor(uint32_t n)
 {
 #if defined(__GNUC__)
-    return 1UL << (31U - (uint32_t)__builtin_clz(n));
+    return (uint32_t)1U << (31U - (uint32_t)__builtin_clz(n));
 #else
     uint32_t p = 1U;
     while ((p << 1U) <= n) {

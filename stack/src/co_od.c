@@ -24,8 +24,7 @@ static inline uint32_t pow2_floor(uint32_t n)
  * two: the first step leaves a range of a power of two entries, which each
  * further step halves without a branch on the comparison (a conditional
  * move); the one entry left is compared at the end. */
-CO_FAST_INLINE const co_od_entry_t *find(const co_od_entry_t *od, uint32_t count,
-                                         uint16_t index)
+CO_HOT const co_od_entry_t *find(const co_od_entry_t *od, uint32_t count, uint16_t index)
 {
     const co_od_entry_t *e = od;
     uint32_t step;
@@ -87,8 +86,8 @@ bool co_type_is_signed(uint8_t type)
            (type == (uint8_t)CO_INTEGER56) || (type == (uint8_t)CO_INTEGER64);
 }
 
-CO_FAST_INLINE co_err_t lookup(const co_node_t *node, uint16_t index, uint8_t sub,
-                               const co_od_entry_t **e, const co_od_sub_t **s)
+CO_HOT co_err_t lookup(const co_node_t *node, uint16_t index, uint8_t sub,
+                       const co_od_entry_t **e, const co_od_sub_t **s)
 {
     *e = find(node->dev->od, node->dev->od_count, index);
     if (*e == NULL) {
@@ -120,8 +119,8 @@ static co_err_t check_access(const co_node_t *node, const co_od_sub_t *s, bool w
     return CO_OK;
 }
 
-CO_FAST_INLINE co_err_t lookup_for(const co_node_t *node, uint16_t index, uint8_t sub,
-                                   bool write, const co_od_entry_t **e, const co_od_sub_t **s)
+CO_HOT co_err_t lookup_for(const co_node_t *node, uint16_t index, uint8_t sub, bool write,
+                           const co_od_entry_t **e, const co_od_sub_t **s)
 {
     co_err_t err = CO_FAST ? lookup(node, index, sub, e, s) : co_od_lookup(node, index, sub, e, s);
 
@@ -187,7 +186,7 @@ CO_INLINE const co_svc_hook_t *const *svc_step(const co_svc_hook_t *const *at, u
  * not overlap), if it reaches that far. A branch-free binary search over all
  * CO_SVC_HOOKS_MAX slots, a constant number of steps (co_od_register
  * repeats the last range in the unused slots). */
-CO_FAST_INLINE const co_svc_hook_t *svc_hook(const co_node_t *node, uint16_t index)
+CO_HOT const co_svc_hook_t *svc_hook(const co_node_t *node, uint16_t index)
 {
     const co_svc_hook_t *const *at = node->svc_hooks;
 
@@ -526,8 +525,8 @@ void co_od_commit(co_node_t *node, const co_od_sub_t *s, const uint8_t *data, ui
     }
 }
 
-CO_FAST_INLINE co_err_t write_value(co_node_t *node, const co_od_entry_t *e,
-                                    const co_od_sub_t *s, const uint8_t *data, uint32_t len)
+CO_HOT co_err_t write_value(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
+                            const uint8_t *data, uint32_t len)
 {
     const co_svc_hook_t *sh;
     co_err_t err;

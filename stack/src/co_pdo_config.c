@@ -12,31 +12,22 @@
 #define IDX_TPDO_MAP  0x1A00U
 #define PDO_RANGE     0x0200U /* up to 512 PDOs of each kind */
 
-/* Which PDO an index of the PDO parameter area belongs to. Returns false if
- * the index is not a PDO parameter of this device. */
+/* Which PDO an index of the PDO parameter area belongs to (0x1400+n RPDO
+ * communication, 0x1600+n RPDO mapping, 0x1800+n and 0x1A00+n the TPDO's).
+ * Returns false if the index is not a PDO parameter of this device. */
 static bool pdo_of(const co_node_t *node, uint16_t index, uint16_t *i, bool *is_map)
 {
     const co_dev_t *dev = node->dev;
-    uint16_t base;
-    uint16_t n;
-    uint16_t first;
+    uint16_t rel = (uint16_t)(index - IDX_RPDO_COMM);
+    uint16_t n = rel & (PDO_RANGE - 1U);
+    bool tx = (rel & (IDX_TPDO_COMM - IDX_RPDO_COMM)) != 0U;
 
-    if ((index >= IDX_RPDO_COMM) && (index < (IDX_RPDO_MAP + PDO_RANGE))) {
-        base = (index >= IDX_RPDO_MAP) ? IDX_RPDO_MAP : IDX_RPDO_COMM;
-        n = dev->n_rpdo;
-        first = 0U;
-    } else if ((index >= IDX_TPDO_COMM) && (index < (IDX_TPDO_MAP + PDO_RANGE))) {
-        base = (index >= IDX_TPDO_MAP) ? IDX_TPDO_MAP : IDX_TPDO_COMM;
-        n = dev->n_tpdo;
-        first = dev->n_rpdo;
-    } else {
+    if ((rel >= (4U * PDO_RANGE)) || (dev->pdo == NULL) ||
+        (n >= (tx ? dev->n_tpdo : dev->n_rpdo))) {
         return false;
     }
-    if ((dev->pdo == NULL) || ((uint16_t)(index - base) >= n)) {
-        return false;
-    }
-    *i = (uint16_t)(first + (index - base));
-    *is_map = (base == IDX_RPDO_MAP) || (base == IDX_TPDO_MAP);
+    *i = (uint16_t)(tx ? (n + dev->n_rpdo) : n);
+    *is_map = (rel & PDO_RANGE) != 0U;
     return true;
 }
 
@@ -219,8 +210,8 @@ static co_err_t check_comm_write(const co_node_t *node, uint16_t i, uint8_t sub,
 {
     const co_pdo_desc_t *d = &node->dev->pdo[i];
     uint32_t cur = co_pdo_cob(node, i);
-    bool valid = (cur & CO_PDO_COB_INVALID) == 0U;
     bool tx = is_tpdo(node, i);
+    uint16_t fixed = CO_PDO_NONE;
 
     if ((sub == 1U) && (len == 4U)) {
         /* 29-bit identifiers are not supported; the CAN-ID changes only while
@@ -231,24 +222,23 @@ static co_err_t check_comm_write(const co_node_t *node, uint16_t i, uint8_t sub,
                            ? (cur | (uint32_t)CO_PDO_COB_INVALID)
                            : cur;
         return co_check_cob(was, co_get_u32(data), CO_PDO_COB_INVALID, false, 0U, false);
-    } else if ((sub == 2U) && (len == 1U)) {
-        uint8_t t = data[0];
-        if ((t > 240U) && (t < (tx ? 252U : 254U))) {
-            return CO_ERR_VALUE;
-        }
-    } else if (tx && (sub == 3U) && valid && (d->inhibit != CO_PDO_NONE) && (len == 2U)) {
-        if (co_get_u16(data) != co_ram_u16(node, d->inhibit)) {
-            return CO_ERR_VALUE; /* inhibit time changes only while invalid */
-        }
-    } else if (tx && (sub == 6U) && (len == 1U)) {
-        if ((data[0] > 240U) ||
-            (valid && (d->start != CO_PDO_NONE) && (data[0] != co_ram_u8(node, d->start)))) {
-            return CO_ERR_VALUE;
-        }
-    } else {
-        /* event timer, reserved entries: any value */
     }
-    return CO_OK;
+    if ((len == 1U) && (((sub == 2U) && (data[0] > 240U) && (data[0] < (tx ? 252U : 254U))) ||
+                        ((sub == 6U) && tx && (data[0] > 240U)))) {
+        return CO_ERR_VALUE; /* reserved transmission types, SYNC start value */
+    }
+    if (tx && ((cur & CO_PDO_COB_INVALID) == 0U)) {
+        /* inhibit time and SYNC start value change only while invalid */
+        fixed = ((sub == 3U) && (len == 2U)) ? d->inhibit
+                : ((sub == 6U) && (len == 1U)) ? d->start
+                                               : CO_PDO_NONE;
+    }
+    if ((fixed != CO_PDO_NONE) &&
+        (((len == 2U) ? (uint32_t)co_get_u16(data) : (uint32_t)data[0]) !=
+         ((len == 2U) ? (uint32_t)co_ram_u16(node, fixed) : (uint32_t)co_ram_u8(node, fixed)))) {
+        return CO_ERR_VALUE;
+    }
+    return CO_OK; /* event timer, reserved entries: any value */
 }
 
 static co_err_t pdo_check_write(const co_node_t *node, uint16_t index, uint8_t sub,

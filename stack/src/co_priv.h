@@ -20,17 +20,17 @@
 #define CO_INLINE static inline
 #endif
 #endif
-/* Helpers of the per-frame paths that a build for speed inlines and a build
- * for size (-Os, __OPTIMIZE_SIZE__) keeps as one function: the instructions
- * per frame (tools/bench-instructions, -O2) and the flash (tools/bench-size,
- * -Os) both stay low. Only for functions of one source file. CO_FAST is 1
- * in a build for speed (a second, inlined path is worth its bytes there). */
+/* Per-frame paths with several callers: inlined where the build asks for
+ * speed; at -Os the compiler decides (one copy instead of one per caller):
+ * the instructions per frame (tools/bench-instructions, -O2) and the flash
+ * (tools/bench-size, -Os) both stay low. CO_FAST is 1 in a build for speed
+ * (a second, inlined path is worth its bytes there). */
 #if defined(__GNUC__) && !defined(__OPTIMIZE_SIZE__)
 #define CO_FAST 1
-#define CO_FAST_INLINE static inline __attribute__((always_inline))
+#define CO_HOT static inline __attribute__((always_inline))
 #else
 #define CO_FAST 0
-#define CO_FAST_INLINE static inline
+#define CO_HOT static inline
 #endif
 /* Rare paths kept out of the per-frame functions they would otherwise be
  * inlined into (their stack frame and saved registers would be paid on

@@ -14,7 +14,7 @@
 #define RETRY_US 1000UL /* TX path full: try again this much later */
 
 /* Sample the mapped objects into @p out (8 bytes, zero-padded). */
-static void build(co_node_t *node, uint16_t i, uint8_t *out)
+CO_HOT void build(co_node_t *node, uint16_t i, uint8_t *out)
 {
     if ((node->pdo.p[i].flags & CO_PDO_F_DIRECT) != 0U) {
         co_pdo_sample_direct(node, i, out);
@@ -24,8 +24,9 @@ static void build(co_node_t *node, uint16_t i, uint8_t *out)
     }
 }
 
-/* Send @p data (8 bytes, zero beyond the mapping) now, or not at all. */
-static bool send(co_node_t *node, uint16_t i, const uint8_t *data)
+/* Send @p data (8 bytes, zero beyond the mapping) now, or not at all. An
+ * event-driven TPDO (254/255) restarts its inhibit time and event timer. */
+CO_HOT bool send(co_node_t *node, uint16_t i, const uint8_t *data)
 {
     co_pdo_t *p = &node->pdo.p[i];
     co_frame_t f;
@@ -40,28 +41,19 @@ static bool send(co_node_t *node, uint16_t i, const uint8_t *data)
         (void)memcpy(p->data, data, 8U);
     }
     p->flags |= CO_PDO_F_SENT;
-    return true;
-}
-
-/* Event-driven send with inhibit time and event timer restart. */
-static bool send_event(co_node_t *node, uint16_t i, const uint8_t *data)
-{
-    co_pdo_t *p = &node->pdo.p[i];
-    uint16_t off = node->dev->pdo[i].inhibit;
-    uint32_t inhibit = (off == CO_PDO_NONE) ? 0U : co_dict_us(co_ram_u16(node, off), 100UL);
-    uint32_t ev = co_pdo_event_us(node, i);
-
-    if (!send(node, i, data)) {
-        return false;
-    }
-    p->flags &= (uint16_t)~(CO_PDO_F_EVENT | CO_PDO_F_INHIBIT | CO_PDO_F_TIMER);
-    if (inhibit != 0U) {
-        p->inhibit = node->now + inhibit;
-        p->flags |= CO_PDO_F_INHIBIT;
-    }
-    if (ev != 0U) {
-        p->timer = node->now + ev;
-        p->flags |= CO_PDO_F_TIMER;
+    if (co_pdo_type(node, i) >= 254U) {
+        uint16_t off = node->dev->pdo[i].inhibit;
+        uint32_t inhibit = (off == CO_PDO_NONE) ? 0U : co_dict_us(co_ram_u16(node, off), 100UL);
+        uint32_t ev = co_pdo_event_us(node, i);
+        p->flags &= (uint16_t)~(CO_PDO_F_EVENT | CO_PDO_F_INHIBIT | CO_PDO_F_TIMER);
+        if (inhibit != 0U) {
+            p->inhibit = node->now + inhibit;
+            p->flags |= CO_PDO_F_INHIBIT;
+        }
+        if (ev != 0U) {
+            p->timer = node->now + ev;
+            p->flags |= CO_PDO_F_TIMER;
+        }
     }
     return true;
 }
@@ -73,13 +65,7 @@ static void send_sync(co_node_t *node, uint16_t i)
     co_pdo_t *p = &node->pdo.p[i];
     co_frame_t f;
 
-    /* sampled straight into the frame (the usual case without a call) */
-    if ((p->flags & CO_PDO_F_DIRECT) != 0U) {
-        co_pdo_sample_direct(node, i, f.data);
-    } else {
-        (void)memset(f.data, 0, 8U);
-        co_pdo_sample(node, i, f.data);
-    }
+    build(node, i, f.data); /* sampled straight into the frame */
     f.id = co_pdo_cob(node, i) & 0x7FFUL;
     f.dlc = p->len;
     (void)memcpy(p->data, f.data, 8U);
@@ -177,7 +163,7 @@ static bool answer_rtr(co_node_t *node, uint16_t i)
         return send(node, i, p->data);
     }
     build(node, i, now);
-    return (type >= 254U) ? send_event(node, i, now) : send(node, i, now);
+    return send(node, i, now);
 }
 
 void co_tpdo_rtr(co_node_t *node, uint16_t i)
@@ -224,7 +210,7 @@ CO_INLINE uint32_t event_due(co_node_t *node, uint16_t i, uint32_t next, const u
 
     if ((p->flags & CO_PDO_F_INHIBIT) != 0U) {
         at = co_deadline_min(node->now, next, p->inhibit);
-    } else if (!send_event(node, i, now)) {
+    } else if (!send(node, i, now)) {
         at = co_deadline_min(node->now, next, node->now + RETRY_US);
     } else {
         /* sent */

@@ -36,7 +36,7 @@ void co_nmt_error(co_node_t *node, uint8_t sub)
     const uint8_t *v = NULL;
 
     if ((s != NULL) && (s->type == (uint8_t)CO_UNSIGNED8)) {
-        v = (const uint8_t *)co_od_loc(node, s);
+        v = (const uint8_t *)co_od_loc(node, e, s);
     }
     if (v == NULL) {
         return;

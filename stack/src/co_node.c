@@ -419,7 +419,9 @@ static bool take_nodeid(co_node_t *node)
 {
     const uint8_t *v;
 
-    if (node->dev->nodeid_index == 0U) {
+    /* (a manufacturer's deviation: without CO_PERSONALITY such a device is
+     * refused at init) */
+    if ((CO_PERSONALITY == 0) || (node->dev->nodeid_index == 0U)) {
         return false;
     }
     v = (const uint8_t *)co_od_value_ptr(node, node->dev->nodeid_index, 0U);
@@ -563,7 +565,7 @@ static co_result_t bind_services(co_node_t *node)
                         (b[k] == CO_SDO_XFER_BLOCK));
             any |= cia ? 0U : b[k];
         }
-        if (any != 0U) {
+        if ((any != 0U) || (node->dev->nodeid_index != 0U)) {
             return CO_RESULT_DEV_INCOMPAT; /* a deviation this build leaves out */
         }
     }

@@ -134,30 +134,23 @@ CO_NOINLINE co_err_t co_od_lookup_for(const co_node_t *node, uint16_t index, uin
     return lookup_for(node, index, sub, write, e, s);
 }
 
-uint32_t co_od_data_size(const co_node_t *node, const co_od_sub_t *s)
+uint32_t co_od_data_size(const co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s)
 {
-    const uint8_t *v = (const uint8_t *)co_od_loc(node, s);
+    const uint8_t *v = (const uint8_t *)co_od_loc(node, e, s);
     uint32_t n = s->size;
 
     if (v == NULL) {
         return 0U;
     }
-    if (s->type == (uint8_t)CO_VISIBLE_STRING) {
-        /* the text ends at the first NUL (a loop: memchr costs more flash) */
+    if ((s->type == (uint8_t)CO_VISIBLE_STRING) || (s->type == (uint8_t)CO_UNICODE_STRING)) {
+        /* the text ends at the first NUL character: a zero byte, a zero
+         * UTF-16 unit (a loop: memchr costs more flash) */
+        uint32_t w = (s->type == (uint8_t)CO_UNICODE_STRING) ? 2U : 1U;
         uint32_t i = 0U;
-        while ((i < n) && (v[i] != 0U)) {
-            i++;
+        while (((i + w) <= n) && ((v[i] != 0U) || (v[i + w - 1U] != 0U))) {
+            i += w;
         }
         n = i;
-    } else if (s->type == (uint8_t)CO_UNICODE_STRING) {
-        /* UTF-16 units: the text ends at the first zero unit */
-        uint32_t i = 0U;
-        while (((i + 1U) < n) && ((v[i] != 0U) || (v[i + 1U] != 0U))) {
-            i += 2U;
-        }
-        n = (i < n) ? i : n;
-    } else {
-        /* fixed length */
     }
     return n;
 }
@@ -292,10 +285,11 @@ void *co_od_ram_of(co_node_t *node, uint16_t index, uint8_t sub, uint8_t type)
     const co_od_entry_t *e = co_od_find(node->dev->od, node->dev->od_count, index);
     const co_od_sub_t *s = (e != NULL) ? find_sub(e, sub) : NULL;
 
-    if ((s == NULL) || (s->type != type) || ((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) != 0U)) {
+    if ((s == NULL) || ((type != 0U) && (s->type != type)) ||
+        ((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) != 0U)) {
         return NULL;
     }
-    return &node->ram[s->off];
+    return &node->ram[co_od_off(e, s)];
 }
 
 uint8_t co_od_array_len(const co_node_t *node, uint16_t index, uint8_t type, uint8_t max)
@@ -303,17 +297,15 @@ uint8_t co_od_array_len(const co_node_t *node, uint16_t index, uint8_t type, uin
     const co_od_entry_t *e = co_od_find(node->dev->od, node->dev->od_count, index);
     uint8_t n = 0U;
 
-    if (e == NULL) {
-        return 0U;
-    }
-    for (uint8_t k = 1U; (k < e->nsubs) && (n < max); k++) {
-        const co_od_sub_t *s = &e->subs[k];
-        if ((s->sub != k) || (s->type != type) ||
-            ((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) != 0U) ||
-            (s->off != (uint16_t)(e->subs[1].off + ((uint16_t)(k - 1U) * co_type_len(type))))) {
-            break;
+    if (e != NULL) {
+        /* sub 1.. of that type, RAM values one after the other */
+        const co_od_sub_t *s = &e->subs[1];
+        uint32_t step = co_type_len(type);
+        while ((n < max) && (((uint32_t)n + 1U) < e->nsubs) && (s[n].sub == (uint8_t)(n + 1U)) &&
+               (s[n].type == type) && ((s[n].flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) == 0U) &&
+               (s[n].off == (uint16_t)(s[0].off + (n * step)))) {
+            n++;
         }
-        n++;
     }
     return n;
 }
@@ -334,45 +326,35 @@ static void io_init(co_od_io_t *io, co_node_t *node, const co_od_entry_t *e, con
     io->node = node;
     io->entry = e;
     io->desc = s;
-    io->value = co_od_loc(node, s);
+    io->value = co_od_loc(node, e, s);
 }
 
-/* A chunk of a value the entry's hook produces (CO_SUB_HOOKIO). */
-CO_NOINLINE static co_err_t read_hookio(co_node_t *node, const co_od_entry_t *e,
-                                        const co_od_sub_t *s, co_od_chunk_t *c)
+/* The entry's read hook. With CO_SUB_HOOKIO (@p hookio) it produces the
+ * chunk @p c (no hook: no access); for a stored value it runs before the
+ * value is read (it may refresh or veto; no hook: nothing to do). */
+CO_NOINLINE static co_err_t read_hook(co_node_t *node, const co_od_entry_t *e,
+                                      const co_od_sub_t *s, co_od_chunk_t *c, bool hookio)
 {
     co_od_hook_t *h = hook_of(node, e);
     co_od_io_t io;
     co_err_t err;
 
     if ((h == NULL) || (h->read == NULL)) {
-        return CO_ERR_NO_ACCESS;
+        return hookio ? CO_ERR_NO_ACCESS : CO_OK;
     }
     io_init(&io, node, e, s);
-    io.offset = c->offset;
-    io.buf = c->buf;
-    io.len = c->cap;
+    if (hookio) {
+        io.offset = c->offset;
+        io.buf = c->buf;
+        io.len = c->cap;
+    }
     err = h->read(h->ctx, &io);
-    if (err == CO_OK) {
+    if ((err == CO_OK) && hookio) {
         c->len = (io.len > c->cap) ? c->cap : io.len;
         c->total = io.total;
         c->last = io.last;
     }
     return err;
-}
-
-/* The read hook of a stored value, before it is read (it may refresh or veto). */
-CO_NOINLINE static co_err_t read_hook(co_node_t *node, const co_od_entry_t *e,
-                                      const co_od_sub_t *s)
-{
-    co_od_hook_t *h = hook_of(node, e);
-    co_od_io_t io;
-
-    if ((h == NULL) || (h->read == NULL)) {
-        return CO_OK;
-    }
-    io_init(&io, node, e, s);
-    return h->read(h->ctx, &io);
 }
 
 /* The write hook of a stored value (or of a HOOKIO value written whole):
@@ -415,26 +397,28 @@ co_err_t co_od_read_part(co_node_t *node, const co_od_entry_t *e, const co_od_su
     uint32_t n;
 
     if ((s->flags & CO_SUB_HOOKIO) != 0U) {
-        return read_hookio(node, e, s, c);
+        return read_hook(node, e, s, c, true);
     }
     if (offset == 0U) {
         co_err_t err = svc_read(node, e, s);
         if ((err == CO_OK) && (e->hook != 0U)) {
-            err = read_hook(node, e, s);
+            err = read_hook(node, e, s, c, false);
         }
         if (err != CO_OK) {
             return err;
         }
     }
-    v = (const uint8_t *)co_od_loc(node, s);
-    size = (fixed != 0U) ? s->size : co_od_data_size(node, s);
+    v = (const uint8_t *)co_od_loc(node, e, s);
+    size = (fixed != 0U) ? s->size : co_od_data_size(node, e, s);
     n = (offset < size) ? (size - offset) : 0U;
     if (n > c->cap) {
         n = c->cap;
     }
     if ((fixed != 0U) && (offset == 0U) && (n == fixed)) {
         co_to_wire(c->buf, v, fixed); /* the whole value */
-    } else if (fixed != 0U) {
+    } else if ((fixed != 0U) && !CO_NATIVE_LE) {
+        /* part of a number: from its wire image (on a little-endian CPU
+         * the stored bytes are the wire image: the copy below) */
         uint8_t wire[8];
         co_to_wire(wire, v, fixed);
         (void)memcpy(c->buf, &wire[offset], n);
@@ -508,19 +492,23 @@ static co_err_t check_limits(const co_node_t *node, const co_od_sub_t *s, const 
     return CO_OK;
 }
 
-void co_od_commit(co_node_t *node, const co_od_sub_t *s, const uint8_t *data, uint32_t len)
+void co_od_commit(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
+                  const uint8_t *data, uint32_t len)
 {
-    uint8_t *v = &node->ram[s->off];
     uint8_t fixed = co_type_len(s->type);
 
-    if ((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) != 0U) {
-        /* no value in RAM */
-    } else if (fixed != 0U) {
-        co_pdo_from_wire(v, data, fixed); /* 1, 2 and 4 bytes without a call */
-    } else {
-        (void)memcpy(v, data, len);
-        if (len < s->size) {
-            (void)memset(&v[len], 0, s->size - len);
+    if ((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) == 0U) {
+        uint8_t *v = &node->ram[(uint16_t)(e->base + s->off)]; /* a RAM value */
+        if (fixed != 0U) {
+            co_pdo_from_wire(v, data, fixed); /* 1, 2 and 4 bytes without a call */
+        } else {
+            if (data != v) {
+                /* (a value gathered in place is its own data) */
+                (void)memcpy(v, data, len);
+            }
+            if (len < s->size) {
+                (void)memset(&v[len], 0, s->size - len);
+            }
         }
     }
 }
@@ -571,9 +559,9 @@ CO_HOT co_err_t write_value(co_node_t *node, const co_od_entry_t *e, const co_od
         return sh->fn(node, CO_SVC_COMMIT, e, s, data, len); /* the service's commit */
     }
     if (CO_FAST && (fixed != 0U) && ((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) == 0U)) {
-        co_pdo_from_wire(&node->ram[s->off], data, fixed); /* a number: no call */
+        co_pdo_from_wire(&node->ram[(uint16_t)(e->base + s->off)], data, fixed); /* a number: no call */
     } else {
-        co_od_commit(node, s, data, len);
+        co_od_commit(node, e, s, data, len);
     }
     svc_written(node, sh, e, s);
     return CO_OK;
@@ -608,38 +596,11 @@ co_err_t co_od_download(co_node_t *node, uint16_t index, uint8_t sub, const uint
     return CO_FAST ? write_value(node, e, s, data, size) : co_od_write_value(node, e, s, data, size);
 }
 
-/* The complete new value @p data (@p end bytes) of a string or DOMAIN held
- * in RAM: the write hook may veto it (the value is unchanged then), else it
- * replaces the value, the rest zero-filled. */
-static co_err_t commit_streamed(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
-                                const uint8_t *data, uint32_t end)
-{
-    uint8_t *v = (uint8_t *)co_od_loc(node, s);
-
-    if (e->hook != 0U) {
-        co_err_t err = write_hook_whole(node, e, s, data, end);
-        if (err != CO_OK) {
-            return err;
-        }
-    }
-    if ((end > 0U) && (data != v)) {
-        /* the data are a frame, the SDO server's buffer, the staging area
-         * or the application's: never a part of this value (gathered in
-         * place, they are the value itself, data == v) */
-        (void)memcpy(v, data, end);
-    }
-    if (end < s->size) {
-        (void)memset(&v[end], 0, s->size - end);
-    }
-    svc_written(node, svc_hook(node, e->index), e, s);
-    return CO_OK;
-}
-
 co_err_t co_od_write_part(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
                           uint32_t offset, const uint8_t *data, uint32_t len, uint32_t total,
                           bool last)
 {
-    uint8_t *v = (uint8_t *)co_od_loc(node, s);
+    uint8_t *v = (uint8_t *)co_od_loc(node, e, s);
 
     if ((s->flags & CO_SUB_HOOKIO) != 0U) {
         co_od_chunk_t c = {(uint8_t *)(uintptr_t)data, offset, 0U, len, total, last};
@@ -652,7 +613,7 @@ co_err_t co_od_write_part(co_node_t *node, const co_od_entry_t *e, const co_od_s
         return CO_ERR_TYPE_TOO_LONG;
     }
     if ((offset == 0U) && last) {
-        return commit_streamed(node, e, s, data, len); /* whole: nothing to gather */
+        return co_od_write_value(node, e, s, data, len); /* whole: nothing to gather */
     }
     {
         /* parts gather in the staging area (co_dev_t.stage) when it holds the
@@ -661,72 +622,49 @@ co_err_t co_od_write_part(co_node_t *node, const co_od_entry_t *e, const co_od_s
         if (len > 0U) {
             (void)memcpy(&at[offset], data, len);
         }
-        return last ? commit_streamed(node, e, s, at, offset + len) : CO_OK;
+        /* complete: checked, hooked and committed as one value (the write
+         * hook may veto it, the value is unchanged then unless it was
+         * gathered in place) */
+        return last ? co_od_write_value(node, e, s, at, offset + len) : CO_OK;
     }
 }
 
-/* The COB-ID of a PDO (communication parameter sub 1) or of the EMCY: its
- * $NODEID default uses the node's COB-ID base (CO_LSS_COBS_KEEP). */
-static bool is_pdo_emcy_cob(uint16_t index, uint8_t sub)
-{
-    bool pdo = ((index >= 0x1400U) && (index <= 0x15FFU)) ||
-               ((index >= 0x1800U) && (index <= 0x19FFU));
-
-    return (pdo && (sub == 1U)) || (index == 0x1014U);
-}
-
+/* Restore [from, to) of the RAM image: zeros, then the default runs that
+ * start inside it; a $NODEID run gets the node-ID (a PDO or EMCY COB-ID the
+ * COB-ID base, which differs from it only with LSS) added to its value, a
+ * native integer of 1, 2 or 4 bytes. */
 void co_od_restore(co_node_t *node, uint16_t from, uint16_t to)
 {
     const co_dev_t *dev = node->dev;
     const uint8_t *def = (const uint8_t *)dev->defaults;
+    uint32_t at = 0U;
 
-    if ((to <= from) || ((def == NULL) && (dev->default_at == NULL))) {
+    if (to <= from) {
         return;
     }
-    if (dev->default_at == NULL) {
-        (void)memcpy(&node->ram[from], &def[from], (size_t)to - from);
-    } else {
-        /* sparse: zeros, then the values that are not */
-        uint32_t at = 0U;
-        (void)memset(&node->ram[from], 0, (size_t)to - from);
-        for (uint16_t i = 0U; i < dev->n_defaults; i++) {
-            const co_od_default_t *d = &dev->default_at[i];
-            if ((d->off >= from) && (d->off < to)) {
-                (void)memcpy(&node->ram[d->off], &def[at], d->size);
-            }
-            at += d->size;
-        }
-    }
-    /* $NODEID-relative defaults inside the restored range. */
-    for (uint16_t i = 0U; i < dev->od_count; i++) {
-        const co_od_entry_t *e = &dev->od[i];
-        for (uint8_t k = 0U; k < e->nsubs; k++) {
-            const co_od_sub_t *s = &e->subs[k];
-            if (((s->flags & (CO_SUB_NODEID | CO_SUB_ROM | CO_SUB_HOOKIO)) == CO_SUB_NODEID) &&
-                (s->off >= from) && (s->off < to)) {
-                uint8_t n = co_type_len(s->type);
-                uint8_t *p = &node->ram[s->off];
-                /* (the COB-ID base differs from the node-ID only with LSS) */
-                uint8_t id = ((CO_LSS != 0) && is_pdo_emcy_cob(e->index, s->sub)) ? node->cob_base
-                                                                                 : node->node_id;
-                /* 16/32-bit values are native integers in RAM */
-                if (n == 1U) {
-                    p[0] = (uint8_t)(p[0] + id);
-                } else if (n == 2U) {
-                    uint16_t v;
-                    (void)memcpy(&v, p, 2U);
-                    v = (uint16_t)(v + id);
-                    (void)memcpy(p, &v, 2U);
-                } else if (n == 4U) {
-                    uint32_t v;
-                    (void)memcpy(&v, p, 4U);
-                    v += id;
-                    (void)memcpy(p, &v, 4U);
-                } else {
-                    /* $NODEID only makes sense on 8/16/32-bit values */
+    (void)memset(&node->ram[from], 0, (size_t)to - from);
+    for (uint16_t i = 0U; i < dev->n_defaults; i++) {
+        const co_od_default_t *d = &dev->default_at[i];
+        uint32_t n = d->size & CO_OD_DEF_SIZE;
+        if ((d->off >= from) && (d->off < to)) {
+            uint8_t *p = &node->ram[d->off];
+            (void)memcpy(p, &def[at], n);
+            if ((d->size & CO_OD_DEF_NODEID) != 0U) {
+                uint8_t id = ((CO_LSS != 0) && ((d->size & CO_OD_DEF_COB) != 0U))
+                                 ? node->cob_base
+                                 : node->node_id;
+                /* added byte by byte from the least significant one, as
+                 * the value's own width wraps it */
+                uint32_t sum = id;
+                for (uint32_t k = 0U; k < n; k++) {
+                    uint8_t *b = CO_NATIVE_LE ? &p[k] : &p[n - 1U - k];
+                    sum += *b;
+                    *b = (uint8_t)sum;
+                    sum >>= 8U;
                 }
             }
         }
+        at += n;
     }
 }
 
@@ -778,16 +716,7 @@ co_err_t co_od_write(co_node_t *node, uint16_t index, uint8_t sub, const void *d
 
 void *co_od_value_ptr(co_node_t *node, uint16_t index, uint8_t sub)
 {
-    const co_od_entry_t *e;
-    const co_od_sub_t *s;
-
-    if (co_od_lookup(node, index, sub, &e, &s) != CO_OK) {
-        return NULL;
-    }
-    if ((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) != 0U) {
-        return NULL;
-    }
-    return &node->ram[s->off];
+    return co_od_ram_of(node, index, sub, 0U);
 }
 
 co_result_t co_od_bind_hook(co_node_t *node, uint16_t index, const co_od_hook_t *hook)

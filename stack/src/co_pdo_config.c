@@ -97,9 +97,10 @@ static uint16_t direct_code(const co_node_t *node, const co_od_entry_t *e, const
 {
     uint8_t size = co_type_len(s->type);
     uint8_t svc = co_od_svc_ops(node, e->index);
+    uint16_t off = co_od_off(e, s);
 
     if ((e->hook != 0U) || ((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) != 0U) ||
-        (s->size != size) || (s->off >= CO_PDO_OFF_END) || ((pos & 7U) != 0U) ||
+        (s->size != size) || (off >= CO_PDO_OFF_END) || ((pos & 7U) != 0U) ||
         ((bits & 7U) != 0U)) {
         return CO_PDO_SLOW;
     }
@@ -107,20 +108,20 @@ static uint16_t direct_code(const co_node_t *node, const co_od_entry_t *e, const
         /* on a little-endian CPU 8 bytes are read at once (co_pdo_get_direct),
          * which a RAM image of fewer than 16 bytes may not have; whole values
          * only on a big-endian one */
-        uint32_t end = (uint32_t)s->off + 8U;
+        uint32_t end = (uint32_t)off + 8U;
         bool at_end = end > node->dev->ram_size;
         if (((svc & CO_SVC_READ) != 0U) ||
-            (CO_NATIVE_LE ? (at_end && (((uint32_t)s->off + ((uint32_t)bits >> 3U)) < 8U))
+            (CO_NATIVE_LE ? (at_end && (((uint32_t)off + ((uint32_t)bits >> 3U)) < 8U))
                           : (bits != (uint8_t)(size * 8U)))) {
             return CO_PDO_SLOW;
         }
-        return (uint16_t)((uint32_t)s->off | ((((uint32_t)bits >> 3U) - 1U) << 12U) |
+        return (uint16_t)((uint32_t)off | ((((uint32_t)bits >> 3U) - 1U) << 12U) |
                           (at_end ? (uint32_t)CO_PDO_AT_END : 0U));
     }
     if ((svc != 0U) || ((s->flags & CO_SUB_LIMIT) != 0U) || (s->type == (uint8_t)CO_BOOLEAN)) {
         return CO_PDO_SLOW;
     }
-    return (uint16_t)((uint32_t)s->off | (((uint32_t)size - 1U) << 12U) |
+    return (uint16_t)((uint32_t)off | (((uint32_t)size - 1U) << 12U) |
                       (co_type_is_signed(s->type) ? (uint32_t)CO_PDO_SIGNED : 0U));
 }
 #endif
@@ -223,7 +224,7 @@ static co_err_t check_comm_write(const co_node_t *node, uint16_t i, uint8_t sub,
                            : cur;
         return co_check_cob(was, co_get_u32(data), CO_PDO_COB_INVALID, false, 0U, false);
     }
-    if ((len == 1U) && (((sub == 2U) && (data[0] > 240U) && (data[0] < (tx ? 252U : 254U))) ||
+    if ((len == 1U) && (((sub == 2U) && (data[0] > 240U) && (data[0] < ((tx && CO_PDO_RTR) ? 252U : 254U))) ||
                         ((sub == 6U) && tx && (data[0] > 240U)))) {
         return CO_ERR_VALUE; /* reserved transmission types, SYNC start value */
     }
@@ -342,7 +343,8 @@ static void pdo_nmt(co_node_t *node, co_nmt_state_t from)
 
 static void pdo_rx_slots(co_node_t *node, uint8_t svc)
 {
-    uint16_t n = (uint16_t)(node->dev->n_rpdo + node->dev->n_tpdo);
+    /* TPDOs are received only for their remote requests */
+    uint16_t n = (uint16_t)(node->dev->n_rpdo + (CO_PDO_RTR ? node->dev->n_tpdo : 0U));
     uint16_t used = 0U;
 
     (void)svc;
@@ -353,7 +355,7 @@ static void pdo_rx_slots(co_node_t *node, uint8_t svc)
         uint32_t cob = co_pdo_cob(node, i);
         uint16_t id = (uint16_t)(cob & 0x7FFU);
         if (((cob & CO_PDO_COB_INVALID) != 0U) ||
-            (is_tpdo(node, i) && ((cob & CO_PDO_COB_NO_RTR) != 0U))) {
+            (is_tpdo(node, i) && (!CO_PDO_RTR || ((cob & CO_PDO_COB_NO_RTR) != 0U)))) {
             continue; /* not received: invalid, or a TPDO that answers no RTR */
         }
         node->pdo.rx[used].cob = id;
@@ -369,6 +371,7 @@ static void pdo_rx_slots(co_node_t *node, uint8_t svc)
 /* A frame on the COB-ID of PDO @p i (the node's PDO table, co_node_rx). */
 static void pdo_rx(co_node_t *node, uint16_t i, const co_frame_t *f)
 {
+#if CO_PDO_RTR
     if (i < node->dev->n_rpdo) {
         co_rpdo_rx(node, i, f);
     } else if (co_frame_is_rtr(f)) {
@@ -376,6 +379,9 @@ static void pdo_rx(co_node_t *node, uint16_t i, const co_frame_t *f)
     } else {
         /* another node's data frame on this TPDO's identifier */
     }
+#else
+    co_rpdo_rx(node, i, f); /* only RPDOs are received */
+#endif
 }
 
 static uint32_t pdo_process(co_node_t *node, uint32_t next)

@@ -364,7 +364,7 @@ static inline bool co_od_is_streamed(const co_od_sub_t *s)
 }
 
 /* Where the value of @p s lives: RAM image, ROM image, or NULL (HOOKIO). */
-CO_INLINE void *co_od_loc(const co_node_t *node, const co_od_sub_t *s)
+CO_INLINE void *co_od_loc(const co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s)
 {
     if ((s->flags & CO_SUB_HOOKIO) != 0U) {
         return NULL;
@@ -373,7 +373,7 @@ CO_INLINE void *co_od_loc(const co_node_t *node, const co_od_sub_t *s)
         /* ROM values are only ever read through this pointer. */
         return (void *)(uintptr_t)&node->dev->rom[s->off];
     }
-    return &node->ram[s->off];
+    return &node->ram[(uint16_t)(e->base + s->off)];
 }
 
 co_err_t co_od_lookup(const co_node_t *node, uint16_t index, uint8_t sub,
@@ -383,7 +383,7 @@ co_err_t co_od_lookup(const co_node_t *node, uint16_t index, uint8_t sub,
 co_err_t co_od_lookup_for(const co_node_t *node, uint16_t index, uint8_t sub, bool write,
                           const co_od_entry_t **e, const co_od_sub_t **s);
 /* Current size of the value (strings: up to the first NUL); 0 for HOOKIO. */
-uint32_t co_od_data_size(const co_node_t *node, const co_od_sub_t *s);
+uint32_t co_od_data_size(const co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s);
 bool co_type_is_signed(uint8_t type);
 /* One chunk of a value being read: the caller sets buf, offset and cap;
  * co_od_read_part sets len, total (0 if a hook does not know it) and last. */
@@ -421,10 +421,11 @@ co_result_t co_od_register(co_node_t *node, const co_svc_hook_t *h);
 /* The CO_SVC_* operations the service owning @p index hooks (0: none). */
 uint8_t co_od_svc_ops(const co_node_t *node, uint16_t index);
 /* Store a checked value of @p s from wire bytes (the engine's commit). */
-void co_od_commit(co_node_t *node, const co_od_sub_t *s, const uint8_t *data, uint32_t len);
+void co_od_commit(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
+                  const uint8_t *data, uint32_t len);
 
 /* Where a core object lives in the RAM image: the value of @p index sub
- * @p sub if it has type @p type and a stored RAM value, else NULL. */
+ * @p sub if it has type @p type (0: any) and a stored RAM value, else NULL. */
 void *co_od_ram_of(co_node_t *node, uint16_t index, uint8_t sub, uint8_t type);
 /* Number of consecutive sub-entries 1..n (at most @p max) of an array whose
  * values of @p type are stored back to back, 0 if there are none. */
@@ -739,7 +740,9 @@ void co_pdo_store(co_node_t *node, uint16_t i, const uint8_t *data, uint8_t dlc)
 void co_rpdo_rx(co_node_t *node, uint16_t i, const co_frame_t *f);
 void co_rpdo_sync(co_node_t *node);
 uint32_t co_rpdo_process(co_node_t *node, uint32_t next);
+#if CO_PDO_RTR
 void co_tpdo_rtr(co_node_t *node, uint16_t i);
+#endif
 void co_tpdo_sync(co_node_t *node, uint8_t counter);
 uint32_t co_tpdo_process(co_node_t *node, uint32_t next);
 

@@ -150,7 +150,7 @@ static uint16_t layout_sig(const co_dev_t *dev)
                 co_put_u16(&b[0], e->index);
                 b[2] = s->sub;
                 b[3] = s->type;
-                co_put_u16(&b[4], s->off);
+                co_put_u16(&b[4], co_od_off(e, s));
                 co_put_u16(&b[6], s->size);
                 crc = co_crc16(crc, b, 8U);
             }
@@ -505,7 +505,7 @@ static void store_reset(co_node_t *node, uint8_t kind)
 #else
                 uint32_t v = 0U;
 #endif
-                (void)memcpy(&node->ram[e->subs[k].off], (const uint8_t *)&v, 4U);
+                (void)memcpy(&node->ram[co_od_off(e, &e->subs[k])], (const uint8_t *)&v, 4U);
             }
         }
     }
@@ -521,7 +521,7 @@ static co_err_t store_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
 {
     (void)op;
     if (!co_store_is_command(e, s)) {
-        co_od_commit(node, s, data, len);
+        co_od_commit(node, e, s, data, len);
         return CO_OK;
     }
 #if CO_STORAGE

@@ -136,10 +136,10 @@ void co_tpdo_sync(co_node_t *node, uint8_t counter)
     for (uint16_t i = node->dev->n_rpdo; i < n; i++) {
         uint8_t type = co_pdo_type(node, i);
         /* RTR-only 253 and event-driven types do not follow SYNC */
-        if (((type <= 240U) || (type == 252U)) && co_pdo_usable(node, i)) {
+        if (((type <= 240U) || (CO_PDO_RTR && (type == 252U))) && co_pdo_usable(node, i)) {
             co_pdo_t *p = &node->pdo.p[i];
             p->flags &= (uint16_t)~CO_PDO_F_SYNC_PEND; /* a new SYNC replaces it */
-            if (type == 252U) {
+            if (CO_PDO_RTR && (type == 252U)) {
                 build(node, i, p->data); /* sampled now, sent on request */
                 p->flags |= CO_PDO_F_SAMPLED;
             } else if ((type == 0U) ? acyclic_due(node, i) : cyclic_due(node, i, type, counter)) {
@@ -151,6 +151,7 @@ void co_tpdo_sync(co_node_t *node, uint8_t counter)
     }
 }
 
+#if CO_PDO_RTR
 /* Answer a remote request: type 252 with the data sampled at the last SYNC,
  * every other type with the data of now. */
 static bool answer_rtr(co_node_t *node, uint16_t i)
@@ -177,6 +178,7 @@ void co_tpdo_rtr(co_node_t *node, uint16_t i)
     }
     co_svc_touch(node, CO_ROW_PDO); /* the retry, or the timers an answer restarts */
 }
+#endif
 
 /* The event timer and the inhibit time of an event-driven TPDO, at now. */
 CO_INLINE void event_timers(const co_node_t *node, co_pdo_t *p)
@@ -318,6 +320,7 @@ CO_INLINE uint32_t tpdo_pass(co_node_t *node, uint32_t next, bool detect)
             continue;
         }
         type = co_pdo_type(node, i);
+#if CO_PDO_RTR
         if ((p->flags & CO_PDO_F_RTR) != 0U) {
             if (answer_rtr(node, i)) {
                 p->flags &= (uint16_t)~CO_PDO_F_RTR;
@@ -325,6 +328,7 @@ CO_INLINE uint32_t tpdo_pass(co_node_t *node, uint32_t next, bool detect)
                 next = co_deadline_min(node->now, next, node->now + RETRY_US);
             }
         }
+#endif
         if ((p->flags & CO_PDO_F_SYNC_PEND) != 0U) {
             /* CiA 301: synchronous PDOs outside the window are not sent */
             if (!co_sync_window(node) || send(node, i, p->data)) {

@@ -70,6 +70,7 @@ struct eds_dev {
     co_od_entry_t *entries;
     co_od_sub_t *subs;
     uint8_t *defaults;
+    co_od_default_t *default_at;
     co_od_limit_t *limits;
     co_pdo_desc_t *pdo;
     char *warnings;
@@ -1004,6 +1005,8 @@ static eds_dev_t *build(ctx_t *c, const char *name, const char *text)
     size_t off = 0U;
     size_t ends[3] = {0U, 0U, 0U};
     size_t nlim = 0U;
+    size_t nid = 0U;
+    size_t nruns;
     size_t nr;
     size_t nt;
 
@@ -1038,18 +1041,24 @@ static eds_dev_t *build(ctx_t *c, const char *name, const char *text)
                     return NULL;
                 }
                 nlim += (size_t)b->has_limit;
+                nid += (size_t)((b->s.flags & CO_SUB_NODEID) != 0U);
             }
         }
         ends[r] = off;
     }
     off = (off + 7U) / 8U * 8U;
+    /* the default runs: the image in pieces of at most CO_OD_DEF_SIZE, then
+     * each $NODEID value as a run of its own (its bytes after the image) */
+    nruns = ((off + CO_OD_DEF_SIZE - 1U) / CO_OD_DEF_SIZE) + 2U + nid;
     d->text = strdup(text);
     d->name = strdup(name);
-    d->defaults = (uint8_t *)calloc(1U, (off != 0U) ? off : 8U);
+    d->defaults = (uint8_t *)calloc(1U, off + (4U * nid) + 8U);
+    d->default_at = (co_od_default_t *)calloc(nruns + 1U, sizeof *d->default_at);
     d->entries = (co_od_entry_t *)calloc((c->nobj != 0U) ? c->nobj : 1U, sizeof *d->entries);
     d->subs = (co_od_sub_t *)calloc((c->nsub != 0U) ? c->nsub : 1U, sizeof *d->subs);
     d->limits = (co_od_limit_t *)calloc((nlim != 0U) ? nlim : 1U, sizeof *d->limits);
-    if ((d->text == NULL) || (d->name == NULL) || (d->defaults == NULL) || (d->entries == NULL) ||
+    if ((d->text == NULL) || (d->name == NULL) || (d->defaults == NULL) ||
+        (d->default_at == NULL) || (d->entries == NULL) ||
         (d->subs == NULL) || (d->limits == NULL)) {
         (void)fail(c, NULL, NULL, "out of memory");
         eds_free(d);
@@ -1076,6 +1085,39 @@ static eds_dev_t *build(ctx_t *c, const char *name, const char *text)
                 d->subs[ns++] = b->s;
             }
         }
+    }
+    {
+        size_t nd = 0U;
+        size_t at = off;
+        size_t pos = 0U;
+        while (pos < off) {
+            /* (no run across comm_end or app_end) */
+            size_t end = (pos < ends[0]) ? ends[0] : (pos < ends[1]) ? ends[1] : off;
+            size_t n = ((end - pos) < CO_OD_DEF_SIZE) ? (end - pos) : CO_OD_DEF_SIZE;
+            d->default_at[nd].off = (uint16_t)pos;
+            d->default_at[nd].size = (uint16_t)n;
+            nd++;
+            pos += n;
+        }
+        for (size_t i = 0U; i < c->nobj; i++) {
+            const bobj_t *o = &c->obj[i];
+            for (size_t k = 0U; k < o->n; k++) {
+                const bsub_t *b = &c->sub[o->first + k];
+                if ((b->s.flags & CO_SUB_NODEID) != 0U) {
+                    bool pdo = ((o->index >= 0x1400U) && (o->index <= 0x15FFU)) ||
+                               ((o->index >= 0x1800U) && (o->index <= 0x19FFU));
+                    bool cob = (pdo && (b->s.sub == 1U)) || (o->index == 0x1014U);
+                    (void)memcpy(&d->defaults[at], b->val, b->s.size);
+                    at += b->s.size;
+                    d->default_at[nd].off = b->s.off;
+                    d->default_at[nd].size = (uint16_t)(b->s.size | CO_OD_DEF_NODEID |
+                                                        (cob ? CO_OD_DEF_COB : 0U));
+                    nd++;
+                }
+            }
+        }
+        d->dev.default_at = d->default_at;
+        d->dev.n_defaults = (uint16_t)nd;
     }
     d->dev.name = d->name;
     d->dev.od = d->entries;
@@ -1220,6 +1262,7 @@ void eds_free(eds_dev_t *d)
     free(d->text);
     free(d->name);
     free(d->defaults);
+    free(d->default_at);
     free(d->entries);
     free(d->subs);
     free(d->limits);

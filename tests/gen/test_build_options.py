@@ -47,6 +47,20 @@ def test_options_outside_the_build(tmp_path: Path) -> None:
     assert "SDO_EXPEDITED_ONLY" in r.stderr and "CO_PERSONALITY" in r.stderr
 
 
+def test_nodeid_object_outside_the_build(tmp_path: Path) -> None:
+    # a node-ID object is a manufacturer's deviation: CO_PERSONALITY=0 has no code for it
+    desc = tmp_path / "nodeid.toml"
+    desc.write_text(LEAN.read_text(encoding="utf-8").replace(
+        "[device]\n", "[device]\nnodeid_object = 0x2000\n", 1) +
+        '\n[[object]]\nindex = 0x2000\nname = "Node-ID"\ntype = "UNSIGNED8"\n'
+        'access = "rw"\ndefault = 5\n', encoding="utf-8")
+    out = tmp_path / "out"
+    r = run_odgen(desc, out, "--c", "--build=CO_PERSONALITY=0")
+    assert r.returncode == 1
+    assert "nodeid_object 0x2000" in r.stderr and "CO_PERSONALITY" in r.stderr
+    assert run_odgen(desc, out, "--c", "--build=CO_PERSONALITY=1").returncode == 0
+
+
 def test_no_block_is_no_deviation_without_block(tmp_path: Path) -> None:
     # [sdo] transfers without "block": a personality for a core with block
     # SDO, what a core without it does anyway (tools/bench-size's SEG set)
@@ -70,3 +84,21 @@ def test_accepted(tmp_path: Path) -> None:
     assert run_odgen(KOLLMORGEN, tmp_path, "--c", "--build=CO_SDO_BLOCK=0").returncode == 0
     # no build options: the full core
     assert run_odgen(GENERIC, tmp_path, "--c", "--build=").returncode == 0
+
+
+def test_tpdo_rtr(tmp_path: Path) -> None:
+    # a TPDO that defaults to an RTR-only type (252/253) needs CO_PDO_RTR;
+    # the lean-test device's TPDO (type 1) does not
+    text = LEAN.read_text(encoding="utf-8").replace(
+        '{ sub = 2, name = "Transmission type", type = "UNSIGNED8", default = 1 }',
+        '{ sub = 2, name = "Transmission type", type = "UNSIGNED8", default = 253 }')
+    assert "default = 253" in text
+    rtr = tmp_path / "rtr.toml"
+    rtr.write_text(text, encoding="utf-8")
+    out = tmp_path / "out"
+    out.mkdir()
+    r = run_odgen(rtr, out, "--c", "--build=CO_PDO_RTR=0")
+    assert r.returncode == 1
+    assert "TPDO transmission type 252/253 (0x1800) needs CO_PDO_RTR=1" in r.stderr
+    assert run_odgen(rtr, out, "--c", "--build=").returncode == 0
+    assert run_odgen(LEAN, out, "--c", "--build=CO_PDO_RTR=0").returncode == 0

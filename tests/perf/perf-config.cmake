@@ -4,7 +4,8 @@
 #   SEG: NMT, heartbeat producer and 8 consumers, SDO expedited + segmented,
 #        4+4 PDO, SYNC consumer, EMCY; no block SDO, guarding, LSS, TIME,
 #        SYNC producer, storage, error behaviour, limits or options (but
-#        CO_OPT_SDO_NO_BLOCK, which a device without block transfer has);
+#        CO_OPT_SDO_NO_BLOCK, which a device without block transfer has), no
+#        TPDO remote requests (CANopenNode v4 has none);
 #   BLK: SEG with SDO block transfer.
 set(CO_PERF_COMMON_CONFIG
   CO_NODE_GUARDING=0
@@ -14,6 +15,7 @@ set(CO_PERF_COMMON_CONFIG
   CO_LSS=0
   CO_ERROR_BEHAVIOUR=0
   CO_LIMITS=0
-  CO_HB_CONSUMERS_MAX=8U)
+  CO_HB_CONSUMERS_MAX=8U
+  CO_PDO_RTR=0)
 set(CO_PERF_SEG_CONFIG ${CO_PERF_COMMON_CONFIG} CO_SDO_BLOCK=0 CO_PERSONALITY=0)
 set(CO_PERF_BLK_CONFIG ${CO_PERF_COMMON_CONFIG} CO_SDO_BLOCK=1 CO_PERSONALITY=0)

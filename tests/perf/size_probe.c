@@ -3,10 +3,15 @@
  * size-dev node (size_dev.h), read back with nm, so that the node's RAM is
  * split into the core's structures and the dictionary's RAM image.
  */
+#include <stddef.h>
+
 #include "size_dev.h"
 
 #define PROBE(name, size) char name[size]
 PROBE(probe_core, sizeof(co_node_t) + sizeof(((size_dev_node_t *)0)->pdo) +
                       sizeof(((size_dev_node_t *)0)->pdo_rx));
-PROBE(probe_dict, sizeof(size_dev_ram_t) + sizeof(((size_dev_node_t *)0)->hooks));
+/* the RAM image and the hook table (a node of a device without hooks has none) */
+PROBE(probe_dict, sizeof(size_dev_node_t) - offsetof(size_dev_node_t, ram) -
+                      sizeof(((size_dev_node_t *)0)->pdo) -
+                      sizeof(((size_dev_node_t *)0)->pdo_rx));
 PROBE(probe_node, sizeof(size_dev_node_t));

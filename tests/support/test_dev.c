@@ -37,7 +37,15 @@ static const td_rom_t rom = {
     .n1011 = 6U,
 };
 
-static const td_ram_t defaults = {
+/* The whole image as the first default runs, then the $NODEID values, each a
+ * run the node-ID is added to (the EMCY COB-ID: the COB-ID base). */
+typedef struct td_defaults {
+    td_ram_t img;
+    uint32_t node_id;
+    uint32_t emcy_cob;
+} td_defaults_t;
+
+static const td_defaults_t defaults = {.img = {
     .sync_cob = 0x80UL,
     .time_cob = 0x80000100UL,
     .node_id = 0U,
@@ -49,7 +57,7 @@ static const td_ram_t defaults = {
     .lim_u16 = 100U,
     .rec0 = 0x11223344UL,
     .rec1 = 7U,
-};
+}, .node_id = 0U, .emcy_cob = 0x80UL};
 
 static const co_od_limit_t limits[] = {
     {10, 1000},
@@ -165,9 +173,11 @@ static const co_od_sub_t s6099[] = {
     CO_OD_SUB(2, (uint8_t)CO_UNSIGNED32, CO_SUB_RW | CO_SUB_LIMIT, 4U, (uint16_t)(F(homing_speed) + 4U), 2U),
 };
 
-#define E(idx, subs, code) {(idx), (uint8_t)(sizeof(subs) / sizeof((subs)[0])), 0U, (code), (subs)}
+#define E(idx, subs, code) \
+    CO_OD_ENTRY((idx), (uint8_t)(sizeof(subs) / sizeof((subs)[0])), 0U, (code), (subs))
 #define EH(idx, subs, code, slot) \
-    {(idx), (uint8_t)(sizeof(subs) / sizeof((subs)[0])), (uint8_t)((slot) + 1U), (code), (subs)}
+    CO_OD_ENTRY((idx), (uint8_t)(sizeof(subs) / sizeof((subs)[0])), (uint8_t)((slot) + 1U), \
+                (code), (subs))
 
 static const co_od_entry_t od[] = {
     E(0x1000, s1000, CO_OBJ_VAR),    E(0x1001, s1001, CO_OBJ_VAR),
@@ -202,6 +212,20 @@ static const co_od_entry_t od[] = {
     E(0x6099, s6099, CO_OBJ_ARRAY),  E(0x60FF, s60FF, CO_OBJ_VAR),
 };
 
+typedef char td_defaults_runs[((sizeof(td_ram_t) <= CO_OD_DEF_SIZE) &&
+                               (offsetof(td_defaults_t, node_id) == sizeof(td_ram_t)) &&
+                               (offsetof(td_defaults_t, emcy_cob) == sizeof(td_ram_t) + 4U))
+                                  ? 1
+                                  : -1];
+/* (a run never crosses comm_end or app_end: the image is three) */
+static const co_od_default_t default_at[] = {
+    {0U, F(u8)},
+    {F(u8), (uint16_t)(F(errreg) - F(u8))},
+    {F(errreg), (uint16_t)(sizeof(td_ram_t) - F(errreg))},
+    {F(node_id), (uint16_t)(4U | CO_OD_DEF_NODEID)},
+    {F(emcy_cob), (uint16_t)(4U | CO_OD_DEF_NODEID | CO_OD_DEF_COB)},
+};
+
 const co_dev_t td_dev = {
     .name = "test-device",
     .od = od,
@@ -216,6 +240,8 @@ const co_dev_t td_dev = {
     .boot_emcy_data = NULL,
     .stage = F(stage),
     .stage_size = (uint16_t)sizeof(((td_ram_t *)0)->stage),
+    .default_at = default_at,
+    .n_defaults = (uint16_t)(sizeof default_at / sizeof default_at[0]),
 };
 
 void td_start_cb(td_node_t *n, tb_bus_t *bus, uint8_t idx, uint8_t id, const co_dev_t *dev,

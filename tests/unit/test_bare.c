@@ -1,9 +1,11 @@
 /*
- * The core built with the minimal slave's options and also without block SDO
- * and without node guarding (CO_SDO_BLOCK=0, CO_NODE_GUARDING=0) on the
- * lean-test device: block requests answer 0x05040001 like an unknown
- * command, a guarding RTR gets no answer, the expedited and segmented SDO
- * and the heartbeat keep working, and a device with 0x100C/0x100D is refused.
+ * The core built with the minimal slave's options and also without block SDO,
+ * node guarding and TPDO remote requests (CO_SDO_BLOCK=0, CO_NODE_GUARDING=0,
+ * CO_PDO_RTR=0) on the lean-test device: block requests answer 0x05040001
+ * like an unknown command, a guarding RTR gets no answer, a TPDO's RTR gets
+ * none and types 252/253 answer 0x06090030, the expedited and segmented SDO,
+ * the heartbeat and the synchronous TPDO keep working, and a device with
+ * 0x100C/0x100D is refused.
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -17,8 +19,8 @@
 #include "test_bus.h"
 #include "test_dev.h"
 
-#if CO_SDO_BLOCK || CO_NODE_GUARDING
-#error "test_bare is built against a core without block SDO and node guarding"
+#if CO_SDO_BLOCK || CO_NODE_GUARDING || CO_PDO_RTR
+#error "test_bare is built against a core without block SDO, node guarding and TPDO RTRs"
 #endif
 
 static tb_bus_t bus;
@@ -64,6 +66,27 @@ static void guarding_left_out(void **state)
     tb_expect(BUS, "701 7F");
 }
 
+static void tpdo_rtr_left_out(void **state)
+{
+    uint8_t v[4] = {0x44, 0x33, 0x22, 0x11};
+
+    (void)state;
+    assert_int_equal(co_od_write(&lean.node, 0x2200, 0, v, 4, true), CO_OK);
+    tb_send(BUS, "000 01 01");
+    /* TPDO1 (type 1, COB-ID 0x181, bit 30 clear): no answer to an RTR */
+    tb_send(BUS, "181 R4");
+    tb_expect_none(BUS);
+    /* it still goes out at SYNC */
+    tb_send(BUS, "080");
+    tb_expect(BUS, "181 44 33 22 11");
+    /* the RTR-only types are refused like 241..251 */
+    tb_xfer(BUS, "601 2F 00 18 02 FC 00 00 00", "581 80 00 18 02 30 00 09 06");
+    tb_xfer(BUS, "601 2F 00 18 02 FD 00 00 00", "581 80 00 18 02 30 00 09 06");
+    tb_xfer(BUS, "601 40 00 18 02 00 00 00 00", "581 4F 00 18 02 01 00 00 00");
+    tb_xfer(BUS, "601 2F 00 18 02 F1 00 00 00", "581 80 00 18 02 30 00 09 06");
+    tb_expect_none(BUS);
+}
+
 static void guarding_device_refused(void **state)
 {
     td_node_t td;
@@ -87,6 +110,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_setup(block_sdo_left_out, setup),
         cmocka_unit_test_setup(guarding_left_out, setup),
+        cmocka_unit_test_setup(tpdo_rtr_left_out, setup),
         cmocka_unit_test_setup(guarding_device_refused, setup),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

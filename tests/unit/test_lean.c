@@ -127,6 +127,63 @@ static void compact_dictionary(void **state)
     assert_int_equal(get_u32(0x1600, 1), 0x21000020UL);
 }
 
+/* Objects of the same shape share one table of sub-entries whose RAM
+ * offsets count from each entry's base: RPDO1 and TPDO1 here (their
+ * communication parameters, and their mapping parameters), 0x1010 and
+ * 0x1011. Every value still has a place
+ * of its own: SDO writes land in the right field of the RAM image and a
+ * reset communication restores each PDO's own defaults. */
+static void shared_sub_tables(void **state)
+{
+    const co_od_entry_t *r = co_od_find(lean_test_dev.od, lean_test_dev.od_count, 0x1400U);
+    const co_od_entry_t *t = co_od_find(lean_test_dev.od, lean_test_dev.od_count, 0x1800U);
+    const co_od_entry_t *rm = co_od_find(lean_test_dev.od, lean_test_dev.od_count, 0x1600U);
+    const co_od_entry_t *tm = co_od_find(lean_test_dev.od, lean_test_dev.od_count, 0x1A00U);
+    const co_od_entry_t *st = co_od_find(lean_test_dev.od, lean_test_dev.od_count, 0x1010U);
+    const co_od_entry_t *rs = co_od_find(lean_test_dev.od, lean_test_dev.od_count, 0x1011U);
+    (void)state;
+    assert_non_null(r);
+    assert_non_null(t);
+    assert_non_null(rm);
+    assert_non_null(tm);
+    assert_non_null(st);
+    assert_non_null(rs);
+    assert_ptr_equal(r->subs, t->subs);
+    assert_ptr_equal(rm->subs, tm->subs);
+    assert_ptr_equal(st->subs, rs->subs);
+    assert_int_equal(r->base, offsetof(lean_test_ram_t, x1400_cob_id_used_by_rpdo));
+    assert_int_equal(t->base, offsetof(lean_test_ram_t, x1800_cob_id_used_by_tpdo));
+    assert_int_equal(rm->base, offsetof(lean_test_ram_t, x1600_rpdo1_mapping_parameter));
+    assert_int_equal(tm->base, offsetof(lean_test_ram_t, x1A00_tpdo1_mapping_parameter));
+    assert_int_equal(r->code, CO_OBJ_RECORD);
+    assert_int_equal(st->code, CO_OBJ_ARRAY);
+    assert_int_equal(start(&lean_test_dev), CO_RESULT_OK);
+    tb_expect(BUS, "701 00");
+    /* each PDO's own defaults ($NODEID + 0x200 / 0x180) */
+    assert_int_equal(lean.ram.x1400_cob_id_used_by_rpdo, 0x201UL);
+    assert_int_equal(lean.ram.x1800_cob_id_used_by_tpdo, 0x181UL);
+    /* writes through the shared tables reach the values of their own PDO */
+    tb_xfer(BUS, "601 23 00 18 01 81 01 00 80", "581 60 00 18 01 00 00 00 00");
+    tb_xfer(BUS, "601 2F 00 18 02 05 00 00 00", "581 60 00 18 02 00 00 00 00");
+    tb_xfer(BUS, "601 2F 00 1A 00 00 00 00 00", "581 60 00 1A 00 00 00 00 00");
+    tb_xfer(BUS, "601 23 00 1A 01 10 00 00 22", "581 60 00 1A 01 00 00 00 00");
+    assert_int_equal(lean.ram.x1800_cob_id_used_by_tpdo, 0x80000181UL);
+    assert_int_equal(lean.ram.x1800_transmission_type, 5U);
+    assert_int_equal(lean.ram.x1A00_tpdo1_mapping_parameter[0], 0x22000010UL);
+    assert_int_equal(lean.ram.x1A00_number_of_mapped_objects, 0U);
+    assert_int_equal(lean.ram.x1400_cob_id_used_by_rpdo, 0x201UL);
+    assert_int_equal(get_u32(0x1600, 1), 0x21000020UL);
+    tb_xfer(BUS, "601 40 00 18 01 00 00 00 00", "581 43 00 18 01 81 01 00 80");
+    tb_xfer(BUS, "601 40 00 14 01 00 00 00 00", "581 43 00 14 01 01 02 00 00");
+    tb_xfer(BUS, "601 40 00 1A 01 00 00 00 00", "581 43 00 1A 01 10 00 00 22");
+    /* and a reset communication gives each its own default back */
+    tb_send(BUS, "000 82 01");
+    tb_expect(BUS, "701 00");
+    assert_int_equal(lean.ram.x1800_cob_id_used_by_tpdo, 0x181UL);
+    assert_int_equal(lean.ram.x1400_cob_id_used_by_rpdo, 0x201UL);
+    tb_expect_none(BUS);
+}
+
 static void refuses_what_is_left_out(void **state)
 {
     static const co_od_limit_t limits[1] = {{0, 10}};
@@ -144,6 +201,11 @@ static void refuses_what_is_left_out(void **state)
     assert_int_equal(start(&dev), CO_RESULT_DEV_INCOMPAT);
     tb_expect_none(BUS);
     dev.limits = NULL;
+    /* a node-ID object (a manufacturer's deviation, Wandfluh's 0x2000) */
+    dev.nodeid_index = 0x2000U;
+    assert_int_equal(start(&dev), CO_RESULT_DEV_INCOMPAT);
+    tb_expect_none(BUS);
+    dev.nodeid_index = 0U;
     /* error behaviour 0x1029 (the description's entries plus one) */
     {
         static const co_od_sub_t s1029[] = {
@@ -193,6 +255,7 @@ int main(void)
         cmocka_unit_test(storage_left_out),
         cmocka_unit_test(services_kept),
         cmocka_unit_test(compact_dictionary),
+        cmocka_unit_test(shared_sub_tables),
         cmocka_unit_test(refuses_what_is_left_out),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

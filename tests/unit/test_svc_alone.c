@@ -35,12 +35,13 @@ static const co_od_sub_t s1010[] = {
 static const co_od_sub_t s2000[] = {{0, CO_UNSIGNED32, CO_SUB_RW, 4, offsetof(ram_t, v2000), 0}};
 static const co_od_sub_t s3000[] = {{0, CO_UNSIGNED32, CO_SUB_RW, 4, offsetof(ram_t, v3000), 0}};
 static const co_od_entry_t od[] = {
-    {0x1010, 2, 0, CO_OBJ_ARRAY, s1010},
-    {0x2000, 1, 1, CO_OBJ_VAR, s2000},
-    {0x3000, 1, 0, CO_OBJ_VAR, s3000},
+    CO_OD_ENTRY(0x1010, 2, 0, CO_OBJ_ARRAY, s1010),
+    CO_OD_ENTRY(0x2000, 1, 1, CO_OBJ_VAR, s2000),
+    CO_OD_ENTRY(0x3000, 1, 0, CO_OBJ_VAR, s3000),
 };
 static const uint8_t rom[1] = {1};
 static const ram_t defaults = {0x11U, 0x22U, {0U}, 0U};
+static const co_od_default_t default_at[1] = {{0U, (uint16_t)sizeof(ram_t)}};
 static const co_dev_t dev = {
     .name = "alone",
     .od = od,
@@ -51,6 +52,8 @@ static const co_dev_t dev = {
     .defaults = &defaults,
     .rom = rom,
     .n_hooks = 1,
+    .default_at = default_at,
+    .n_defaults = 1,
 };
 
 static int hal_send(void *ctx, const co_frame_t *f)

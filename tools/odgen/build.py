@@ -106,9 +106,16 @@ def check(dev: Device, build: dict[str, int]) -> None:
         # says (0x05040001): that setting is no deviation for it
         devs = [o for o in dev.options if o != "LSS" and
                 not (o == "SDO_NO_BLOCK" and not cfg.get("CO_SDO_BLOCK", 1))]
+        if dev.nodeid_object:
+            devs.append(f"nodeid_object 0x{dev.nodeid_object:04X}")
         if devs:
             missing.append("the personality " + ", ".join(devs) + " needs CO_PERSONALITY=1 "
                            "(this build: CO_PERSONALITY=0, CiA 301 behaviour only)")
+    if not cfg.get("CO_PDO_RTR", 1):
+        rtr = [f"0x{o.index:04X}" for o in dev.objects if 0x1800 <= o.index <= 0x19FF
+               for s in o.subs if s.sub == 2 and s.default in (252, 253)]
+        if rtr:
+            need("CO_PDO_RTR", "TPDO transmission type 252/253 (" + ", ".join(rtr) + ")")
     if not cfg.get("CO_LSS", 1) and "LSS" in dev.options:
         need("CO_LSS", "LSS ([device] lss)")
     if missing:

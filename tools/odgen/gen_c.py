@@ -13,7 +13,7 @@ import struct
 from dataclasses import dataclass, field
 
 import personality
-from model import F_W, FLAG_NAMES, DescError, Device, Sub, encoded_default
+from model import F_NODEID, F_W, FLAG_NAMES, DescError, Device, Sub, encoded_default
 
 REGIONS = (("comm", "communication parameters (stored)"),
            ("app", "application values (stored)"),
@@ -178,8 +178,17 @@ def generate(dev: Device, toml_name: str, warn=None) -> tuple[str, str]:
     cn = dev.cname
     up = cn.upper()
     fields = build_fields(dev)
-    ram = [f for r, _ in REGIONS for f in sort_region(fields, r)]
-    rom = sort_region(fields, "rom")
+    pdos_h = pdo_table(dev, warn)
+    blocks = pdo_blocks(dev, fields, pdos_h)
+    in_block = {f.name for b in blocks for f in b}
+    ram = [f for b in blocks for f in b] + \
+        [f for r, _ in REGIONS for f in sort_region(fields, r) if f.name not in in_block]
+    share, same = shared_tables(dev, ram)
+    # the const values only the tables of sharing PDOs name are left out: a
+    # shared table names the first PDO's
+    rom_used = {s.field for o in dev.objects
+                if share.get(o.index, (o.index,))[0] == o.index for s in o.subs if s.rom}
+    rom = [f for f in sort_region(fields, "rom") if f.name in rom_used]
     if not ram:
         ram = [Field(name="unused", ctype="uint8_t", dims=[], align=1, size=1, region="none")]
     # SDO downloads of strings and DOMAINs held in RAM arrive in parts: they
@@ -197,7 +206,6 @@ def generate(dev: Device, toml_name: str, warn=None) -> tuple[str, str]:
                         "(use hookio for large values)")
     if layout(rom) > 0xFFFF:
         raise DescError(f"ROM image is {layout(rom)} bytes; at most 65535")
-    pdos_h = pdo_table(dev, warn)
     n_pdo_h = len(pdos_h[0]) + len(pdos_h[1])
     hooked = [o for o in dev.objects if o.hook]
     n_hooks = len(hooked)
@@ -239,7 +247,7 @@ def generate(dev: Device, toml_name: str, warn=None) -> tuple[str, str]:
           f"typedef struct {cn}_node {{",
           "    co_node_t node;",
           f"    {cn}_ram_t ram;",
-          f"    co_od_hook_t hooks[{max(n_hooks, 1)}U];",
+          *([f"    co_od_hook_t hooks[{n_hooks}U];"] if n_hooks else []),
           f"    co_pdo_t pdo[{max(n_pdo_h, 1)}U];",
           f"    co_pdo_slot_t pdo_rx[{max(n_pdo_h, 1)}U];",
           f"}} {cn}_node_t;", "",
@@ -268,47 +276,80 @@ def generate(dev: Device, toml_name: str, warn=None) -> tuple[str, str]:
         c += ["};", ""]
     # sparse defaults: only the values that are not zero, largest alignment
     # first so that they follow each other without padding, and where each
-    # goes in the RAM image (co_dev_t.default_at); the core zeroes the rest
-    inits = [(f, field_init(f)) for f in ram if f.subs]
-    inits = sorted([(f, v) for f, v in inits if v is not None], key=lambda fv: -fv[0].align)
+    # goes in the RAM image (co_dev_t.default_at); the core zeroes the rest.
+    # A $NODEID value is a run of its own, marked for the core to add the
+    # node-ID (or, for a PDO or EMCY COB-ID, the COB-ID base of LSS) to it:
+    # the core never walks the dictionary to find them.
+    nodeid = [s for f in ram for s in f.subs
+              if (s.flags & F_NODEID) and not s.rom and not s.hookio and s.fixed in (1, 2, 4)]
+    nodeid_fields = {s.field for s in nodeid if s.elem < 0}
+    items = []   # (member name, declaration, value, align, field or None, nodeid sub or None)
+    for f in ram:
+        if f.subs and f.name not in nodeid_fields:
+            v = field_init(f)
+            if v is not None:
+                items.append((f.name, f.decl(), v, f.align, f, None))
+    for s in nodeid:
+        ctype, dims, align = scalar_ctype(s)
+        name = f"id{s.index:04X}_{s.sub:02X}"
+        items.append((name, f"{ctype} {name}", c_value(s) or "0U", align, None, s))
+    items.sort(key=lambda it: -it[3])
     n_default_at = 0
     c += [f"#define F(field) ((uint16_t)offsetof({cn}_ram_t, field))", ""]
-    if inits:
-        c += ["/* Defaults of the RAM image that are not zero ($NODEID defaults hold the",
-              " * offset; the core adds the node-ID when it restores them), one after the",
-              " * other without padding, and where each goes. */",
+    if items:
+        c += ["/* Defaults of the RAM image that are not zero and the $NODEID ones (they",
+              " * hold the offset; the core adds the node-ID when it restores them), one",
+              " * after the other without padding, and where each goes. */",
               f"typedef struct {cn}_defaults {{"]
-        c += [f"    {f.decl()};" for f, _ in inits]
+        c += [f"    {decl};" for _, decl, _, _, _, _ in items]
         c += [f"}} {cn}_defaults_t;", f"static const {cn}_defaults_t defaults = {{"]
-        c += [f"    .{f.name} = {v}," for f, v in inits]
+        c += [f"    .{name} = {v}," for name, _, v, _, _, _ in items]
         c += ["};"]
-        last = inits[-1][0].name
-        size = " + ".join(f"sizeof defaults.{f.name}" for f, _ in inits)
+        last = items[-1][0]
+        size = " + ".join(f"sizeof defaults.{it[0]}" for it in items)
         c += [f"typedef char {cn}_defaults_packed[(offsetof({cn}_defaults_t, {last}) + "
               f"sizeof defaults.{last} == {size}) ? 1 : -1];",
               "static const co_od_default_t default_at[] = {"]
         # values next to each other in the RAM image (declared one after the
         # other in one region, the second of no larger alignment: no padding
-        # between them on any ABI) go in one run, one default_at entry
+        # between them on any ABI) go in one run, one default_at entry, of at
+        # most CO_OD_DEF_SIZE bytes
         order = [f.name for region, _ in REGIONS for f in ram if f.region == region]
         runs = []
-        for f, _ in inits:
-            if runs and order.index(f.name) == order.index(runs[-1][-1].name) + 1 and \
-                    f.align <= runs[-1][-1].align and f.region == runs[-1][-1].region:
-                runs[-1].append(f)
+        for it in items:
+            f = it[4]
+            prev = runs[-1][-1][4] if runs else None
+            if f is not None and prev is not None and \
+                    order.index(f.name) == order.index(prev.name) + 1 and \
+                    f.align <= prev.align and f.region == prev.region and \
+                    sum(x[4].size for x in runs[-1]) + f.size <= DEF_SIZE_MAX:
+                runs[-1].append(it)
             else:
-                runs.append([f])
-        n_default_at = len(runs)
+                runs.append([it])
         for r in runs:
-            size = " + ".join(f"sizeof defaults.{f.name}" for f in r)
-            c.append(f"    {{F({r[0].name}), (uint16_t)({size})}},")
+            f, s = r[0][4], r[0][5]
+            if s is not None:
+                kind = "CO_OD_DEF_NODEID" + (" | CO_OD_DEF_COB" if is_pdo_emcy_cob(s) else "")
+                c.append(f"    {{{off_expr(s)}, (uint16_t)(sizeof defaults.{r[0][0]} | {kind})}},")
+                n_default_at += 1
+                continue
+            if f.size > DEF_SIZE_MAX:
+                # one value longer than a run: in pieces
+                for at in range(0, f.size, DEF_SIZE_MAX):
+                    n = min(DEF_SIZE_MAX, f.size - at)
+                    c.append(f"    {{(uint16_t)(F({f.name}) + {at}U), {n}U}},")
+                    n_default_at += 1
+                continue
+            size = " + ".join(f"sizeof defaults.{it[0]}" for it in r)
+            c.append(f"    {{F({f.name}), (uint16_t)({size})}},")
+            n_default_at += 1
         c += ["};"]
         merged = [r for r in runs if len(r) > 1]
         if merged:
             c += ["/* each run is one stretch of the RAM image */",
                   f"typedef char {cn}_default_runs[(" + " && ".join(
-                      f"(F({r[-1].name}) + sizeof defaults.{r[-1].name} == F({r[0].name}) + " +
-                      " + ".join(f"sizeof defaults.{f.name}" for f in r) + ")" for r in merged) +
+                      f"(F({r[-1][0]}) + sizeof defaults.{r[-1][0]} == F({r[0][0]}) + " +
+                      " + ".join(f"sizeof defaults.{it[0]}" for it in r) + ")" for r in merged) +
                   ") ? 1 : -1];"]
         c += [""]
     else:
@@ -325,7 +366,12 @@ def generate(dev: Device, toml_name: str, warn=None) -> tuple[str, str]:
         c.append(f"#define R(field) ((uint16_t)offsetof({cn}_rom_t, field))")
     c.append("")
     for o in dev.objects:
-        c.append(f"/* 0x{o.index:04X} {comment(o.name)} ({o.code}) */")
+        sh = share.get(o.index)
+        if sh is not None and sh[0] != o.index:
+            continue    # the table of the first PDO of its shape
+        c.append(f"/* 0x{o.index:04X} {comment(o.name)} ({o.code})" +
+                 (f", its RAM offsets from F({sh[1]}): the table of every PDO of this shape"
+                  if sh is not None else "") + " */")
         c.append(f"static const co_od_sub_t s{o.index:04X}[] = {{")
         for s in o.subs:
             if s.hookio:
@@ -334,16 +380,36 @@ def generate(dev: Device, toml_name: str, warn=None) -> tuple[str, str]:
                 m = "R" if s.rom else "F"
                 off = f"{m}({s.field})" if s.elem <= 0 else \
                     f"(uint16_t)({m}({s.field}) + {s.elem * s.size}U)"
+                if sh is not None and not s.rom:
+                    off = f"(uint16_t)({off} - F({sh[1]}))"
             lim = f"{s.limit_slot}U" if s.limit_slot >= 0 else "0U"
-            c.append(f"    CO_OD_SUB(0x{s.sub:02X}U, (uint8_t)CO_{s.type}, {flags_expr(s.flags)}, "
+            c.append(f"    CO_OD_SUB(0x{s.sub:02X}U, (uint8_t)CO_{s.type}, "
+                     f"{flags_expr(s.flags)}, "
                      f"{s.size}U, {off}, {lim}), /* {comment(s.name)} */")
         c.append("};")
     c += ["", "static const co_od_entry_t od[] = {"]
     for o in dev.objects:
         hook = f"{o.hook_slot + 1}U" if o.hook else "0U"
-        c.append(f"    {{0x{o.index:04X}U, {len(o.subs)}U, {hook}, (uint8_t)CO_OBJ_{o.code}, "
-                 f"s{o.index:04X}}},")
+        sh = share.get(o.index)
+        if sh is None:
+            c.append(f"    CO_OD_ENTRY(0x{o.index:04X}U, {len(o.subs)}U, {hook}, "
+                     f"(uint8_t)CO_OBJ_{o.code}, s{o.index:04X}),")
+        else:
+            c.append(f"    CO_OD_ENTRY_AT(0x{o.index:04X}U, {len(o.subs)}U, {hook}, "
+                     f"(uint8_t)CO_OBJ_{o.code}, s{sh[0]:04X}, F({sh[1]})),")
     c += ["};", ""]
+    conds = []
+    for o, lead in same:
+        # every object that uses another's table has its values where it says
+        for s, ls in zip(o.subs, lead.subs):
+            # (one value or array of its own: the distances are its own)
+            if s.field and not s.rom and not s.hookio and \
+                    len({x.field for x in o.subs if x.field and not x.rom}) > 1:
+                conds.append(f"({off_expr(s)} - F({share[o.index][1]}) == "
+                             f"{off_expr(ls)} - F({share[lead.index][1]}))")
+    if conds:
+        c += ["/* the objects that share a table have the same layout */",
+              f"typedef char {cn}_shapes[(" + " &&\n    ".join(conds) + ") ? 1 : -1];", ""]
 
     pdos = pdos_h
     n_pdo = len(pdos[0]) + len(pdos[1])
@@ -381,7 +447,7 @@ def generate(dev: Device, toml_name: str, warn=None) -> tuple[str, str]:
           f"    .ram_size = (uint16_t)sizeof({cn}_ram_t),",
           f"    .comm_end = {first(('app', 'none'))},",
           f"    .app_end = {first(('none',))},",
-          f"    .defaults = {'&defaults' if inits else 'NULL'},",
+          f"    .defaults = {'&defaults' if items else 'NULL'},",
           f"    .rom = {'(const uint8_t *)&rom' if rom else 'NULL'},",
           f"    .limits = {'limits' if dev.limits else 'NULL'},",
           f"    .n_hooks = {up}_N_HOOKS,",
@@ -403,11 +469,104 @@ def generate(dev: Device, toml_name: str, warn=None) -> tuple[str, str]:
           "    (void)memset(cfg, 0, sizeof *cfg);",
           f"    cfg->dev = &{cn}_dev;",
           "    cfg->ram = &n->ram;",
-          "    cfg->hooks = n->hooks;",
+          f"    cfg->hooks = {'n->hooks' if n_hooks else 'NULL'}; /* {n_hooks} hook slots */",
           "    cfg->pdo = n->pdo;",
           "    cfg->pdo_rx = n->pdo_rx;",
           "}", ""]
     return "\n".join(h), "\n".join(c)
+
+
+def owners_of(dev: Device) -> dict[str, set[int]]:
+    """The objects whose sub-entries name each RAM/ROM field."""
+    owners: dict[str, set[int]] = {}
+    for o in dev.objects:
+        for s in o.subs:
+            if s.field:
+                owners.setdefault(s.field, set()).add(o.index)
+    return owners
+
+
+def pdo_blocks(dev: Device, fields: list[Field], pdos) -> list[list[Field]]:
+    """The RAM values of each PDO (both its objects) as one block at the start
+    of the communication region, in an order that gives PDOs of the same
+    shape the same layout and, without padding for CiA 301's parameters, the
+    mapping parameters the same layout in RPDOs and TPDOs: the 4-byte values
+    (COB-ID), the mapping entries, the number of entries, then the rest by
+    growing alignment (transmission type, SYNC start value, inhibit time,
+    event timer)."""
+    by_name = {f.name: f for f in fields}
+    owners = owners_of(dev)
+    blocks = []
+    for comm, mapping in pdos[0] + pdos[1]:
+        objs = {comm.index, mapping.index}
+        names: list[str] = []
+        for o in (comm, mapping):
+            for s in o.subs:
+                if s.field and not s.rom and s.field not in names:
+                    names.append(s.field)
+        block = [by_name[n] for n in names]
+        if not block or any(owners[n] - objs for n in names) or \
+                any(f.region != "comm" for f in block):
+            continue
+        entries = [f for f in block if f.subs[0].index == mapping.index and f.dims]
+        count = [f for f in block if f.subs[0].index == mapping.index and not f.dims]
+        big = [f for f in block if f not in entries + count and f.align >= 4]
+        rest = [f for f in block if f not in entries + count + big]
+        big.sort(key=lambda f: (-f.align, f.subs[0].index, f.subs[0].sub))
+        rest.sort(key=lambda f: (f.align, f.subs[0].index, f.subs[0].sub))
+        blocks.append(big + entries + count + rest)
+    return blocks
+
+
+def offsets(ram: list[Field]) -> dict[str, int]:
+    """Where each field of the RAM image is with natural alignment (what a
+    C compiler does for 1-, 2- and 4-byte values; the generated source checks
+    every offset a shared table relies on)."""
+    out, off = {}, 0
+    for f in ram:
+        off = (off + f.align - 1) // f.align * f.align
+        out[f.name] = off
+        off += f.size
+    return out
+
+
+def shared_tables(dev: Device, ram: list[Field]):
+    """Objects of the same shape (the same sub-entries, types, access, const
+    values, and the same distances between their RAM values) share the table
+    of the first of them: its RAM offsets count from the object's first value
+    (co_od_entry_t.base). Returns (share, same): share {object index: (index
+    of the object whose table it uses, name of the object's first RAM
+    value)} for every object of a shape that more than one has; same
+    [(object, object whose table it uses)] for the compile-time checks."""
+    owners = owners_of(dev)
+    at = offsets(ram)
+    by_name = {f.name: f for f in ram}
+    share, same = {}, []
+    first: dict = {}
+    for o in dev.objects:
+        names = {s.field for s in o.subs if s.field and not s.rom and not s.hookio}
+        if not names or any(owners[n] != {o.index} or n not in by_name for n in names):
+            continue
+        if len(names) > 1 and any(by_name[n].align > 4 for n in names):
+            continue   # an 8-byte value's alignment differs between ABIs
+        base = min(names, key=lambda n: at[n])
+
+        def rel(s):
+            return at[s.field] + max(s.elem, 0) * s.size - at[base]
+        sig = (o.code, tuple((s.sub, s.type, s.flags, s.size, s.limit_slot, s.rom, s.hookio,
+                              repr(s.default) if s.rom else
+                              (None if s.hookio or not s.field else rel(s)))
+                             for s in o.subs))
+        if sig not in first:
+            first[sig] = o
+            continue
+        lead = first[sig]
+        lead_base = min((s.field for s in lead.subs if s.field and not s.rom and not s.hookio),
+                        key=lambda n: at[n])
+        share[lead.index] = (lead.index, lead_base)
+        share[o.index] = (lead.index, base)
+        same.append((o, lead))
+    return share, same
 
 
 def mask_table(dev: Device, n_tpdo: int) -> list:
@@ -434,6 +593,16 @@ def mask_table(dev: Device, n_tpdo: int) -> list:
                             "of two UNSIGNED32)")
         out.append(s1)
     return out
+
+
+DEF_SIZE_MAX = 0x3FFF   # CO_OD_DEF_SIZE: the bytes of one default run
+
+
+def is_pdo_emcy_cob(s) -> bool:
+    """The COB-ID of a PDO (communication parameter sub 1) or of the EMCY: its
+    $NODEID default uses the node's COB-ID base (CO_LSS_COBS_KEEP)."""
+    pdo = 0x1400 <= s.index <= 0x15FF or 0x1800 <= s.index <= 0x19FF
+    return (pdo and s.sub == 1) or s.index == 0x1014
 
 
 def off_expr(s) -> str:

@@ -68,6 +68,15 @@
 #define CO_PDO_FAST_MAX 4U
 #endif
 
+#ifndef CO_PDO_RTR
+/** Remote requests of TPDOs (CiA 301: COB-ID bit 30 clear) and the
+ *  RTR-only transmission types 252 and 253. Left out: TPDOs answer no
+ *  remote request whatever bit 30 says, types 252 and 253 answer 0x06090030
+ *  like 241..251, and the generator refuses a device whose TPDO defaults
+ *  to one of them (CANopenNode v4 has no RTR either). */
+#define CO_PDO_RTR 1
+#endif
+
 /* ---- services a device may not need (1: in, 0: left out) */
 
 #ifndef CO_SDO_BLOCK

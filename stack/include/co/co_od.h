@@ -82,19 +82,45 @@ typedef struct co_od_sub {
 #define CO_OD_SUB(sub, type, flags, size, off, limit) {(sub), (type), (flags), (size), (off)}
 #endif
 
-/** Where one value of a sparse default image goes (co_dev_t.default_at). */
+/** Where one run of the default image goes (co_dev_t.default_at). */
 typedef struct co_od_default {
     uint16_t off;  /**< offset into the RAM image */
-    uint16_t size; /**< bytes */
+    uint16_t size; /**< bytes (CO_OD_DEF_SIZE), and the CO_OD_DEF_* marks */
 } co_od_default_t;
 
+#define CO_OD_DEF_SIZE   0x3FFFU /**< co_od_default_t.size: the run's bytes */
+/** The run is one $NODEID-relative value of 1, 2 or 4 bytes (CO_SUB_NODEID):
+ *  the node-ID is added to it when it is restored. */
+#define CO_OD_DEF_NODEID 0x8000U
+/** With CO_OD_DEF_NODEID: a PDO or EMCY COB-ID, whose base is the node's
+ *  COB-ID base (it differs from the node-ID only with LSS). */
+#define CO_OD_DEF_COB    0x4000U
+
+/** One object (12 bytes on a 32-bit CPU). Objects of the same shape (the
+ *  PDOs' parameters) share one table of sub-entries: the RAM offsets in it
+ *  count from @ref base, where each object's values start (0 for a table
+ *  of its own, whose offsets are the values' own). */
 typedef struct co_od_entry {
+    const co_od_sub_t *subs; /**< sorted by sub-index */
     uint16_t index;
+    uint16_t base;           /**< added to the RAM offset of every sub-entry */
     uint8_t  nsubs;          /**< number of sub-entries in @ref subs */
     uint8_t  hook;           /**< hook slot + 1, or 0 for no hook */
     uint8_t  code;           /**< CO_OBJ_* */
-    const co_od_sub_t *subs; /**< sorted by sub-index */
 } co_od_entry_t;
+
+/** Initialisers of one co_od_entry_t (the generated dictionaries use them):
+ *  a table of its own, and a shared one whose RAM offsets count from @p base. */
+#define CO_OD_ENTRY(index, nsubs, hook, code, subs) {(subs), (index), 0U, (nsubs), (hook), (code)}
+#define CO_OD_ENTRY_AT(index, nsubs, hook, code, subs, base) \
+    {(subs), (index), (base), (nsubs), (hook), (code)}
+
+/** Offset of the value of @p s (an entry of @p e) in the RAM image, or in
+ *  the ROM image with CO_SUB_ROM. */
+static inline uint16_t co_od_off(const co_od_entry_t *e, const co_od_sub_t *s)
+{
+    return ((s->flags & CO_SUB_ROM) != 0U) ? s->off : (uint16_t)(e->base + s->off);
+}
 
 /** Value limits. Compared as signed or unsigned according to the type. */
 typedef struct co_od_limit {

@@ -320,7 +320,8 @@ static inline co_od_hook_t *hook_of(const co_node_t *node, const co_od_entry_t *
     return &node->hooks[e->hook - 1U];
 }
 
-static void io_init(co_od_io_t *io, co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s)
+CO_NOINLINE static void io_init(co_od_io_t *io, co_node_t *node, const co_od_entry_t *e,
+                                const co_od_sub_t *s)
 {
     (void)memset(io, 0, sizeof *io);
     io->node = node;
@@ -355,36 +356,6 @@ CO_NOINLINE static co_err_t read_hook(co_node_t *node, const co_od_entry_t *e,
         c->last = io.last;
     }
     return err;
-}
-
-/* The write hook of a stored value (or of a HOOKIO value written whole):
- * the complete new value, before it is committed; an error vetoes it.
- * CO_SUB_HOOKIO without a hook to take it: refused. */
-CO_NOINLINE static co_err_t write_hook(co_node_t *node, const co_od_entry_t *e,
-                                       const co_od_sub_t *s, const co_od_chunk_t *c)
-{
-    co_od_hook_t *h = hook_of(node, e);
-    co_od_io_t io;
-
-    if ((h == NULL) || (h->write == NULL)) {
-        return ((s->flags & CO_SUB_HOOKIO) != 0U) ? CO_ERR_NO_ACCESS : CO_OK;
-    }
-    io_init(&io, node, e, s);
-    io.offset = c->offset;
-    io.buf = c->buf;
-    io.len = c->len;
-    io.total = c->total;
-    io.last = c->last;
-    return h->write(h->ctx, &io);
-}
-
-/* The write hook of a complete value (@p len bytes at @p data). */
-static co_err_t write_hook_whole(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
-                                 const uint8_t *data, uint32_t len)
-{
-    co_od_chunk_t c = {(uint8_t *)(uintptr_t)data, 0U, 0U, len, len, true};
-
-    return write_hook(node, e, s, &c);
 }
 
 co_err_t co_od_read_part(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
@@ -516,6 +487,7 @@ void co_od_commit(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
 CO_HOT co_err_t write_value(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
                             const uint8_t *data, uint32_t len)
 {
+    co_od_hook_t *h;
     const co_svc_hook_t *sh;
     co_err_t err;
     uint8_t fixed = co_type_len(s->type);
@@ -544,8 +516,15 @@ CO_HOT co_err_t write_value(co_node_t *node, const co_od_entry_t *e, const co_od
             return err;
         }
     }
-    if (e->hook != 0U) {
-        err = write_hook_whole(node, e, s, data, len);
+    h = (e->hook != 0U) ? hook_of(node, e) : NULL;
+    if ((h != NULL) && (h->write != NULL)) {
+        co_od_io_t io;
+        io_init(&io, node, e, s);
+        io.buf = (uint8_t *)(uintptr_t)data;
+        io.len = len;
+        io.total = len;
+        io.last = true;
+        err = h->write(h->ctx, &io);
         if (err != CO_OK) {
             return err;
         }
@@ -600,11 +579,21 @@ co_err_t co_od_write_part(co_node_t *node, const co_od_entry_t *e, const co_od_s
                           uint32_t offset, const uint8_t *data, uint32_t len, uint32_t total,
                           bool last)
 {
+    co_od_hook_t *h = hook_of(node, e);
+    co_od_io_t io;
     uint8_t *v = (uint8_t *)co_od_loc(node, e, s);
 
     if ((s->flags & CO_SUB_HOOKIO) != 0U) {
-        co_od_chunk_t c = {(uint8_t *)(uintptr_t)data, offset, 0U, len, total, last};
-        return write_hook(node, e, s, &c); /* (without a hook: refused) */
+        if ((h == NULL) || (h->write == NULL)) {
+            return CO_ERR_NO_ACCESS;
+        }
+        io_init(&io, node, e, s);
+        io.offset = offset;
+        io.buf = (uint8_t *)(uintptr_t)data;
+        io.len = len;
+        io.total = total;
+        io.last = last;
+        return h->write(h->ctx, &io);
     }
     if ((v == NULL) || ((s->flags & CO_SUB_ROM) != 0U)) {
         return CO_ERR_NO_ACCESS;

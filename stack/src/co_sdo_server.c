@@ -151,7 +151,7 @@ static co_err_t put_chunk(co_node_t *node, const uint8_t *data, uint32_t len)
  * 0x1011) that an asynchronous HAL is still writing, once the set is
  * durable (sdo_process). The object: the transfer's, or, for an expedited
  * download (no transfer state), @p index / @p sub. */
-static void download_done(co_node_t *node, uint8_t cmd, uint16_t index, uint8_t sub)
+static void download_done(co_node_t *node, uint8_t cmd, uint16_t index, uint8_t sub, bool open)
 {
     co_sdo_srv_t *t = &node->sdo;
 
@@ -169,8 +169,8 @@ static void download_done(co_node_t *node, uint8_t cmd, uint16_t index, uint8_t 
             return;
         }
     }
-    if (t->state != (uint8_t)S_IDLE) {
-        sdo_reset(node);
+    if (open) {
+        sdo_reset(node); /* (an expedited download opened nothing) */
     }
     reply(node, cmd, index, sub, 0U);
 }
@@ -324,7 +324,7 @@ static void initiate_download(co_node_t *node, const uint8_t *d, uint16_t index,
             abort_at(node, index, sub, err);
             return;
         }
-        download_done(node, CO_SDO_B0(CO_SDO_SCS_DOWNLOAD_INITIATE), index, sub);
+        download_done(node, CO_SDO_B0(CO_SDO_SCS_DOWNLOAD_INITIATE), index, sub, false);
         return;
     }
     if (expedited_only(node)) {
@@ -422,7 +422,7 @@ static void download_segment(co_node_t *node, const uint8_t *d)
         uint8_t cmd = (uint8_t)(CO_SDO_B0(CO_SDO_SCS_DOWNLOAD_SEGMENT) | toggle);
         t->toggle ^= CO_SDO_TOGGLE;
         if (last) {
-            download_done(node, cmd, 0U, 0U);
+            download_done(node, cmd, 0U, 0U, true);
         } else {
             start(node, S_DL_SEG);
             reply(node, cmd, 0U, 0U, 0U);
@@ -581,7 +581,8 @@ static void block_download_end(co_node_t *node, const uint8_t *d)
         abort_cur(node, err);
         return;
     }
-    download_done(node, (uint8_t)(CO_SDO_B0(CO_SDO_SCS_BLOCK_DOWNLOAD) | CO_SDO_BLK_END), 0U, 0U);
+    download_done(node, (uint8_t)(CO_SDO_B0(CO_SDO_SCS_BLOCK_DOWNLOAD) | CO_SDO_BLK_END), 0U, 0U,
+                  true);
 }
 
 /* ------------------------------------------------------------ block upload */

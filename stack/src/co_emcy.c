@@ -306,8 +306,8 @@ static co_err_t emcy_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
 }
 
 static const co_svc_hook_t emcy_hooks[] = {
-    {0x1003U, 0x1003U, CO_SVC_READ | CO_SVC_CHECK | CO_SVC_WRITTEN, emcy_obj, CO_ROW_EMCY},
-    {0x1014U, 0x1015U, CO_SVC_CHECK | CO_SVC_SELF, emcy_obj, CO_ROW_EMCY},
+    {0x1003U, 0x1003U, CO_SVC_READ | CO_SVC_CHECK | CO_SVC_WRITTEN, CO_ROW_EMCY, emcy_obj},
+    {0x1014U, 0x1015U, CO_SVC_CHECK | CO_SVC_SELF, CO_ROW_EMCY, emcy_obj},
 };
 
 const co_service_t co_svc_emcy = {

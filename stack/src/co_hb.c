@@ -376,8 +376,6 @@ static co_err_t errctl_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
          * heartbeat, with no deadline until then */
         c->hbc_state[sub - 1U] = (uint8_t)HBC_UNUSED;
         consumers_changed(node);
-    } else if (e->index == 0x1017U) {
-        producer_changed(node);
     } else if ((CO_NODE_GUARDING != 0) && (e->index != 0x1016U)) {
         /* 0x100C / 0x100D: life guarding is re-armed with the new life time
          * by the next guarding request. A lost state is kept: that request
@@ -393,11 +391,26 @@ static co_err_t errctl_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
     return CO_OK;
 }
 
+/* 0x1017 written: nothing to check before (a hook of its own, so that the
+ * engine asks only this after the write). */
+static co_err_t hb_prod_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
+                            const co_od_sub_t *s, const uint8_t *data, uint32_t len)
+{
+    (void)op;
+    (void)e;
+    (void)s;
+    (void)data;
+    (void)len;
+    producer_changed(node);
+    return CO_OK;
+}
+
 static const co_svc_hook_t errctl_hooks[] = {
 #if CO_NODE_GUARDING
-    {0x100CU, 0x100DU, CO_SVC_CHECK | CO_SVC_WRITTEN | CO_SVC_SELF, errctl_obj, CO_ROW_ERRCTL},
+    {0x100CU, 0x100DU, CO_SVC_CHECK | CO_SVC_WRITTEN | CO_SVC_SELF, CO_ROW_ERRCTL, errctl_obj},
 #endif
-    {0x1016U, 0x1017U, CO_SVC_CHECK | CO_SVC_WRITTEN | CO_SVC_SELF, errctl_obj, CO_ROW_ERRCTL},
+    {0x1016U, 0x1016U, CO_SVC_CHECK | CO_SVC_WRITTEN | CO_SVC_SELF, CO_ROW_ERRCTL, errctl_obj},
+    {0x1017U, 0x1017U, CO_SVC_WRITTEN | CO_SVC_SELF, CO_ROW_ERRCTL, hb_prod_obj},
 };
 
 const co_service_t co_svc_errctl = {

@@ -66,7 +66,7 @@ static co_err_t errbeh_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
 }
 
 static const co_svc_hook_t nmt_hooks[] = {
-    {0x1029U, 0x1029U, CO_SVC_CHECK, errbeh_obj, CO_ROW_NMT},
+    {0x1029U, 0x1029U, CO_SVC_CHECK, CO_ROW_NMT, errbeh_obj},
 };
 
 const co_service_t co_svc_nmt = {

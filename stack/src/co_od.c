@@ -6,21 +6,36 @@
 #include "co/co_endian.h"
 #include "co_priv.h"
 
-/* Binary search over the entries sorted by index: the range halves
- * without a branch on the comparison (a conditional move), and the one
- * entry left is compared at the end. */
-static const co_od_entry_t *find(const co_od_entry_t *od, uint32_t count, uint16_t index)
+/* The largest power of two not above @p n (> 0). */
+static inline uint32_t pow2_floor(uint32_t n)
+{
+#if defined(__GNUC__)
+    return (uint32_t)1U << (31U - (uint32_t)__builtin_clz(n));
+#else
+    uint32_t p = 1U;
+    while ((p << 1U) <= n) {
+        p <<= 1U;
+    }
+    return p;
+#endif
+}
+
+/* Binary search over the entries sorted by index, in steps of powers of
+ * two: the first step leaves a range of a power of two entries, which each
+ * further step halves without a branch on the comparison (a conditional
+ * move); the one entry left is compared at the end. */
+CO_HOT const co_od_entry_t *find(const co_od_entry_t *od, uint32_t count, uint16_t index)
 {
     const co_od_entry_t *e = od;
-    uint32_t n = count;
+    uint32_t step;
 
-    if (n == 0U) {
+    if (count == 0U) {
         return NULL;
     }
-    while (n > 1U) {
-        uint32_t half = n >> 1U;
-        e = (e[half].index <= index) ? &e[half] : e;
-        n -= half;
+    step = pow2_floor(count);
+    e = (e[count - step].index <= index) ? &e[count - step] : e;
+    for (step >>= 1U; step != 0U; step >>= 1U) {
+        e = (e[step].index <= index) ? &e[step] : e;
     }
     return (e->index == index) ? e : NULL;
 }
@@ -43,6 +58,8 @@ const co_od_entry_t *co_od_find(const co_od_entry_t *od, uint16_t count, uint16_
 {
     return find(od, count, index);
 }
+
+/* (the other finds call co_od_find: in a build for size, the search is one function) */
 
 const co_od_sub_t *co_od_find_sub(const co_od_entry_t *e, uint8_t sub)
 {
@@ -69,8 +86,8 @@ bool co_type_is_signed(uint8_t type)
            (type == (uint8_t)CO_INTEGER56) || (type == (uint8_t)CO_INTEGER64);
 }
 
-co_err_t co_od_lookup(const co_node_t *node, uint16_t index, uint8_t sub,
-                      const co_od_entry_t **e, const co_od_sub_t **s)
+CO_HOT co_err_t lookup(const co_node_t *node, uint16_t index, uint8_t sub,
+                       const co_od_entry_t **e, const co_od_sub_t **s)
 {
     *e = find(node->dev->od, node->dev->od_count, index);
     if (*e == NULL) {
@@ -81,7 +98,13 @@ co_err_t co_od_lookup(const co_node_t *node, uint16_t index, uint8_t sub,
     return (*s == NULL) ? CO_ERR_NO_SUB : CO_OK;
 }
 
-co_err_t co_od_check_access(const co_node_t *node, const co_od_sub_t *s, bool write)
+co_err_t co_od_lookup(const co_node_t *node, uint16_t index, uint8_t sub,
+                      const co_od_entry_t **e, const co_od_sub_t **s)
+{
+    return lookup(node, index, sub, e, s);
+}
+
+static co_err_t check_access(const co_node_t *node, const co_od_sub_t *s, bool write)
 {
     if (write) {
         if (((s->flags & CO_SUB_W) == 0U) || ((s->flags & (CO_SUB_CONST | CO_SUB_ROM)) != 0U)) {
@@ -94,6 +117,21 @@ co_err_t co_od_check_access(const co_node_t *node, const co_od_sub_t *s, bool wr
         /* readable */
     }
     return CO_OK;
+}
+
+CO_HOT co_err_t lookup_for(const co_node_t *node, uint16_t index, uint8_t sub, bool write,
+                           const co_od_entry_t **e, const co_od_sub_t **s)
+{
+    co_err_t err = CO_FAST ? lookup(node, index, sub, e, s) : co_od_lookup(node, index, sub, e, s);
+
+    return (err == CO_OK) ? check_access(node, *s, write) : err;
+}
+
+/* (one function at -Os: its callers stay small) */
+CO_NOINLINE co_err_t co_od_lookup_for(const co_node_t *node, uint16_t index, uint8_t sub,
+                                      bool write, const co_od_entry_t **e, const co_od_sub_t **s)
+{
+    return lookup_for(node, index, sub, write, e, s);
 }
 
 uint32_t co_od_data_size(const co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s)
@@ -119,22 +157,44 @@ uint32_t co_od_data_size(const co_node_t *node, const co_od_entry_t *e, const co
 
 /* ------------------------------------------------------ service hooks */
 
+/* The largest power of two not above CO_SVC_HOOKS_MAX (at most 32). */
+#define SVC_POW2 ((CO_SVC_HOOKS_MAX >= 32U) ? 32U : (CO_SVC_HOOKS_MAX >= 16U) ? 16U : \
+                  (CO_SVC_HOOKS_MAX >= 8U) ? 8U : (CO_SVC_HOOKS_MAX >= 4U) ? 4U : \
+                  (CO_SVC_HOOKS_MAX >= 2U) ? 2U : 1U)
+
+/* One step of svc_hook's search: @p k slots on if that one starts at or
+ * before @p index (k < SVC_POW2: a step of the search; no step for the
+ * others). */
+CO_INLINE const co_svc_hook_t *const *svc_step(const co_svc_hook_t *const *at, uint32_t k,
+                                               uint16_t index)
+{
+    if (k < SVC_POW2) {
+        at = (at[k]->first <= index) ? &at[k] : at;
+    }
+    return at;
+}
+
 /* The service hook whose range holds @p index, or NULL: the last
  * registered range that starts at or before it (the ranges are sorted and do
- * not overlap; a branch-free binary search), if it reaches that far. */
-static const co_svc_hook_t *svc_hook(const co_node_t *node, uint16_t index)
+ * not overlap), if it reaches that far. A branch-free binary search over all
+ * CO_SVC_HOOKS_MAX slots, a constant number of steps (co_od_register
+ * repeats the last range in the unused slots). */
+CO_HOT const co_svc_hook_t *svc_hook(const co_node_t *node, uint16_t index)
 {
     const co_svc_hook_t *const *at = node->svc_hooks;
-    uint32_t n = node->n_svc_hooks;
 
-    if ((n == 0U) || (index < at[0]->first)) {
+    if ((node->n_svc_hooks == 0U) || (index < at[0]->first)) {
         return NULL;
     }
-    while (n > 1U) {
-        uint32_t half = n >> 1U;
-        at = (at[half]->first <= index) ? &at[half] : at;
-        n -= half;
+    if (CO_SVC_HOOKS_MAX > SVC_POW2) {
+        at = svc_step(at, CO_SVC_HOOKS_MAX - SVC_POW2, index);
     }
+    /* the steps SVC_POW2 / 2 .. 1, written out: the compiler leaves no loop */
+    at = svc_step(at, 16U, index);
+    at = svc_step(at, 8U, index);
+    at = svc_step(at, 4U, index);
+    at = svc_step(at, 2U, index);
+    at = svc_step(at, 1U, index);
     return (index <= (*at)->last) ? *at : NULL;
 }
 
@@ -164,6 +224,9 @@ co_result_t co_od_register(co_node_t *node, const co_svc_hook_t *h)
         at--;
     }
     node->svc_hooks[at] = h;
+    for (at = node->n_svc_hooks; at < CO_SVC_HOOKS_MAX; at++) {
+        node->svc_hooks[at] = node->svc_hooks[at - 1U]; /* (for svc_hook's search) */
+    }
     if ((h->ops & CO_SVC_READ) != 0U) {
         /* the span [svc_rd_lo, svc_rd_lo + svc_rd_span] grows to take it in */
         uint16_t hi = (uint16_t)(node->svc_rd_lo + node->svc_rd_span);
@@ -219,7 +282,7 @@ static inline void svc_written(co_node_t *node, const co_svc_hook_t *h, const co
 
 void *co_od_ram_of(co_node_t *node, uint16_t index, uint8_t sub, uint8_t type)
 {
-    const co_od_entry_t *e = find(node->dev->od, node->dev->od_count, index);
+    const co_od_entry_t *e = co_od_find(node->dev->od, node->dev->od_count, index);
     const co_od_sub_t *s = (e != NULL) ? find_sub(e, sub) : NULL;
 
     if ((s == NULL) || ((type != 0U) && (s->type != type)) ||
@@ -231,7 +294,7 @@ void *co_od_ram_of(co_node_t *node, uint16_t index, uint8_t sub, uint8_t type)
 
 uint8_t co_od_array_len(const co_node_t *node, uint16_t index, uint8_t type, uint8_t max)
 {
-    const co_od_entry_t *e = find(node->dev->od, node->dev->od_count, index);
+    const co_od_entry_t *e = co_od_find(node->dev->od, node->dev->od_count, index);
     uint8_t n = 0U;
 
     if (e != NULL) {
@@ -257,7 +320,8 @@ static inline co_od_hook_t *hook_of(const co_node_t *node, const co_od_entry_t *
     return &node->hooks[e->hook - 1U];
 }
 
-static void io_init(co_od_io_t *io, co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s)
+CO_NOINLINE static void io_init(co_od_io_t *io, co_node_t *node, const co_od_entry_t *e,
+                                const co_od_sub_t *s)
 {
     (void)memset(io, 0, sizeof *io);
     io->node = node;
@@ -399,58 +463,6 @@ static co_err_t check_limits(const co_node_t *node, const co_od_sub_t *s, const 
     return CO_OK;
 }
 
-co_err_t co_od_write_value(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
-                           const uint8_t *data, uint32_t len)
-{
-    co_od_hook_t *h = hook_of(node, e);
-    const co_svc_hook_t *sh;
-    co_err_t err;
-    uint8_t fixed = co_type_len(s->type);
-
-    if (fixed != 0U) {
-        if (len != fixed) {
-            return CO_ERR_TYPE_MISMATCH;
-        }
-    } else if (len > s->size) {
-        if ((s->flags & CO_SUB_HOOKIO) == 0U) {
-            return CO_ERR_TYPE_TOO_LONG;
-        }
-    } else {
-        /* fits */
-    }
-    err = check_limits(node, s, data, len);
-    sh = svc_hook(node, e->index);
-    if ((err == CO_OK) && (sh != NULL) && ((sh->ops & CO_SVC_CHECK) != 0U)) {
-        err = sh->fn(node, CO_SVC_CHECK, e, s, data, len);
-    }
-    if (err != CO_OK) {
-        return err;
-    }
-    if ((h != NULL) && (h->write != NULL)) {
-        co_od_io_t io;
-        io_init(&io, node, e, s);
-        io.buf = (uint8_t *)(uintptr_t)data;
-        io.len = len;
-        io.total = len;
-        io.last = true;
-        err = h->write(h->ctx, &io);
-        if (err != CO_OK) {
-            return err;
-        }
-    } else if ((s->flags & CO_SUB_HOOKIO) != 0U) {
-        return CO_ERR_NO_ACCESS; /* no stored value, no hook to take it */
-    } else {
-        /* plain stored value */
-    }
-    if ((sh != NULL) && ((sh->ops & CO_SVC_COMMIT) != 0U)) {
-        touch_owner(node, sh);
-        return sh->fn(node, CO_SVC_COMMIT, e, s, data, len); /* the service's commit */
-    }
-    co_od_commit(node, e, s, data, len);
-    svc_written(node, sh, e, s);
-    return CO_OK;
-}
-
 void co_od_commit(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
                   const uint8_t *data, uint32_t len)
 {
@@ -470,6 +482,97 @@ void co_od_commit(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
             }
         }
     }
+}
+
+CO_HOT co_err_t write_value(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
+                            const uint8_t *data, uint32_t len)
+{
+    co_od_hook_t *h;
+    const co_svc_hook_t *sh;
+    co_err_t err;
+    uint8_t fixed = co_type_len(s->type);
+    uint8_t ops;
+
+    if (fixed != 0U) {
+        if (len != fixed) {
+            return CO_ERR_TYPE_MISMATCH;
+        }
+    } else if (len > s->size) {
+        if ((s->flags & CO_SUB_HOOKIO) == 0U) {
+            return CO_ERR_TYPE_TOO_LONG;
+        }
+    } else {
+        /* fits */
+    }
+    err = check_limits(node, s, data, len);
+    if (err != CO_OK) {
+        return err;
+    }
+    sh = svc_hook(node, e->index);
+    ops = (sh != NULL) ? sh->ops : 0U;
+    if ((ops & CO_SVC_CHECK) != 0U) {
+        err = sh->fn(node, CO_SVC_CHECK, e, s, data, len);
+        if (err != CO_OK) {
+            return err;
+        }
+    }
+    h = (e->hook != 0U) ? hook_of(node, e) : NULL;
+    if ((h != NULL) && (h->write != NULL)) {
+        co_od_io_t io;
+        io_init(&io, node, e, s);
+        io.buf = (uint8_t *)(uintptr_t)data;
+        io.len = len;
+        io.total = len;
+        io.last = true;
+        err = h->write(h->ctx, &io);
+        if (err != CO_OK) {
+            return err;
+        }
+    } else if ((s->flags & CO_SUB_HOOKIO) != 0U) {
+        return CO_ERR_NO_ACCESS; /* no stored value, no hook to take it */
+    } else {
+        /* plain stored value */
+    }
+    if ((ops & CO_SVC_COMMIT) != 0U) {
+        touch_owner(node, sh);
+        return sh->fn(node, CO_SVC_COMMIT, e, s, data, len); /* the service's commit */
+    }
+    if (CO_FAST && (fixed != 0U) && ((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) == 0U)) {
+        co_pdo_from_wire(&node->ram[(uint16_t)(e->base + s->off)], data, fixed); /* a number: no call */
+    } else {
+        co_od_commit(node, e, s, data, len);
+    }
+    svc_written(node, sh, e, s);
+    return CO_OK;
+}
+
+co_err_t co_od_write_value(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
+                           const uint8_t *data, uint32_t len)
+{
+    return write_value(node, e, s, data, len);
+}
+
+co_err_t co_od_download(co_node_t *node, uint16_t index, uint8_t sub, const uint8_t *data,
+                        uint32_t size)
+{
+    const co_od_entry_t *e;
+    const co_od_sub_t *s;
+    co_err_t err = CO_FAST ? lookup_for(node, index, sub, true, &e, &s)
+                           : co_od_lookup_for(node, index, sub, true, &e, &s);
+    uint8_t fixed;
+
+    if (err != CO_OK) {
+        return err;
+    }
+    fixed = co_type_len(s->type);
+    if (fixed == 0U) {
+        /* longer than the object: 0x06070012, size indicated or not */
+        return co_od_write_part(node, e, s, 0U, data, (size != 0U) ? size : 4U, size, true);
+    }
+    if (size == 0U) {
+        size = (fixed < 4U) ? fixed : 4U; /* size not indicated: what the object needs */
+    }
+    return CO_FAST ? write_value(node, e, s, data, size) : co_od_write_value(node, e, s, data, size);
 }
 
 co_err_t co_od_write_part(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
@@ -585,7 +688,7 @@ co_err_t co_od_write(co_node_t *node, uint16_t index, uint8_t sub, const void *d
     co_err_t err = co_od_lookup(node, index, sub, &e, &s);
 
     if ((err == CO_OK) && !as_app) {
-        err = co_od_check_access(node, s, true);
+        err = check_access(node, s, true);
     }
     if ((err == CO_OK) && as_app && ((s->flags & CO_SUB_ROM) != 0U)) {
         err = CO_ERR_READ_ONLY;

@@ -400,7 +400,7 @@ static co_err_t pdo_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
 }
 
 static const co_svc_hook_t pdo_hooks[] = {
-    {0x1400U, 0x1BFFU, CO_SVC_CHECK | CO_SVC_WRITTEN, pdo_obj, CO_ROW_PDO},
+    {0x1400U, 0x1BFFU, CO_SVC_CHECK | CO_SVC_WRITTEN, CO_ROW_PDO, pdo_obj},
 };
 
 const co_service_t co_svc_pdo = {

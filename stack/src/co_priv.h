@@ -21,10 +21,15 @@
 #endif
 #endif
 /* Per-frame paths with several callers: inlined where the build asks for
- * speed; at -Os the compiler decides (one copy instead of one per caller). */
+ * speed; at -Os the compiler decides (one copy instead of one per caller):
+ * the instructions per frame (tools/bench-instructions, -O2) and the flash
+ * (tools/bench-size, -Os) both stay low. CO_FAST is 1 in a build for speed
+ * (a second, inlined path is worth its bytes there). */
 #if defined(__GNUC__) && !defined(__OPTIMIZE_SIZE__)
+#define CO_FAST 1
 #define CO_HOT static inline __attribute__((always_inline))
 #else
+#define CO_FAST 0
 #define CO_HOT static inline
 #endif
 /* Rare paths kept out of the per-frame functions they would otherwise be
@@ -284,10 +289,10 @@ typedef struct co_svc_hook {
     uint16_t first;
     uint16_t last;
     uint8_t ops;
-    co_err_t (*fn)(co_node_t *node, uint8_t op, const co_od_entry_t *e, const co_od_sub_t *s,
-                   const uint8_t *data, uint32_t len);
     uint8_t row;  /* the owning service's row in co_services[] (CO_ROW_*): a write
                      of its objects makes it run at the next co_node_process */
+    co_err_t (*fn)(co_node_t *node, uint8_t op, const co_od_entry_t *e, const co_od_sub_t *s,
+                   const uint8_t *data, uint32_t len);
 } co_svc_hook_t;
 
 /* Reset kinds a service sees (co_service_t.reset): CO_RESET_NODE and
@@ -373,7 +378,10 @@ CO_INLINE void *co_od_loc(const co_node_t *node, const co_od_entry_t *e, const c
 
 co_err_t co_od_lookup(const co_node_t *node, uint16_t index, uint8_t sub,
                       const co_od_entry_t **e, const co_od_sub_t **s);
-co_err_t co_od_check_access(const co_node_t *node, const co_od_sub_t *s, bool write);
+/* co_od_lookup, then the access check of an SDO client: readable or
+ * (@p write) writable (0x06010001 / 0x06010002). */
+co_err_t co_od_lookup_for(const co_node_t *node, uint16_t index, uint8_t sub, bool write,
+                          const co_od_entry_t **e, const co_od_sub_t **s);
 /* Current size of the value (strings: up to the first NUL); 0 for HOOKIO. */
 uint32_t co_od_data_size(const co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s);
 bool co_type_is_signed(uint8_t type);
@@ -393,6 +401,12 @@ co_err_t co_od_read_part(co_node_t *node, const co_od_entry_t *e, const co_od_su
 /* Write a complete value (checks, hook, commit, notification). */
 co_err_t co_od_write_value(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
                            const uint8_t *data, uint32_t len);
+/* An expedited SDO download of @p index / @p sub: lookup, access check
+ * (writable), then the whole value from @p data, @p size bytes as the
+ * request indicates them (0: not indicated, then four bytes, or the
+ * object's own size when it is smaller). */
+co_err_t co_od_download(co_node_t *node, uint16_t index, uint8_t sub, const uint8_t *data,
+                        uint32_t size);
 /* Write one chunk of a streamed value (strings, DOMAIN). */
 co_err_t co_od_write_part(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
                           uint32_t offset, const uint8_t *data, uint32_t len, uint32_t total,

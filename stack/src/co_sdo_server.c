@@ -149,18 +149,29 @@ static co_err_t put_chunk(co_node_t *node, const uint8_t *data, uint32_t len)
 /* The answer (@p cmd, @p index, @p sub, data 0) that ends a download:
  * sent now, or, when the download started a save or restore (0x1010 /
  * 0x1011) that an asynchronous HAL is still writing, once the set is
- * durable (sdo_process). */
-static void download_done(co_node_t *node, uint8_t cmd, uint16_t index, uint8_t sub)
+ * durable (sdo_process). The object: the transfer's, or, for an expedited
+ * download (no transfer state), @p index / @p sub. */
+static void download_done(co_node_t *node, uint8_t cmd, uint16_t index, uint8_t sub, bool open)
 {
     co_sdo_srv_t *t = &node->sdo;
 
-    if ((CO_STORAGE != 0) && ((t->entry->index & 0xFFFEU) == 0x1010U) &&
-        co_store_is_command(t->entry, t->desc) && co_store_busy(node)) {
-        pack_answer(t->buf, cmd, index, sub, 0U);
-        t->state = (uint8_t)S_STORE;
-        return;
+    if ((CO_STORAGE != 0) && co_store_busy(node)) {
+        const co_od_entry_t *e = t->entry;
+        const co_od_sub_t *s = t->desc;
+        if ((e == NULL) && (co_od_lookup(node, index, sub, &e, &s) != CO_OK)) {
+            e = NULL;
+        }
+        if ((e != NULL) && co_store_is_command(e, s)) {
+            t->entry = e; /* (for an abort of the save: abort_cur) */
+            t->desc = s;
+            pack_answer(t->buf, cmd, index, sub, 0U);
+            t->state = (uint8_t)S_STORE;
+            return;
+        }
     }
-    sdo_reset(node);
+    if (open) {
+        sdo_reset(node); /* (an expedited download opened nothing) */
+    }
     reply(node, cmd, index, sub, 0U);
 }
 
@@ -196,9 +207,7 @@ static co_err_t open_download(co_node_t *node, const co_od_entry_t *e, const co_
 CO_INLINE co_err_t find_for(const co_node_t *node, uint16_t index, uint8_t sub, bool write,
                            const co_od_entry_t **e, const co_od_sub_t **s)
 {
-    co_err_t err = co_od_lookup(node, index, sub, e, s);
-
-    return (err == CO_OK) ? co_od_check_access(node, *s, write) : err;
+    return co_od_lookup_for(node, index, sub, write, e, s);
 }
 
 /* Checks common to every upload initiate; reads the first chunk into t->buf
@@ -298,53 +307,39 @@ static co_err_t read_seg(co_node_t *node, uint32_t at, uint8_t *buf, uint32_t ca
  * straight from it (no transfer state, no staging copy); a value of fixed
  * size must come with its size: as indicated (else 0x06070010), or without
  * an indication the four bytes, or the object's own size when it is
- * smaller (co_od_write_value compares). Else a segmented download opens. */
+ * smaller (co_od_download). Else a segmented download opens. */
 static void initiate_download(co_node_t *node, const uint8_t *d, uint16_t index, uint8_t sub)
 {
-    bool expedited = (d[0] & CO_SDO_EXPEDITED) != 0U;
     bool size_ind = (d[0] & CO_SDO_SIZE_IND) != 0U;
     uint32_t size = co_get_u32(&d[4]);
     const co_od_entry_t *e;
     const co_od_sub_t *s;
     co_err_t err;
 
-    if (expedited) {
-        size = size_ind ? (4U - ((uint32_t)(d[0] >> 2U) & 3U)) : 4U;
-    } else if (expedited_only(node)) {
-        abort_at(node, index, sub, CO_ERR_CMD);
-        return;
-    } else {
-        /* segmented: the size in the request */
-    }
-    err = find_for(node, index, sub, true, &e, &s);
-    if ((err == CO_OK) && expedited) {
-        uint8_t fixed = co_type_len(s->type);
-        if (fixed != 0U) {
-            if (!size_ind && (fixed < 4U)) {
-                size = fixed; /* size not indicated: take what the object needs */
-            }
-            err = co_od_write_value(node, e, s, &d[4], size);
-        } else {
-            /* longer than the object: 0x06070012, size indicated or not */
-            err = co_od_write_part(node, e, s, 0U, &d[4], size, size_ind ? size : 0U, true);
-        }
+    if ((d[0] & CO_SDO_EXPEDITED) != 0U) {
+        size = size_ind ? (4U - ((uint32_t)(d[0] >> 2U) & 3U)) : 0U;
+        err = co_od_download(node, index, sub, &d[4], size);
         co_rx_settle(node); /* a COB-ID written: the receive set (the port's filters) */
-    } else if (err == CO_OK) {
-        err = open_download(node, e, s, size_ind, size);
-        if ((err == CO_OK) && ((CO_SET(node, sdo.refused) & CO_SDO_XFER_SEG_DOWNLOAD) != 0U)) {
-            err = CO_ERR_NO_ACCESS; /* the object's own errors come first */
+        if (err != CO_OK) {
+            abort_at(node, index, sub, err);
+            return;
         }
+        download_done(node, CO_SDO_B0(CO_SDO_SCS_DOWNLOAD_INITIATE), index, sub, false);
+        return;
+    }
+    if (expedited_only(node)) {
+        err = CO_ERR_CMD;
     } else {
-        /* not found or not writable */
+        err = find_for(node, index, sub, true, &e, &s);
+    }
+    if (err == CO_OK) {
+        err = open_download(node, e, s, size_ind, size);
+    }
+    if ((err == CO_OK) && ((CO_SET(node, sdo.refused) & CO_SDO_XFER_SEG_DOWNLOAD) != 0U)) {
+        err = CO_ERR_NO_ACCESS; /* the object's own errors come first */
     }
     if (err != CO_OK) {
         abort_at(node, index, sub, err);
-        return;
-    }
-    if (expedited) {
-        node->sdo.entry = e; /* (for download_done) */
-        node->sdo.desc = s;
-        download_done(node, CO_SDO_B0(CO_SDO_SCS_DOWNLOAD_INITIATE), index, sub);
         return;
     }
     start(node, S_DL_SEG);
@@ -427,7 +422,7 @@ static void download_segment(co_node_t *node, const uint8_t *d)
         uint8_t cmd = (uint8_t)(CO_SDO_B0(CO_SDO_SCS_DOWNLOAD_SEGMENT) | toggle);
         t->toggle ^= CO_SDO_TOGGLE;
         if (last) {
-            download_done(node, cmd, 0U, 0U);
+            download_done(node, cmd, 0U, 0U, true);
         } else {
             start(node, S_DL_SEG);
             reply(node, cmd, 0U, 0U, 0U);
@@ -586,7 +581,8 @@ static void block_download_end(co_node_t *node, const uint8_t *d)
         abort_cur(node, err);
         return;
     }
-    download_done(node, (uint8_t)(CO_SDO_B0(CO_SDO_SCS_BLOCK_DOWNLOAD) | CO_SDO_BLK_END), 0U, 0U);
+    download_done(node, (uint8_t)(CO_SDO_B0(CO_SDO_SCS_BLOCK_DOWNLOAD) | CO_SDO_BLK_END), 0U, 0U,
+                  true);
 }
 
 /* ------------------------------------------------------------ block upload */
@@ -790,40 +786,23 @@ static void idle_request(co_node_t *node, const uint8_t *d)
     bool blocks = ((CO_SET(node, sdo.refused) & CO_SDO_XFER_BLOCK) == 0U) && !expedited_only(node);
 #endif
 
-    switch (ccs) {
-    case CO_SDO_CCS_DOWNLOAD_INITIATE:
-        initiate_download(node, d, index, sub);
-        break;
-    case CO_SDO_CCS_UPLOAD_INITIATE:
+    if (ccs == CO_SDO_CCS_DOWNLOAD_INITIATE) {
+        initiate_download(node, d, index, sub); /* (the most frequent first) */
+    } else if (ccs == CO_SDO_CCS_UPLOAD_INITIATE) {
         initiate_upload(node, index, sub);
-        break;
-    case CO_SDO_CS_ABORT:
-        break; /* abort with nothing open: nothing to do */
+    } else if (ccs == CO_SDO_CS_ABORT) {
+        /* abort with nothing open: nothing to do */
 #if CO_SDO_BLOCK
-    case CO_SDO_CCS_BLOCK_UPLOAD:
-        if (blocks) {
-            block_upload_initiate(node, d, index, sub);
-        } else {
-            abort_at(node, index, sub, CO_ERR_CMD);
-        }
-        break;
-    case CO_SDO_CCS_BLOCK_DOWNLOAD:
-        if (blocks) {
-            block_download_initiate(node, d, index, sub);
-        } else {
-            abort_at(node, index, sub, CO_ERR_CMD);
-        }
-        break;
+    } else if (blocks && (ccs == CO_SDO_CCS_BLOCK_UPLOAD)) {
+        block_upload_initiate(node, d, index, sub);
+    } else if (blocks && (ccs == CO_SDO_CCS_BLOCK_DOWNLOAD)) {
+        block_download_initiate(node, d, index, sub);
 #endif
-    case CO_SDO_CCS_DOWNLOAD_SEGMENT:
-    case CO_SDO_CCS_UPLOAD_SEGMENT:
-        /* a segment without a transfer carries no index: answer with 0 */
-        abort_at(node, 0U, 0U, CO_ERR_CMD);
-        break;
-    default:
-        /* ccs 7 */
-        abort_at(node, index, sub, CO_ERR_CMD);
-        break;
+    } else {
+        /* ccs 7, block refused, or a segment without a transfer (it
+         * carries no index: answered with 0) */
+        bool seg = (ccs == CO_SDO_CCS_DOWNLOAD_SEGMENT) || (ccs == CO_SDO_CCS_UPLOAD_SEGMENT);
+        abort_at(node, seg ? 0U : index, seg ? 0U : sub, CO_ERR_CMD);
     }
 }
 

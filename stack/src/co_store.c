@@ -533,7 +533,7 @@ static co_err_t store_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
 }
 
 static const co_svc_hook_t store_hooks[] = {
-    {0x1010U, 0x1011U, CO_SVC_COMMIT, store_obj, CO_ROW_STORE},
+    {0x1010U, 0x1011U, CO_SVC_COMMIT, CO_ROW_STORE, store_obj},
 };
 
 const co_service_t co_svc_store = {

@@ -196,8 +196,8 @@ static co_err_t sync_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
 }
 
 static const co_svc_hook_t sync_hooks[] = {
-    {0x1005U, 0x1007U, CO_SVC_CHECK | CO_SVC_WRITTEN, sync_obj, CO_ROW_SYNC},
-    {0x1019U, 0x1019U, CO_SVC_CHECK | CO_SVC_WRITTEN, sync_obj, CO_ROW_SYNC},
+    {0x1005U, 0x1007U, CO_SVC_CHECK | CO_SVC_WRITTEN, CO_ROW_SYNC, sync_obj},
+    {0x1019U, 0x1019U, CO_SVC_CHECK | CO_SVC_WRITTEN, CO_ROW_SYNC, sync_obj},
 };
 
 const co_service_t co_svc_sync = {

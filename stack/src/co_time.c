@@ -81,7 +81,7 @@ static co_err_t time_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
 }
 
 static const co_svc_hook_t time_hooks[] = {
-    {0x1012U, 0x1012U, CO_SVC_CHECK | CO_SVC_WRITTEN, time_obj, CO_ROW_TIME},
+    {0x1012U, 0x1012U, CO_SVC_CHECK | CO_SVC_WRITTEN, CO_ROW_TIME, time_obj},
 };
 
 const co_service_t co_svc_time = {

@@ -49,7 +49,7 @@ static void test_table_order(void **state)
         assert_ptr_equal(co_services[k], want[k]);
     }
     /* every service's object ranges are registered, none twice */
-    assert_int_equal(NODE->n_svc_hooks, 10);
+    assert_int_equal(NODE->n_svc_hooks, 11);
 }
 
 static void put(uint16_t index, uint32_t v, uint32_t len)

@@ -103,7 +103,7 @@ static co_err_t rec_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
 }
 
 static const co_svc_hook_t rec_hooks[] = {
-    {0x2000U, 0x2000U, CO_SVC_READ | CO_SVC_CHECK | CO_SVC_WRITTEN, rec_obj, 0U}};
+    {0x2000U, 0x2000U, CO_SVC_READ | CO_SVC_CHECK | CO_SVC_WRITTEN, 0U, rec_obj}};
 static const co_service_t rec_svc = {NULL, NULL, NULL, NULL, NULL, NULL, rec_hooks, 1U};
 
 const co_service_t *const co_services[] = {&rec_svc, &co_svc_store};
@@ -213,10 +213,10 @@ static void test_service_veto_first(void **state)
 /* two services on one object, or overlapping ranges: refused, the first stays */
 static void test_register_conflict(void **state)
 {
-    static const co_svc_hook_t same[] = {{0x2000U, 0x2000U, 0U, NULL, 0U}};
-    static const co_svc_hook_t overlap[] = {{0x1FFFU, 0x2001U, 0U, NULL, 0U}};
-    static const co_svc_hook_t inside[] = {{0x1011U, 0x1011U, 0U, NULL, 0U}};
-    static const co_svc_hook_t free_range[] = {{0x3000U, 0x3000U, 0U, NULL, 0U}};
+    static const co_svc_hook_t same[] = {{0x2000U, 0x2000U, 0U, 0U, NULL}};
+    static const co_svc_hook_t overlap[] = {{0x1FFFU, 0x2001U, 0U, 0U, NULL}};
+    static const co_svc_hook_t inside[] = {{0x1011U, 0x1011U, 0U, 0U, NULL}};
+    static const co_svc_hook_t free_range[] = {{0x3000U, 0x3000U, 0U, 0U, NULL}};
     static co_svc_hook_t filler[CO_SVC_HOOKS_MAX];
 
     (void)state;
@@ -227,15 +227,28 @@ static void test_register_conflict(void **state)
     write_u32(0x2000U, 0x12345678U, CO_OK);
     assert_string_equal(trail, "cw"); /* still the recording service's */
     assert_int_equal(co_od_register(&node, free_range), CO_RESULT_OK);
-    /* the table is full after CO_SVC_HOOKS_MAX ranges */
+    /* the table is full after CO_SVC_HOOKS_MAX ranges; at every count the
+     * search (a fixed number of steps over all slots) finds each range and
+     * nothing between or beyond them */
     for (uint16_t i = 0U; node.n_svc_hooks < CO_SVC_HOOKS_MAX; i++) {
         co_svc_hook_t *f = &filler[i];
-        f->first = (uint16_t)(0x4000U + i);
+        f->first = (uint16_t)(0x4000U + (2U * i));
         f->last = f->first;
+        f->ops = CO_SVC_SELF;
         assert_int_equal(co_od_register(&node, f), CO_RESULT_OK);
+        for (uint16_t k = 0U; k <= i; k++) {
+            assert_int_equal(co_od_svc_ops(&node, (uint16_t)(0x4000U + (2U * k))), CO_SVC_SELF);
+            assert_int_equal(co_od_svc_ops(&node, (uint16_t)(0x4001U + (2U * k))), 0U);
+        }
+        assert_int_equal(co_od_svc_ops(&node, 0x2000U), rec_hooks[0].ops);
+        assert_int_equal(co_od_svc_ops(&node, 0x1FFFU), 0U);
+        assert_int_equal(co_od_svc_ops(&node, 0x0FFFU), 0U);
+        assert_int_equal(co_od_svc_ops(&node, 0xFFFFU), 0U);
     }
+    write_u32(0x2000U, 0x12345678U, CO_OK);
+    assert_string_equal(trail, "cwcw"); /* the recording service's in a full table */
     {
-        static const co_svc_hook_t one_more[] = {{0x5000U, 0x5000U, 0U, NULL, 0U}};
+        static const co_svc_hook_t one_more[] = {{0x5000U, 0x5000U, 0U, 0U, NULL}};
         assert_int_equal(co_od_register(&node, one_more), CO_RESULT_NO_MEMORY);
     }
 }

@@ -170,55 +170,62 @@ bool co_node_rx_cob(const co_node_t *node, uint16_t i, uint16_t *cob)
     return found;
 }
 
-/* A frame on a service's slot. */
-static void rx_svc(co_node_t *node, const co_rx_slot_t *slot, const co_frame_t *f,
-                   uint32_t now_us)
+/* The frame to the service of the slot @p at says (a CO_RX_AT_* code,
+ * wider for a PDO slot of any index), if the slot is for @p cob: the PDO
+ * service with the PDO's number; a frame for any other service than SYNC
+ * and PDO makes it run at the next co_node_process. */
+CO_HOT void rx_slot(co_node_t *node, const co_frame_t *f, uint16_t cob, uint16_t at,
+                    uint32_t now_us)
 {
-    co_node_clock(node, now_us);
-    if (slot->kind != CO_ROW_SYNC) {
-        /* its timers may have changed (a SYNC received changes none: the
-         * producer's run from its own period) */
-        co_svc_touch(node, slot->kind);
+    uint16_t arg;
+    uint8_t kind;
+
+    if (at < CO_RX_AT_PDO) {
+        const co_rx_slot_t *s = &node->rx[at - 1U];
+        if (s->cob != cob) {
+            return;
+        }
+        kind = s->kind;
+        arg = s->arg;
+        if (kind != CO_ROW_SYNC) {
+            /* its timers may have changed (a SYNC received changes none: the
+             * producer's run from its own period) */
+            co_svc_touch(node, kind);
+        }
+    } else {
+        const co_pdo_slot_t *ps = &node->pdo.rx[at - CO_RX_AT_PDO];
+        if (ps->cob != cob) {
+            return;
+        }
+        co_node_clock(node, now_us);
+        co_svc_pdo.rx(node, ps->pdo, f); /* (known: called directly) */
+        return;
     }
-    co_services[slot->kind]->rx(node, slot->arg, f);
-}
-
-/* A frame on a PDO's COB-ID: the PDO service's receive entry with the
- * PDO's number. */
-static void rx_pdo(co_node_t *node, const co_pdo_slot_t *ps, const co_frame_t *f,
-                   uint32_t now_us)
-{
     co_node_clock(node, now_us);
-    co_svc_pdo.rx(node, ps->pdo, f);
+    co_services[kind]->rx(node, arg, f);
 }
 
-/* A function code with several slots (or a stale table): the services'
- * slots, then the PDOs'. */
+/* A function code with several slots (or a stale table): a search of the
+ * services' slots, then the PDOs'. */
 CO_NOINLINE static void rx_many(co_node_t *node, const co_frame_t *f, uint16_t cob,
                                 uint32_t now_us)
 {
-    if (node->rx_dirty != 0U) {
-        /* a frame that came while the table was out of date: rebuild, look again */
-        co_rx_rebuild(node);
-        co_node_rx(node, f, now_us);
-        return;
-    }
+    co_rx_settle(node); /* a frame that came while the table was out of date */
     for (uint8_t k = 0U; k < node->n_rx; k++) {
         if (node->rx[k].cob == cob) {
-            rx_svc(node, &node->rx[k], f, now_us);
+            rx_slot(node, f, cob, (uint16_t)(k + 1U), now_us);
             return;
         }
     }
     for (uint16_t k = 0U; k < node->pdo.n_rx; k++) {
         if (node->pdo.rx[k].cob == cob) {
-            rx_pdo(node, &node->pdo.rx[k], f, now_us);
+            rx_slot(node, f, cob, (uint16_t)(CO_RX_AT_PDO + k), now_us);
             return;
         }
     }
 }
 
-/* The function code's only slot, or a search where it has several. (The
- * reject path, a function code without a slot, is a leaf.) */
+/* The function code's only slot, or a search where it has several. */
 void co_node_rx(co_node_t *node, const co_frame_t *f, uint32_t now_us)
 {
     uint16_t cob;
@@ -229,20 +236,14 @@ void co_node_rx(co_node_t *node, const co_frame_t *f, uint32_t now_us)
     }
     cob = (uint16_t)(f->id & 0x7FFU);
     at = node->rx_at[cob >> 7U];
-    if (at < CO_RX_AT_PDO) {
-        /* the only slot, rx[at - 1]; CO_RX_AT_NONE: not for this node */
-        uint8_t k = (uint8_t)(at - 1U);
-        if ((k < node->n_rx) && (node->rx[k].cob == cob)) {
-            rx_svc(node, &node->rx[k], f, now_us);
-        }
-    } else if (at != CO_RX_AT_MANY) {
-        const co_pdo_slot_t *ps = &node->pdo.rx[at - CO_RX_AT_PDO];
-        if (ps->cob == cob) {
-            rx_pdo(node, ps, f, now_us);
-        }
-    } else {
-        rx_many(node, f, cob, now_us);
+    if (at == CO_RX_AT_NONE) {
+        return; /* not for this node */
     }
+    if (at == CO_RX_AT_MANY) {
+        rx_many(node, f, cob, now_us);
+        return;
+    }
+    rx_slot(node, f, cob, at, now_us);
 }
 
 /* ------------------------------------------------------------ timers */

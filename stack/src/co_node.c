@@ -107,8 +107,6 @@ co_err_t co_check_cob(uint32_t cur, uint32_t v, uint32_t use_bits, bool use_when
 
 /* ------------------------------------------------------- RX dispatch */
 
-/* (the slots' rx_at codes stay below the PDOs') */
-typedef char co_rx_slots_fit[(CO_RX_SLOTS_MAX < CO_RX_AT_PDO) ? 1 : -1];
 
 void co_rx_add(co_node_t *node, uint16_t cob, uint8_t svc)
 {
@@ -281,6 +279,13 @@ CO_NOINLINE void co_node_stalled(co_node_t *node, uint32_t now_us)
     }
 }
 
+#if !CO_FAST
+void co_node_clock(co_node_t *node, uint32_t now_us)
+{
+    co_node_clock_at(node, now_us);
+}
+#endif
+
 /* The services that run now: every one once the earliest deadline they
  * returned has come (or the TX path holds frames back), else only those
  * with something new and, while event-driven TPDOs detect changes, the PDO
@@ -308,19 +313,22 @@ static uint32_t run_rows(co_node_t *node, uint16_t run, uint32_t next)
 {
     uint8_t rows = services_running(node);
 
-    for (uint8_t pass = 0U; (pass < 2U) && (run != 0U); pass++) {
+    uint16_t todo = run;
+    uint32_t due = next;
+
+    for (uint8_t pass = 0U; (pass < 2U) && (todo != 0U); pass++) {
         node->svc_run = 0U;
-        for (uint8_t k = 0U; (k < rows) && (((uint32_t)run | node->svc_run) >> k) != 0U; k++) {
-            if (((((uint32_t)run | node->svc_run) >> k) & 1U) != 0U) {
+        for (uint8_t k = 0U; (k < rows) && ((((uint32_t)todo | node->svc_run) >> k) != 0U); k++) {
+            if (((((uint32_t)todo | node->svc_run) >> k) & 1U) != 0U) {
                 node->svc_run &= (uint16_t)~(1U << k);
                 if (co_services[k]->process != NULL) {
-                    next = co_services[k]->process(node, next);
+                    due = co_services[k]->process(node, due);
                 }
             }
         }
-        run = node->svc_run;
+        todo = node->svc_run;
     }
-    return next;
+    return due;
 }
 
 uint32_t co_node_process(co_node_t *node, uint32_t now_us)
@@ -338,7 +346,7 @@ uint32_t co_node_process(co_node_t *node, uint32_t now_us)
     if (run != 0U) {
         /* an earlier deadline than the cached one comes from the rows that run */
         if (run == CO_SVC_ALL) {
-            next = CO_NO_DEADLINE;
+            next = (uint32_t)CO_NO_DEADLINE;
         }
         next = run_rows(node, run, next);
         if (node->txq_len > 0U) {

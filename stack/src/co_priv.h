@@ -164,7 +164,7 @@ void co_node_stalled(co_node_t *node, uint32_t now_us);
  * ahead of 2^31 us or more (but not a small step back, as receive time
  * stamps taken before the last co_node_process may make) is a stall. */
 #define CO_STEP_BACK_MAX 0x04000000UL /* 67 s */
-CO_INLINE void co_node_clock(co_node_t *node, uint32_t now_us)
+CO_INLINE void co_node_clock_at(co_node_t *node, uint32_t now_us)
 {
     uint32_t d = now_us - node->now;
 
@@ -173,6 +173,15 @@ CO_INLINE void co_node_clock(co_node_t *node, uint32_t now_us)
     }
     node->now = now_us;
 }
+#if CO_FAST
+CO_INLINE void co_node_clock(co_node_t *node, uint32_t now_us)
+{
+    co_node_clock_at(node, now_us);
+}
+#else
+/* (a build for size: one copy, called from every entry point) */
+void co_node_clock(co_node_t *node, uint32_t now_us);
+#endif
 
 /* ---- transmit (co_node.c) */
 /* Send @p f now or not at all: false while frames are held back or the HAL

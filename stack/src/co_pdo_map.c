@@ -65,7 +65,7 @@ static void entry_io(co_node_t *node, uint32_t v, uint16_t code, uint16_t pos,
         } else if (size != 0U) {
             /* the low bytes (on a big-endian CPU the entry maps the whole value) */
             if (CO_NATIVE_LE) {
-                (void)memcpy(tmp, ram, size);
+                co_copy(tmp, ram, size);
             } else {
                 co_to_wire(tmp, ram, size);
             }
@@ -88,7 +88,7 @@ static void entry_io(co_node_t *node, uint32_t v, uint16_t code, uint16_t pos,
     if (s != NULL) {
         (void)co_od_write_value(node, e, s, tmp, size);
     } else if (CO_NATIVE_LE) {
-        (void)memcpy(ram, tmp, size);
+        co_copy(ram, tmp, size);
     } else {
         co_from_wire(ram, tmp, size);
     }

@@ -291,6 +291,7 @@ typedef struct co_emcy {
     uint8_t hist_depth;
     uint8_t n_active;
     uint8_t n_q;
+    uint8_t q_head;          /**< the oldest waiting EMCY in q (a ring) */
     uint8_t store_report;    /**< EMCY 0x5530 raised for a damaged parameter set */
     /* the active errors (two arrays: no padding) */
     uint16_t active_code[CO_EMCY_ACTIVE_MAX];

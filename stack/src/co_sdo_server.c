@@ -41,6 +41,14 @@ enum {
     S_STORE       /* a download started a save: its answer waits until it is durable */
 };
 
+/* Helpers of the initiates: with block transfer they have callers enough
+ * to be worth a call (at -Os; bench-size BLK), else inlined. */
+#if CO_SDO_BLOCK
+#define SDO_SHARED CO_NOINLINE
+#else
+#define SDO_SHARED
+#endif
+
 /* flags */
 #define F_SIZE   0x01U /* size indicated */
 #define F_CRC    0x02U /* both sides use CRC (block) */
@@ -101,7 +109,7 @@ static void start(co_node_t *node, uint8_t state)
 
 /* The transfer state of @p s of @p e, @p size bytes (F_SIZE in @p flags:
  * indicated), nothing done yet. */
-static void open_xfer(co_sdo_srv_t *t, const co_od_entry_t *e, const co_od_sub_t *s,
+SDO_SHARED static void open_xfer(co_sdo_srv_t *t, const co_od_entry_t *e, const co_od_sub_t *s,
                       uint32_t size, uint8_t flags)
 {
     t->entry = e;
@@ -242,7 +250,7 @@ static co_err_t stage_upload(co_node_t *node, uint16_t index, uint8_t sub, co_od
 
 /* The transfer state of an upload that goes on segmented or by block, its
  * first chunk staged in t->buf. */
-static void open_upload(co_sdo_srv_t *t, const co_od_entry_t *e, const co_od_sub_t *s,
+SDO_SHARED static void open_upload(co_sdo_srv_t *t, const co_od_entry_t *e, const co_od_sub_t *s,
                         const co_od_chunk_t *c)
 {
     open_xfer(t, e, s, c->last ? c->len : c->total,
@@ -781,7 +789,7 @@ CO_NOINLINE static co_err_t transfer_request(co_node_t *node, const uint8_t *d)
     co_sdo_srv_t *t = &node->sdo;
     uint8_t st = t->state;
 
-    if (st == (uint8_t)S_STORE) {
+    if ((CO_STORAGE != 0) && (st == (uint8_t)S_STORE)) { /* (without storage never) */
         /* a new request while the save's answer is pending: refused, the
          * answer still comes */
         reply(node, CO_SDO_B0(CO_SDO_CS_ABORT), co_get_u16(&d[1]), d[3],

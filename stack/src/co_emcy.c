@@ -188,7 +188,7 @@ bool co_emcy_is_active(const co_node_t *node, uint16_t code)
 
 static uint32_t emcy_process(co_node_t *node, uint32_t next)
 {
-    if ((node->emcy.store_report != 0U) && !co_store_damaged(node)) {
+    if ((CO_STORAGE != 0) && (node->emcy.store_report != 0U) && !co_store_damaged(node)) {
         /* a save or restore wrote a whole parameter set */
         node->emcy.store_report = 0U;
         co_emcy_clear(node, CO_EMCY_STORE_DAMAGED);

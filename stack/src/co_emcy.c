@@ -89,7 +89,7 @@ static void send_code(co_node_t *node, uint16_t code, const uint8_t *mfr)
         uint8_t *d = m->q[(m->q_head + m->n_q) % CO_EMCY_QUEUE_LEN].data;
         co_put_u16(d, code);
         d[2] = update_errreg(node);
-        (void)memcpy(&d[3], (mfr != NULL) ? mfr : none, 5U);
+        co_copy(&d[3], (mfr != NULL) ? mfr : none, 5U);
         m->n_q++;
     }
     drain(node);
@@ -246,7 +246,7 @@ static void emcy_nmt(co_node_t *node, co_nmt_state_t from)
         ((*node->emcy.cob & 0x80000000UL) == 0U)) {
         uint8_t d[8] = {0};
         if (node->dev->boot_emcy_data != NULL) {
-            (void)memcpy(&d[3], node->dev->boot_emcy_data, 5U);
+            co_copy(&d[3], node->dev->boot_emcy_data, 5U);
         }
         co_tx(node, *node->emcy.cob & 0x7FFUL, d, 8U);
     }

@@ -79,8 +79,15 @@ void co_node_tx_ready(co_node_t *node, uint32_t now_us)
 void co_tx(co_node_t *node, uint32_t id, const uint8_t *data, uint8_t len)
 {
     co_frame_t f;
+    uint8_t n = (len > 8U) ? 8U : len;
 
-    co_frame_set(&f, id, data, len);
+    /* co_frame_set, with the core's copy */
+    f.id = id;
+    f.dlc = n;
+    (void)memset(f.data, 0, sizeof f.data);
+    if (data != NULL) {
+        co_copy(f.data, data, n);
+    }
     co_tx_frame(node, &f);
 }
 

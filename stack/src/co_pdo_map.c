@@ -13,7 +13,7 @@
 static void bits_copy(uint8_t *dst, uint16_t dpos, const uint8_t *src, uint16_t spos, uint8_t n)
 {
     if (((dpos | spos | n) & 7U) == 0U) {
-        (void)memcpy(&dst[dpos >> 3U], &src[spos >> 3U], (size_t)n >> 3U);
+        co_copy(&dst[dpos >> 3U], &src[spos >> 3U], (size_t)n >> 3U);
         return;
     }
     for (uint8_t b = 0U; b < n; b++) {

@@ -158,7 +158,7 @@ static co_err_t write_chunk(co_node_t *node, const uint8_t *data, uint32_t len, 
         if (end > sizeof t->buf) {
             return CO_ERR_TYPE_MISMATCH;
         }
-        (void)memcpy(&t->buf[t->offset], data, len);
+        co_copy(&t->buf[t->offset], data, len);
         if (last) {
             err = co_od_write_value(node, t->entry, t->desc, t->buf, end);
         }
@@ -300,7 +300,7 @@ static co_err_t read_seg(co_node_t *node, uint32_t at, uint8_t *buf, uint32_t ca
 
     if ((at == 0U) && ((t->flags & F_STAGED) != 0U)) {
         c.len = t->buf_len; /* the first chunk, read when the upload opened */
-        (void)memcpy(buf, t->buf, c.len);
+        co_copy(buf, t->buf, c.len);
     } else {
         err = co_od_read_part(node, t->entry, t->desc, &c);
     }
@@ -506,7 +506,7 @@ static co_err_t block_download_segment(co_node_t *node, const uint8_t *d)
          * the last good one is acknowledged, the client repeats from there */
     } else if (last) {
         t->seqno = seq;
-        (void)memcpy(t->held, &d[1], SEG); /* its length comes with the end */
+        co_copy(t->held, &d[1], SEG); /* its length comes with the end */
         start(node, S_BLK_DL_END);
     } else {
         co_err_t err;
@@ -624,7 +624,7 @@ static co_err_t block_upload_send(co_node_t *node)
             return CO_ERR_GENERAL; /* a hook produced a short chunk mid-stream */
         }
         f.data[0] = (uint8_t)((uint8_t)(t->seqno + 1U) | (last ? CO_SDO_BLK_LAST : 0U));
-        (void)memcpy(&f.data[1], &buf[at - from], SEG); /* zeros after the end */
+        co_copy(&f.data[1], &buf[at - from], SEG); /* zeros after the end */
         if (!co_tx_now(node, &f)) {
             break; /* nothing held back: co_sdo_process sends it again */
         }

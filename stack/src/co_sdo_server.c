@@ -49,6 +49,15 @@ enum {
 #define SDO_SHARED
 #endif
 
+/* Requests that are not an initiate, kept out of sdo_rx where the build is
+ * for speed (their stack frame would be paid by every expedited transfer);
+ * at -Os one function is smaller. */
+#if CO_FAST
+#define SDO_RARE CO_NOINLINE
+#else
+#define SDO_RARE
+#endif
+
 /* flags */
 #define F_SIZE   0x01U /* size indicated */
 #define F_CRC    0x02U /* both sides use CRC (block) */
@@ -548,7 +557,7 @@ static co_err_t block_download_end(co_node_t *node, const uint8_t *d)
 
 /* ------------------------------------------------------------ block upload */
 
-CO_NOINLINE static co_err_t block_upload_initiate(co_node_t *node, const uint8_t *d,
+SDO_RARE static co_err_t block_upload_initiate(co_node_t *node, const uint8_t *d,
                                                   uint16_t index, uint8_t sub)
 {
     co_sdo_srv_t *t = &node->sdo;
@@ -774,7 +783,7 @@ static void idle_request(co_node_t *node, const uint8_t *d)
 /* A request while a segmented or block transfer is open (not S_BLK_DL):
  * byte 0 must be the one the state waits for (want[state - 1]: mask,
  * value), a segment's toggle bit the expected one. */
-CO_NOINLINE static co_err_t transfer_request(co_node_t *node, const uint8_t *d)
+SDO_RARE static co_err_t transfer_request(co_node_t *node, const uint8_t *d)
 {
     static const uint8_t want[][2] = {
         {0xE0U, CO_SDO_B0(CO_SDO_CCS_DOWNLOAD_SEGMENT)},

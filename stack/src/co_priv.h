@@ -746,7 +746,7 @@ static inline uint32_t co_pdo_event_us(const co_node_t *node, uint16_t i)
 }
 /* The mapped objects of PDO i (co_pdo_map.c), the resolved entries
  * directly, the others through the dictionary: sample them into @p out (8
- * bytes, zeroed by the caller; an object that cannot be read is sent as
+ * bytes, zero past the mapping; an object that cannot be read is sent as
  * zeros), or write them from @p data (@p dlc bytes; entries the frame does
  * not cover are skipped, a refused value is dropped). */
 void co_pdo_sample(co_node_t *node, uint16_t i, uint8_t *out);

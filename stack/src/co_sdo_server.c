@@ -939,7 +939,7 @@ static void sdo_reset_kind(co_node_t *node, uint8_t kind)
 
 static void sdo_rx_slots(co_node_t *node, uint8_t svc)
 {
-    co_rx_add(node, (uint16_t)(0x600U + node->node_id), svc, 0U);
+    co_rx_add(node, (uint16_t)(0x600U + node->node_id), svc);
 }
 
 /* No SDO in Stopped: an open transfer ends silently. */

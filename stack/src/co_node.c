@@ -25,8 +25,16 @@ static void tx_drain(co_node_t *node)
     /* in order until the controller refuses one; that one and the rest move
      * to the front (in this loop: no call of the C library's memmove) */
     for (uint8_t k = 0U; k < node->txq_len; k++) {
-        if ((kept == 0U) && hal_send(node, &node->txq[k])) {
-            continue;
+        if (kept == 0U) {
+            const co_txq_frame_t *q = &node->txq[k];
+            co_frame_t f;
+            f.id = q->id;
+            f.dlc = q->dlc;
+            (void)memcpy(&f.data[0], &q->lo, 4U);
+            (void)memcpy(&f.data[4], &q->hi, 4U);
+            if (hal_send(node, &f)) {
+                continue;
+            }
         }
         if (kept != k) {
             node->txq[kept] = node->txq[k];
@@ -47,7 +55,7 @@ void co_tx_frame(co_node_t *node, const co_frame_t *f)
     if (node->txq_len == CO_TXQ_LEN) {
         /* full: the frame of lowest priority is lost (the new one, when
          * nothing waiting ranks below it) */
-        if (co_frame_cob(&node->txq[CO_TXQ_LEN - 1U]) <= cob) {
+        if (node->txq[CO_TXQ_LEN - 1U].id <= cob) {
             return;
         }
         node->txq_len--;
@@ -55,11 +63,14 @@ void co_tx_frame(co_node_t *node, const co_frame_t *f)
     /* behind the frames of the same or a higher priority; the ones of
      * lower priority move back as they are passed (no memmove) */
     at = node->txq_len;
-    while ((at > 0U) && (co_frame_cob(&node->txq[at - 1U]) > cob)) {
+    while ((at > 0U) && (node->txq[at - 1U].id > cob)) {
         node->txq[at] = node->txq[at - 1U];
         at--;
     }
-    node->txq[at] = *f;
+    node->txq[at].id = (uint16_t)cob;
+    node->txq[at].dlc = f->dlc;
+    (void)memcpy(&node->txq[at].lo, &f->data[0], 4U);
+    (void)memcpy(&node->txq[at].hi, &f->data[4], 4U);
     node->txq_len++;
     tx_drain(node); /* the controller may have room again */
 }

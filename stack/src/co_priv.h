@@ -208,7 +208,8 @@ static inline bool co_tx_now(co_node_t *node, const co_frame_t *f)
 {
     return (node->txq_len == 0U) && (node->hal.ops->send(node->hal.ctx, f) == 0);
 }
-/* Send @p f, or hold it back while the TX path is full (CO_TXQ_LEN). */
+/* Send @p f, or hold it back while the TX path is full (CO_TXQ_LEN). The
+ * core sends 11-bit data frames only (what the queue keeps: co_txq_frame_t). */
 void co_tx_frame(co_node_t *node, const co_frame_t *f);
 void co_tx(co_node_t *node, uint32_t id, const uint8_t *data, uint8_t len);
 /* The receive table is out of date (a COB-ID changed): the node rebuilds it

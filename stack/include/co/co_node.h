@@ -326,6 +326,16 @@ typedef struct co_pdo_svc {
 
 struct co_svc_hook;
 
+/** A frame held back while the TX path is full (co_node.c): the core sends
+ *  only 11-bit data frames, so it keeps the payload, identifier and length
+ *  (12 bytes instead of the 16 of a co_frame_t). */
+typedef struct co_txq_frame {
+    uint32_t lo;   /**< data bytes 0..3, as in memory */
+    uint32_t hi;   /**< data bytes 4..7 */
+    uint16_t id;   /**< CAN-ID */
+    uint8_t dlc;
+} co_txq_frame_t;
+
 typedef struct co_node {
     const co_dev_t *dev;
     co_hal_t hal;
@@ -356,7 +366,7 @@ typedef struct co_node {
     /** The services' receive slots: the COB-ID in bits 0..10, the row of
      *  the service in the service table above them (co_node.c). */
     uint16_t rx[CO_RX_SLOTS_MAX];
-    co_frame_t txq[CO_TXQ_LEN];
+    co_txq_frame_t txq[CO_TXQ_LEN];
     /** The services' own hooks on the objects they own (co_od.c), sorted by index. */
     const struct co_svc_hook *svc_hooks[CO_SVC_HOOKS_MAX];
     uint16_t svc_rd_lo;      /**< indexes with a service read hook: svc_rd_lo .. + svc_rd_span */

@@ -369,11 +369,9 @@ static co_err_t initiate_download(co_node_t *node, const uint8_t *d, uint16_t in
 
 /* The answer to an upload initiate whose first chunk is staged: expedited
  * (nothing stays open), else the segmented upload opens. */
-static co_err_t respond_upload(co_node_t *node, bool last)
+static co_err_t respond_upload(co_node_t *node, uint16_t index, uint8_t sub, bool last)
 {
     co_sdo_srv_t *t = &node->sdo;
-    uint16_t index = t->entry->index;
-    uint8_t sub = t->desc->sub;
 
     if (fits_expedited(node, last, t->size)) {
         uint32_t size = t->size;
@@ -392,7 +390,9 @@ static co_err_t respond_upload(co_node_t *node, bool last)
     return CO_OK;
 }
 
-/* Called in S_IDLE (no transfer open): an expedited answer leaves it so. */
+/* Called in S_IDLE (no transfer open): the first chunk staged, the
+ * transfer state opened, respond_upload answers (an expedited answer
+ * closes it again: one path for the initiates of both kinds). */
 static co_err_t initiate_upload(co_node_t *node, uint16_t index, uint8_t sub)
 {
     const co_od_entry_t *e;
@@ -403,12 +403,8 @@ static co_err_t initiate_upload(co_node_t *node, uint16_t index, uint8_t sub)
     if (err != CO_OK) {
         return err;
     }
-    if (fits_expedited(node, c.last, c.len)) {
-        send_expedited(node, index, sub, c.len);
-        return CO_OK;
-    }
     open_upload(&node->sdo, e, s, &c);
-    return respond_upload(node, c.last);
+    return respond_upload(node, index, sub, c.last);
 }
 
 /* ------------------------------------------------------------ segmented */
@@ -580,7 +576,7 @@ SDO_RARE static co_err_t block_upload_initiate(co_node_t *node, const uint8_t *d
     }
     open_upload(t, e, s, &c);
     if ((pst != 0U) && ((t->flags & F_SIZE) != 0U) && (t->size <= pst)) {
-        return respond_upload(node, c.last); /* protocol switch to segmented/expedited */
+        return respond_upload(node, index, sub, c.last); /* protocol switch to segmented/expedited */
     }
     t->blksize = blksize;
     if ((d[0] & CO_SDO_BLK_CRC) != 0U) {

@@ -41,21 +41,23 @@ enum {
     S_STORE       /* a download started a save: its answer waits until it is durable */
 };
 
-/* Helpers of the initiates: with block transfer they have callers enough
- * to be worth a call (at -Os; bench-size BLK), else inlined. */
+/* Inlining, per build. SDO_SHARED: helpers that block transfer gives
+ * callers enough to be worth a call (bench-size BLK), else inlined.
+ * Where the build is for speed (CO_FAST): SDO_RARE, the requests that are
+ * not an initiate, stay out of sdo_rx (their stack frame would be paid by
+ * every expedited transfer), and SDO_CALL, small helpers with many
+ * callers, are inlined; at -Os the other way round (fewer bytes). */
 #if CO_SDO_BLOCK
 #define SDO_SHARED CO_NOINLINE
 #else
 #define SDO_SHARED
 #endif
-
-/* Requests that are not an initiate, kept out of sdo_rx where the build is
- * for speed (their stack frame would be paid by every expedited transfer);
- * at -Os one function is smaller. */
 #if CO_FAST
 #define SDO_RARE CO_NOINLINE
+#define SDO_CALL
 #else
 #define SDO_RARE
+#define SDO_CALL CO_NOINLINE
 #endif
 
 /* flags */
@@ -75,7 +77,7 @@ static void pack_answer(uint8_t *d, uint8_t cmd, uint16_t index, uint8_t sub, ui
 }
 
 /* The eight data bytes of @p f go out on the server's COB-ID. */
-static void send8(co_node_t *node, co_frame_t *f)
+SDO_CALL static void send8(co_node_t *node, co_frame_t *f)
 {
     f->id = 0x580UL + node->node_id;
     f->dlc = 8U;
@@ -91,7 +93,7 @@ static void reply(co_node_t *node, uint8_t cmd, uint16_t index, uint8_t sub, uin
     send8(node, &f);
 }
 
-static void sdo_reset(co_node_t *node)
+SDO_CALL static void sdo_reset(co_node_t *node)
 {
     node->sdo.state = (uint8_t)S_IDLE;
     node->sdo.entry = NULL;
@@ -110,7 +112,7 @@ static void sdo_abort(co_node_t *node, uint16_t index, uint8_t sub, co_err_t err
     sdo_reset(node);
 }
 
-static void start(co_node_t *node, uint8_t state)
+SDO_SHARED static void start(co_node_t *node, uint8_t state)
 {
     node->sdo.state = state;
     node->sdo.deadline = node->now + node->sdo.timeout_us;

@@ -30,8 +30,7 @@ static void tx_drain(co_node_t *node)
             co_frame_t f;
             f.id = q->id;
             f.dlc = q->dlc;
-            (void)memcpy(&f.data[0], &q->lo, 4U);
-            (void)memcpy(&f.data[4], &q->hi, 4U);
+            (void)memcpy(f.data, q->data, sizeof f.data);
             if (hal_send(node, &f)) {
                 continue;
             }
@@ -69,8 +68,7 @@ void co_tx_frame(co_node_t *node, const co_frame_t *f)
     }
     node->txq[at].id = (uint16_t)cob;
     node->txq[at].dlc = f->dlc;
-    (void)memcpy(&node->txq[at].lo, &f->data[0], 4U);
-    (void)memcpy(&node->txq[at].hi, &f->data[4], 4U);
+    (void)memcpy(node->txq[at].data, f->data, sizeof f->data);
     node->txq_len++;
     tx_drain(node); /* the controller may have room again */
 }

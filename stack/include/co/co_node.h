@@ -330,10 +330,9 @@ struct co_svc_hook;
  *  only 11-bit data frames, so it keeps the payload, identifier and length
  *  (12 bytes instead of the 16 of a co_frame_t). */
 typedef struct co_txq_frame {
-    uint32_t lo;   /**< data bytes 0..3, as in memory */
-    uint32_t hi;   /**< data bytes 4..7 */
     uint16_t id;   /**< CAN-ID */
     uint8_t dlc;
+    uint8_t data[8];
 } co_txq_frame_t;
 
 typedef struct co_node {

@@ -97,7 +97,7 @@ static void send_code(co_node_t *node, uint16_t code, const uint8_t *mfr)
     co_put_u16(d, code);
     d[2] = (node->emcy.errreg != NULL) ? *node->emcy.errreg : errreg_now(node);
     if (mfr != NULL) {
-        (void)memcpy(&d[3], mfr, 5U);
+        co_copy(&d[3], mfr, 5U);
     }
     send(node, d);
 }
@@ -145,10 +145,10 @@ void co_emcy_raise(co_node_t *node, uint16_t code, uint8_t reg_bits, const uint8
         node->emcy.n_active++;
     }
     update_errreg(node);
-    if ((data == NULL) && (node->cb.emcy_mfr != NULL)) {
+    if ((data == NULL) && (node->cb->emcy_mfr != NULL)) {
         /* the device fills the manufacturer bytes of the core's own EMCYs */
         (void)memset(filled, 0, sizeof filled);
-        node->cb.emcy_mfr(node->cb.ctx, node, code, filled);
+        node->cb->emcy_mfr(node->cb->ctx, node, code, filled);
         data = filled;
     }
     history_push(node, code, data);
@@ -245,7 +245,7 @@ static void emcy_nmt(co_node_t *node, co_nmt_state_t from)
         ((*node->emcy.cob & 0x80000000UL) == 0U)) {
         uint8_t d[8] = {0};
         if (node->dev->boot_emcy_data != NULL) {
-            (void)memcpy(&d[3], node->dev->boot_emcy_data, 5U);
+            co_copy(&d[3], node->dev->boot_emcy_data, 5U);
         }
         co_tx(node, *node->emcy.cob & 0x7FFUL, d, 8U);
     }

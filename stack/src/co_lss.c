@@ -134,7 +134,7 @@ static bool rec_read(co_node_t *node, uint8_t i, uint32_t *seq, uint8_t data[3])
         return false;
     }
     *seq = co_get_u32(&r[4]);
-    (void)memcpy(data, &r[8], 3U);
+    co_copy(data, &r[8], 3U);
     return true;
 }
 
@@ -149,7 +149,7 @@ static uint8_t rec_newest(co_node_t *node, uint32_t *seq, uint8_t data[3])
         if (rec_read(node, i, &s, d) && ((best == 2U) || ((int32_t)(s - *seq) > 0))) {
             best = i;
             *seq = s;
-            (void)memcpy(data, d, 3U);
+            co_copy(data, d, 3U);
         }
     }
     return best;
@@ -496,7 +496,7 @@ static uint32_t lss_process(co_node_t *node, uint32_t next_in)
 static void lss_rx_slots(co_node_t *node, uint8_t svc)
 {
     if (co_lss_enabled(node)) {
-        co_rx_add(node, LSS_RX, svc, 0U);
+        co_rx_add(node, LSS_RX, svc);
     }
 }
 

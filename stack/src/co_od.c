@@ -305,9 +305,9 @@ co_err_t co_od_read_part(co_node_t *node, const co_od_entry_t *e, const co_od_su
          * the stored bytes are the wire image: the copy below) */
         uint8_t wire[8];
         co_to_wire(wire, v, fixed);
-        (void)memcpy(c->buf, &wire[offset], n);
+        co_copy(c->buf, &wire[offset], n);
     } else if (n > 0U) {
-        (void)memcpy(c->buf, &v[offset], n);
+        co_copy(c->buf, &v[offset], n);
     } else {
         /* empty */
     }
@@ -388,7 +388,7 @@ void co_od_commit(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
         } else {
             if (data != v) {
                 /* (a value gathered in place is its own data) */
-                (void)memcpy(v, data, len);
+                co_copy(v, data, len);
             }
             if (len < s->size) {
                 (void)memset(&v[len], 0, s->size - len);
@@ -522,7 +522,7 @@ co_err_t co_od_write_part(co_node_t *node, const co_od_entry_t *e, const co_od_s
          * value; without one they are written in place */
         uint8_t *at = (node->dev->stage_size >= s->size) ? &node->ram[node->dev->stage] : v;
         if (len > 0U) {
-            (void)memcpy(&at[offset], data, len);
+            co_copy(&at[offset], data, len);
         }
         /* complete: checked, hooked and committed as one value (the write
          * hook may veto it, the value is unchanged then unless it was
@@ -550,7 +550,7 @@ void co_od_restore(co_node_t *node, uint16_t from, uint16_t to)
         uint32_t n = d->size & CO_OD_DEF_SIZE;
         if ((d->off >= from) && (d->off < to)) {
             uint8_t *p = &node->ram[d->off];
-            (void)memcpy(p, &def[at], n);
+            co_copy(p, &def[at], n);
             if ((d->size & CO_OD_DEF_NODEID) != 0U) {
                 uint8_t id = ((CO_LSS != 0) && ((d->size & CO_OD_DEF_COB) != 0U))
                                  ? node->cob_base

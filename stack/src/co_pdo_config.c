@@ -97,32 +97,30 @@ static uint16_t direct_code(const co_node_t *node, const co_od_entry_t *e, const
 {
     uint8_t size = co_type_len(s->type);
     uint8_t svc = co_od_svc_ops(e);
-    uint16_t off = co_od_off(e, s);
+    uint32_t off = co_od_off(e, s);
+    uint32_t n = tx ? ((uint32_t)bits >> 3U) : size; /* TPDO: bytes mapped, RPDO: value size */
+    uint32_t code = off | ((n - 1U) << 12U);
 
     if ((e->hook != 0U) || ((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) != 0U) ||
-        (s->size != size) || (off >= CO_PDO_OFF_END) || ((pos & 7U) != 0U) ||
-        ((bits & 7U) != 0U)) {
+        (s->size != size) || (off >= CO_PDO_OFF_END) || (((pos | bits) & 7U) != 0U) ||
+        (tx ? (((svc & CO_SVC_READ) != 0U) || (!CO_NATIVE_LE && (n != size)))
+            : ((svc != 0U) || ((s->flags & CO_SUB_LIMIT) != 0U) ||
+               (s->type == (uint8_t)CO_BOOLEAN)))) {
         return CO_PDO_SLOW;
     }
-    if (tx) {
-        /* on a little-endian CPU 8 bytes are read at once (co_pdo_get_direct),
-         * which a RAM image of fewer than 16 bytes may not have; whole values
-         * only on a big-endian one */
-        uint32_t end = (uint32_t)off + 8U;
-        bool at_end = end > node->dev->ram_size;
-        if (((svc & CO_SVC_READ) != 0U) ||
-            (CO_NATIVE_LE ? (at_end && (((uint32_t)off + ((uint32_t)bits >> 3U)) < 8U))
-                          : (bits != (uint8_t)(size * 8U)))) {
+    if (!tx) {
+        return (uint16_t)(code | (co_type_is_signed(s->type) ? (uint32_t)CO_PDO_SIGNED : 0U));
+    }
+    /* a build for speed on a little-endian CPU reads 8 bytes at once
+     * (co_pdo_get_direct), which a RAM image of fewer than 16 bytes may
+     * not have */
+    if (CO_FAST && CO_NATIVE_LE && ((off + 8U) > node->dev->ram_size)) {
+        if ((off + n) < 8U) {
             return CO_PDO_SLOW;
         }
-        return (uint16_t)((uint32_t)off | ((((uint32_t)bits >> 3U) - 1U) << 12U) |
-                          (at_end ? (uint32_t)CO_PDO_AT_END : 0U));
+        code |= CO_PDO_AT_END;
     }
-    if ((svc != 0U) || ((s->flags & CO_SUB_LIMIT) != 0U) || (s->type == (uint8_t)CO_BOOLEAN)) {
-        return CO_PDO_SLOW;
-    }
-    return (uint16_t)((uint32_t)off | (((uint32_t)size - 1U) << 12U) |
-                      (co_type_is_signed(s->type) ? (uint32_t)CO_PDO_SIGNED : 0U));
+    return (uint16_t)code;
 }
 #endif
 
@@ -166,102 +164,70 @@ static co_err_t check_mapping(const co_node_t *node, uint16_t i, uint8_t count, 
     return CO_OK;
 }
 
-/* Mapping writes: CiA 301 wants the PDO invalid first; some devices only
- * want the node out of Operational (set.pdo.mapping_while_valid). */
-static bool mapping_locked(const co_node_t *node, uint16_t i)
-{
-    if ((co_pdo_cob(node, i) & CO_PDO_COB_INVALID) != 0U) {
-        return false;
-    }
-    return (CO_SET(node, pdo.mapping_while_valid) == 0U) ||
-           (node->nmt == (uint8_t)CO_NMT_OPERATIONAL);
-}
-
-static co_err_t check_map_write(const co_node_t *node, uint16_t i, uint8_t sub,
-                                const uint8_t *data)
+/* A write of sub @p sub of PDO i's mapping (@p is_map) or communication
+ * record, value @p data (its size already checked by the dictionary: the
+ * PDO parameters have their CiA 301 types, co_pdo_desc_t). */
+static co_err_t check_write(const co_node_t *node, uint16_t i, bool is_map, uint8_t sub,
+                            const uint8_t *data)
 {
     const co_pdo_desc_t *d = &node->dev->pdo[i];
+    bool tx = is_tpdo(node, i);
+    uint32_t cob = co_pdo_cob(node, i);
+    bool valid = (cob & CO_PDO_COB_INVALID) == 0U;
+    uint32_t v = (sub == 3U) ? co_get_u16(data) : data[0];
     uint8_t len;
 
-    if (mapping_locked(node, i)) {
-        return CO_ERR_STORE_STATE;
-    }
-    if (sub == 0U) {
-        /* A new count is checked against the entries as they stand; the
-         * check reads them from the image, so count them up to data[0]. */
-        if (data[0] == 0U) {
-            return CO_OK;
-        }
-        return check_mapping(node, i, data[0], &len, NULL);
-    }
-    if (co_ram_u8(node, d->count) != 0U) {
-        return CO_ERR_NO_ACCESS; /* entries are fixed while the mapping is enabled */
-    }
-    {
-        uint32_t v = co_get_u32(data);
-        uint8_t bits;
-        const co_od_entry_t *e;
-        const co_od_sub_t *s;
-        return (v == 0U) ? CO_OK : check_entry(node, is_tpdo(node, i), v, &bits, &e, &s);
-    }
-}
-
-static co_err_t check_comm_write(const co_node_t *node, uint16_t i, uint8_t sub,
-                                 const uint8_t *data, uint32_t len)
-{
-    const co_pdo_desc_t *d = &node->dev->pdo[i];
-    uint32_t cur = co_pdo_cob(node, i);
-    bool tx = is_tpdo(node, i);
-    uint16_t fixed = CO_PDO_NONE;
-
-    if ((sub == 1U) && (len == 4U)) {
-        /* 29-bit identifiers are not supported; the CAN-ID changes only while
-         * invalid (on a device with set.pdo.cob_id_while_valid also while
-         * valid: the current one counts as not in use); a valid one is not
-         * a restricted one */
-        uint32_t was = (CO_SET(node, pdo.cob_id_while_valid) != 0U)
-                           ? (cur | (uint32_t)CO_PDO_COB_INVALID)
-                           : cur;
-        return co_check_cob(was, co_get_u32(data), CO_PDO_COB_INVALID, false, 0U, false);
-    }
-    if ((len == 1U) && (((sub == 2U) && (data[0] > 240U) && (data[0] < ((tx && CO_PDO_RTR) ? 252U : 254U))) ||
-                        ((sub == 6U) && tx && (data[0] > 240U)))) {
-        return CO_ERR_VALUE; /* reserved transmission types, SYNC start value */
-    }
-    if (tx && ((cur & CO_PDO_COB_INVALID) == 0U)) {
-        /* inhibit time and SYNC start value change only while invalid */
-        fixed = ((sub == 3U) && (len == 2U)) ? d->inhibit
-                : ((sub == 6U) && (len == 1U)) ? d->start
-                                               : CO_PDO_NONE;
-    }
-    if ((fixed != CO_PDO_NONE) &&
-        (((len == 2U) ? (uint32_t)co_get_u16(data) : (uint32_t)data[0]) !=
-         ((len == 2U) ? (uint32_t)co_ram_u16(node, fixed) : (uint32_t)co_ram_u8(node, fixed)))) {
-        return CO_ERR_VALUE;
-    }
-    return CO_OK; /* event timer, reserved entries: any value */
-}
-
-static co_err_t pdo_check_write(const co_node_t *node, uint16_t index, uint8_t sub,
-                            const uint8_t *data, uint32_t len)
-{
-    uint16_t i;
-    bool is_map;
-
-    if (!pdo_of(node, index, &i, &is_map)) {
-        return CO_OK;
-    }
     if ((CO_SET(node, pdo.parameter_writes) == CO_PDO_WRITES_PREOP) &&
         (node->nmt != (uint8_t)CO_NMT_PRE_OPERATIONAL)) {
         return CO_ERR_STORE_STATE; /* the device configures PDOs in Pre-operational only */
     }
     if (is_map) {
-        if (((sub == 0U) && (len != 1U)) || ((sub != 0U) && (len != 4U))) {
-            return CO_OK; /* the size check of the dictionary answers */
+        const co_od_entry_t *e;
+        const co_od_sub_t *s;
+        if (sub > d->map_max) {
+            return CO_OK; /* not a mapping entry */
         }
-        return check_map_write(node, i, sub, data);
+        /* CiA 301 wants the PDO invalid first; some devices only want the
+         * node out of Operational (set.pdo.mapping_while_valid) */
+        if (valid && ((CO_SET(node, pdo.mapping_while_valid) == 0U) ||
+                      (node->nmt == (uint8_t)CO_NMT_OPERATIONAL))) {
+            return CO_ERR_STORE_STATE;
+        }
+        if (sub == 0U) {
+            /* A new count is checked against the entries as they stand; the
+             * check reads them from the image, so count them up to data[0]. */
+            return (v == 0U) ? CO_OK : check_mapping(node, i, (uint8_t)v, &len, NULL);
+        }
+        if (co_ram_u8(node, d->count) != 0U) {
+            return CO_ERR_NO_ACCESS; /* entries are fixed while the mapping is enabled */
+        }
+        v = co_get_u32(data);
+        return (v == 0U) ? CO_OK : check_entry(node, tx, v, &len, &e, &s);
     }
-    return check_comm_write(node, i, sub, data, len);
+    if (sub == 1U) {
+        /* 29-bit identifiers are not supported; the CAN-ID changes only while
+         * invalid (on a device with set.pdo.cob_id_while_valid also while
+         * valid: the current one counts as not in use); a valid one is not
+         * a restricted one */
+        if (CO_SET(node, pdo.cob_id_while_valid) != 0U) {
+            cob |= (uint32_t)CO_PDO_COB_INVALID;
+        }
+        return co_check_cob(cob, co_get_u32(data), CO_PDO_COB_INVALID, false, 0U, false);
+    }
+    if ((sub == 2U) && (v > 240U) && (v < ((tx && CO_PDO_RTR) ? 252U : 254U))) {
+        return CO_ERR_VALUE; /* reserved transmission types */
+    }
+    if (!tx || ((sub != 3U) && (sub != 6U))) {
+        return CO_OK; /* event timer, reserved entries: any value */
+    }
+    if ((sub == 6U) && (v > 240U)) {
+        return CO_ERR_VALUE; /* SYNC start value */
+    }
+    /* inhibit time and SYNC start value change only while invalid */
+    return (valid && (v != ((sub == 3U) ? (uint32_t)co_ram_u16(node, d->inhibit)
+                                        : (uint32_t)co_ram_u8(node, d->start))))
+               ? CO_ERR_VALUE
+               : CO_OK;
 }
 
 /* Recompute whether PDO i's mapping is usable and how long it is. */
@@ -289,27 +255,21 @@ static void restart(co_node_t *node, uint16_t i)
     p->count = 0U;
 }
 
-static void pdo_written(co_node_t *node, uint16_t index, uint8_t sub)
+static void pdo_written(co_node_t *node, uint16_t i, bool is_map, uint8_t sub)
 {
-    uint16_t i;
-    bool is_map;
-
-    if (!pdo_of(node, index, &i, &is_map)) {
-        return;
-    }
     if (is_map) {
-        if (sub == 0U) {
-            compile_mapping(node, i);
-            restart(node, i);
+        if (sub != 0U) {
+            return;
         }
-        return;
-    }
-    if (sub == 1U) {
+        compile_mapping(node, i);
+    } else if (sub == 1U) {
         co_rx_invalidate(node);
+    } else if ((sub != 2U) && (sub != 5U)) {
+        return;
+    } else {
+        /* the transmission type or the event timer */
     }
-    if ((sub == 1U) || (sub == 2U) || (sub == 5U)) {
-        restart(node, i);
-    }
+    restart(node, i);
 }
 
 static void pdo_reset(co_node_t *node, uint8_t kind)
@@ -392,10 +352,17 @@ static uint32_t pdo_process(co_node_t *node, uint32_t next)
 co_err_t co_pdo_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
                     const co_od_sub_t *s, const uint8_t *data, uint32_t len)
 {
-    if (op == (uint8_t)CO_SVC_CHECK) {
-        return pdo_check_write(node, e->index, s->sub, data, len);
+    uint16_t i;
+    bool is_map;
+
+    (void)len;
+    if (!pdo_of(node, e->index, &i, &is_map)) {
+        return CO_OK; /* not a PDO the core runs */
     }
-    pdo_written(node, e->index, s->sub);
+    if (op == (uint8_t)CO_SVC_CHECK) {
+        return check_write(node, i, is_map, s->sub, data);
+    }
+    pdo_written(node, i, is_map, s->sub);
     return CO_OK;
 }
 

@@ -14,22 +14,36 @@ static bool any_rpdo(const co_node_t *node, uint16_t flag)
     return false;
 }
 
-/* Set or clear an RPDO error state; the EMCY goes with the first PDO in the
- * state and ends with the last one leaving it. */
-static void rpdo_error(co_node_t *node, uint16_t i, uint16_t flag, uint16_t code, bool on)
+/* The RPDO error states with their EMCYs (CiA 301), in the order their
+ * EMCYs go. */
+static const struct {
+    uint16_t flag;
+    uint16_t code;
+} rpdo_errs[] = {
+    {CO_PDO_F_SHORT, CO_EMCY_PDO_SHORT},
+    {CO_PDO_F_LONG, CO_EMCY_PDO_LONG},
+    {CO_PDO_F_TIMEOUT, CO_EMCY_RPDO_TIMEOUT},
+};
+
+/* Set the error states of RPDO i in @p on, clear the others of @p mask; the
+ * EMCY goes with the first PDO in a state and ends with the last one
+ * leaving it. */
+static void rpdo_error(co_node_t *node, uint16_t i, uint16_t mask, uint16_t on)
 {
     co_pdo_t *p = &node->pdo.p[i];
 
-    if (on == ((p->flags & flag) != 0U)) {
-        return;
-    }
-    if (on) {
-        p->flags |= flag;
-        co_emcy_raise(node, code, CO_ERREG_COMM, NULL);
-    } else {
-        p->flags &= (uint16_t)~flag;
-        if (!any_rpdo(node, flag)) {
-            co_emcy_clear(node, code);
+    for (uint8_t k = 0U; k < (uint8_t)(sizeof rpdo_errs / sizeof rpdo_errs[0]); k++) {
+        uint16_t flag = rpdo_errs[k].flag;
+        if (((mask & flag) == 0U) || (((p->flags ^ on) & flag) == 0U)) {
+            continue; /* not asked, or no change */
+        }
+        p->flags ^= flag;
+        if ((on & flag) != 0U) {
+            co_emcy_raise(node, rpdo_errs[k].code, CO_ERREG_COMM, NULL);
+        } else if (!any_rpdo(node, flag)) {
+            co_emcy_clear(node, rpdo_errs[k].code);
+        } else {
+            /* another RPDO is still in the state */
         }
     }
 }
@@ -37,13 +51,17 @@ static void rpdo_error(co_node_t *node, uint16_t i, uint16_t flag, uint16_t code
 /* Write the mapped objects from @p data (@p dlc bytes). */
 static void apply(co_node_t *node, uint16_t i, const uint8_t *data, uint8_t dlc)
 {
+#if CO_FAST
     if ((node->pdo.p[i].flags & CO_PDO_F_DIRECT) != 0U) {
         co_pdo_store_direct(node, i, data, dlc);
     } else {
         co_pdo_store(node, i, data, dlc);
     }
-    if (node->cb.rpdo != NULL) {
-        node->cb.rpdo(node->cb.ctx, node, i);
+#else
+    co_pdo_store(node, i, data, dlc); /* one path for every PDO */
+#endif
+    if (node->cb->rpdo != NULL) {
+        node->cb->rpdo(node->cb->ctx, node, i);
     }
     if ((CO_SET(node, pdo.tpdo_after_rpdo) != 0U) && (i < node->dev->n_tpdo) &&
         (co_pdo_type(node, (uint16_t)(node->dev->n_rpdo + i)) == 255U)) {
@@ -52,22 +70,18 @@ static void apply(co_node_t *node, uint16_t i, const uint8_t *data, uint8_t dlc)
 }
 
 /* The length checks of a received RPDO with their EMCYs (CiA 301): false
- * when the frame is not processed. */
+ * when the frame is not processed. A frame that comes ends a timeout. */
 static bool length_ok(co_node_t *node, uint16_t i, uint8_t dlc)
 {
     uint8_t len = node->pdo.p[i].len;
 
-    if (dlc < len) {
-        if ((CO_SET(node, pdo.short_rpdo) == CO_RPDO_SHORT_EMCY)) {
-            rpdo_error(node, i, CO_PDO_F_SHORT, CO_EMCY_PDO_SHORT, true);
-            return false; /* CiA 301: not processed */
-        }
-    } else {
-        rpdo_error(node, i, CO_PDO_F_SHORT, CO_EMCY_PDO_SHORT, false);
+    if ((dlc < len) && (CO_SET(node, pdo.short_rpdo) == CO_RPDO_SHORT_EMCY)) {
+        rpdo_error(node, i, CO_PDO_F_SHORT, CO_PDO_F_SHORT);
+        return false; /* CiA 301: not processed */
     }
     /* longer than mapped: processed (the first bytes), and reported */
-    rpdo_error(node, i, CO_PDO_F_LONG, CO_EMCY_PDO_LONG, dlc > len);
-    rpdo_error(node, i, CO_PDO_F_TIMEOUT, CO_EMCY_RPDO_TIMEOUT, false);
+    rpdo_error(node, i, CO_PDO_F_SHORT | CO_PDO_F_LONG | CO_PDO_F_TIMEOUT,
+               (dlc > len) ? CO_PDO_F_LONG : 0U);
     return true;
 }
 
@@ -136,7 +150,7 @@ uint32_t co_rpdo_process(co_node_t *node, uint32_t next)
         }
         if (co_time_reached(node->now, p->timer)) {
             p->flags &= (uint16_t)~CO_PDO_F_TIMER;
-            rpdo_error(node, i, CO_PDO_F_TIMEOUT, CO_EMCY_RPDO_TIMEOUT, true);
+            rpdo_error(node, i, CO_PDO_F_TIMEOUT, CO_PDO_F_TIMEOUT);
         } else {
             next = co_deadline_min(node->now, next, p->timer);
         }

@@ -115,7 +115,7 @@ static co_err_t finish_download(co_node_t *node, const uint8_t *data, uint32_t l
         if (((uint32_t)t->buf_len + len) > sizeof t->buf) {
             return CO_ERR_TYPE_MISMATCH;
         }
-        (void)memcpy(&t->buf[t->buf_len], data, len);
+        co_copy(&t->buf[t->buf_len], data, len);
         t->buf_len = (uint8_t)(t->buf_len + len);
         err = co_od_write_value(node, t->entry, t->desc, t->buf, t->buf_len);
     } else {
@@ -135,7 +135,7 @@ static co_err_t put_chunk(co_node_t *node, const uint8_t *data, uint32_t len)
         if (((uint32_t)t->buf_len + len) > sizeof t->buf) {
             return CO_ERR_TYPE_MISMATCH;
         }
-        (void)memcpy(&t->buf[t->buf_len], data, len);
+        co_copy(&t->buf[t->buf_len], data, len);
         t->buf_len = (uint8_t)(t->buf_len + len);
     } else {
         err = co_od_write_part(node, t->entry, t->desc, t->offset, data, len, t->size, false);
@@ -284,7 +284,7 @@ static co_err_t read_seg(co_node_t *node, uint32_t at, uint8_t *buf, uint32_t ca
 
     if ((at == 0U) && ((t->flags & F_STAGED) != 0U)) {
         c.len = t->buf_len; /* the first chunk, read when the upload opened */
-        (void)memcpy(buf, t->buf, c.len);
+        co_copy(buf, t->buf, c.len);
     } else {
         err = co_od_read_part(node, t->entry, t->desc, &c);
     }
@@ -526,7 +526,7 @@ static void block_download_segment(co_node_t *node, const uint8_t *d)
     }
     t->seqno = seq;
     if (last) {
-        (void)memcpy(t->held, &d[1], SEG);
+        co_copy(t->held, &d[1], SEG);
         block_ack(node);
         t->seqno = 0U;
         start(node, S_BLK_DL_END);
@@ -669,7 +669,7 @@ static void block_upload_send(co_node_t *node)
             return;
         }
         f.data[0] = (uint8_t)((uint8_t)(t->seqno + 1U) | (last ? CO_SDO_BLK_LAST : 0U));
-        (void)memcpy(&f.data[1], &buf[at - from], SEG); /* zeros after the end */
+        co_copy(&f.data[1], &buf[at - from], SEG); /* zeros after the end */
         if (!co_tx_now(node, &f)) {
             return; /* nothing held back: co_sdo_process sends it again */
         }
@@ -977,7 +977,7 @@ static void sdo_reset_kind(co_node_t *node, uint8_t kind)
 
 static void sdo_rx_slots(co_node_t *node, uint8_t svc)
 {
-    co_rx_add(node, (uint16_t)(0x600U + node->node_id), svc, 0U);
+    co_rx_add(node, (uint16_t)(0x600U + node->node_id), svc);
 }
 
 /* No SDO in Stopped: an open transfer ends silently. */

@@ -24,6 +24,7 @@ const co_service_t *const co_services[] = {
 };
 
 const uint8_t co_n_services = (uint8_t)(sizeof(co_services) / sizeof(co_services[0]));
+/* (a receive slot holds the row above the 11-bit COB-ID: at most 32 rows) */
 
 /* The services' hooks on the objects they own: slot k - 1 for the entries
  * whose svc is k (CO_OD_SVC_OF in co_od.h names the objects of each slot;

@@ -16,12 +16,13 @@
 /* Sample the mapped objects into @p out (8 bytes, zero-padded). */
 CO_HOT void build(co_node_t *node, uint16_t i, uint8_t *out)
 {
+#if CO_FAST
     if ((node->pdo.p[i].flags & CO_PDO_F_DIRECT) != 0U) {
         co_pdo_sample_direct(node, i, out);
-    } else {
-        (void)memset(out, 0, 8U);
-        co_pdo_sample(node, i, out);
+        return;
     }
+#endif
+    co_pdo_sample(node, i, out);
 }
 
 /* Send @p data (8 bytes, zero beyond the mapping) now, or not at all. An
@@ -264,8 +265,8 @@ static uint32_t event_driven(co_node_t *node, uint16_t i, uint32_t next)
             (changed(now, p->data) &&
              ((CO_SET(node, tpdo.change_mask) == 0U) ||
               masked_change(node, i, now)) &&
-             ((node->cb.tpdo_event == NULL) ||
-              node->cb.tpdo_event(node->cb.ctx, node, (uint16_t)(i - node->dev->n_rpdo),
+             ((node->cb->tpdo_event == NULL) ||
+              node->cb->tpdo_event(node->cb->ctx, node, (uint16_t)(i - node->dev->n_rpdo),
                                   p->data, now)))) {
             p->flags |= CO_PDO_F_EVENT;
         }

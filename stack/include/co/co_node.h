@@ -189,7 +189,10 @@ typedef struct co_node_config {
     uint8_t node_id;
     void *ram;                     /**< dev->ram_size bytes, suitably aligned */
     co_od_hook_t *hooks;           /**< dev->n_hooks slots (may be all NULL) */
-    co_node_callbacks_t cb;
+    /** The application's callbacks, NULL for none. The node keeps the
+     *  pointer: they must stay where they are while the node runs (a const
+     *  table in flash, or the caller's own copy). */
+    const co_node_callbacks_t *cb;
     uint32_t sdo_timeout_us;       /**< 0: 1 s */
     co_pdo_t *pdo;                 /**< dev->n_rpdo + dev->n_tpdo elements */
     co_pdo_slot_t *pdo_rx;         /**< dev->n_rpdo + dev->n_tpdo elements */
@@ -226,12 +229,6 @@ typedef struct co_store {
     uint8_t unmark;       /**< held groups whose saved data loads again */
     uint8_t damaged;      /**< the newest set found at the last reset was damaged */
 } co_store_t;
-
-typedef struct co_rx_slot {
-    uint16_t cob;
-    uint8_t kind;
-    uint8_t arg;
-} co_rx_slot_t;
 
 typedef struct co_sdo_srv {
     const co_od_entry_t *entry;
@@ -333,7 +330,7 @@ typedef struct co_node {
     co_hal_t hal;
     uint8_t *ram;
     co_od_hook_t *hooks;
-    co_node_callbacks_t cb;
+    const co_node_callbacks_t *cb; /**< never NULL (co_node_init: none, all NULL) */
     uint32_t now;
     /** co_node_process: the earliest deadline of the services when they last
      *  ran (one that has moved later since only costs an early call). */
@@ -353,7 +350,9 @@ typedef struct co_node {
      *  last ran (a frame, a write of its objects); CO_SVC_ALL: every row,
      *  and 'due' is stale. */
     uint16_t svc_run;
-    co_rx_slot_t rx[CO_RX_SLOTS_MAX];
+    /** The services' receive slots: the COB-ID in bits 0..10, the row of
+     *  the service in the service table above them (co_node.c). */
+    uint16_t rx[CO_RX_SLOTS_MAX];
     co_frame_t txq[CO_TXQ_LEN];
     /* one part per service */
     co_sdo_srv_t sdo;

@@ -237,18 +237,18 @@ typedef struct co_sdo_srv {
     uint32_t offset;     /**< bytes done (acknowledged) */
     uint32_t deadline;
     uint32_t timeout_us; /**< co_node_config_t.sdo_timeout_us */
-    uint16_t crc;
 #if CO_SDO_BLOCK
+    uint16_t crc;
     uint16_t crc_sent;   /**< block upload: CRC up to the last segment sent */
+    uint8_t blksize;
+    uint8_t seqno;       /**< block: last good / last sent sequence number */
+    uint8_t held[7];     /**< block download: the last segment until its size is known */
 #endif
     uint8_t state;
     uint8_t toggle;
-    uint8_t blksize;
-    uint8_t seqno;       /**< block: last good / last sent sequence number */
     uint8_t flags;
-    uint8_t buf_len;
+    uint8_t buf_len;     /**< upload: bytes of the staged first chunk */
     uint8_t buf[8];      /**< fixed-size values gathered before commit; staged first chunk */
-    uint8_t held[7];     /**< block download: the last segment until its size is known */
 } co_sdo_srv_t;
 
 /** Error control (co_hb.c): heartbeat producer and consumers, node and life guarding. */
@@ -288,6 +288,7 @@ typedef struct co_emcy {
     uint8_t hist_depth;
     uint8_t n_active;
     uint8_t n_q;
+    uint8_t q_head;          /**< the oldest waiting EMCY in q (a ring) */
     uint8_t store_report;    /**< EMCY 0x5530 raised for a damaged parameter set */
     /* the active errors (two arrays: no padding) */
     uint16_t active_code[CO_EMCY_ACTIVE_MAX];

@@ -192,7 +192,7 @@ typedef struct co_node_config {
     co_node_callbacks_t cb;
     uint32_t sdo_timeout_us;       /**< 0: 1 s */
     co_pdo_t *pdo;                 /**< dev->n_rpdo + dev->n_tpdo elements */
-    co_pdo_slot_t *pdo_rx;         /**< dev->n_rpdo + dev->n_tpdo elements */
+    co_pdo_slot_t *pdo_rx;         /**< CO_PDO_RX_SLOTS(dev->n_rpdo, dev->n_tpdo) elements */
 } co_node_config_t;
 
 /** Node-ID of an unconfigured node (CiA 305): it sends nothing and answers

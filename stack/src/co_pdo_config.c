@@ -123,19 +123,19 @@ static uint16_t direct_code(const co_node_t *node, const co_od_entry_t *e, const
 }
 #endif
 
-/* Validate the first @p count entries of PDO i's mapping. With @p p (PDO
+/* Validate the first @p new_count entries of PDO i's mapping. With @p p (PDO
  * i's state), its mapping as the dictionary holds it becomes its state:
  * enabled and valid (CO_PDO_F_MAP_OK, len), the first CO_PDO_FAST_MAX
  * entries resolved (p->plain). */
-static co_err_t check_mapping(const co_node_t *node, uint16_t i, uint8_t count, co_pdo_t *p)
+static co_err_t check_mapping(const co_node_t *node, uint16_t i, uint8_t new_count, co_pdo_t *p)
 {
     const co_pdo_desc_t *d = &node->dev->pdo[i];
     bool tx = is_tpdo(node, i);
     uint16_t total = 0U;
+    uint8_t count = (p != NULL) ? co_ram_u8(node, d->count) : new_count;
     bool direct;
 
     if (p != NULL) {
-        count = co_ram_u8(node, d->count);
         p->flags &= (uint16_t)~(CO_PDO_F_MAP_OK | CO_PDO_F_DIRECT);
         p->len = 0U;
     }

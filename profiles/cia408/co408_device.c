@@ -42,7 +42,7 @@ co_err_t co408_unit_init(co408_unit_t *u, const co408_device_t *device,
     return CO_OK;
 }
 
-co_node_callbacks_t co408_unit_callbacks(co408_unit_t *u)
+const co_node_callbacks_t *co408_unit_callbacks(co408_unit_t *u)
 {
     return co_profile_host_callbacks(&u->host);
 }

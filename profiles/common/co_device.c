@@ -98,7 +98,7 @@ co_err_t co_device_init(co_device_run_t *run, const co_device_t *device, void *m
     return err;
 }
 
-co_node_callbacks_t co_device_callbacks(co_device_run_t *run)
+const co_node_callbacks_t *co_device_callbacks(co_device_run_t *run)
 {
     return co_profile_host_callbacks(&run->host);
 }

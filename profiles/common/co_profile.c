@@ -206,22 +206,22 @@ static void cb_time(void *ctx, co_node_t *node, uint32_t ms, uint16_t days)
     }
 }
 
-co_node_callbacks_t co_profile_host_callbacks(co_profile_host_t *h)
+const co_node_callbacks_t *co_profile_host_callbacks(co_profile_host_t *h)
 {
-    co_node_callbacks_t cb;
+    co_node_callbacks_t *cb = &h->node_cb;
 
-    (void)memset(&cb, 0, sizeof cb);
-    cb.ctx = h;
-    cb.nmt_state = cb_nmt_state;
-    cb.nmt_reset = cb_nmt_reset;
-    cb.hb_event = cb_hb_event;
-    cb.sync = cb_sync;
-    cb.time = cb_time;
-    cb.emcy_mfr = cb_emcy_mfr;
-    cb.rpdo = cb_rpdo;
-    cb.tpdo_event = cb_tpdo_event;
-    cb.nmt_command = cb_nmt_command;
-    cb.error_class = cb_error_class;
+    (void)memset(cb, 0, sizeof *cb);
+    cb->ctx = h;
+    cb->nmt_state = cb_nmt_state;
+    cb->nmt_reset = cb_nmt_reset;
+    cb->hb_event = cb_hb_event;
+    cb->sync = cb_sync;
+    cb->time = cb_time;
+    cb->emcy_mfr = cb_emcy_mfr;
+    cb->rpdo = cb_rpdo;
+    cb->tpdo_event = cb_tpdo_event;
+    cb->nmt_command = cb_nmt_command;
+    cb->error_class = cb_error_class;
     return cb;
 }
 

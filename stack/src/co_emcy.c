@@ -22,11 +22,15 @@ static uint8_t errreg_now(const co_node_t *node)
     return r;
 }
 
-static void update_errreg(co_node_t *node)
+/* 0x1001 brought up to date; its value (also without a 0x1001). */
+static uint8_t update_errreg(co_node_t *node)
 {
+    uint8_t r = errreg_now(node);
+
     if (node->emcy.errreg != NULL) {
-        *node->emcy.errreg = errreg_now(node);
+        *node->emcy.errreg = r;
     }
+    return r;
 }
 
 static uint32_t cob_id(const co_node_t *node)
@@ -53,7 +57,7 @@ static bool inhibited(const co_node_t *node)
 
 /* The waiting EMCYs go out, oldest first, as far as the inhibit time lets
  * them (more than one only when it is 0); the others wait for
- * emcy_process. */
+ * emcy_process. The queue is a ring: q_head is the oldest, nothing moves. */
 static void drain(co_node_t *node)
 {
     co_emcy_t *m = &node->emcy;
@@ -61,22 +65,20 @@ static void drain(co_node_t *node)
     while ((m->n_q > 0U) && !inhibited(node)) {
         uint32_t cob = cob_id(node);
         if ((node->nmt != (uint8_t)CO_NMT_STOPPED) && ((cob & 0x80000000UL) == 0U)) {
-            co_tx(node, cob & 0x7FFUL, m->q[0].data, 8U);
+            co_tx(node, cob & 0x7FFUL, m->q[m->q_head].data, 8U);
         }
-        /* the others move one up (element by element: a copy of the
-         * whole would be a call of the C library's memmove) */
+        m->q_head = (uint8_t)((m->q_head + 1U) % CO_EMCY_QUEUE_LEN);
         m->n_q--;
-        for (uint8_t i = 0U; i < m->n_q; i++) {
-            (void)memcpy(m->q[i].data, m->q[i + 1U].data, 8U);
-        }
         m->next = node->now + inhibit_us(node);
     }
 }
 
-/* An EMCY joins the queue (lost when it is full) and goes out at once when
- * nothing is ahead of it and no inhibit time runs. */
-static void send(co_node_t *node, const uint8_t *d)
+/* An EMCY (@p code, 0x1001 now, the manufacturer bytes or zeros) joins the
+ * queue, built in its place there (lost when the queue is full), and goes
+ * out at once when nothing is ahead of it and no inhibit time runs. */
+static void send_code(co_node_t *node, uint16_t code, const uint8_t *mfr)
 {
+    static const uint8_t none[5] = {0U, 0U, 0U, 0U, 0U};
     co_emcy_t *m = &node->emcy;
 
     if ((node->nmt == (uint8_t)CO_NMT_STOPPED) || ((cob_id(node) & 0x80000000UL) != 0U) ||
@@ -84,22 +86,13 @@ static void send(co_node_t *node, const uint8_t *d)
         return; /* no EMCY in Stopped; not valid; nothing while unconfigured */
     }
     if (m->n_q < CO_EMCY_QUEUE_LEN) {
-        (void)memcpy(m->q[m->n_q].data, d, 8U);
+        uint8_t *d = m->q[(m->q_head + m->n_q) % CO_EMCY_QUEUE_LEN].data;
+        co_put_u16(d, code);
+        d[2] = update_errreg(node);
+        co_copy(&d[3], (mfr != NULL) ? mfr : none, 5U);
         m->n_q++;
     }
     drain(node);
-}
-
-static void send_code(co_node_t *node, uint16_t code, const uint8_t *mfr)
-{
-    uint8_t d[8] = {0};
-
-    co_put_u16(d, code);
-    d[2] = (node->emcy.errreg != NULL) ? *node->emcy.errreg : errreg_now(node);
-    if (mfr != NULL) {
-        co_copy(&d[3], mfr, 5U);
-    }
-    send(node, d);
 }
 
 static void history_push(co_node_t *node, uint16_t code, const uint8_t *mfr)
@@ -144,11 +137,11 @@ void co_emcy_raise(co_node_t *node, uint16_t code, uint8_t reg_bits, const uint8
         node->emcy.active_reg[node->emcy.n_active] = reg_bits;
         node->emcy.n_active++;
     }
-    update_errreg(node);
-    if ((data == NULL) && (node->cb.emcy_mfr != NULL)) {
+    (void)update_errreg(node);
+    if ((data == NULL) && (node->cb->emcy_mfr != NULL)) {
         /* the device fills the manufacturer bytes of the core's own EMCYs */
         (void)memset(filled, 0, sizeof filled);
-        node->cb.emcy_mfr(node->cb.ctx, node, code, filled);
+        node->cb->emcy_mfr(node->cb->ctx, node, code, filled);
         data = filled;
     }
     history_push(node, code, data);
@@ -159,39 +152,43 @@ void co_emcy_raise(co_node_t *node, uint16_t code, uint8_t reg_bits, const uint8
     }
 }
 
-void co_emcy_clear(co_node_t *node, uint16_t code)
+/* The slot of active error @p code, n_active when it is not active. */
+static uint8_t active_at(const co_node_t *node, uint16_t code)
 {
     uint8_t i = 0U;
 
     while ((i < node->emcy.n_active) && (node->emcy.active_code[i] != code)) {
         i++;
     }
-    if (i == node->emcy.n_active) {
+    return i;
+}
+
+void co_emcy_clear(co_node_t *node, uint16_t code)
+{
+    co_emcy_t *m = &node->emcy;
+    uint8_t i = active_at(node, code);
+
+    if (i == m->n_active) {
         return;
     }
-    node->emcy.n_active--;
-    node->emcy.active_code[i] = node->emcy.active_code[node->emcy.n_active];
-    node->emcy.active_reg[i] = node->emcy.active_reg[node->emcy.n_active];
-    update_errreg(node);
+    m->n_active--;
+    m->active_code[i] = m->active_code[m->n_active];
+    m->active_reg[i] = m->active_reg[m->n_active];
+    (void)update_errreg(node);
     co_svc_touch_all(node);
-    if ((node->emcy.n_active == 0U) || (CO_SET(node, emcy.reset) == CO_EMCY_RESET_EACH_CLEAR)) {
+    if ((m->n_active == 0U) || (CO_SET(node, emcy.reset) == CO_EMCY_RESET_EACH_CLEAR)) {
         send_code(node, CO_EMCY_NO_ERROR, NULL);
     }
 }
 
 bool co_emcy_is_active(const co_node_t *node, uint16_t code)
 {
-    for (uint8_t i = 0U; i < node->emcy.n_active; i++) {
-        if (node->emcy.active_code[i] == code) {
-            return true;
-        }
-    }
-    return false;
+    return active_at(node, code) < node->emcy.n_active;
 }
 
 static uint32_t emcy_process(co_node_t *node, uint32_t next)
 {
-    if ((node->emcy.store_report != 0U) && !co_store_damaged(node)) {
+    if ((CO_STORAGE != 0) && (node->emcy.store_report != 0U) && !co_store_damaged(node)) {
         /* a save or restore wrote a whole parameter set */
         node->emcy.store_report = 0U;
         co_emcy_clear(node, CO_EMCY_STORE_DAMAGED);
@@ -228,8 +225,9 @@ static void emcy_reset(co_node_t *node, uint8_t kind)
         node->emcy.store_report = 0U;
     } else if (kind == CO_SVC_START) {
         node->emcy.n_q = 0U;
+        node->emcy.q_head = 0U;
         node->emcy.next = node->now;
-        update_errreg(node);
+        (void)update_errreg(node);
     } else {
         /* reset communication keeps the active errors */
     }
@@ -238,6 +236,9 @@ static void emcy_reset(co_node_t *node, uint8_t kind)
 /* Leaving Initialising, after the boot-up frame. */
 static void emcy_nmt(co_node_t *node, co_nmt_state_t from)
 {
+    static const uint16_t ended[4] = {CO_EMCY_HB_GUARD, CO_EMCY_PDO_SHORT, CO_EMCY_PDO_LONG,
+                                      CO_EMCY_RPDO_TIMEOUT};
+
     if (from != CO_NMT_INITIALISING) {
         return;
     }
@@ -255,10 +256,9 @@ static void emcy_nmt(co_node_t *node, co_nmt_state_t from)
      * CiA 301 is silent; we end them here, after the boot-up (the first frame
      * after a reset) and in Pre-operational, where EMCY may be sent. No-op
      * after a node reset (no active errors) and at init. */
-    co_emcy_clear(node, CO_EMCY_HB_GUARD);
-    co_emcy_clear(node, CO_EMCY_PDO_SHORT);
-    co_emcy_clear(node, CO_EMCY_PDO_LONG);
-    co_emcy_clear(node, CO_EMCY_RPDO_TIMEOUT);
+    for (uint8_t i = 0U; i < 4U; i++) {
+        co_emcy_clear(node, ended[i]);
+    }
     /* the newest parameter set was damaged: an older one or the defaults
      * were loaded (co_store.c); reported until a save writes a whole one */
     if (co_store_damaged(node)) {

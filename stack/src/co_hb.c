@@ -17,8 +17,8 @@ static uint32_t ms_to_us(uint32_t ms)
 
 static void event(co_node_t *node, co_hb_event_t ev, uint8_t id, uint8_t state)
 {
-    if (node->cb.hb_event != NULL) {
-        node->cb.hb_event(node->cb.ctx, node, ev, id, (co_nmt_state_t)state);
+    if (node->cb->hb_event != NULL) {
+        node->cb->hb_event(node->cb->ctx, node, ev, id, (co_nmt_state_t)state);
     }
 }
 
@@ -109,29 +109,16 @@ static void producer_changed(co_node_t *node)
     guard_check(node);
 }
 
-/* Entries in state HBC_UNUSED are (re)configured from 0x1016: a used one
- * waits for its producer's first heartbeat. The others keep monitoring. */
-static void consumers_restart(co_node_t *node)
+/* Entry @p k starts over from its 0x1016 value: a used one waits for its
+ * producer's first heartbeat, with no deadline until then. */
+static void consumer_start(co_node_t *node, uint8_t k)
 {
-    for (uint8_t k = 0U; k < node->errctl.n_hb_cons; k++) {
-        uint32_t v = node->errctl.hb_cons[k];
-        bool used = ((v & 0xFFFFU) != 0U) && (((v >> 16U) & 0xFFU) != 0U);
-        if (node->errctl.hbc_state[k] == (uint8_t)HBC_UNUSED) {
-            node->errctl.hbc_state[k] = used ? (uint8_t)HBC_WAITING : (uint8_t)HBC_UNUSED;
-            node->errctl.hbc_nmt[k] = (uint8_t)CO_NMT_INITIALISING;
-        }
-    }
-    co_rx_invalidate(node);
-}
+    uint32_t v = node->errctl.hb_cons[k];
+    bool used = ((v & 0xFFFFU) != 0U) && (((v >> 16U) & 0xFFU) != 0U);
 
-/* After a write of 0x1016 sub k, errctl_written has set hbc_state[k-1] to
- * HBC_UNUSED: only that entry starts over. CiA 301 does not say what a write
- * does to the other entries; restarting them would pause their monitoring
- * and end a pending timeout of a producer that is still silent. */
-static void consumers_changed(co_node_t *node)
-{
-    consumers_restart(node);
-    update_error(node);
+    node->errctl.hbc_state[k] = used ? (uint8_t)HBC_WAITING : (uint8_t)HBC_UNUSED;
+    node->errctl.hbc_nmt[k] = (uint8_t)CO_NMT_INITIALISING;
+    co_rx_invalidate(node);
 }
 
 /* Reset communication: everything starts over. The EMCY 0x8130 that a lost
@@ -149,9 +136,8 @@ static void hb_reset(co_node_t *node)
     node->errctl.hb_flags = (uint8_t)((node->errctl.hb_flags & ~HB_ON) |
                                       (heartbeat_producing(node) ? HB_ON : 0U));
     for (uint8_t k = 0U; k < node->errctl.n_hb_cons; k++) {
-        node->errctl.hbc_state[k] = (uint8_t)HBC_UNUSED;
+        consumer_start(node, k);
     }
-    consumers_restart(node);
 }
 
 static void hb_rx(co_node_t *node, uint8_t slot, const co_frame_t *f)
@@ -161,8 +147,7 @@ static void hb_rx(co_node_t *node, uint8_t slot, const co_frame_t *f)
     uint8_t id;
     uint8_t prev;
 
-    if (co_frame_is_rtr(f) || (f->dlc < 1U) || (slot >= c->n_hb_cons) ||
-        (c->hbc_state[slot] == (uint8_t)HBC_UNUSED)) {
+    if (co_frame_is_rtr(f) || (f->dlc < 1U)) {
         return;
     }
     st = (uint8_t)(f->data[0] & 0x7FU);
@@ -282,7 +267,6 @@ void co_node_hb_mute(co_node_t *node, bool muted, uint32_t now_us)
 
 /* ------------------------------------------------------------ service */
 
-#define GUARD_SLOT 0xFFU /* receive-slot argument of the guarding RTR */
 
 static co_err_t errctl_bind(co_node_t *node)
 {
@@ -311,26 +295,37 @@ static void errctl_reset(co_node_t *node, uint8_t kind)
 static void errctl_rx_slots(co_node_t *node, uint8_t svc)
 {
 #if CO_NODE_GUARDING
-    co_rx_add(node, (uint16_t)(0x700U + node->node_id), svc, GUARD_SLOT);
+    co_rx_add(node, (uint16_t)(0x700U + node->node_id), svc);
 #endif
     for (uint8_t k = 0U; k < node->errctl.n_hb_cons; k++) {
-        uint32_t v = node->errctl.hb_cons[k];
-        uint8_t id = (uint8_t)((v >> 16U) & 0x7FU);
-        if (((v & 0xFFFFU) != 0U) && (id != 0U) && (id != node->node_id)) {
-            co_rx_add(node, (uint16_t)(0x700U + id), svc, k);
+        uint8_t id = (uint8_t)((node->errctl.hb_cons[k] >> 16U) & 0x7FU);
+        if ((node->errctl.hbc_state[k] != (uint8_t)HBC_UNUSED) && (id != node->node_id)) {
+            co_rx_add(node, (uint16_t)(0x700U + id), svc);
         }
     }
 }
 
+/* A frame on 0x700 + a node-ID the node has a slot for: its own (the
+ * guarding RTR), or a producer's that entries in use monitor (not its own:
+ * errctl_rx_slots); one entry per producer (hb_consumer_check). */
 static void errctl_rx(co_node_t *node, uint16_t arg, const co_frame_t *f)
 {
+    uint8_t id = (uint8_t)(f->id & 0x7FU);
+
+    (void)arg;
 #if CO_NODE_GUARDING
-    if (arg == GUARD_SLOT) {
+    if (id == node->node_id) {
         guard_rx(node, f);
         return;
     }
 #endif
-    hb_rx(node, (uint8_t)arg, f);
+    for (uint8_t k = 0U; k < node->errctl.n_hb_cons; k++) {
+        if ((node->errctl.hbc_state[k] != (uint8_t)HBC_UNUSED) &&
+            (((node->errctl.hb_cons[k] >> 16U) & 0x7FU) == id)) {
+            hb_rx(node, k, f);
+            return;
+        }
+    }
 }
 
 /* 0x1016: one producer may be monitored by one entry only. */
@@ -372,10 +367,12 @@ static co_err_t errctl_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
                                          : CO_OK;
     }
     if (consumer) {
-        /* this entry starts over: it waits for the producer's first
-         * heartbeat, with no deadline until then */
-        c->hbc_state[sub - 1U] = (uint8_t)HBC_UNUSED;
-        consumers_changed(node);
+        /* only this entry starts over: CiA 301 does not say what a write
+         * does to the other entries; restarting them would pause their
+         * monitoring and end a pending timeout of a producer that is still
+         * silent */
+        consumer_start(node, (uint8_t)(sub - 1U));
+        update_error(node);
     } else if ((CO_NODE_GUARDING != 0) && (e->index != 0x1016U)) {
         /* 0x100C / 0x100D: life guarding is re-armed with the new life time
          * by the next guarding request. A lost state is kept: that request

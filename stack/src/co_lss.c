@@ -496,7 +496,7 @@ static uint32_t lss_process(co_node_t *node, uint32_t next_in)
 static void lss_rx_slots(co_node_t *node, uint8_t svc)
 {
     if (co_lss_enabled(node)) {
-        co_rx_add(node, LSS_RX, svc, 0U);
+        co_rx_add(node, LSS_RX, svc);
     }
 }
 

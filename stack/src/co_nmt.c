@@ -7,7 +7,7 @@
 
 static void nmt_rx_slots(co_node_t *node, uint8_t svc)
 {
-    co_rx_add(node, 0x000U, svc, 0U);
+    co_rx_add(node, 0x000U, svc);
 }
 
 static void nmt_rx(co_node_t *node, uint16_t arg, const co_frame_t *f)
@@ -42,11 +42,9 @@ void co_nmt_error(co_node_t *node, uint8_t sub)
         return;
     }
     if ((*v == 0U) && (node->nmt == (uint8_t)CO_NMT_OPERATIONAL)) {
-        co_node_nmt_notice(node, (uint8_t)CO_NMT_CMD_PRE_OPERATIONAL);
-        co_node_set_state(node, CO_NMT_PRE_OPERATIONAL);
+        co_node_nmt_exec(node, (uint8_t)CO_NMT_CMD_PRE_OPERATIONAL);
     } else if (*v == 2U) {
-        co_node_nmt_notice(node, (uint8_t)CO_NMT_CMD_STOP);
-        co_node_set_state(node, CO_NMT_STOPPED);
+        co_node_nmt_exec(node, (uint8_t)CO_NMT_CMD_STOP);
     } else {
         /* no change */
     }
@@ -84,8 +82,8 @@ const co_service_t co_svc_nmt = {
 void co_node_error_behaviour(co_node_t *node, uint8_t sub, uint32_t now_us)
 {
     co_node_clock(node, now_us);
-    if (node->cb.error_class != NULL) {
-        node->cb.error_class(node->cb.ctx, node, sub);
+    if (node->cb->error_class != NULL) {
+        node->cb->error_class(node->cb->ctx, node, sub);
     }
     co_nmt_error(node, sub);
 }

@@ -114,18 +114,17 @@ co_err_t co_check_cob(uint32_t cur, uint32_t v, uint32_t use_bits, bool use_when
 
 /* ------------------------------------------------------- RX dispatch */
 
-void co_rx_add(co_node_t *node, uint16_t cob, uint8_t svc, uint8_t arg)
+
+void co_rx_add(co_node_t *node, uint16_t cob, uint8_t svc)
 {
     uint8_t i = node->n_rx;
 
     if (i >= CO_RX_SLOTS_MAX) {
         return;
     }
-    node->rx[i].cob = cob;
-    node->rx[i].kind = svc;
-    node->rx[i].arg = arg;
+    node->rx[i] = (uint16_t)(cob | ((uint16_t)svc << CO_RX_ROW_SHIFT));
     node->n_rx++;
-    co_rx_accept(node, cob, (i < (CO_RX_AT_PDO - 1U)) ? (uint8_t)(i + 1U) : CO_RX_AT_MANY);
+    co_rx_accept(node, cob, (uint8_t)(i + 1U));
 }
 
 /* The rows of co_services[] that run: all, or only LSS while unconfigured. */
@@ -156,8 +155,8 @@ void co_rx_rebuild(co_node_t *node)
             co_services[k]->rx_slots(node, k);
         }
     }
-    if (node->cb.rx_set != NULL) {
-        node->cb.rx_set(node->cb.ctx, node);
+    if (node->cb->rx_set != NULL) {
+        node->cb->rx_set(node->cb->ctx, node);
     }
 }
 
@@ -166,7 +165,7 @@ bool co_node_rx_cob(const co_node_t *node, uint16_t i, uint16_t *cob)
     bool found = false;
 
     if (i < node->n_rx) {
-        *cob = node->rx[i].cob;
+        *cob = (uint16_t)(node->rx[i] & 0x7FFU);
         found = true;
     } else if ((uint16_t)(i - node->n_rx) < node->pdo.n_rx) {
         *cob = node->pdo.rx[i - node->n_rx].cob;
@@ -177,55 +176,60 @@ bool co_node_rx_cob(const co_node_t *node, uint16_t i, uint16_t *cob)
     return found;
 }
 
-/* A frame on a service's slot. */
-static void rx_svc(co_node_t *node, const co_rx_slot_t *slot, const co_frame_t *f,
-                   uint32_t now_us)
+/* The frame to the service of the slot @p at says (a CO_RX_AT_* code,
+ * wider for a PDO slot of any index), if the slot is for @p cob: the PDO
+ * service with the PDO's number; a frame for any other service than SYNC
+ * and PDO makes it run at the next co_node_process. */
+CO_HOT void rx_slot(co_node_t *node, const co_frame_t *f, uint16_t cob, uint16_t at,
+                    uint32_t now_us)
 {
-    co_node_clock(node, now_us);
-    if (slot->kind != CO_ROW_SYNC) {
-        /* its timers may have changed (a SYNC received changes none: the
-         * producer's run from its own period) */
-        co_svc_touch(node, slot->kind);
+    uint8_t kind;
+
+    if (at <= CO_RX_SLOTS_MAX) {
+        uint16_t s = node->rx[at - 1U];
+        if ((s & 0x7FFU) != cob) {
+            return;
+        }
+        kind = (uint8_t)(s >> CO_RX_ROW_SHIFT);
+        if (kind != CO_ROW_SYNC) {
+            /* its timers may have changed (a SYNC received changes none: the
+             * producer's run from its own period) */
+            co_svc_touch(node, kind);
+        }
+    } else {
+        const co_pdo_slot_t *ps = &node->pdo.rx[at - CO_RX_AT_PDO];
+        if (ps->cob != cob) {
+            return;
+        }
+        co_node_clock(node, now_us);
+        co_svc_pdo.rx(node, ps->pdo, f); /* (known: called directly) */
+        return;
     }
-    co_services[slot->kind]->rx(node, slot->arg, f);
-}
-
-/* A frame on a PDO's COB-ID: the PDO service's receive entry with the
- * PDO's number. */
-static void rx_pdo(co_node_t *node, const co_pdo_slot_t *ps, const co_frame_t *f,
-                   uint32_t now_us)
-{
     co_node_clock(node, now_us);
-    co_svc_pdo.rx(node, ps->pdo, f);
+    co_services[kind]->rx(node, 0U, f);
 }
 
-/* A function code with several slots (or a stale table): the services'
- * slots, then the PDOs'. */
+/* A function code with several slots (or a stale table): a search of the
+ * services' slots, then the PDOs'. */
 CO_NOINLINE static void rx_many(co_node_t *node, const co_frame_t *f, uint16_t cob,
                                 uint32_t now_us)
 {
-    if (node->rx_dirty != 0U) {
-        /* a frame that came while the table was out of date: rebuild, look again */
-        co_rx_rebuild(node);
-        co_node_rx(node, f, now_us);
-        return;
-    }
+    co_rx_settle(node); /* a frame that came while the table was out of date */
     for (uint8_t k = 0U; k < node->n_rx; k++) {
-        if (node->rx[k].cob == cob) {
-            rx_svc(node, &node->rx[k], f, now_us);
+        if ((node->rx[k] & 0x7FFU) == cob) {
+            rx_slot(node, f, cob, (uint16_t)(k + 1U), now_us);
             return;
         }
     }
     for (uint16_t k = 0U; k < node->pdo.n_rx; k++) {
         if (node->pdo.rx[k].cob == cob) {
-            rx_pdo(node, &node->pdo.rx[k], f, now_us);
+            rx_slot(node, f, cob, (uint16_t)(CO_RX_AT_PDO + k), now_us);
             return;
         }
     }
 }
 
-/* The function code's only slot, or a search where it has several. (The
- * reject path, a function code without a slot, is a leaf.) */
+/* The function code's only slot, or a search where it has several. */
 void co_node_rx(co_node_t *node, const co_frame_t *f, uint32_t now_us)
 {
     uint16_t cob;
@@ -236,20 +240,14 @@ void co_node_rx(co_node_t *node, const co_frame_t *f, uint32_t now_us)
     }
     cob = (uint16_t)(f->id & 0x7FFU);
     at = node->rx_at[cob >> 7U];
-    if (at < CO_RX_AT_PDO) {
-        /* the only slot, rx[at - 1]; CO_RX_AT_NONE: not for this node */
-        uint8_t k = (uint8_t)(at - 1U);
-        if ((k < node->n_rx) && (node->rx[k].cob == cob)) {
-            rx_svc(node, &node->rx[k], f, now_us);
-        }
-    } else if (at != CO_RX_AT_MANY) {
-        const co_pdo_slot_t *ps = &node->pdo.rx[at - CO_RX_AT_PDO];
-        if (ps->cob == cob) {
-            rx_pdo(node, ps, f, now_us);
-        }
-    } else {
-        rx_many(node, f, cob, now_us);
+    if (at == CO_RX_AT_NONE) {
+        return; /* not for this node */
     }
+    if (at == CO_RX_AT_MANY) {
+        rx_many(node, f, cob, now_us);
+        return;
+    }
+    rx_slot(node, f, cob, at, now_us);
 }
 
 /* ------------------------------------------------------------ timers */
@@ -288,6 +286,13 @@ CO_NOINLINE void co_node_stalled(co_node_t *node, uint32_t now_us)
     }
 }
 
+#if !CO_FAST
+void co_node_clock(co_node_t *node, uint32_t now_us)
+{
+    co_node_clock_at(node, now_us);
+}
+#endif
+
 /* The services that run now: every one once the earliest deadline they
  * returned has come (or the TX path holds frames back), else only those
  * with something new and, while event-driven TPDOs detect changes, the PDO
@@ -307,33 +312,30 @@ static uint16_t services_due(co_node_t *node, uint32_t now_us)
     return run;
 }
 
-/* One pass over the rows of @p run (and those touched meanwhile by a row
- * before them), in table order; returns the earlier of @p next and their
- * deadlines. */
+/* The rows of @p run (and those touched meanwhile by a row before them),
+ * in table order; then once more the rows touched during that pass before
+ * their turn (what is touched after that runs at the next call). Returns
+ * the earlier of @p next and their deadlines. */
 static uint32_t run_rows(co_node_t *node, uint16_t run, uint32_t next)
 {
     uint8_t rows = services_running(node);
-    uint8_t k = 0U;
 
-    for (;;) {
-        uint16_t rest = (uint16_t)((run | node->svc_run) >> k);
-        if (rest == 0U) {
-            break;
+    uint16_t todo = run;
+    uint32_t due = next;
+
+    for (uint8_t pass = 0U; (pass < 2U) && (todo != 0U); pass++) {
+        node->svc_run = 0U;
+        for (uint8_t k = 0U; (k < rows) && ((((uint32_t)todo | node->svc_run) >> k) != 0U); k++) {
+            if (((((uint32_t)todo | node->svc_run) >> k) & 1U) != 0U) {
+                node->svc_run &= (uint16_t)~(1U << k);
+                if (co_services[k]->process != NULL) {
+                    due = co_services[k]->process(node, due);
+                }
+            }
         }
-        while ((rest & 1U) == 0U) {
-            rest >>= 1U;
-            k++;
-        }
-        if (k >= rows) {
-            break;
-        }
-        node->svc_run &= (uint16_t)~(1U << k);
-        if (co_services[k]->process != NULL) {
-            next = co_services[k]->process(node, next);
-        }
-        k++;
+        todo = node->svc_run;
     }
-    return next;
+    return due;
 }
 
 uint32_t co_node_process(co_node_t *node, uint32_t now_us)
@@ -347,20 +349,13 @@ uint32_t co_node_process(co_node_t *node, uint32_t now_us)
         tx_drain(node);
     }
     run = services_due(node, now_us);
-    if (run == 0U) {
-        next = node->due;
-    } else {
+    next = node->due;
+    if (run != 0U) {
         /* an earlier deadline than the cached one comes from the rows that run */
-        next = (run == CO_SVC_ALL) ? CO_NO_DEADLINE : node->due;
-        node->svc_run = 0U;
-        next = run_rows(node, run, next);
-        if (node->svc_run != 0U) {
-            /* rows touched during the pass before their turn: once more
-             * (what is touched after that runs at the next call) */
-            run = node->svc_run;
-            node->svc_run = 0U;
-            next = run_rows(node, run, next);
+        if (run == CO_SVC_ALL) {
+            next = (uint32_t)CO_NO_DEADLINE;
         }
+        next = run_rows(node, run, next);
         if (node->txq_len > 0U) {
             /* TX path still full: look again in a millisecond */
             next = co_deadline_min(now_us, next, now_us + 1000U);
@@ -389,8 +384,8 @@ void co_node_set_state(co_node_t *node, co_nmt_state_t st)
             co_services[k]->nmt(node, from);
         }
     }
-    if (node->cb.nmt_state != NULL) {
-        node->cb.nmt_state(node->cb.ctx, node, st);
+    if (node->cb->nmt_state != NULL) {
+        node->cb->nmt_state(node->cb->ctx, node, st);
     }
 }
 
@@ -462,19 +457,19 @@ static void reset(co_node_t *node, co_reset_t kind_asked)
             services_reset(node, (uint8_t)kind);
         }
     }
-    if (node->cb.nmt_reset != NULL) {
-        node->cb.nmt_reset(node->cb.ctx, node, kind);
+    if (node->cb->nmt_reset != NULL) {
+        node->cb->nmt_reset(node->cb->ctx, node, kind);
     }
     boot(node);
 }
 
-/* The application's notice before NMT command @p cs is executed: only
- * when it changes the state or resets. */
-/* The state NMT command @p cs enters (start, stop, pre-operational), else
- * CO_NMT_INITIALISING (resets and unknown commands). */
-static uint8_t cmd_state(uint8_t cs)
+/* Execute NMT command @p cs: the application's notice first (the node still
+ * in its old state; only when the command changes the state or resets),
+ * then the state change or the reset. Unknown command specifiers are
+ * ignored (CiA 301 defines no answer). */
+void co_node_nmt_exec(co_node_t *node, uint8_t cs)
 {
-    uint8_t to = (uint8_t)CO_NMT_INITIALISING;
+    uint8_t to;
 
     if (cs == (uint8_t)CO_NMT_CMD_START) {
         to = (uint8_t)CO_NMT_OPERATIONAL;
@@ -482,43 +477,28 @@ static uint8_t cmd_state(uint8_t cs)
         to = (uint8_t)CO_NMT_STOPPED;
     } else if (cs == (uint8_t)CO_NMT_CMD_PRE_OPERATIONAL) {
         to = (uint8_t)CO_NMT_PRE_OPERATIONAL;
+    } else if ((cs == (uint8_t)CO_NMT_CMD_RESET_NODE) ||
+               (cs == (uint8_t)CO_NMT_CMD_RESET_COMMUNICATION)) {
+        to = (uint8_t)CO_NMT_INITIALISING; /* a reset */
     } else {
-        /* no state of its own */
+        return;
     }
-    return to;
-}
-
-static bool is_reset_cmd(uint8_t cs)
-{
-    return (cs == (uint8_t)CO_NMT_CMD_RESET_NODE) ||
-           (cs == (uint8_t)CO_NMT_CMD_RESET_COMMUNICATION);
-}
-
-void co_node_nmt_notice(co_node_t *node, uint8_t cs)
-{
-    uint8_t to = cmd_state(cs);
-    bool change = is_reset_cmd(cs) || ((to != (uint8_t)CO_NMT_INITIALISING) && (node->nmt != to));
-
-    if (change && (node->cb.nmt_command != NULL)) {
-        node->cb.nmt_command(node->cb.ctx, node, cs);
+    if (((to == (uint8_t)CO_NMT_INITIALISING) || (node->nmt != to)) &&
+        (node->cb->nmt_command != NULL)) {
+        node->cb->nmt_command(node->cb->ctx, node, cs);
+    }
+    if (to != (uint8_t)CO_NMT_INITIALISING) {
+        co_node_set_state(node, (co_nmt_state_t)to);
+    } else {
+        reset(node, (cs == (uint8_t)CO_NMT_CMD_RESET_NODE) ? CO_RESET_NODE
+                                                           : CO_RESET_COMMUNICATION);
     }
 }
 
 void co_node_nmt_command(co_node_t *node, uint8_t cs, uint32_t now_us)
 {
-    uint8_t to = cmd_state(cs);
-
     co_node_clock(node, now_us);
-    co_node_nmt_notice(node, cs);
-    if (to != (uint8_t)CO_NMT_INITIALISING) {
-        co_node_set_state(node, (co_nmt_state_t)to);
-    } else if (cs == (uint8_t)CO_NMT_CMD_RESET_NODE) {
-        reset(node, CO_RESET_NODE);
-    } else if (cs == (uint8_t)CO_NMT_CMD_RESET_COMMUNICATION) {
-        reset(node, CO_RESET_COMMUNICATION);
-    } else {
-        /* unknown command specifier: ignored (CiA 301 defines no answer) */
-    }
+    co_node_nmt_exec(node, cs);
     co_rx_settle(node);
 }
 
@@ -590,6 +570,9 @@ static co_result_t bind_services(co_node_t *node)
     return CO_RESULT_OK;
 }
 
+/* A node without callbacks: every entry NULL. */
+static const co_node_callbacks_t no_callbacks;
+
 co_result_t co_node_init(co_node_t *node, const co_node_config_t *cfg, uint32_t now_us)
 {
     co_result_t r;
@@ -616,7 +599,7 @@ co_result_t co_node_init(co_node_t *node, const co_node_config_t *cfg, uint32_t 
     if (node->hooks != NULL) {
         (void)memset(node->hooks, 0, (size_t)cfg->dev->n_hooks * sizeof node->hooks[0]);
     }
-    node->cb = cfg->cb;
+    node->cb = (cfg->cb != NULL) ? cfg->cb : &no_callbacks;
     node->node_id = id;
     node->pending_id = id;
     node->cob_base = id;

@@ -55,17 +55,6 @@ static inline void co_copy(void *dst, const void *src, size_t n)
 #define CO_NOINLINE
 #endif
 
-/* Receive-slot kinds (co_rx_slot_t.kind), in dispatch order of likelihood. */
-enum {
-    CO_RX_NMT = 1,
-    CO_RX_SDO,
-    CO_RX_GUARD,
-    CO_RX_HB,
-    CO_RX_SYNC,
-    CO_RX_TIME,
-    CO_RX_LSS
-};
-
 /* A setting of the node's device (co_settings.h, e.g. CO_SET(node,
  * pdo.granularity)); with CO_PERSONALITY 0 every setting is its CiA 301
  * value 0, so the code of the deviations is not built. */
@@ -189,7 +178,7 @@ void co_node_stalled(co_node_t *node, uint32_t now_us);
  * ahead of 2^31 us or more (but not a small step back, as receive time
  * stamps taken before the last co_node_process may make) is a stall. */
 #define CO_STEP_BACK_MAX 0x04000000UL /* 67 s */
-CO_INLINE void co_node_clock(co_node_t *node, uint32_t now_us)
+CO_INLINE void co_node_clock_at(co_node_t *node, uint32_t now_us)
 {
     uint32_t d = now_us - node->now;
 
@@ -198,6 +187,15 @@ CO_INLINE void co_node_clock(co_node_t *node, uint32_t now_us)
     }
     node->now = now_us;
 }
+#if CO_FAST
+CO_INLINE void co_node_clock(co_node_t *node, uint32_t now_us)
+{
+    co_node_clock_at(node, now_us);
+}
+#else
+/* (a build for size: one copy, called from every entry point) */
+void co_node_clock(co_node_t *node, uint32_t now_us);
+#endif
 
 /* ---- transmit (co_node.c) */
 /* Send @p f now or not at all: false while frames are held back or the HAL
@@ -222,13 +220,14 @@ static inline void co_rx_settle(co_node_t *node)
         co_rx_rebuild(node);
     }
 }
-/* From a service's rx_slots: frames on @p cob go to service @p svc's rx
- * with @p arg. */
-void co_rx_add(co_node_t *node, uint16_t cob, uint8_t svc, uint8_t arg);
+/* From a service's rx_slots: frames on @p cob go to service @p svc's rx. */
+void co_rx_add(co_node_t *node, uint16_t cob, uint8_t svc);
+/* co_node_t.rx: the service's row above the COB-ID */
+#define CO_RX_ROW_SHIFT 11U
 /* co_node_t.rx_at, per function code (COB-ID >> 7): no slot, the only
- * slot (the node's rx[k]: 1 + k; the PDO table's pdo.rx[k]: CO_RX_AT_PDO +
- * k), or several (CO_RX_AT_MANY: a search of both tables, also for a slot
- * whose index does not fit). */
+ * slot (the node's rx[k]: 1 + k, at most CO_RX_SLOTS_MAX; the PDO table's
+ * pdo.rx[k]: CO_RX_AT_PDO + k), or several (CO_RX_AT_MANY: a search of both
+ * tables, also for a slot whose index does not fit). */
 #define CO_RX_AT_NONE 0x00U
 #define CO_RX_AT_PDO  0x80U
 #define CO_RX_AT_MANY 0xFFU
@@ -242,8 +241,8 @@ static inline void co_rx_accept(co_node_t *node, uint16_t cob, uint8_t at)
 /* Change the NMT state: the services' nmt entries in table order, then the
  * application's callback. */
 void co_node_set_state(co_node_t *node, co_nmt_state_t st);
-/* Tell the application that NMT command @p cs is about to be executed. */
-void co_node_nmt_notice(co_node_t *node, uint8_t cs);
+/* Execute NMT command @p cs (co_nmt_cmd_t), the application's notice first. */
+void co_node_nmt_exec(co_node_t *node, uint8_t cs);
 
 /* ---- what co_node_process runs: only the services with something new
  * (co_node_t.svc_run) until the earliest deadline they returned has come */
@@ -324,7 +323,8 @@ typedef struct co_service {
     void (*reset)(co_node_t *node, uint8_t kind);
     /* Add the receive-table slots (co_rx_add with @p svc, its own index). */
     void (*rx_slots)(co_node_t *node, uint8_t svc);
-    /* A frame for it: @p arg is what its slot said (co_rx_add); for the
+    /* A frame for it: @p arg is 0 (a service tells its COB-IDs apart by the
+     * frame's identifier); for the
      * PDO service, the PDO whose COB-ID it is (the node's PDO table). */
     void (*rx)(co_node_t *node, uint16_t arg, const co_frame_t *f);
     /* Timers: returns the earlier of @p next and its own deadline. */

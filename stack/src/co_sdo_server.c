@@ -7,6 +7,10 @@
  * device's staging area and commits them whole (co_od_write_part). Values
  * of fixed size (at most 8 bytes) are gathered here, so they are checked and
  * committed whole too: a rejected or aborted download leaves the old value.
+ *
+ * One state machine: an open transfer's state names the request it waits
+ * for (want[]: byte 0 under a mask), every handler returns an error code,
+ * and one abort path (sdo_abort) answers it and ends the transfer.
  */
 #include <string.h>
 
@@ -21,28 +25,44 @@
 #define SEG 7U           /* data bytes per segment */
 #define SDO_CHUNK 8U     /* block upload: segments read from the value at once */
 
+/* The states (the fuzzer takes 0 for idle); want[state - 1] names the
+ * request an open transfer waits for (S_BLK_DL and S_STORE: none). */
 enum {
     S_IDLE = 0,
     S_DL_SEG,     /* segmented download */
     S_UL_SEG,     /* segmented upload */
-    S_BLK_DL,     /* block download: receiving a sub-block */
+#if CO_SDO_BLOCK
     S_BLK_DL_END, /* block download: waiting for the end request */
     S_BLK_UL_INI, /* block upload: waiting for the start command */
     S_BLK_UL,     /* block upload: sending / waiting for the acknowledge */
     S_BLK_UL_END, /* block upload: waiting for the client's end response */
+    S_BLK_DL,     /* block download: receiving a sub-block (any byte 0) */
+#endif
     S_STORE       /* a download started a save: its answer waits until it is durable */
 };
+
+/* Helpers of the initiates: with block transfer they have callers enough
+ * to be worth a call (at -Os; bench-size BLK), else inlined. */
+#if CO_SDO_BLOCK
+#define SDO_SHARED CO_NOINLINE
+#else
+#define SDO_SHARED
+#endif
+
+/* Requests that are not an initiate, kept out of sdo_rx where the build is
+ * for speed (their stack frame would be paid by every expedited transfer);
+ * at -Os one function is smaller. */
+#if CO_FAST
+#define SDO_RARE CO_NOINLINE
+#else
+#define SDO_RARE
+#endif
 
 /* flags */
 #define F_SIZE   0x01U /* size indicated */
 #define F_CRC    0x02U /* both sides use CRC (block) */
 #define F_STAGED 0x04U /* buf holds the first chunk of an upload */
 #define F_LAST   0x08U /* block upload: the last segment has been sent */
-
-static uint32_t tx_cob(const co_node_t *node)
-{
-    return 0x580UL + node->node_id;
-}
 
 /* The eight bytes of an answer: command byte, index, sub-index, four data
  * bytes. */
@@ -54,21 +74,21 @@ static void pack_answer(uint8_t *d, uint8_t cmd, uint16_t index, uint8_t sub, ui
     co_put_u32(&d[4], data);
 }
 
+/* The eight data bytes of @p f go out on the server's COB-ID. */
+static void send8(co_node_t *node, co_frame_t *f)
+{
+    f->id = 0x580UL + node->node_id;
+    f->dlc = 8U;
+    co_tx_frame(node, f);
+}
+
 /* An answer, packed into the frame (no 8-byte image copied). */
 static void reply(co_node_t *node, uint8_t cmd, uint16_t index, uint8_t sub, uint32_t data)
 {
     co_frame_t f;
 
-    f.id = tx_cob(node);
-    f.dlc = 8U;
     pack_answer(f.data, cmd, index, sub, data);
-    co_tx_frame(node, &f);
-}
-
-/* An answer given as its eight bytes. */
-static void send8(co_node_t *node, const uint8_t *d)
-{
-    reply(node, d[0], co_get_u16(&d[1]), d[3], co_get_u32(&d[4]));
+    send8(node, &f);
 }
 
 static void sdo_reset(co_node_t *node)
@@ -78,19 +98,16 @@ static void sdo_reset(co_node_t *node)
     node->sdo.desc = NULL;
 }
 
-static void abort_at(co_node_t *node, uint16_t index, uint8_t sub, co_err_t err)
+/* The one abort path: the abort names the open transfer's object, or with
+ * nothing open @p index / @p sub (the request's); the transfer ends. */
+static void sdo_abort(co_node_t *node, uint16_t index, uint8_t sub, co_err_t err)
 {
-    reply(node, CO_SDO_B0(CO_SDO_CS_ABORT), index, sub, (uint32_t)err);
+    const co_sdo_srv_t *t = &node->sdo;
+    bool open = t->entry != NULL;
+
+    reply(node, CO_SDO_B0(CO_SDO_CS_ABORT), open ? t->entry->index : index,
+          open ? t->desc->sub : sub, (uint32_t)err);
     sdo_reset(node);
-}
-
-static void abort_cur(co_node_t *node, co_err_t err)
-{
-    co_sdo_srv_t *t = &node->sdo;
-    uint16_t index = (t->entry != NULL) ? t->entry->index : 0U;
-    uint8_t sub = (t->desc != NULL) ? t->desc->sub : 0U;
-
-    abort_at(node, index, sub, err);
 }
 
 static void start(co_node_t *node, uint8_t state)
@@ -99,49 +116,67 @@ static void start(co_node_t *node, uint8_t state)
     node->sdo.deadline = node->now + node->sdo.timeout_us;
 }
 
-static bool is_fixed(const co_od_sub_t *s)
+/* The transfer state of @p s of @p e, @p size bytes (F_SIZE in @p flags:
+ * indicated), nothing done yet. */
+SDO_SHARED static void open_xfer(co_sdo_srv_t *t, const co_od_entry_t *e, const co_od_sub_t *s,
+                      uint32_t size, uint8_t flags)
 {
-    return !co_od_is_streamed(s);
+    t->entry = e;
+    t->desc = s;
+    t->size = size;
+    t->flags = flags;
+    t->offset = 0U;
+    t->toggle = 0U;
+#if CO_SDO_BLOCK
+    t->crc = 0U;
+    t->seqno = 0U;
+#endif
 }
 
-/* Commit a complete value gathered in t->buf (fixed size), or the final
- * chunk of a streamed value. */
-static co_err_t finish_download(co_node_t *node, const uint8_t *data, uint32_t len)
+/* An indicated size against what has arrived: more than indicated, or at
+ * the end (@p last) less. */
+static co_err_t check_size(const co_sdo_srv_t *t, uint32_t end, bool last)
 {
-    co_sdo_srv_t *t = &node->sdo;
-    co_err_t err;
+    co_err_t err = CO_OK;
 
-    if (is_fixed(t->desc)) {
-        if (((uint32_t)t->buf_len + len) > sizeof t->buf) {
-            return CO_ERR_TYPE_MISMATCH;
+    if ((t->flags & F_SIZE) != 0U) {
+        if (end > t->size) {
+            err = CO_ERR_TYPE_TOO_LONG;
+        } else if (last && (end < t->size)) {
+            err = CO_ERR_TYPE_TOO_SHORT;
+        } else {
+            /* on track */
         }
-        co_copy(&t->buf[t->buf_len], data, len);
-        t->buf_len = (uint8_t)(t->buf_len + len);
-        err = co_od_write_value(node, t->entry, t->desc, t->buf, t->buf_len);
-    } else {
-        err = co_od_write_part(node, t->entry, t->desc, t->offset, data, len, t->size, true);
     }
-    co_rx_settle(node); /* a COB-ID written: the receive set (the port's filters) */
     return err;
 }
 
-/* A chunk that is not the last one. */
-static co_err_t put_chunk(co_node_t *node, const uint8_t *data, uint32_t len)
+/* The next @p len bytes of a download (@p last: the final ones). A value of
+ * fixed size is gathered in t->buf (t->offset bytes so far) and written
+ * whole at the end; a streamed one goes to the dictionary chunk by chunk. */
+static co_err_t write_chunk(co_node_t *node, const uint8_t *data, uint32_t len, bool last)
 {
     co_sdo_srv_t *t = &node->sdo;
-    co_err_t err = CO_OK;
+    uint32_t end = t->offset + len;
+    co_err_t err = check_size(t, end, last);
 
-    if (is_fixed(t->desc)) {
-        if (((uint32_t)t->buf_len + len) > sizeof t->buf) {
+    if (err != CO_OK) {
+        return err;
+    }
+    if (!co_od_is_streamed(t->desc)) {
+        if (end > sizeof t->buf) {
             return CO_ERR_TYPE_MISMATCH;
         }
-        co_copy(&t->buf[t->buf_len], data, len);
-        t->buf_len = (uint8_t)(t->buf_len + len);
+        co_copy(&t->buf[t->offset], data, len);
+        if (last) {
+            err = co_od_write_value(node, t->entry, t->desc, t->buf, end);
+        }
     } else {
-        err = co_od_write_part(node, t->entry, t->desc, t->offset, data, len, t->size, false);
+        err = co_od_write_part(node, t->entry, t->desc, t->offset, data, len, t->size, last);
     }
-    if (err == CO_OK) {
-        t->offset += len;
+    t->offset = end;
+    if (last) {
+        co_rx_settle(node); /* a COB-ID written: the receive set (the port's filters) */
     }
     return err;
 }
@@ -162,7 +197,7 @@ static void download_done(co_node_t *node, uint8_t cmd, uint16_t index, uint8_t 
             e = NULL;
         }
         if ((e != NULL) && co_store_is_command(e, s)) {
-            t->entry = e; /* (for an abort of the save: abort_cur) */
+            t->entry = e; /* (for an abort of the save: sdo_abort) */
             t->desc = s;
             pack_answer(t->buf, cmd, index, sub, 0U);
             t->state = (uint8_t)S_STORE;
@@ -181,24 +216,20 @@ static void download_done(co_node_t *node, uint8_t cmd, uint16_t index, uint8_t 
 static co_err_t open_download(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
                               bool size_ind, uint32_t size)
 {
-    co_sdo_srv_t *t = &node->sdo;
     uint8_t fixed = co_type_len(s->type);
 
-    if (size_ind && (fixed != 0U) && (size != fixed)) {
-        return CO_ERR_TYPE_MISMATCH;
-    }
-    if (size_ind && (fixed == 0U) && ((s->flags & CO_SUB_HOOKIO) == 0U) && (size > s->size)) {
+    if (!size_ind) {
+        /* any size */
+    } else if (fixed != 0U) {
+        if (size != fixed) {
+            return CO_ERR_TYPE_MISMATCH;
+        }
+    } else if (((s->flags & CO_SUB_HOOKIO) == 0U) && (size > s->size)) {
         return CO_ERR_TYPE_TOO_LONG;
+    } else {
+        /* a string or DOMAIN that fits, or one a hook takes */
     }
-    t->entry = e;
-    t->desc = s;
-    t->size = size_ind ? size : 0U;
-    t->flags = size_ind ? F_SIZE : 0U;
-    t->offset = 0U;
-    t->buf_len = 0U;
-    t->toggle = 0U;
-    t->crc = 0U;
-    t->seqno = 0U;
+    open_xfer(&node->sdo, e, s, size_ind ? size : 0U, size_ind ? F_SIZE : 0U);
     return CO_OK;
 }
 
@@ -228,18 +259,12 @@ static co_err_t stage_upload(co_node_t *node, uint16_t index, uint8_t sub, co_od
 
 /* The transfer state of an upload that goes on segmented or by block, its
  * first chunk staged in t->buf. */
-static void open_upload(co_sdo_srv_t *t, const co_od_entry_t *e, const co_od_sub_t *s,
+SDO_SHARED static void open_upload(co_sdo_srv_t *t, const co_od_entry_t *e, const co_od_sub_t *s,
                         const co_od_chunk_t *c)
 {
-    t->entry = e;
-    t->desc = s;
-    t->size = c->last ? c->len : c->total;
-    t->flags = (uint8_t)(F_STAGED | ((c->total != 0U) || c->last ? F_SIZE : 0U));
+    open_xfer(t, e, s, c->last ? c->len : c->total,
+              (uint8_t)(F_STAGED | ((c->total != 0U) || c->last ? F_SIZE : 0U)));
     t->buf_len = (uint8_t)c->len;
-    t->offset = 0U;
-    t->toggle = 0U;
-    t->crc = 0U;
-    t->seqno = 0U;
 }
 
 /* The server offers expedited transfers only (segmented upload refused:
@@ -308,7 +333,7 @@ static co_err_t read_seg(co_node_t *node, uint32_t at, uint8_t *buf, uint32_t ca
  * size must come with its size: as indicated (else 0x06070010), or without
  * an indication the four bytes, or the object's own size when it is
  * smaller (co_od_download). Else a segmented download opens. */
-static void initiate_download(co_node_t *node, const uint8_t *d, uint16_t index, uint8_t sub)
+static co_err_t initiate_download(co_node_t *node, const uint8_t *d, uint16_t index, uint8_t sub)
 {
     bool size_ind = (d[0] & CO_SDO_SIZE_IND) != 0U;
     uint32_t size = co_get_u32(&d[4]);
@@ -320,33 +345,31 @@ static void initiate_download(co_node_t *node, const uint8_t *d, uint16_t index,
         size = size_ind ? (4U - ((uint32_t)(d[0] >> 2U) & 3U)) : 0U;
         err = co_od_download(node, index, sub, &d[4], size);
         co_rx_settle(node); /* a COB-ID written: the receive set (the port's filters) */
-        if (err != CO_OK) {
-            abort_at(node, index, sub, err);
-            return;
+        if (err == CO_OK) {
+            download_done(node, CO_SDO_B0(CO_SDO_SCS_DOWNLOAD_INITIATE), index, sub, false);
         }
-        download_done(node, CO_SDO_B0(CO_SDO_SCS_DOWNLOAD_INITIATE), index, sub, false);
-        return;
+        return err;
     }
     if (expedited_only(node)) {
-        err = CO_ERR_CMD;
-    } else {
-        err = find_for(node, index, sub, true, &e, &s);
+        return CO_ERR_CMD;
     }
+    err = find_for(node, index, sub, true, &e, &s);
     if (err == CO_OK) {
         err = open_download(node, e, s, size_ind, size);
     }
     if ((err == CO_OK) && ((CO_SET(node, sdo.refused) & CO_SDO_XFER_SEG_DOWNLOAD) != 0U)) {
         err = CO_ERR_NO_ACCESS; /* the object's own errors come first */
     }
-    if (err != CO_OK) {
-        abort_at(node, index, sub, err);
-        return;
+    if (err == CO_OK) {
+        start(node, S_DL_SEG);
+        reply(node, CO_SDO_B0(CO_SDO_SCS_DOWNLOAD_INITIATE), index, sub, 0U);
     }
-    start(node, S_DL_SEG);
-    reply(node, CO_SDO_B0(CO_SDO_SCS_DOWNLOAD_INITIATE), index, sub, 0U);
+    return err;
 }
 
-static void respond_upload(co_node_t *node, bool last)
+/* The answer to an upload initiate whose first chunk is staged: expedited
+ * (nothing stays open), else the segmented upload opens. */
+static co_err_t respond_upload(co_node_t *node, bool last)
 {
     co_sdo_srv_t *t = &node->sdo;
     uint16_t index = t->entry->index;
@@ -356,21 +379,21 @@ static void respond_upload(co_node_t *node, bool last)
         uint32_t size = t->size;
         sdo_reset(node);
         send_expedited(node, index, sub, size);
-        return;
+        return CO_OK;
     }
     if (expedited_only(node)) {
-        abort_at(node, index, sub, CO_ERR_NO_ACCESS);
-        return;
+        return CO_ERR_NO_ACCESS;
     }
     start(node, S_UL_SEG);
     reply(node,
           (uint8_t)(CO_SDO_B0(CO_SDO_SCS_UPLOAD_INITIATE) |
                     (((t->flags & F_SIZE) != 0U) ? CO_SDO_SIZE_IND : 0U)),
           index, sub, t->size);
+    return CO_OK;
 }
 
 /* Called in S_IDLE (no transfer open): an expedited answer leaves it so. */
-static void initiate_upload(co_node_t *node, uint16_t index, uint8_t sub)
+static co_err_t initiate_upload(co_node_t *node, uint16_t index, uint8_t sub)
 {
     const co_od_entry_t *e;
     const co_od_sub_t *s;
@@ -378,48 +401,28 @@ static void initiate_upload(co_node_t *node, uint16_t index, uint8_t sub)
     co_err_t err = stage_upload(node, index, sub, &c, &e, &s);
 
     if (err != CO_OK) {
-        abort_at(node, index, sub, err);
-    } else if (fits_expedited(node, c.last, c.len)) {
-        send_expedited(node, index, sub, c.len);
-    } else {
-        open_upload(&node->sdo, e, s, &c);
-        respond_upload(node, c.last);
+        return err;
     }
+    if (fits_expedited(node, c.last, c.len)) {
+        send_expedited(node, index, sub, c.len);
+        return CO_OK;
+    }
+    open_upload(&node->sdo, e, s, &c);
+    return respond_upload(node, c.last);
 }
 
 /* ------------------------------------------------------------ segmented */
 
-static void download_segment(co_node_t *node, const uint8_t *d)
+/* (want[] checked the command, transfer_request the toggle bit) */
+static co_err_t download_segment(co_node_t *node, const uint8_t *d)
 {
     co_sdo_srv_t *t = &node->sdo;
-    uint8_t toggle = (uint8_t)(d[0] & CO_SDO_TOGGLE);
-    uint32_t len = SEG - (((uint32_t)d[0] >> CO_SDO_SEG_N_SHIFT) & 7U);
+    uint8_t cmd = (uint8_t)(CO_SDO_B0(CO_SDO_SCS_DOWNLOAD_SEGMENT) | t->toggle);
     bool last = (d[0] & CO_SDO_LAST_SEG) != 0U;
-    co_err_t err = CO_OK;
+    co_err_t err =
+        write_chunk(node, &d[1], SEG - (((uint32_t)d[0] >> CO_SDO_SEG_N_SHIFT) & 7U), last);
 
-    if (toggle != t->toggle) {
-        abort_cur(node, CO_ERR_TOGGLE);
-        return;
-    }
-    if ((t->flags & F_SIZE) != 0U) {
-        uint32_t end = t->offset + len;
-        if (end > t->size) {
-            err = CO_ERR_TYPE_TOO_LONG;
-        } else if (last && (end < t->size)) {
-            err = CO_ERR_TYPE_TOO_SHORT;
-        } else {
-            /* on track */
-        }
-    }
     if (err == CO_OK) {
-        err = last ? finish_download(node, &d[1], len) : put_chunk(node, &d[1], len);
-    }
-    if (err != CO_OK) {
-        abort_cur(node, err);
-        return;
-    }
-    {
-        uint8_t cmd = (uint8_t)(CO_SDO_B0(CO_SDO_SCS_DOWNLOAD_SEGMENT) | toggle);
         t->toggle ^= CO_SDO_TOGGLE;
         if (last) {
             download_done(node, cmd, 0U, 0U, true);
@@ -428,167 +431,134 @@ static void download_segment(co_node_t *node, const uint8_t *d)
             reply(node, cmd, 0U, 0U, 0U);
         }
     }
+    return err;
 }
 
-static void upload_segment(co_node_t *node, const uint8_t *d)
+static co_err_t upload_segment(co_node_t *node)
 {
     co_sdo_srv_t *t = &node->sdo;
-    uint8_t toggle = (uint8_t)(d[0] & CO_SDO_TOGGLE);
-    uint8_t r[8] = {0};
+    co_frame_t f;
     uint32_t got = 0U;
     bool last = false;
-    co_err_t err;
+    co_err_t err = read_seg(node, t->offset, &f.data[1], SEG, &got, &last);
 
-    if (toggle != t->toggle) {
-        abort_cur(node, CO_ERR_TOGGLE);
-        return;
-    }
-    err = read_seg(node, t->offset, &r[1], SEG, &got, &last);
     if (err != CO_OK) {
-        abort_cur(node, err);
-        return;
+        return err;
     }
     t->flags &= (uint8_t)~F_STAGED;
     t->offset += got;
-    r[0] = (uint8_t)(CO_SDO_B0(CO_SDO_SCS_UPLOAD_SEGMENT) | toggle | ((SEG - got) << CO_SDO_SEG_N_SHIFT) |
-                     (last ? CO_SDO_LAST_SEG : 0U));
+    f.data[0] = (uint8_t)(CO_SDO_B0(CO_SDO_SCS_UPLOAD_SEGMENT) | t->toggle |
+                          ((SEG - got) << CO_SDO_SEG_N_SHIFT) | (last ? CO_SDO_LAST_SEG : 0U));
     t->toggle ^= CO_SDO_TOGGLE;
     if (last) {
         sdo_reset(node);
     } else {
         start(node, S_UL_SEG);
     }
-    send8(node, r);
+    send8(node, &f);
+    return CO_OK;
 }
 
 #if CO_SDO_BLOCK
 /* ------------------------------------------------------------ block download */
 
-static void block_download_initiate(co_node_t *node, const uint8_t *d, uint16_t index,
-                                    uint8_t sub)
+static co_err_t block_download_initiate(co_node_t *node, const uint8_t *d, uint16_t index,
+                                        uint8_t sub)
 {
-    bool size_ind = (d[0] & CO_SDO_BLK_SIZE_IND) != 0U;
     const co_od_entry_t *e;
     const co_od_sub_t *s;
     co_err_t err;
 
     if ((d[0] & CO_SDO_BLK_END) != 0U) {
-        abort_at(node, index, sub, CO_ERR_CMD); /* end without a transfer */
-        return;
+        return CO_ERR_CMD; /* end without a transfer */
     }
     err = find_for(node, index, sub, true, &e, &s);
     if (err == CO_OK) {
-        err = open_download(node, e, s, size_ind, co_get_u32(&d[4]));
+        err = open_download(node, e, s, (d[0] & CO_SDO_BLK_SIZE_IND) != 0U, co_get_u32(&d[4]));
     }
-    if (err != CO_OK) {
-        abort_at(node, index, sub, err);
-        return;
+    if (err == CO_OK) {
+        if ((d[0] & CO_SDO_BLK_CRC) != 0U) {
+            node->sdo.flags |= F_CRC;
+        }
+        node->sdo.blksize = (uint8_t)SDO_BLKSIZE;
+        start(node, S_BLK_DL);
+        reply(node,
+              (uint8_t)(CO_SDO_B0(CO_SDO_SCS_BLOCK_DOWNLOAD) | CO_SDO_BLK_CRC | CO_SDO_BLK_INITIATE),
+              index, sub, SDO_BLKSIZE);
     }
-    if ((d[0] & CO_SDO_BLK_CRC) != 0U) {
-        node->sdo.flags |= F_CRC;
-    }
-    node->sdo.blksize = (uint8_t)SDO_BLKSIZE;
-    start(node, S_BLK_DL);
-    reply(node, (uint8_t)(CO_SDO_B0(CO_SDO_SCS_BLOCK_DOWNLOAD) | CO_SDO_BLK_CRC | CO_SDO_BLK_INITIATE),
-          index, sub, SDO_BLKSIZE);
+    return err;
 }
 
+/* The sub-block's acknowledge (the last good sequence number, the next
+ * block size in bytes 1 and 2); the next sub-block counts from 0. */
 static void block_ack(co_node_t *node)
 {
-    uint8_t r[8] = {0};
+    co_sdo_srv_t *t = &node->sdo;
 
-    r[0] = (uint8_t)(CO_SDO_B0(CO_SDO_SCS_BLOCK_DOWNLOAD) | CO_SDO_BLK_ACK);
-    r[1] = node->sdo.seqno;
-    r[2] = node->sdo.blksize;
-    send8(node, r);
+    reply(node, (uint8_t)(CO_SDO_B0(CO_SDO_SCS_BLOCK_DOWNLOAD) | CO_SDO_BLK_ACK),
+          (uint16_t)(t->seqno | ((uint16_t)t->blksize << 8U)), 0U, 0U);
+    t->seqno = 0U;
 }
 
-static void block_download_segment(co_node_t *node, const uint8_t *d)
+static co_err_t block_download_segment(co_node_t *node, const uint8_t *d)
 {
     co_sdo_srv_t *t = &node->sdo;
     uint8_t seq = (uint8_t)(d[0] & (uint8_t)~CO_SDO_BLK_LAST);
     bool last = (d[0] & CO_SDO_BLK_LAST) != 0U;
-    co_err_t err;
 
     if ((seq == 0U) || (seq > t->blksize)) {
-        abort_cur(node, CO_ERR_SEQNO);
-        return;
+        return CO_ERR_SEQNO;
     }
     start(node, S_BLK_DL);
     if (seq != (uint8_t)(t->seqno + 1U)) {
-        /* lost or repeated segment: drop it; at the end of the sub-block
-         * acknowledge the last good one so the client repeats from there */
-        if (last || (seq == t->blksize)) {
-            block_ack(node);
-            t->seqno = 0U;
-        }
-        return;
-    }
-    t->seqno = seq;
-    if (last) {
-        co_copy(t->held, &d[1], SEG);
-        block_ack(node);
-        t->seqno = 0U;
+        /* lost or repeated segment: dropped; at the end of the sub-block
+         * the last good one is acknowledged, the client repeats from there */
+    } else if (last) {
+        t->seqno = seq;
+        co_copy(t->held, &d[1], SEG); /* its length comes with the end */
         start(node, S_BLK_DL_END);
-        return;
+    } else {
+        co_err_t err;
+        t->seqno = seq;
+        if ((t->flags & F_CRC) != 0U) {
+            t->crc = co_crc16(t->crc, &d[1], SEG);
+        }
+        err = write_chunk(node, &d[1], SEG, false);
+        if (err != CO_OK) {
+            return err;
+        }
     }
-    if (((t->flags & F_SIZE) != 0U) && ((t->offset + SEG) > t->size)) {
-        abort_cur(node, CO_ERR_TYPE_TOO_LONG);
-        return;
-    }
-    if ((t->flags & F_CRC) != 0U) {
-        t->crc = co_crc16(t->crc, &d[1], SEG);
-    }
-    err = put_chunk(node, &d[1], SEG);
-    if (err != CO_OK) {
-        abort_cur(node, err);
-        return;
-    }
-    if (seq == t->blksize) {
+    if (last || (seq == t->blksize)) {
         block_ack(node);
-        t->seqno = 0U;
     }
+    return CO_OK;
 }
 
-static void block_download_end(co_node_t *node, const uint8_t *d)
+/* (want[] checked the command) */
+static co_err_t block_download_end(co_node_t *node, const uint8_t *d)
 {
     co_sdo_srv_t *t = &node->sdo;
     uint32_t len = SEG - (((uint32_t)d[0] >> CO_SDO_BLK_N_SHIFT) & 7U);
-    co_err_t err = CO_OK;
+    co_err_t err = check_size(t, t->offset + len, true); /* (before the CRC) */
 
-    if ((d[0] & 0xE3U) != (CO_SDO_B0(CO_SDO_CCS_BLOCK_DOWNLOAD) | CO_SDO_BLK_END)) {
-        abort_cur(node, CO_ERR_CMD);
-        return;
-    }
-    if ((t->flags & F_SIZE) != 0U) {
-        uint32_t end = t->offset + len;
-        if (end > t->size) {
-            err = CO_ERR_TYPE_TOO_LONG;
-        } else if (end < t->size) {
-            err = CO_ERR_TYPE_TOO_SHORT;
-        } else {
-            /* exact */
-        }
-    }
     if ((err == CO_OK) && ((t->flags & F_CRC) != 0U) &&
         (co_crc16(t->crc, t->held, len) != co_get_u16(&d[1]))) {
         err = CO_ERR_CRC;
     }
     if (err == CO_OK) {
-        err = finish_download(node, t->held, len);
+        err = write_chunk(node, t->held, len, true);
     }
-    if (err != CO_OK) {
-        abort_cur(node, err);
-        return;
+    if (err == CO_OK) {
+        download_done(node, (uint8_t)(CO_SDO_B0(CO_SDO_SCS_BLOCK_DOWNLOAD) | CO_SDO_BLK_END), 0U,
+                      0U, true);
     }
-    download_done(node, (uint8_t)(CO_SDO_B0(CO_SDO_SCS_BLOCK_DOWNLOAD) | CO_SDO_BLK_END), 0U, 0U,
-                  true);
+    return err;
 }
 
 /* ------------------------------------------------------------ block upload */
 
-CO_NOINLINE static void block_upload_initiate(co_node_t *node, const uint8_t *d, uint16_t index,
-                                              uint8_t sub)
+SDO_RARE static co_err_t block_upload_initiate(co_node_t *node, const uint8_t *d,
+                                                  uint16_t index, uint8_t sub)
 {
     co_sdo_srv_t *t = &node->sdo;
     uint8_t blksize = d[4];
@@ -599,22 +569,18 @@ CO_NOINLINE static void block_upload_initiate(co_node_t *node, const uint8_t *d,
     co_err_t err;
 
     if ((d[0] & CO_SDO_BLK_SUB_MASK) != CO_SDO_BLK_INITIATE) {
-        abort_at(node, index, sub, CO_ERR_CMD);
-        return;
+        return CO_ERR_CMD;
     }
     if ((blksize == 0U) || (blksize > 127U)) {
-        abort_at(node, index, sub, CO_ERR_BLKSIZE);
-        return;
+        return CO_ERR_BLKSIZE;
     }
     err = stage_upload(node, index, sub, &c, &e, &s);
     if (err != CO_OK) {
-        abort_at(node, index, sub, err);
-        return;
+        return err;
     }
     open_upload(t, e, s, &c);
     if ((pst != 0U) && ((t->flags & F_SIZE) != 0U) && (t->size <= pst)) {
-        respond_upload(node, c.last); /* protocol switch to segmented/expedited */
-        return;
+        return respond_upload(node, c.last); /* protocol switch to segmented/expedited */
     }
     t->blksize = blksize;
     if ((d[0] & CO_SDO_BLK_CRC) != 0U) {
@@ -624,15 +590,15 @@ CO_NOINLINE static void block_upload_initiate(co_node_t *node, const uint8_t *d,
     reply(node,
           (uint8_t)(CO_SDO_B0(CO_SDO_SCS_BLOCK_UPLOAD) | CO_SDO_BLK_CRC |
                     (((t->flags & F_SIZE) != 0U) ? CO_SDO_BLK_SIZE_IND : 0U)),
-          index, sub,
-          t->size);
+          index, sub, t->size);
+    return CO_OK;
 }
 
 /* Send segments of the current sub-block until it is complete or the TX
  * path is full (then co_sdo_process resumes). The value is read a chunk of
  * up to SDO_CHUNK segments at a time (a read hook runs once per chunk, not
  * per segment); what the TX path did not take is read again later. */
-static void block_upload_send(co_node_t *node)
+static co_err_t block_upload_send(co_node_t *node)
 {
     co_sdo_srv_t *t = &node->sdo;
     uint8_t buf[SDO_CHUNK * SEG];
@@ -641,7 +607,7 @@ static void block_upload_send(co_node_t *node)
     bool end = false;   /* buf reaches the end of the value */
     co_frame_t f;
 
-    f.id = tx_cob(node);
+    f.id = 0x580UL + node->node_id;
     f.dlc = 8U;
     while ((t->seqno < t->blksize) && ((t->flags & F_LAST) == 0U)) {
         uint32_t at = t->offset + ((uint32_t)t->seqno * SEG);
@@ -654,8 +620,7 @@ static void block_upload_send(co_node_t *node)
             uint32_t cap = (uint32_t)(t->blksize - t->seqno) * SEG;
             co_err_t err = read_seg(node, at, buf, (cap < sizeof buf) ? cap : sizeof buf, &have, &end);
             if (err != CO_OK) {
-                abort_cur(node, err);
-                return;
+                return err;
             }
             from = at;
         }
@@ -665,13 +630,12 @@ static void block_upload_send(co_node_t *node)
         }
         last = end && ((at + got) >= (from + have));
         if (!last && (got < SEG)) {
-            abort_cur(node, CO_ERR_GENERAL); /* a hook produced a short chunk mid-stream */
-            return;
+            return CO_ERR_GENERAL; /* a hook produced a short chunk mid-stream */
         }
         f.data[0] = (uint8_t)((uint8_t)(t->seqno + 1U) | (last ? CO_SDO_BLK_LAST : 0U));
         co_copy(&f.data[1], &buf[at - from], SEG); /* zeros after the end */
         if (!co_tx_now(node, &f)) {
-            return; /* nothing held back: co_sdo_process sends it again */
+            break; /* nothing held back: co_sdo_process sends it again */
         }
         if ((t->flags & F_CRC) != 0U) {
             /* the CRC as the segments go out (an acknowledge of all of them
@@ -689,6 +653,19 @@ static void block_upload_send(co_node_t *node)
             t->flags |= (uint8_t)(F_LAST | F_SIZE);
         }
     }
+    return CO_OK;
+}
+
+/* The next sub-block, from the last byte acknowledged. */
+static co_err_t next_subblock(co_node_t *node)
+{
+    co_sdo_srv_t *t = &node->sdo;
+
+    t->seqno = 0U;
+    t->crc_sent = t->crc;
+    t->flags &= (uint8_t)~F_LAST;
+    start(node, S_BLK_UL);
+    return block_upload_send(node);
 }
 
 static co_err_t crc_range(co_node_t *node, uint32_t from, uint32_t len)
@@ -716,7 +693,8 @@ static co_err_t crc_range(co_node_t *node, uint32_t from, uint32_t len)
     return CO_OK;
 }
 
-static void block_upload_ack(co_node_t *node, const uint8_t *d)
+/* (want[] checked the command) */
+static co_err_t block_upload_ack(co_node_t *node, const uint8_t *d)
 {
     co_sdo_srv_t *t = &node->sdo;
     uint8_t ackseq = d[1];
@@ -727,12 +705,10 @@ static void block_upload_ack(co_node_t *node, const uint8_t *d)
     co_err_t err = CO_OK;
 
     if (ackseq > t->seqno) {
-        abort_cur(node, CO_ERR_SEQNO);
-        return;
+        return CO_ERR_SEQNO;
     }
     if ((blksize == 0U) || (blksize > 127U)) {
-        abort_cur(node, CO_ERR_BLKSIZE);
-        return;
+        return CO_ERR_BLKSIZE;
     }
     all = all && (ackseq == t->seqno);
     if (all) {
@@ -749,28 +725,22 @@ static void block_upload_ack(co_node_t *node, const uint8_t *d)
         err = crc_range(node, t->offset, acked); /* the rest goes again */
     }
     if (err != CO_OK) {
-        abort_cur(node, err);
-        return;
+        return err;
     }
     t->offset += acked;
     if (t->offset > 0U) {
         t->flags &= (uint8_t)~F_STAGED;
     }
     if (all) {
-        uint8_t r[8] = {0};
-        r[0] = (uint8_t)(CO_SDO_B0(CO_SDO_SCS_BLOCK_UPLOAD) | CO_SDO_BLK_END |
-                         ((SEG - tail) << CO_SDO_BLK_N_SHIFT));
-        co_put_u16(&r[1], ((t->flags & F_CRC) != 0U) ? t->crc : 0U);
         start(node, S_BLK_UL_END);
-        send8(node, r);
-        return;
+        reply(node,
+              (uint8_t)(CO_SDO_B0(CO_SDO_SCS_BLOCK_UPLOAD) | CO_SDO_BLK_END |
+                        ((SEG - tail) << CO_SDO_BLK_N_SHIFT)),
+              ((t->flags & F_CRC) != 0U) ? t->crc : 0U, 0U, 0U);
+        return CO_OK;
     }
-    t->flags &= (uint8_t)~F_LAST;
     t->blksize = blksize;
-    t->seqno = 0U;
-    t->crc_sent = t->crc;
-    start(node, S_BLK_UL);
-    block_upload_send(node);
+    return next_subblock(node);
 }
 
 #endif /* CO_SDO_BLOCK */
@@ -782,111 +752,88 @@ static void idle_request(co_node_t *node, const uint8_t *d)
     uint16_t index = co_get_u16(&d[1]);
     uint8_t sub = d[3];
     uint8_t ccs = CO_SDO_CS(d[0]);
+    co_err_t err = CO_ERR_CMD;
 #if CO_SDO_BLOCK
     bool blocks = ((CO_SET(node, sdo.refused) & CO_SDO_XFER_BLOCK) == 0U) && !expedited_only(node);
 #endif
 
     if (ccs == CO_SDO_CCS_DOWNLOAD_INITIATE) {
-        initiate_download(node, d, index, sub); /* (the most frequent first) */
+        err = initiate_download(node, d, index, sub); /* (the most frequent first) */
     } else if (ccs == CO_SDO_CCS_UPLOAD_INITIATE) {
-        initiate_upload(node, index, sub);
+        err = initiate_upload(node, index, sub);
     } else if (ccs == CO_SDO_CS_ABORT) {
-        /* abort with nothing open: nothing to do */
+        err = CO_OK; /* abort with nothing open: nothing to do */
 #if CO_SDO_BLOCK
     } else if (blocks && (ccs == CO_SDO_CCS_BLOCK_UPLOAD)) {
-        block_upload_initiate(node, d, index, sub);
+        err = block_upload_initiate(node, d, index, sub);
     } else if (blocks && (ccs == CO_SDO_CCS_BLOCK_DOWNLOAD)) {
-        block_download_initiate(node, d, index, sub);
+        err = block_download_initiate(node, d, index, sub);
 #endif
+    } else if ((ccs == CO_SDO_CCS_DOWNLOAD_SEGMENT) || (ccs == CO_SDO_CCS_UPLOAD_SEGMENT)) {
+        index = 0U; /* a segment without a transfer carries no index */
+        sub = 0U;
     } else {
-        /* ccs 7, block refused, or a segment without a transfer (it
-         * carries no index: answered with 0) */
-        bool seg = (ccs == CO_SDO_CCS_DOWNLOAD_SEGMENT) || (ccs == CO_SDO_CCS_UPLOAD_SEGMENT);
-        abort_at(node, seg ? 0U : index, seg ? 0U : sub, CO_ERR_CMD);
+        /* ccs 7, or block refused */
+    }
+    if (err != CO_OK) {
+        sdo_abort(node, index, sub, err);
     }
 }
 
-/* A frame whose DLC is not 8. CiA 301: SDO frames are 8 bytes; anything
- * else is not a valid request. */
-static void bad_length(co_node_t *node, const co_frame_t *f)
+/* A request while a segmented or block transfer is open (not S_BLK_DL):
+ * byte 0 must be the one the state waits for (want[state - 1]: mask,
+ * value), a segment's toggle bit the expected one. */
+SDO_RARE static co_err_t transfer_request(co_node_t *node, const uint8_t *d)
 {
-    const uint8_t *d = f->data;
-
-    if (node->sdo.state == (uint8_t)S_IDLE) {
-        abort_at(node, (f->dlc >= 3U) ? co_get_u16(&d[1]) : 0U, (f->dlc >= 4U) ? d[3] : 0U,
-                 CO_ERR_CMD);
-    } else {
-        abort_cur(node, CO_ERR_CMD);
-    }
-}
-
-/* A request while a segmented or block transfer is open. */
-CO_NOINLINE static void transfer_request(co_node_t *node, const uint8_t *d)
-{
-    co_sdo_srv_t *t = &node->sdo;
-    uint8_t ccs = CO_SDO_CS(d[0]);
-
-    switch (t->state) {
-    case S_DL_SEG:
-        if (ccs == CO_SDO_CCS_DOWNLOAD_SEGMENT) {
-            download_segment(node, d);
-        } else {
-            abort_cur(node, CO_ERR_CMD);
-        }
-        break;
-    case S_UL_SEG:
-        if (ccs == CO_SDO_CCS_UPLOAD_SEGMENT) {
-            upload_segment(node, d);
-        } else {
-            abort_cur(node, CO_ERR_CMD);
-        }
-        break;
+    static const uint8_t want[][2] = {
+        {0xE0U, CO_SDO_B0(CO_SDO_CCS_DOWNLOAD_SEGMENT)},
+        {0xE0U, CO_SDO_B0(CO_SDO_CCS_UPLOAD_SEGMENT)},
 #if CO_SDO_BLOCK
-    case S_BLK_DL_END:
-        block_download_end(node, d);
-        break;
-    case S_BLK_UL_INI:
-        if (d[0] == (CO_SDO_B0(CO_SDO_CCS_BLOCK_UPLOAD) | CO_SDO_BLK_START)) {
-            t->seqno = 0U;
-            t->crc_sent = t->crc;
-            t->flags &= (uint8_t)~F_LAST;
-            start(node, S_BLK_UL);
-            block_upload_send(node);
-        } else {
-            abort_cur(node, CO_ERR_CMD);
-        }
-        break;
-    case S_BLK_UL:
-        if ((d[0] & 0xE3U) == (CO_SDO_B0(CO_SDO_CCS_BLOCK_UPLOAD) | CO_SDO_BLK_ACK)) {
-            block_upload_ack(node, d);
-        } else {
-            abort_cur(node, CO_ERR_CMD);
-        }
-        break;
-    case S_BLK_UL_END:
-        if ((d[0] & 0xE3U) == (CO_SDO_B0(CO_SDO_CCS_BLOCK_UPLOAD) | CO_SDO_BLK_END)) {
-            sdo_reset(node);
-        } else {
-            abort_cur(node, CO_ERR_CMD);
-        }
-        break;
+        {0xE3U, CO_SDO_B0(CO_SDO_CCS_BLOCK_DOWNLOAD) | CO_SDO_BLK_END},
+        {0xFFU, CO_SDO_B0(CO_SDO_CCS_BLOCK_UPLOAD) | CO_SDO_BLK_START},
+        {0xE3U, CO_SDO_B0(CO_SDO_CCS_BLOCK_UPLOAD) | CO_SDO_BLK_ACK},
+        {0xE3U, CO_SDO_B0(CO_SDO_CCS_BLOCK_UPLOAD) | CO_SDO_BLK_END},
 #endif
-    case S_STORE:
+    };
+    co_sdo_srv_t *t = &node->sdo;
+    uint8_t st = t->state;
+
+    if ((CO_STORAGE != 0) && (st == (uint8_t)S_STORE)) { /* (without storage never) */
         /* a new request while the save's answer is pending: refused, the
          * answer still comes */
         reply(node, CO_SDO_B0(CO_SDO_CS_ABORT), co_get_u16(&d[1]), d[3],
               (uint32_t)CO_ERR_STORE_STATE);
-        break;
-    default:
-        sdo_reset(node);
-        break;
+        return CO_OK;
     }
+    if ((d[0] & want[st - 1U][0]) != want[st - 1U][1]) {
+        return CO_ERR_CMD;
+    }
+    if (st == (uint8_t)S_DL_SEG) {
+        return ((d[0] & CO_SDO_TOGGLE) != t->toggle) ? CO_ERR_TOGGLE : download_segment(node, d);
+    }
+    if (st == (uint8_t)S_UL_SEG) {
+        return ((d[0] & CO_SDO_TOGGLE) != t->toggle) ? CO_ERR_TOGGLE : upload_segment(node);
+    }
+#if CO_SDO_BLOCK
+    if (st == (uint8_t)S_BLK_DL_END) {
+        return block_download_end(node, d);
+    }
+    if (st == (uint8_t)S_BLK_UL_INI) {
+        return next_subblock(node);
+    }
+    if (st == (uint8_t)S_BLK_UL) {
+        return block_upload_ack(node, d);
+    }
+    sdo_reset(node); /* S_BLK_UL_END: the client confirmed the end */
+#endif
+    return CO_OK;
 }
 
 static void sdo_rx(co_node_t *node, uint16_t arg, const co_frame_t *f)
 {
     co_sdo_srv_t *t = &node->sdo;
     const uint8_t *d = f->data;
+    co_err_t err;
 
     (void)arg;
     if ((node->nmt == (uint8_t)CO_NMT_STOPPED) || co_frame_is_rtr(f)) {
@@ -899,24 +846,35 @@ static void sdo_rx(co_node_t *node, uint16_t arg, const co_frame_t *f)
         }
         return;
     }
-    if ((f->dlc >= 1U) && ((t->state != (uint8_t)S_BLK_DL) ? (CO_SDO_CS(d[0]) == CO_SDO_CS_ABORT)
-                                                             : (d[0] == CO_SDO_B0(CO_SDO_CS_ABORT)))) {
+    if ((f->dlc >= 1U) && (CO_SDO_CS(d[0]) == CO_SDO_CS_ABORT)
+#if CO_SDO_BLOCK
+        && ((t->state != (uint8_t)S_BLK_DL) || (d[0] == CO_SDO_B0(CO_SDO_CS_ABORT)))
+#endif
+    ) {
         /* client abort, whatever its length: CiA 301 makes the abort
-         * unconfirmed, so nothing answers it; the transfer ends */
+         * unconfirmed, so nothing answers it; the transfer ends (in a
+         * sub-block, byte 0 is a sequence number: only 0x80 aborts) */
         sdo_reset(node);
         return;
     }
     if (f->dlc != 8U) {
-        bad_length(node, f);
+        /* CiA 301: SDO frames are 8 bytes; anything else is not a valid
+         * request (with nothing open, the abort names what it carries) */
+        sdo_abort(node, (f->dlc >= 3U) ? co_get_u16(&d[1]) : 0U, (f->dlc >= 4U) ? d[3] : 0U,
+                  CO_ERR_CMD);
         return;
     }
 #if CO_SDO_BLOCK
     if (t->state == (uint8_t)S_BLK_DL) {
-        block_download_segment(node, d);
-        return;
-    }
+        err = block_download_segment(node, d);
+    } else
 #endif
-    transfer_request(node, d); /* (S_IDLE took the 8-byte frames above) */
+    {
+        err = transfer_request(node, d); /* (S_IDLE took the 8-byte frames above) */
+    }
+    if (err != CO_OK) {
+        sdo_abort(node, 0U, 0U, err);
+    }
 }
 
 #if CO_SDO_BLOCK
@@ -931,39 +889,43 @@ static bool upload_pending(const co_sdo_srv_t *t)
 static uint32_t sdo_process(co_node_t *node, uint32_t next)
 {
     co_sdo_srv_t *t = &node->sdo;
+    co_err_t err = CO_OK;
+    uint32_t due = next;
 
     if (t->state == (uint8_t)S_IDLE) {
         return next;
     }
     if ((CO_STORAGE != 0) && (t->state == (uint8_t)S_STORE)) { /* (without storage never) */
         if (!co_store_busy(node)) {
-            if (co_store_result(node) == CO_OK) {
-                uint8_t r[8];
-                (void)memcpy(r, t->buf, 8U);
+            err = co_store_result(node);
+            if (err == CO_OK) {
+                co_frame_t f;
+                (void)memcpy(f.data, t->buf, 8U);
                 sdo_reset(node);
-                send8(node, r);
-            } else {
-                abort_cur(node, co_store_result(node));
+                send8(node, &f);
             }
         }
         /* no timeout: the HAL's writing takes what it takes; look again
          * in a millisecond (the storage service polls the HAL as often) */
-        return co_deadline_min(node->now, next, node->now + 1000U);
-    }
-    if (co_time_reached(node->now, t->deadline)) {
-        abort_cur(node, CO_ERR_TIMEOUT);
-        return next;
-    }
+        due = co_deadline_min(node->now, due, node->now + 1000U);
+    } else if (co_time_reached(node->now, t->deadline)) {
+        err = CO_ERR_TIMEOUT;
+    } else {
 #if CO_SDO_BLOCK
-    if (upload_pending(t)) {
-        block_upload_send(node);
-        if (upload_pending(&node->sdo)) {
-            /* TX path still full: try again in a millisecond */
-            next = co_deadline_min(node->now, next, node->now + 1000U);
+        if (upload_pending(t)) {
+            err = block_upload_send(node);
+            if (upload_pending(t)) {
+                /* TX path still full: try again in a millisecond */
+                due = co_deadline_min(node->now, due, node->now + 1000U);
+            }
         }
-    }
 #endif
-    return co_deadline_min(node->now, next, t->deadline);
+        due = co_deadline_min(node->now, due, t->deadline);
+    }
+    if (err != CO_OK) {
+        sdo_abort(node, 0U, 0U, err);
+    }
+    return due;
 }
 
 /* ------------------------------------------------------------ service */
@@ -977,7 +939,7 @@ static void sdo_reset_kind(co_node_t *node, uint8_t kind)
 
 static void sdo_rx_slots(co_node_t *node, uint8_t svc)
 {
-    co_rx_add(node, (uint16_t)(0x600U + node->node_id), svc, 0U);
+    co_rx_add(node, (uint16_t)(0x600U + node->node_id), svc);
 }
 
 /* No SDO in Stopped: an open transfer ends silently. */

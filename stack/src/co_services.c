@@ -24,3 +24,4 @@ const co_service_t *const co_services[] = {
 };
 
 const uint8_t co_n_services = (uint8_t)(sizeof(co_services) / sizeof(co_services[0]));
+/* (a receive slot holds the row above the 11-bit COB-ID: at most 32 rows) */

@@ -53,8 +53,8 @@ static void on_sync(co_node_t *node, uint8_t counter)
     if (node->pdo.buffered != 0U) {
         co_rpdo_sync(node);
     }
-    if (node->cb.sync != NULL) {
-        node->cb.sync(node->cb.ctx, node, counter);
+    if (node->cb->sync != NULL) {
+        node->cb->sync(node->cb->ctx, node, counter);
     }
     co_tpdo_sync(node, counter);
 }
@@ -150,7 +150,7 @@ static void sync_reset_kind(co_node_t *node, uint8_t kind)
 static void sync_rx_slots(co_node_t *node, uint8_t svc)
 {
     if ((node->sync.cob != NULL) && ((*node->sync.cob & COB_SYNC_GEN) == 0U)) {
-        co_rx_add(node, (uint16_t)(*node->sync.cob & 0x7FFU), svc, 0U);
+        co_rx_add(node, (uint16_t)(*node->sync.cob & 0x7FFU), svc);
     }
 }
 

@@ -25,8 +25,8 @@ static void time_rx(co_node_t *node, uint16_t arg, const co_frame_t *f)
         ((*cob & COB_TIME_CONS) == 0U)) {
         return;
     }
-    if (node->cb.time != NULL) {
-        node->cb.time(node->cb.ctx, node, co_get_u32(f->data) & 0x0FFFFFFFUL,
+    if (node->cb->time != NULL) {
+        node->cb->time(node->cb->ctx, node, co_get_u32(f->data) & 0x0FFFFFFFUL,
                       co_get_u16(&f->data[4]));
     }
 }
@@ -59,7 +59,7 @@ static void time_rx_slots(co_node_t *node, uint8_t svc)
     const uint32_t *cob = node->time.cob;
 
     if ((cob != NULL) && ((*cob & COB_TIME_CONS) != 0U)) {
-        co_rx_add(node, (uint16_t)(*cob & 0x7FFU), svc, 0U);
+        co_rx_add(node, (uint16_t)(*cob & 0x7FFU), svc);
     }
 }
 

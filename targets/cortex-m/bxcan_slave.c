@@ -90,6 +90,9 @@ static void on_rx_set(void *ctx, co_node_t *node)
     filters_stale = 1U;
 }
 
+/* the node's callbacks: a const table (flash) */
+static const co_node_callbacks_t node_cb = {.rx_set = on_rx_set};
+
 static void program_filters(co_node_t *node)
 {
     uint16_t cobs[28]; /* 14 banks x 4 entries / (data + RTR) */
@@ -144,7 +147,7 @@ int main(void)
     cfg.hal.ops = &hal_ops;
     cfg.hal.ctx = &port;
     cfg.node_id = NODE_ID;
-    cfg.cb.rx_set = on_rx_set;
+    cfg.cb = &node_cb;
     (void)co_node_init(&slave.node, &cfg, now_us());
     deadline = now_us();
     for (;;) {

@@ -41,7 +41,7 @@ static SLAVE_NODE_T node;
  * A firmware with longer passes makes it deeper (a power of two). */
 #define RXQ_LEN 4U
 static co_frame_t rx_store[RXQ_LEN];
-static co_rxq_t rxq;
+static co_rxq_t rxq = CO_RXQ_INIT(rx_store, RXQ_LEN);
 volatile uint32_t systick_us;
 
 /* The CAN RX interrupt (startup.c's vector table): the frame goes into the
@@ -70,7 +70,6 @@ int main(void)
     SLAVE_CONFIG(&node, &cfg);
     cfg.hal.ops = &hal_ops;
     cfg.node_id = SLAVE_NODE_ID;
-    (void)co_rxq_init(&rxq, rx_store, RXQ_LEN);
     (void)co_node_init(&node.node, &cfg, systick_us);
     for (;;) {
         while (co_rxq_pop(&rxq, &f)) {

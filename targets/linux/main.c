@@ -209,6 +209,7 @@ static void can_failure(const char *iface, co_lx_can_fail_t why)
 static int start_node(dnode_t *d, const opt_node_t *spec, const char *iface)
 {
     co_node_config_t cfg;
+    co_node_callbacks_t app;
     co_lx_can_fail_t why = CO_LX_CAN_OK;
     char err[256];
     co_result_t e;
@@ -258,12 +259,13 @@ static int start_node(dnode_t *d, const opt_node_t *spec, const char *iface)
     cfg.hooks = d->hooks;
     cfg.pdo = d->pdo;
     cfg.pdo_rx = d->pdo_rx;
-    cfg.cb.ctx = d;
-    cfg.cb.nmt_state = cb_nmt_state;
-    cfg.cb.nmt_reset = cb_nmt_reset;
-    cfg.cb.hb_event = cb_hb_event;
+    (void)memset(&app, 0, sizeof app);
+    app.ctx = d;
+    app.nmt_state = cb_nmt_state;
+    app.nmt_reset = cb_nmt_reset;
+    app.hb_event = cb_hb_event;
     /* the device's instances first, then the daemon's own callbacks (logging) */
-    if (co_device_init(&d->run, d->dev, d->mem, mem_size, NULL, &cfg.cb, co_lx_now_us()) !=
+    if (co_device_init(&d->run, d->dev, d->mem, mem_size, NULL, &app, co_lx_now_us()) !=
         CO_OK) {
         log_line(d->tag, CO_LX_ERROR, "device failed to prepare");
         return -1;

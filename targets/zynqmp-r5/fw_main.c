@@ -275,7 +275,8 @@ static fw_hal_ctx_t hal_ctx;
 /* --serial: written again at every reset node (0x1018 sub 4 is a RAM value
  * the reset sets back to the description's default); wire bytes. */
 static fw_args_t args;
-static co_node_callbacks_t dev_cb;
+static co_node_callbacks_t dev_cb; /* the device's callbacks, */
+static co_node_callbacks_t fw_cb;  /* and the node's: those with fw_nmt_reset */
 
 static void set_serial(co_node_t *node)
 {
@@ -330,9 +331,10 @@ void fw_main(void)
                        clock_us(&clk)) != CO_OK) {
         fail("device start failed");
     }
-    dev_cb = co_device_callbacks(&run);
-    cfg.cb = dev_cb;
-    cfg.cb.nmt_reset = fw_nmt_reset;
+    dev_cb = *co_device_callbacks(&run);
+    fw_cb = dev_cb;
+    fw_cb.nmt_reset = fw_nmt_reset;
+    cfg.cb = &fw_cb;
     hal_ctx.can = &can;
     hal_ctx.nv = &nv;
     cfg.hal.ctx = &hal_ctx;

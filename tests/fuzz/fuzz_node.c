@@ -359,7 +359,7 @@ static void deliver(const co_frame_t *f)
         (void)fprintf(stderr, "            after: nmt %02X sdo %u txq %u refuse %u n_rx %u:", fz.n.node.nmt,
                       fz.n.node.sdo.state, fz.n.node.txq_len, fz.refuse, fz.n.node.n_rx);
         for (uint8_t i = 0U; i < fz.n.node.n_rx; i++) {
-            (void)fprintf(stderr, " %03X/%u", fz.n.node.rx[i].cob, fz.n.node.rx[i].kind);
+            (void)fprintf(stderr, " %03X/%u", (unsigned)(fz.n.node.rx[i] & 0x7FFU), (unsigned)(fz.n.node.rx[i] >> 11U));
         }
         (void)fprintf(stderr, "\n");
     }

@@ -28,7 +28,6 @@ void t402_start(t402_t *f, uint8_t id, uint32_t options, const co402_sim_config_
 {
     co_node_config_t cfg;
     co402_config_t ac;
-    co_node_callbacks_t cb;
 
     memset(f, 0, sizeof *f);
     tb_init(&f->bus);
@@ -47,8 +46,7 @@ void t402_start(t402_t *f, uint8_t id, uint32_t options, const co402_sim_config_
     cia402_config(&f->n, &cfg);
     cfg.hal = tb_hal(&f->bus, 0);
     cfg.node_id = id;
-    cb = co_profile_host_callbacks(&f->host);
-    cfg.cb = cb;
+    cfg.cb = co_profile_host_callbacks(&f->host);
     tb_attach(&f->bus, 0, &f->n.node);
     assert_int_equal(co_node_init(&f->n.node, &cfg, f->bus.now), CO_RESULT_OK);
     assert_int_equal(co_profile_host_attach(&f->host, &f->n.node, f->bus.now), CO_OK);

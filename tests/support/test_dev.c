@@ -257,7 +257,8 @@ void td_start_cb(td_node_t *n, tb_bus_t *bus, uint8_t idx, uint8_t id, const co_
     cfg.ram = &n->ram;
     cfg.hooks = n->hooks;
     if (cb != NULL) {
-        cfg.cb = *cb;
+        n->cb = *cb;
+        cfg.cb = &n->cb;
     }
     tb_attach(bus, idx, &n->node);
     assert_int_equal(co_node_init(&n->node, &cfg, bus->now), CO_RESULT_OK);

@@ -89,6 +89,7 @@ typedef struct td_node {
     co_node_t node;
     td_ram_t ram;
     co_od_hook_t hooks[TD_N_HOOKS];
+    co_node_callbacks_t cb; /**< td_start_cb's callbacks (the node keeps a pointer) */
 } td_node_t;
 
 /** Initialise @p n as node @p id on @p bus (slot @p idx) with device @p dev

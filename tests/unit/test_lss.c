@@ -31,6 +31,7 @@ typedef struct fx {
     co_dev_t dev;
     uint32_t serial[N_NODES];
     int resets[N_NODES];
+    co_node_callbacks_t cb[N_NODES];
 } fx_t;
 
 static fx_t fx;
@@ -77,8 +78,10 @@ static co_result_t start_ops(uint8_t idx, uint8_t id, uint32_t serial, const co_
     cfg.hal = tb_hal(&fx.bus, idx);
     cfg.hal.ops = ops;
     cfg.node_id = id;
-    cfg.cb.ctx = (void *)(uintptr_t)idx;
-    cfg.cb.nmt_reset = on_reset;
+    (void)memset(&fx.cb[idx], 0, sizeof fx.cb[idx]);
+    fx.cb[idx].ctx = (void *)(uintptr_t)idx;
+    fx.cb[idx].nmt_reset = on_reset;
+    cfg.cb = &fx.cb[idx];
     fx.serial[idx] = serial;
     e = co_node_init(&fx.n[idx].node, &cfg, fx.bus.now);
     if (e == CO_RESULT_OK) {

@@ -35,6 +35,26 @@ static void fifo_order_full_and_wrap(void **state)
     assert_int_equal(q.dropped, 5);
 }
 
+/* CO_RXQ_INIT: the same queue as co_rxq_init, made by a static initialiser. */
+static void static_initialiser_is_the_init(void **state)
+{
+    static co_frame_t store[4];
+    static co_rxq_t q = CO_RXQ_INIT(store, 4U);
+    co_rxq_t r;
+    co_frame_t f;
+    (void)state;
+    assert_true(co_rxq_init(&r, store, 4));
+    assert_memory_equal(&q, &r, sizeof q);
+    assert_false(co_rxq_pop(&q, &f));
+    for (uint32_t i = 0; i < 3; i++) {
+        co_frame_set(&f, 0x181U + i, NULL, 0);
+        assert_true(co_rxq_push(&q, &f));
+    }
+    assert_false(co_rxq_push(&q, &f));
+    assert_true(co_rxq_pop(&q, &f));
+    assert_int_equal(f.id, 0x181U);
+}
+
 static void rejects_bad_sizes(void **state)
 {
     co_frame_t store[6];
@@ -50,6 +70,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(fifo_order_full_and_wrap),
+        cmocka_unit_test(static_initialiser_is_the_init),
         cmocka_unit_test(rejects_bad_sizes),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

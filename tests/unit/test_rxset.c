@@ -21,6 +21,7 @@ typedef struct fx {
     tb_bus_t bus;
     generic_301_node_t n;
     unsigned notices;
+    co_node_callbacks_t cb;
 } fx_t;
 
 static void on_rx_set(void *ctx, co_node_t *node)
@@ -38,8 +39,9 @@ static int setup(void **state)
     generic_301_config(&fx.n, &cfg);
     cfg.hal = tb_hal(&fx.bus, 0);
     cfg.node_id = 5U;
-    cfg.cb.ctx = &fx;
-    cfg.cb.rx_set = on_rx_set;
+    fx.cb.ctx = &fx;
+    fx.cb.rx_set = on_rx_set;
+    cfg.cb = &fx.cb;
     assert_int_equal(co_node_init(&fx.n.node, &cfg, 0U), CO_RESULT_OK);
     tb_attach(&fx.bus, 0, &fx.n.node);
     tb_flush(&fx.bus);

@@ -45,7 +45,8 @@
 #endif
 #ifndef CO_RX_SLOTS_MAX
 /** Receive table of the core's services: NMT, SDO, SYNC, and guarding,
- *  TIME and LSS where the build has them, and the heartbeat consumers. */
+ *  TIME and LSS where the build has them, and the heartbeat consumers
+ *  (2 bytes each; at most 127). */
 #define CO_RX_SLOTS_MAX (3U + (unsigned)(CO_NODE_GUARDING) + (unsigned)(CO_TIME) + \
                          (unsigned)(CO_LSS) + CO_HB_CONSUMERS_MAX)
 #endif

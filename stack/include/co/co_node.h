@@ -189,7 +189,10 @@ typedef struct co_node_config {
     uint8_t node_id;
     void *ram;                     /**< dev->ram_size bytes, suitably aligned */
     co_od_hook_t *hooks;           /**< dev->n_hooks slots (may be all NULL) */
-    co_node_callbacks_t cb;
+    /** The application's callbacks, NULL for none. The node keeps the
+     *  pointer: they must stay where they are while the node runs (a const
+     *  table in flash, or the caller's own copy). */
+    const co_node_callbacks_t *cb;
     uint32_t sdo_timeout_us;       /**< 0: 1 s */
     co_pdo_t *pdo;                 /**< dev->n_rpdo + dev->n_tpdo elements */
     co_pdo_slot_t *pdo_rx;         /**< CO_PDO_RX_SLOTS(dev->n_rpdo, dev->n_tpdo) elements */
@@ -227,12 +230,6 @@ typedef struct co_store {
     uint8_t damaged;      /**< the newest set found at the last reset was damaged */
 } co_store_t;
 
-typedef struct co_rx_slot {
-    uint16_t cob;
-    uint8_t kind;
-    uint8_t arg;
-} co_rx_slot_t;
-
 typedef struct co_sdo_srv {
     const co_od_entry_t *entry;
     const co_od_sub_t *desc;
@@ -240,18 +237,18 @@ typedef struct co_sdo_srv {
     uint32_t offset;     /**< bytes done (acknowledged) */
     uint32_t deadline;
     uint32_t timeout_us; /**< co_node_config_t.sdo_timeout_us */
-    uint16_t crc;
 #if CO_SDO_BLOCK
+    uint16_t crc;
     uint16_t crc_sent;   /**< block upload: CRC up to the last segment sent */
+    uint8_t blksize;
+    uint8_t seqno;       /**< block: last good / last sent sequence number */
+    uint8_t held[7];     /**< block download: the last segment until its size is known */
 #endif
     uint8_t state;
     uint8_t toggle;
-    uint8_t blksize;
-    uint8_t seqno;       /**< block: last good / last sent sequence number */
     uint8_t flags;
-    uint8_t buf_len;
+    uint8_t buf_len;     /**< upload: bytes of the staged first chunk */
     uint8_t buf[8];      /**< fixed-size values gathered before commit; staged first chunk */
-    uint8_t held[7];     /**< block download: the last segment until its size is known */
 } co_sdo_srv_t;
 
 /** Error control (co_hb.c): heartbeat producer and consumers, node and life guarding. */
@@ -291,6 +288,7 @@ typedef struct co_emcy {
     uint8_t hist_depth;
     uint8_t n_active;
     uint8_t n_q;
+    uint8_t q_head;          /**< the oldest waiting EMCY in q (a ring) */
     uint8_t store_report;    /**< EMCY 0x5530 raised for a damaged parameter set */
     /* the active errors (two arrays: no padding) */
     uint16_t active_code[CO_EMCY_ACTIVE_MAX];
@@ -333,7 +331,7 @@ typedef struct co_node {
     co_hal_t hal;
     uint8_t *ram;
     co_od_hook_t *hooks;
-    co_node_callbacks_t cb;
+    const co_node_callbacks_t *cb; /**< never NULL (co_node_init: none, all NULL) */
     uint32_t now;
     /** co_node_process: the earliest deadline of the services when they last
      *  ran (one that has moved later since only costs an early call). */
@@ -355,7 +353,9 @@ typedef struct co_node {
      *  last ran (a frame, a write of its objects); CO_SVC_ALL: every row,
      *  and 'due' is stale. */
     uint16_t svc_run;
-    co_rx_slot_t rx[CO_RX_SLOTS_MAX];
+    /** The services' receive slots: the COB-ID in bits 0..10, the row of
+     *  the service in the service table above them (co_node.c). */
+    uint16_t rx[CO_RX_SLOTS_MAX];
     co_frame_t txq[CO_TXQ_LEN];
     /** The services' own hooks on the objects they own (co_od.c), sorted by index. */
     const struct co_svc_hook *svc_hooks[CO_SVC_HOOKS_MAX];

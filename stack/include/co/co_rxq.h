@@ -33,6 +33,10 @@ typedef struct co_rxq {
 
 /** @p len must be a power of two, 2..32768. Returns false otherwise. */
 bool co_rxq_init(co_rxq_t *q, co_frame_t *storage, uint16_t len);
+
+/** The queue co_rxq_init makes, as the initialiser of a static co_rxq_t
+ *  (no code at start-up): @p len must be a power of two, 2..32768. */
+#define CO_RXQ_INIT(storage, len) {(storage), (uint16_t)((len) - 1U), 0U, 0U, 0U}
 /** Producer (ISR): false (and a count in 'dropped') when the queue is full. */
 bool co_rxq_push(co_rxq_t *q, const co_frame_t *f);
 /** Consumer (main loop): false when the queue is empty. */

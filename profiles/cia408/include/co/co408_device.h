@@ -56,7 +56,7 @@ co_err_t co408_unit_init(co408_unit_t *u, const co408_device_t *device,
                          const co408_plant_t *plants, const co_node_callbacks_t *app);
 
 /** The node callbacks for co_node_config_t.cb. */
-co_node_callbacks_t co408_unit_callbacks(co408_unit_t *u);
+const co_node_callbacks_t *co408_unit_callbacks(co408_unit_t *u);
 
 /** After co_node_init: attach the channels (they start in INIT). */
 co_err_t co408_unit_attach(co408_unit_t *u, co_node_t *node, uint32_t now_us);

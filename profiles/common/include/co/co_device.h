@@ -124,7 +124,7 @@ co_err_t co_device_init(co_device_run_t *run, const co_device_t *device, void *m
                         const co_node_callbacks_t *app, uint32_t now_us);
 
 /** The node callbacks to put into co_node_config_t.cb before co_node_init. */
-co_node_callbacks_t co_device_callbacks(co_device_run_t *run);
+const co_node_callbacks_t *co_device_callbacks(co_device_run_t *run);
 
 /** After co_node_init: attach the instances and the plug-in, then run the
  *  power-on step. */

@@ -94,6 +94,7 @@ typedef struct co_profile_host {
     uint8_t n;
     uint8_t cap;
     co_node_callbacks_t app; /**< the application's callbacks, called after the plug-ins */
+    co_node_callbacks_t node_cb; /**< the node's callbacks (co_profile_host_callbacks) */
 } co_profile_host_t;
 
 /** Empty host with room for @p cap instances in @p slots; @p app (may be
@@ -104,9 +105,9 @@ void co_profile_host_init(co_profile_host_t *h, co_profile_t *slots, uint8_t cap
 /** Add an instance (before attach). CO_ERR_NO_MEMORY when full. */
 co_err_t co_profile_add(co_profile_host_t *h, const co_profile_ops_t *ops, void *inst);
 
-/** The node callbacks that feed the instances: put them into
+/** The node callbacks that feed the instances (kept in @p h): put them into
  *  co_node_config_t.cb before co_node_init. */
-co_node_callbacks_t co_profile_host_callbacks(co_profile_host_t *h);
+const co_node_callbacks_t *co_profile_host_callbacks(co_profile_host_t *h);
 
 /** Attach every instance to @p node (after co_node_init). Stops at the first
  *  error and returns it. */

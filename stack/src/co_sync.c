@@ -53,7 +53,7 @@ static void on_sync(co_node_t *node, uint8_t counter)
     if (node->pdo.buffered != 0U) {
         co_rpdo_sync(node);
     }
-    if (node->cb->sync != NULL) {
+    if (CO_CB(node, sync) != NULL) {
         node->cb->sync(node->cb->ctx, node, counter);
     }
     co_tpdo_sync(node, counter);

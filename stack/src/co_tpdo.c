@@ -251,7 +251,7 @@ CO_HOT uint32_t event_driven(co_node_t *node, uint16_t i, uint32_t next, bool de
             (((p->flags & CO_PDO_F_SENT) == 0U) ||
              (changed(now, p->data) &&
               ((CO_SET(node, tpdo.change_mask) == 0U) || masked_change(node, i, now)) &&
-              ((node->cb->tpdo_event == NULL) ||
+              ((CO_CB(node, tpdo_event) == NULL) ||
                node->cb->tpdo_event(node->cb->ctx, node, (uint16_t)(i - node->dev->n_rpdo),
                                    p->data, now))))) {
             p->flags |= CO_PDO_F_EVENT;

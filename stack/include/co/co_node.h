@@ -331,7 +331,7 @@ typedef struct co_node {
     co_hal_t hal;
     uint8_t *ram;
     co_od_hook_t *hooks;
-    const co_node_callbacks_t *cb; /**< never NULL (co_node_init: none, all NULL) */
+    const co_node_callbacks_t *cb; /**< NULL: none */
     uint32_t now;
     /** co_node_process: the earliest deadline of the services when they last
      *  ran (one that has moved later since only costs an early call). */

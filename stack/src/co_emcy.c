@@ -138,7 +138,7 @@ void co_emcy_raise(co_node_t *node, uint16_t code, uint8_t reg_bits, const uint8
         node->emcy.n_active++;
     }
     (void)update_errreg(node);
-    if ((data == NULL) && (node->cb->emcy_mfr != NULL)) {
+    if ((data == NULL) && (CO_CB(node, emcy_mfr) != NULL)) {
         /* the device fills the manufacturer bytes of the core's own EMCYs */
         (void)memset(filled, 0, sizeof filled);
         node->cb->emcy_mfr(node->cb->ctx, node, code, filled);

@@ -17,7 +17,7 @@ static uint32_t ms_to_us(uint32_t ms)
 
 static void event(co_node_t *node, co_hb_event_t ev, uint8_t id, uint8_t state)
 {
-    if (node->cb->hb_event != NULL) {
+    if (CO_CB(node, hb_event) != NULL) {
         node->cb->hb_event(node->cb->ctx, node, ev, id, (co_nmt_state_t)state);
     }
 }
@@ -32,11 +32,9 @@ static void update_error(co_node_t *node)
         lost = (node->errctl.hbc_state[k] == (uint8_t)HBC_LOST);
     }
     if (lost) {
-        co_emcy_raise(node, CO_EMCY_HB_GUARD, CO_ERREG_COMM, NULL);
-    } else if (co_emcy_is_active(node, CO_EMCY_HB_GUARD)) {
-        co_emcy_clear(node, CO_EMCY_HB_GUARD);
+        co_emcy_raise(node, CO_EMCY_HB_GUARD, CO_ERREG_COMM, NULL); /* (once) */
     } else {
-        /* nothing to change */
+        co_emcy_clear(node, CO_EMCY_HB_GUARD); /* (nothing when it is not active) */
     }
 }
 
@@ -140,19 +138,14 @@ static void hb_reset(co_node_t *node)
     }
 }
 
-static void hb_rx(co_node_t *node, uint8_t slot, const co_frame_t *f)
+/* A heartbeat (a data frame of at least one byte) of producer @p id, whom
+ * entry @p slot monitors. */
+static void hb_rx(co_node_t *node, uint8_t slot, uint8_t id, const co_frame_t *f)
 {
     co_errctl_t *c = &node->errctl;
-    uint8_t st;
-    uint8_t id;
-    uint8_t prev;
+    uint8_t st = (uint8_t)(f->data[0] & 0x7FU);
+    uint8_t prev = c->hbc_state[slot];
 
-    if (co_frame_is_rtr(f) || (f->dlc < 1U)) {
-        return;
-    }
-    st = (uint8_t)(f->data[0] & 0x7FU);
-    id = (uint8_t)((c->hb_cons[slot] >> 16U) & 0x7FU);
-    prev = c->hbc_state[slot];
     c->hbc_deadline[slot] = node->now + ms_to_us(c->hb_cons[slot] & 0xFFFFU);
     c->hbc_state[slot] = (uint8_t)HBC_ACTIVE;
     if (prev == (uint8_t)HBC_WAITING) {
@@ -319,10 +312,13 @@ static void errctl_rx(co_node_t *node, uint16_t arg, const co_frame_t *f)
         return;
     }
 #endif
+    if (co_frame_is_rtr(f) || (f->dlc < 1U)) {
+        return; /* no heartbeat */
+    }
     for (uint8_t k = 0U; k < node->errctl.n_hb_cons; k++) {
         if ((node->errctl.hbc_state[k] != (uint8_t)HBC_UNUSED) &&
             (((node->errctl.hb_cons[k] >> 16U) & 0x7FU) == id)) {
-            hb_rx(node, k, f);
+            hb_rx(node, k, id, f);
             return;
         }
     }

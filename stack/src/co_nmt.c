@@ -78,7 +78,7 @@ const co_service_t co_svc_nmt = {
 void co_node_error_behaviour(co_node_t *node, uint8_t sub, uint32_t now_us)
 {
     co_node_clock(node, now_us);
-    if (node->cb->error_class != NULL) {
+    if (CO_CB(node, error_class) != NULL) {
         node->cb->error_class(node->cb->ctx, node, sub);
     }
     co_nmt_error(node, sub);

@@ -155,7 +155,7 @@ void co_rx_rebuild(co_node_t *node)
             co_services[k]->rx_slots(node, k);
         }
     }
-    if (node->cb->rx_set != NULL) {
+    if (CO_CB(node, rx_set) != NULL) {
         node->cb->rx_set(node->cb->ctx, node);
     }
 }
@@ -384,7 +384,7 @@ void co_node_set_state(co_node_t *node, co_nmt_state_t st)
             co_services[k]->nmt(node, from);
         }
     }
-    if (node->cb->nmt_state != NULL) {
+    if (CO_CB(node, nmt_state) != NULL) {
         node->cb->nmt_state(node->cb->ctx, node, st);
     }
 }
@@ -457,7 +457,7 @@ static void reset(co_node_t *node, co_reset_t kind_asked)
             services_reset(node, (uint8_t)kind);
         }
     }
-    if (node->cb->nmt_reset != NULL) {
+    if (CO_CB(node, nmt_reset) != NULL) {
         node->cb->nmt_reset(node->cb->ctx, node, kind);
     }
     boot(node);
@@ -484,7 +484,7 @@ void co_node_nmt_exec(co_node_t *node, uint8_t cs)
         return;
     }
     if (((to == (uint8_t)CO_NMT_INITIALISING) || (node->nmt != to)) &&
-        (node->cb->nmt_command != NULL)) {
+        (CO_CB(node, nmt_command) != NULL)) {
         node->cb->nmt_command(node->cb->ctx, node, cs);
     }
     if (to != (uint8_t)CO_NMT_INITIALISING) {
@@ -564,9 +564,6 @@ static co_result_t bind_services(co_node_t *node)
     return CO_RESULT_OK;
 }
 
-/* A node without callbacks: every entry NULL. */
-static const co_node_callbacks_t no_callbacks;
-
 co_result_t co_node_init(co_node_t *node, const co_node_config_t *cfg, uint32_t now_us)
 {
     co_result_t r;
@@ -593,7 +590,7 @@ co_result_t co_node_init(co_node_t *node, const co_node_config_t *cfg, uint32_t 
     if (node->hooks != NULL) {
         (void)memset(node->hooks, 0, (size_t)cfg->dev->n_hooks * sizeof node->hooks[0]);
     }
-    node->cb = (cfg->cb != NULL) ? cfg->cb : &no_callbacks;
+    node->cb = cfg->cb;
     node->node_id = id;
     node->pending_id = id;
     node->cob_base = id;

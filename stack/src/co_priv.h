@@ -60,6 +60,10 @@ static inline void co_copy(void *dst, const void *src, size_t n)
  * value 0, so the code of the deviations is not built. */
 #define CO_SET(node, field) ((CO_PERSONALITY != 0) ? (uint32_t)(node)->dev->set.field : 0U)
 
+/* The application's callback @p fn of co_node_callbacks_t, NULL when it has
+ * none (or no callbacks at all: co_node_t.cb NULL). */
+#define CO_CB(node, fn) (((node)->cb != NULL) ? (node)->cb->fn : NULL)
+
 /* Wrap-safe "a is at or after b". */
 static inline bool co_time_reached(uint32_t now, uint32_t when)
 {

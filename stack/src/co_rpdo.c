@@ -60,7 +60,7 @@ static void apply(co_node_t *node, uint16_t i, const uint8_t *data, uint8_t dlc)
 #else
     co_pdo_store(node, i, data, dlc); /* one path for every PDO */
 #endif
-    if (node->cb->rpdo != NULL) {
+    if (CO_CB(node, rpdo) != NULL) {
         node->cb->rpdo(node->cb->ctx, node, i);
     }
     if ((CO_SET(node, pdo.tpdo_after_rpdo) != 0U) && (i < node->dev->n_tpdo) &&

@@ -41,21 +41,23 @@ enum {
     S_STORE       /* a download started a save: its answer waits until it is durable */
 };
 
-/* Helpers of the initiates: with block transfer they have callers enough
- * to be worth a call (at -Os; bench-size BLK), else inlined. */
+/* Inlining, per build. SDO_SHARED: helpers that block transfer gives
+ * callers enough to be worth a call (bench-size BLK), else inlined.
+ * Where the build is for speed (CO_FAST): SDO_RARE, the requests that are
+ * not an initiate, stay out of sdo_rx (their stack frame would be paid by
+ * every expedited transfer), and SDO_CALL, small helpers with many
+ * callers, are inlined; at -Os the other way round (fewer bytes). */
 #if CO_SDO_BLOCK
 #define SDO_SHARED CO_NOINLINE
 #else
 #define SDO_SHARED
 #endif
-
-/* Requests that are not an initiate, kept out of sdo_rx where the build is
- * for speed (their stack frame would be paid by every expedited transfer);
- * at -Os one function is smaller. */
 #if CO_FAST
 #define SDO_RARE CO_NOINLINE
+#define SDO_CALL
 #else
 #define SDO_RARE
+#define SDO_CALL CO_NOINLINE
 #endif
 
 /* flags */
@@ -75,7 +77,7 @@ static void pack_answer(uint8_t *d, uint8_t cmd, uint16_t index, uint8_t sub, ui
 }
 
 /* The eight data bytes of @p f go out on the server's COB-ID. */
-static void send8(co_node_t *node, co_frame_t *f)
+SDO_CALL static void send8(co_node_t *node, co_frame_t *f)
 {
     f->id = 0x580UL + node->node_id;
     f->dlc = 8U;
@@ -91,7 +93,7 @@ static void reply(co_node_t *node, uint8_t cmd, uint16_t index, uint8_t sub, uin
     send8(node, &f);
 }
 
-static void sdo_reset(co_node_t *node)
+SDO_CALL static void sdo_reset(co_node_t *node)
 {
     node->sdo.state = (uint8_t)S_IDLE;
     node->sdo.entry = NULL;
@@ -110,7 +112,7 @@ static void sdo_abort(co_node_t *node, uint16_t index, uint8_t sub, co_err_t err
     sdo_reset(node);
 }
 
-static void start(co_node_t *node, uint8_t state)
+SDO_SHARED static void start(co_node_t *node, uint8_t state)
 {
     node->sdo.state = state;
     node->sdo.deadline = node->now + node->sdo.timeout_us;
@@ -369,11 +371,9 @@ static co_err_t initiate_download(co_node_t *node, const uint8_t *d, uint16_t in
 
 /* The answer to an upload initiate whose first chunk is staged: expedited
  * (nothing stays open), else the segmented upload opens. */
-static co_err_t respond_upload(co_node_t *node, bool last)
+static co_err_t respond_upload(co_node_t *node, uint16_t index, uint8_t sub, bool last)
 {
     co_sdo_srv_t *t = &node->sdo;
-    uint16_t index = t->entry->index;
-    uint8_t sub = t->desc->sub;
 
     if (fits_expedited(node, last, t->size)) {
         uint32_t size = t->size;
@@ -392,7 +392,9 @@ static co_err_t respond_upload(co_node_t *node, bool last)
     return CO_OK;
 }
 
-/* Called in S_IDLE (no transfer open): an expedited answer leaves it so. */
+/* Called in S_IDLE (no transfer open): the first chunk staged, the
+ * transfer state opened, respond_upload answers (an expedited answer
+ * closes it again: one path for the initiates of both kinds). */
 static co_err_t initiate_upload(co_node_t *node, uint16_t index, uint8_t sub)
 {
     const co_od_entry_t *e;
@@ -403,12 +405,8 @@ static co_err_t initiate_upload(co_node_t *node, uint16_t index, uint8_t sub)
     if (err != CO_OK) {
         return err;
     }
-    if (fits_expedited(node, c.last, c.len)) {
-        send_expedited(node, index, sub, c.len);
-        return CO_OK;
-    }
     open_upload(&node->sdo, e, s, &c);
-    return respond_upload(node, c.last);
+    return respond_upload(node, index, sub, c.last);
 }
 
 /* ------------------------------------------------------------ segmented */
@@ -580,7 +578,7 @@ SDO_RARE static co_err_t block_upload_initiate(co_node_t *node, const uint8_t *d
     }
     open_upload(t, e, s, &c);
     if ((pst != 0U) && ((t->flags & F_SIZE) != 0U) && (t->size <= pst)) {
-        return respond_upload(node, c.last); /* protocol switch to segmented/expedited */
+        return respond_upload(node, index, sub, c.last); /* protocol switch to segmented/expedited */
     }
     t->blksize = blksize;
     if ((d[0] & CO_SDO_BLK_CRC) != 0U) {

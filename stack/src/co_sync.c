@@ -53,7 +53,7 @@ static void on_sync(co_node_t *node, uint8_t counter)
     if (node->pdo.buffered != 0U) {
         co_rpdo_sync(node);
     }
-    if (node->cb->sync != NULL) {
+    if (CO_CB(node, sync) != NULL) {
         node->cb->sync(node->cb->ctx, node, counter);
     }
     co_tpdo_sync(node, counter);
@@ -179,8 +179,10 @@ co_err_t co_sync_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
         /* not a SYNC parameter */
     } else if ((index == 0x1005U) && (len == 4U) && (node->sync.cob != NULL)) {
         err = co_check_cob(*node->sync.cob, co_get_u32(data), COB_SYNC_GEN, true, 0U, true);
+#if CO_SYNC_PRODUCER /* (without, a device has no 0x1006: sync_bind) */
     } else if ((index == 0x1006U) && (len == 4U) && (co_get_u32(data) > CO_HORIZON_US)) {
         err = CO_ERR_VALUE_HIGH;
+#endif
     } else if ((index == 0x1019U) && (len == 1U)) {
         if ((data[0] == 1U) || (data[0] > 240U)) {
             err = CO_ERR_VALUE;

@@ -25,7 +25,7 @@ static void time_rx(co_node_t *node, uint16_t arg, const co_frame_t *f)
         ((*cob & COB_TIME_CONS) == 0U)) {
         return;
     }
-    if (node->cb->time != NULL) {
+    if (CO_CB(node, time) != NULL) {
         node->cb->time(node->cb->ctx, node, co_get_u32(f->data) & 0x0FFFFFFFUL,
                       co_get_u16(&f->data[4]));
     }

@@ -195,7 +195,7 @@ typedef struct co_node_config {
     const co_node_callbacks_t *cb;
     uint32_t sdo_timeout_us;       /**< 0: 1 s */
     co_pdo_t *pdo;                 /**< dev->n_rpdo + dev->n_tpdo elements */
-    co_pdo_slot_t *pdo_rx;         /**< dev->n_rpdo + dev->n_tpdo elements */
+    co_pdo_slot_t *pdo_rx;         /**< CO_PDO_RX_SLOTS(dev->n_rpdo, dev->n_tpdo) elements */
 } co_node_config_t;
 
 /** Node-ID of an unconfigured node (CiA 305): it sends nothing and answers
@@ -331,7 +331,7 @@ typedef struct co_node {
     co_hal_t hal;
     uint8_t *ram;
     co_od_hook_t *hooks;
-    const co_node_callbacks_t *cb; /**< never NULL (co_node_init: none, all NULL) */
+    const co_node_callbacks_t *cb; /**< NULL: none */
     uint32_t now;
     /** co_node_process: the earliest deadline of the services when they last
      *  ran (one that has moved later since only costs an early call). */

@@ -276,8 +276,8 @@ static void emcy_nmt(co_node_t *node, co_nmt_state_t from)
 /* 0x1003: entries beyond the number of recorded errors hold no data; only
  * 0 may be written to sub0, which clears the history. 0x1014: the CAN-ID is
  * fixed while the EMCY is valid (bit 31 = 0). */
-static co_err_t emcy_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
-                         const co_od_sub_t *s, const uint8_t *data, uint32_t len)
+co_err_t co_emcy_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
+                     const co_od_sub_t *s, const uint8_t *data, uint32_t len)
 {
     co_emcy_t *m = &node->emcy;
     uint8_t sub = s->sub;
@@ -311,11 +311,6 @@ static co_err_t emcy_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
     return err;
 }
 
-static const co_svc_hook_t emcy_hooks[] = {
-    {0x1003U, 0x1003U, CO_SVC_READ | CO_SVC_CHECK | CO_SVC_WRITTEN, CO_ROW_EMCY, emcy_obj},
-    {0x1014U, 0x1015U, CO_SVC_CHECK | CO_SVC_SELF, CO_ROW_EMCY, emcy_obj},
-};
-
 const co_service_t co_svc_emcy = {
-    emcy_bind, emcy_reset, NULL, NULL, emcy_process, emcy_nmt, emcy_hooks, 2U,
+    emcy_bind, emcy_reset, NULL, NULL, emcy_process, emcy_nmt,
 };

@@ -22,8 +22,7 @@ static bool pdo_of(const co_node_t *node, uint16_t index, uint16_t *i, bool *is_
     uint16_t n = rel & (PDO_RANGE - 1U);
     bool tx = (rel & (IDX_TPDO_COMM - IDX_RPDO_COMM)) != 0U;
 
-    if ((rel >= (4U * PDO_RANGE)) || (dev->pdo == NULL) ||
-        (n >= (tx ? dev->n_tpdo : dev->n_rpdo))) {
+    if ((rel >= (4U * PDO_RANGE)) || (n >= (tx ? dev->n_tpdo : dev->n_rpdo))) {
         return false;
     }
     *i = (uint16_t)(tx ? (n + dev->n_rpdo) : n);
@@ -96,7 +95,7 @@ static uint16_t direct_code(const co_node_t *node, const co_od_entry_t *e, const
                             bool tx, uint8_t bits, uint16_t pos)
 {
     uint8_t size = co_type_len(s->type);
-    uint8_t svc = co_od_svc_ops(node, e->index);
+    uint8_t svc = co_od_svc_ops(e);
     uint32_t off = co_od_off(e, s);
     uint32_t n = tx ? ((uint32_t)bits >> 3U) : size; /* TPDO: bytes mapped, RPDO: value size */
     uint32_t code = off | ((n - 1U) << 12U);
@@ -124,19 +123,26 @@ static uint16_t direct_code(const co_node_t *node, const co_od_entry_t *e, const
 }
 #endif
 
-/* Validate the first @p count entries of PDO i's mapping; *len gets bytes.
- * With @p p, also resolve the first CO_PDO_FAST_MAX entries (p->plain). */
-static co_err_t check_mapping(const co_node_t *node, uint16_t i, uint8_t count, uint8_t *len,
-                              co_pdo_t *p)
+/* Validate the first @p new_count entries of PDO i's mapping. With @p p (PDO
+ * i's state), its mapping as the dictionary holds it becomes its state:
+ * enabled and valid (CO_PDO_F_MAP_OK, len), the first CO_PDO_FAST_MAX
+ * entries resolved (p->plain). */
+static co_err_t check_mapping(const co_node_t *node, uint16_t i, uint8_t new_count, co_pdo_t *p)
 {
     const co_pdo_desc_t *d = &node->dev->pdo[i];
     bool tx = is_tpdo(node, i);
     uint16_t total = 0U;
-    bool direct = count <= CO_PDO_FAST_MAX;
+    uint8_t count = (p != NULL) ? co_ram_u8(node, d->count) : new_count;
+    bool direct;
 
+    if (p != NULL) {
+        p->flags &= (uint16_t)~(CO_PDO_F_MAP_OK | CO_PDO_F_DIRECT);
+        p->len = 0U;
+    }
     if (count > d->map_max) {
         return CO_ERR_MAP_LEN;
     }
+    direct = count <= CO_PDO_FAST_MAX;
     for (uint8_t k = 0U; k < count; k++) {
         uint8_t bits;
         const co_od_entry_t *e = NULL;
@@ -157,10 +163,10 @@ static co_err_t check_mapping(const co_node_t *node, uint16_t i, uint8_t count, 
     if (total > 64U) {
         return CO_ERR_MAP_LEN;
     }
-    if ((p != NULL) && direct) {
-        p->flags |= CO_PDO_F_DIRECT;
+    if ((p != NULL) && (count != 0U)) {
+        p->flags |= (uint16_t)(CO_PDO_F_MAP_OK | ((CO_FAST && direct) ? CO_PDO_F_DIRECT : 0U));
+        p->len = (uint8_t)((total + 7U) / 8U);
     }
-    *len = (uint8_t)((total + 7U) / 8U);
     return CO_OK;
 }
 
@@ -196,7 +202,7 @@ static co_err_t check_write(const co_node_t *node, uint16_t i, bool is_map, uint
         if (sub == 0U) {
             /* A new count is checked against the entries as they stand; the
              * check reads them from the image, so count them up to data[0]. */
-            return (v == 0U) ? CO_OK : check_mapping(node, i, (uint8_t)v, &len, NULL);
+            return check_mapping(node, i, (uint8_t)v, NULL);
         }
         if (co_ram_u8(node, d->count) != 0U) {
             return CO_ERR_NO_ACCESS; /* entries are fixed while the mapping is enabled */
@@ -230,21 +236,6 @@ static co_err_t check_write(const co_node_t *node, uint16_t i, bool is_map, uint
                : CO_OK;
 }
 
-/* Recompute whether PDO i's mapping is usable and how long it is. */
-static void compile_mapping(co_node_t *node, uint16_t i)
-{
-    co_pdo_t *p = &node->pdo.p[i];
-    uint8_t count = co_ram_u8(node, node->dev->pdo[i].count);
-    uint8_t len = 0U;
-
-    p->flags &= (uint16_t)~(CO_PDO_F_MAP_OK | CO_PDO_F_DIRECT);
-    p->len = 0U;
-    if ((count != 0U) && (check_mapping(node, i, count, &len, p) == CO_OK)) {
-        p->flags |= CO_PDO_F_MAP_OK;
-        p->len = len;
-    }
-}
-
 /* Forget what a PDO was doing (errors stay until correct PDOs resume). */
 static void restart(co_node_t *node, uint16_t i)
 {
@@ -261,7 +252,7 @@ static void pdo_written(co_node_t *node, uint16_t i, bool is_map, uint8_t sub)
         if (sub != 0U) {
             return;
         }
-        compile_mapping(node, i);
+        (void)check_mapping(node, i, 0U, &node->pdo.p[i]);
     } else if (sub == 1U) {
         co_rx_invalidate(node);
     } else if ((sub != 2U) && (sub != 5U)) {
@@ -281,7 +272,7 @@ static void pdo_reset(co_node_t *node, uint8_t kind)
     }
     for (uint16_t i = 0U; i < n; i++) {
         (void)memset(&node->pdo.p[i], 0, sizeof node->pdo.p[i]);
-        compile_mapping(node, i);
+        (void)check_mapping(node, i, 0U, &node->pdo.p[i]);
     }
 }
 
@@ -307,10 +298,7 @@ static void pdo_rx_slots(co_node_t *node, uint8_t svc)
     uint16_t n = (uint16_t)(node->dev->n_rpdo + (CO_PDO_RTR ? node->dev->n_tpdo : 0U));
     uint16_t used = 0U;
 
-    (void)svc;
-    if (node->pdo.rx == NULL) {
-        return;
-    }
+    (void)svc; /* (no PDO table: no PDOs, co_node_init) */
     for (uint16_t i = 0U; i < n; i++) {
         uint32_t cob = co_pdo_cob(node, i);
         uint16_t id = (uint16_t)(cob & 0x7FFU);
@@ -349,8 +337,8 @@ static uint32_t pdo_process(co_node_t *node, uint32_t next)
     return co_tpdo_process(node, co_rpdo_process(node, next));
 }
 
-static co_err_t pdo_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
-                        const co_od_sub_t *s, const uint8_t *data, uint32_t len)
+co_err_t co_pdo_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
+                    const co_od_sub_t *s, const uint8_t *data, uint32_t len)
 {
     uint16_t i;
     bool is_map;
@@ -366,10 +354,6 @@ static co_err_t pdo_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
     return CO_OK;
 }
 
-static const co_svc_hook_t pdo_hooks[] = {
-    {0x1400U, 0x1BFFU, CO_SVC_CHECK | CO_SVC_WRITTEN, CO_ROW_PDO, pdo_obj},
-};
-
 const co_service_t co_svc_pdo = {
-    NULL, pdo_reset, pdo_rx_slots, pdo_rx, pdo_process, pdo_nmt, pdo_hooks, 1U,
+    NULL, pdo_reset, pdo_rx_slots, pdo_rx, pdo_process, pdo_nmt,
 };

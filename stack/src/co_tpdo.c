@@ -127,31 +127,6 @@ static bool acyclic_due(co_node_t *node, uint16_t i)
            changed(now, p->data);
 }
 
-void co_tpdo_sync(co_node_t *node, uint8_t counter)
-{
-    uint16_t n = (uint16_t)(node->dev->n_rpdo + node->dev->n_tpdo);
-
-    if (node->nmt != (uint8_t)CO_NMT_OPERATIONAL) {
-        return;
-    }
-    for (uint16_t i = node->dev->n_rpdo; i < n; i++) {
-        uint8_t type = co_pdo_type(node, i);
-        /* RTR-only 253 and event-driven types do not follow SYNC */
-        if (((type <= 240U) || (CO_PDO_RTR && (type == 252U))) && co_pdo_usable(node, i)) {
-            co_pdo_t *p = &node->pdo.p[i];
-            p->flags &= (uint16_t)~CO_PDO_F_SYNC_PEND; /* a new SYNC replaces it */
-            if (CO_PDO_RTR && (type == 252U)) {
-                build(node, i, p->data); /* sampled now, sent on request */
-                p->flags |= CO_PDO_F_SAMPLED;
-            } else if ((type == 0U) ? acyclic_due(node, i) : cyclic_due(node, i, type, counter)) {
-                send_sync(node, i);
-            } else {
-                /* not this SYNC */
-            }
-        }
-    }
-}
-
 #if CO_PDO_RTR
 /* Answer a remote request: type 252 with the data sampled at the last SYNC,
  * every other type with the data of now. */
@@ -247,27 +222,38 @@ static CO_NOINLINE bool masked_change(const co_node_t *node, uint16_t i, const u
     return false;
 }
 
-/* Event-driven (254/255): change of the data (with set.tpdo.change_mask, of
- * the bits of its change mask; looked at only when the data changed), a
- * request, or the event timer, no sooner than the inhibit time allows.
- * Returns the next deadline. */
-static uint32_t event_driven(co_node_t *node, uint16_t i, uint32_t next)
+/* Event-driven (254/255), with change detection (@p detect): a change of
+ * the data (with set.tpdo.change_mask, of the bits of its change mask;
+ * looked at only when the data changed), a request, or the event timer, no
+ * sooner than the inhibit time allows. Without (CO_TPDO_CHANGE_IGNORED): a
+ * request or the event timer (which runs from the start of Operational,
+ * when nothing has been sent), sampled when it goes out. Returns the next
+ * deadline. */
+CO_HOT uint32_t event_driven(co_node_t *node, uint16_t i, uint32_t next, bool detect)
 {
     co_pdo_t *p = &node->pdo.p[i];
     uint8_t now[8];
 
     event_timers(node, p);
-    if ((p->flags & (CO_PDO_F_EVENT | CO_PDO_F_INHIBIT)) !=
-        (CO_PDO_F_EVENT | CO_PDO_F_INHIBIT)) {
-        /* sample unless already due and waiting for the inhibit time anyway */
+    if (!detect && ((p->flags & CO_PDO_F_TIMER) == 0U)) {
+        uint32_t ev = co_pdo_event_us(node, i);
+        if (ev != 0U) {
+            p->timer = node->now + ev;
+            p->flags |= CO_PDO_F_TIMER;
+        }
+    }
+    if ((detect || ((p->flags & CO_PDO_F_EVENT) != 0U)) &&
+        ((p->flags & (CO_PDO_F_EVENT | CO_PDO_F_INHIBIT)) !=
+         (CO_PDO_F_EVENT | CO_PDO_F_INHIBIT))) {
+        /* sampled unless already due and waiting for the inhibit time anyway */
         build(node, i, now);
-        if (((p->flags & CO_PDO_F_SENT) == 0U) ||
-            (changed(now, p->data) &&
-             ((CO_SET(node, tpdo.change_mask) == 0U) ||
-              masked_change(node, i, now)) &&
-             ((CO_CB(node, tpdo_event) == NULL) ||
-              node->cb->tpdo_event(node->cb->ctx, node, (uint16_t)(i - node->dev->n_rpdo),
-                                  p->data, now)))) {
+        if (detect &&
+            (((p->flags & CO_PDO_F_SENT) == 0U) ||
+             (changed(now, p->data) &&
+              ((CO_SET(node, tpdo.change_mask) == 0U) || masked_change(node, i, now)) &&
+              ((CO_CB(node, tpdo_event) == NULL) ||
+               node->cb->tpdo_event(node->cb->ctx, node, (uint16_t)(i - node->dev->n_rpdo),
+                                   p->data, now))))) {
             p->flags |= CO_PDO_F_EVENT;
         }
     }
@@ -277,92 +263,94 @@ static uint32_t event_driven(co_node_t *node, uint16_t i, uint32_t next)
     return timer_next(node, p, next);
 }
 
-/* CO_TPDO_CHANGE_IGNORED: event-driven (254/255) without change
- * detection: a request or the event timer (which runs from the start of
- * Operational, when nothing has been sent), sampled when it goes out. */
-static uint32_t event_requested(co_node_t *node, uint16_t i, uint32_t next)
+/* At a SYNC: the synchronous TPDOs (RTR-only 253 and event-driven types
+ * do not follow SYNC). */
+CO_HOT void at_sync(co_node_t *node, uint16_t i, uint8_t type, uint8_t counter)
 {
     co_pdo_t *p = &node->pdo.p[i];
-    uint32_t at = next;
 
-    event_timers(node, p);
-    if ((p->flags & CO_PDO_F_TIMER) == 0U) {
-        uint32_t ev = co_pdo_event_us(node, i);
-        if (ev != 0U) {
-            p->timer = node->now + ev;
-            p->flags |= CO_PDO_F_TIMER;
-        }
+    if ((type > 240U) && (!CO_PDO_RTR || (type != 252U))) {
+        return;
     }
-    if ((p->flags & CO_PDO_F_EVENT) != 0U) {
-        if ((p->flags & CO_PDO_F_INHIBIT) != 0U) {
-            at = co_deadline_min(node->now, at, p->inhibit);
-        } else {
-            uint8_t now[8];
-            build(node, i, now); /* sampled when it goes out */
-            at = event_due(node, i, at, now);
-        }
+    p->flags &= (uint16_t)~CO_PDO_F_SYNC_PEND; /* a new SYNC replaces it */
+    if (CO_PDO_RTR && (type == 252U)) {
+        build(node, i, p->data); /* sampled now, sent on request */
+        p->flags |= CO_PDO_F_SAMPLED;
+    } else if ((type == 0U) ? acyclic_due(node, i) : cyclic_due(node, i, type, counter)) {
+        send_sync(node, i);
+    } else {
+        /* not this SYNC */
     }
-    return timer_next(node, p, at);
 }
 
-/* One pass over the TPDOs: RTR answers and synchronous transmissions held
- * back, event-driven TPDOs with (@p detect) or without change detection
- * (CO_TPDO_CHANGE_IGNORED). Inlined twice with a constant @p detect,
- * so the usual pass pays nothing for the option. */
-CO_INLINE uint32_t tpdo_pass(co_node_t *node, uint32_t next, bool detect)
+/* At co_node_process: RTR answers and synchronous transmissions held back,
+ * event-driven TPDOs with (@p detect) or without change detection
+ * (CO_TPDO_CHANGE_IGNORED). Returns the next deadline. */
+CO_HOT uint32_t at_process(co_node_t *node, uint16_t i, uint8_t type, uint32_t next, bool detect)
+{
+    co_pdo_t *p = &node->pdo.p[i];
+
+#if CO_PDO_RTR
+    if ((p->flags & CO_PDO_F_RTR) != 0U) {
+        if (answer_rtr(node, i)) {
+            p->flags &= (uint16_t)~CO_PDO_F_RTR;
+        } else {
+            next = co_deadline_min(node->now, next, node->now + RETRY_US);
+        }
+    }
+#endif
+    if ((p->flags & CO_PDO_F_SYNC_PEND) != 0U) {
+        /* CiA 301: synchronous PDOs outside the window are not sent */
+        if (!co_sync_window(node) || send(node, i, p->data)) {
+            p->flags &= (uint16_t)~CO_PDO_F_SYNC_PEND;
+        } else {
+            next = co_deadline_min(node->now, next, node->now + RETRY_US);
+        }
+    }
+    if (type >= 254U) {
+        /* change detection compares the data at every co_node_process */
+        node->pdo.poll = detect ? 1U : node->pdo.poll;
+        next = event_driven(node, i, next, detect);
+    }
+    return next;
+}
+
+/* One pass over the usable TPDOs in Operational: at a SYNC (@p sync, the
+ * SYNC's @p counter) or at co_node_process (the timers and events; returns
+ * the next deadline). */
+CO_HOT uint32_t tpdo_pass(co_node_t *node, uint32_t next, bool sync, uint8_t counter)
 {
     uint16_t n = (uint16_t)(node->dev->n_rpdo + node->dev->n_tpdo);
+    bool detect = CO_SET(node, tpdo.change_detection) != CO_TPDO_CHANGE_IGNORED;
 
-    node->pdo.poll = 0U;
+    if (!sync) {
+        node->pdo.poll = 0U;
+    }
+    if (node->nmt != (uint8_t)CO_NMT_OPERATIONAL) {
+        return next;
+    }
     for (uint16_t i = node->dev->n_rpdo; i < n; i++) {
-        co_pdo_t *p = &node->pdo.p[i];
-        uint8_t type;
+        uint8_t type = co_pdo_type(node, i);
         if (!co_pdo_usable(node, i)) {
             continue;
         }
-        type = co_pdo_type(node, i);
-#if CO_PDO_RTR
-        if ((p->flags & CO_PDO_F_RTR) != 0U) {
-            if (answer_rtr(node, i)) {
-                p->flags &= (uint16_t)~CO_PDO_F_RTR;
-            } else {
-                next = co_deadline_min(node->now, next, node->now + RETRY_US);
-            }
-        }
-#endif
-        if ((p->flags & CO_PDO_F_SYNC_PEND) != 0U) {
-            /* CiA 301: synchronous PDOs outside the window are not sent */
-            if (!co_sync_window(node) || send(node, i, p->data)) {
-                p->flags &= (uint16_t)~CO_PDO_F_SYNC_PEND;
-            } else {
-                next = co_deadline_min(node->now, next, node->now + RETRY_US);
-            }
-        }
-        if (type >= 254U) {
-            /* change detection compares the data at every co_node_process */
-            node->pdo.poll = detect ? 1U : node->pdo.poll;
-            next = detect ? event_driven(node, i, next) : event_requested(node, i, next);
+        if (sync) {
+            at_sync(node, i, type, counter);
+        } else {
+            next = at_process(node, i, type, next, detect);
         }
     }
     return next;
 }
 
-/* The pass of a device with CO_TPDO_CHANGE_IGNORED. */
-static CO_NOINLINE uint32_t tpdo_pass_requested(co_node_t *node, uint32_t next)
+void co_tpdo_sync(co_node_t *node, uint8_t counter)
 {
-    return tpdo_pass(node, next, false);
+    (void)tpdo_pass(node, CO_NO_DEADLINE, true, counter);
 }
 
 uint32_t co_tpdo_process(co_node_t *node, uint32_t next)
 {
-    if (node->nmt != (uint8_t)CO_NMT_OPERATIONAL) {
-        node->pdo.poll = 0U;
-        return next;
-    }
-    if (CO_SET(node, tpdo.change_detection) == CO_TPDO_CHANGE_IGNORED) {
-        return tpdo_pass_requested(node, next);
-    }
-    return tpdo_pass(node, next, true);
+    return tpdo_pass(node, next, false, 0U);
 }
 
 co_err_t co_tpdo_request(co_node_t *node, uint16_t n)

@@ -3,7 +3,8 @@
  * node guarding and TPDO remote requests (CO_SDO_BLOCK=0, CO_NODE_GUARDING=0,
  * CO_PDO_RTR=0) on the lean-test device: block requests answer 0x05040001
  * like an unknown command, a guarding RTR gets no answer, a TPDO's RTR gets
- * none and types 252/253 answer 0x06090030, the expedited and segmented SDO,
+ * none and types 252/253 answer 0x06090030 (and the generated node's PDO
+ * receive table has room for the RPDOs only), the expedited and segmented SDO,
  * the heartbeat and the synchronous TPDO keep working, and a device with
  * 0x100C/0x100D is refused.
  */
@@ -85,6 +86,9 @@ static void tpdo_rtr_left_out(void **state)
     tb_xfer(BUS, "601 40 00 18 02 00 00 00 00", "581 4F 00 18 02 01 00 00 00");
     tb_xfer(BUS, "601 2F 00 18 02 F1 00 00 00", "581 80 00 18 02 30 00 09 06");
     tb_expect_none(BUS);
+    /* the PDO receive table (generated node) holds the RPDOs only */
+    assert_int_equal(lean_test_dev.n_rpdo, 1);
+    assert_int_equal(sizeof lean.pdo_rx / sizeof lean.pdo_rx[0], 1);
 }
 
 static void guarding_device_refused(void **state)

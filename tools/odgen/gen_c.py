@@ -249,7 +249,7 @@ def generate(dev: Device, toml_name: str, warn=None) -> tuple[str, str]:
           f"    {cn}_ram_t ram;",
           *([f"    co_od_hook_t hooks[{n_hooks}U];"] if n_hooks else []),
           f"    co_pdo_t pdo[{max(n_pdo_h, 1)}U];",
-          f"    co_pdo_slot_t pdo_rx[{max(n_pdo_h, 1)}U];",
+          f"    co_pdo_slot_t pdo_rx[CO_PDO_RX_SLOTS({len(pdos_h[0])}U, {len(pdos_h[1])}U)];",
           f"}} {cn}_node_t;", "",
           "/** Zero @p cfg and point it at the device, the RAM image and the hook table",
           " *  of @p n; the caller sets hal, node_id and callbacks, then co_node_init(). */",

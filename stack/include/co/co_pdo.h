@@ -41,6 +41,13 @@ typedef struct co_pdo {
 #endif
 } co_pdo_t;
 
+/** Elements of the PDO receive table (co_node_config_t.pdo_rx) of a device
+ *  with @p n_rpdo RPDOs and @p n_tpdo TPDOs: its RPDOs, and its TPDOs only
+ *  for their remote requests (CO_PDO_RTR); at least one. */
+#define CO_PDO_RX_SLOTS(n_rpdo, n_tpdo) \
+    ((((n_rpdo) + (CO_PDO_RTR ? (n_tpdo) : 0U)) != 0U) ? \
+         ((n_rpdo) + (CO_PDO_RTR ? (n_tpdo) : 0U)) : 1U)
+
 /** Receive-table entry of a PDO COB-ID (private to the core). */
 typedef struct co_pdo_slot {
     uint16_t cob;

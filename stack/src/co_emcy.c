@@ -188,11 +188,13 @@ bool co_emcy_is_active(const co_node_t *node, uint16_t code)
 
 static uint32_t emcy_process(co_node_t *node, uint32_t next)
 {
-    if ((CO_STORAGE != 0) && (node->emcy.store_report != 0U) && !co_store_damaged(node)) {
+#if CO_STORAGE
+    if ((node->emcy.store_report != 0U) && !co_store_damaged(node)) {
         /* a save or restore wrote a whole parameter set */
         node->emcy.store_report = 0U;
         co_emcy_clear(node, CO_EMCY_STORE_DAMAGED);
     }
+#endif
     drain(node);
     return (node->emcy.n_q > 0U) ? co_deadline_min(node->now, next, node->emcy.next) : next;
 }
@@ -222,7 +224,9 @@ static void emcy_reset(co_node_t *node, uint8_t kind)
 {
     if (kind == (uint8_t)CO_RESET_NODE) {
         node->emcy.n_active = 0U;
+#if CO_STORAGE
         node->emcy.store_report = 0U;
+#endif
     } else if (kind == CO_SVC_START) {
         node->emcy.n_q = 0U;
         node->emcy.q_head = 0U;
@@ -261,10 +265,12 @@ static void emcy_nmt(co_node_t *node, co_nmt_state_t from)
     }
     /* the newest parameter set was damaged: an older one or the defaults
      * were loaded (co_store.c); reported until a save writes a whole one */
+#if CO_STORAGE
     if (co_store_damaged(node)) {
         node->emcy.store_report = 1U;
         co_emcy_raise(node, CO_EMCY_STORE_DAMAGED, 0U, NULL);
     }
+#endif
 }
 
 /* 0x1003: entries beyond the number of recorded errors hold no data; only

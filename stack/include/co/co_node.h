@@ -289,7 +289,9 @@ typedef struct co_emcy {
     uint8_t n_active;
     uint8_t n_q;
     uint8_t q_head;          /**< the oldest waiting EMCY in q (a ring) */
+#if CO_STORAGE
     uint8_t store_report;    /**< EMCY 0x5530 raised for a damaged parameter set */
+#endif
     /* the active errors (two arrays: no padding) */
     uint16_t active_code[CO_EMCY_ACTIVE_MAX];
     uint8_t active_reg[CO_EMCY_ACTIVE_MAX]; /**< the 0x1001 bits each sets */

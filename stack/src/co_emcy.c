@@ -188,11 +188,13 @@ bool co_emcy_is_active(const co_node_t *node, uint16_t code)
 
 static uint32_t emcy_process(co_node_t *node, uint32_t next)
 {
-    if ((CO_STORAGE != 0) && (node->emcy.store_report != 0U) && !co_store_damaged(node)) {
+#if CO_STORAGE
+    if ((node->emcy.store_report != 0U) && !co_store_damaged(node)) {
         /* a save or restore wrote a whole parameter set */
         node->emcy.store_report = 0U;
         co_emcy_clear(node, CO_EMCY_STORE_DAMAGED);
     }
+#endif
     drain(node);
     return (node->emcy.n_q > 0U) ? co_deadline_min(node->now, next, node->emcy.next) : next;
 }
@@ -222,7 +224,9 @@ static void emcy_reset(co_node_t *node, uint8_t kind)
 {
     if (kind == (uint8_t)CO_RESET_NODE) {
         node->emcy.n_active = 0U;
+#if CO_STORAGE
         node->emcy.store_report = 0U;
+#endif
     } else if (kind == CO_SVC_START) {
         node->emcy.n_q = 0U;
         node->emcy.q_head = 0U;
@@ -261,17 +265,19 @@ static void emcy_nmt(co_node_t *node, co_nmt_state_t from)
     }
     /* the newest parameter set was damaged: an older one or the defaults
      * were loaded (co_store.c); reported until a save writes a whole one */
+#if CO_STORAGE
     if (co_store_damaged(node)) {
         node->emcy.store_report = 1U;
         co_emcy_raise(node, CO_EMCY_STORE_DAMAGED, 0U, NULL);
     }
+#endif
 }
 
 /* 0x1003: entries beyond the number of recorded errors hold no data; only
  * 0 may be written to sub0, which clears the history. 0x1014: the CAN-ID is
  * fixed while the EMCY is valid (bit 31 = 0). */
-static co_err_t emcy_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
-                         const co_od_sub_t *s, const uint8_t *data, uint32_t len)
+co_err_t co_emcy_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
+                     const co_od_sub_t *s, const uint8_t *data, uint32_t len)
 {
     co_emcy_t *m = &node->emcy;
     uint8_t sub = s->sub;
@@ -305,11 +311,6 @@ static co_err_t emcy_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
     return err;
 }
 
-static const co_svc_hook_t emcy_hooks[] = {
-    {0x1003U, 0x1003U, CO_SVC_READ | CO_SVC_CHECK | CO_SVC_WRITTEN, CO_ROW_EMCY, emcy_obj},
-    {0x1014U, 0x1015U, CO_SVC_CHECK | CO_SVC_SELF, CO_ROW_EMCY, emcy_obj},
-};
-
 const co_service_t co_svc_emcy = {
-    emcy_bind, emcy_reset, NULL, NULL, emcy_process, emcy_nmt, emcy_hooks, 2U,
+    emcy_bind, emcy_reset, NULL, NULL, emcy_process, emcy_nmt,
 };

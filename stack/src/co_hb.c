@@ -347,8 +347,8 @@ static co_err_t hb_consumer_check(const co_node_t *node, uint8_t sub, uint32_t v
     return CO_OK;
 }
 
-static co_err_t errctl_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
-                           const co_od_sub_t *s, const uint8_t *data, uint32_t len)
+co_err_t co_errctl_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
+                       const co_od_sub_t *s, const uint8_t *data, uint32_t len)
 {
     co_errctl_t *c = &node->errctl;
     uint8_t sub = s->sub;
@@ -386,8 +386,8 @@ static co_err_t errctl_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
 
 /* 0x1017 written: nothing to check before (a hook of its own, so that the
  * engine asks only this after the write). */
-static co_err_t hb_prod_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
-                            const co_od_sub_t *s, const uint8_t *data, uint32_t len)
+co_err_t co_hb_prod_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
+                        const co_od_sub_t *s, const uint8_t *data, uint32_t len)
 {
     (void)op;
     (void)e;
@@ -398,15 +398,6 @@ static co_err_t hb_prod_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
     return CO_OK;
 }
 
-static const co_svc_hook_t errctl_hooks[] = {
-#if CO_NODE_GUARDING
-    {0x100CU, 0x100DU, CO_SVC_CHECK | CO_SVC_WRITTEN | CO_SVC_SELF, CO_ROW_ERRCTL, errctl_obj},
-#endif
-    {0x1016U, 0x1016U, CO_SVC_CHECK | CO_SVC_WRITTEN | CO_SVC_SELF, CO_ROW_ERRCTL, errctl_obj},
-    {0x1017U, 0x1017U, CO_SVC_WRITTEN | CO_SVC_SELF, CO_ROW_ERRCTL, hb_prod_obj},
-};
-
 const co_service_t co_svc_errctl = {
-    errctl_bind,   errctl_reset, errctl_rx_slots, errctl_rx, errctl_process,
-    NULL,          errctl_hooks, (uint8_t)(sizeof(errctl_hooks) / sizeof(errctl_hooks[0])),
+    errctl_bind, errctl_reset, errctl_rx_slots, errctl_rx, errctl_process, NULL,
 };

@@ -501,7 +501,6 @@ static void lss_rx_slots(co_node_t *node, uint8_t svc)
 }
 
 /* The first row of co_services[]: it alone runs while unconfigured. */
-const co_service_t co_svc_lss = {lss_bind, lss_reset, lss_rx_slots, lss_rx, lss_process, NULL,
-                                 NULL, 0U};
+const co_service_t co_svc_lss = {lss_bind, lss_reset, lss_rx_slots, lss_rx, lss_process, NULL};
 
 #endif /* CO_LSS */

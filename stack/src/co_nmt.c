@@ -51,8 +51,8 @@ void co_nmt_error(co_node_t *node, uint8_t sub)
 }
 
 /* 0..2, 0x80..0xFF manufacturer-specific; 3..0x7F reserved */
-static co_err_t errbeh_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
-                           const co_od_sub_t *s, const uint8_t *data, uint32_t len)
+co_err_t co_errbeh_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
+                       const co_od_sub_t *s, const uint8_t *data, uint32_t len)
 {
     (void)node;
     (void)op;
@@ -63,18 +63,14 @@ static co_err_t errbeh_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
     return CO_OK;
 }
 
-static const co_svc_hook_t nmt_hooks[] = {
-    {0x1029U, 0x1029U, CO_SVC_CHECK, CO_ROW_NMT, errbeh_obj},
-};
-
 const co_service_t co_svc_nmt = {
-    NULL, NULL, nmt_rx_slots, nmt_rx, NULL, NULL, nmt_hooks, 1U,
+    NULL, NULL, nmt_rx_slots, nmt_rx, NULL, NULL,
 };
 
 #else /* !CO_ERROR_BEHAVIOUR: co_node_init refuses a device with 0x1029 */
 
 const co_service_t co_svc_nmt = {
-    NULL, NULL, nmt_rx_slots, nmt_rx, NULL, NULL, NULL, 0U,
+    NULL, NULL, nmt_rx_slots, nmt_rx, NULL, NULL,
 };
 
 #endif

@@ -519,7 +519,7 @@ static const uint16_t left_out[] = {
     0U /* the end */
 };
 
-/* Every service finds its objects and registers its hooks on them. */
+/* Every service finds its objects (its hooks are const: co_svc_hooks). */
 static co_result_t bind_services(co_node_t *node)
 {
     for (uint8_t k = 0U; left_out[k] != 0U; k++) {
@@ -531,12 +531,6 @@ static co_result_t bind_services(co_node_t *node)
         const co_service_t *svc = co_services[k];
         if ((svc->bind != NULL) && (svc->bind(node) != CO_OK)) {
             return CO_RESULT_DEV_INCOMPAT;
-        }
-        for (uint8_t h = 0U; h < svc->n_hooks; h++) {
-            co_result_t r = co_od_register(node, &svc->hooks[h]);
-            if (r != CO_RESULT_OK) {
-                return r;
-            }
         }
     }
 #if !CO_PERSONALITY

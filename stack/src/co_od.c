@@ -157,105 +157,18 @@ uint32_t co_od_data_size(const co_node_t *node, const co_od_entry_t *e, const co
 
 /* ------------------------------------------------------ service hooks */
 
-/* The largest power of two not above CO_SVC_HOOKS_MAX (at most 32). */
-#define SVC_POW2 ((CO_SVC_HOOKS_MAX >= 32U) ? 32U : (CO_SVC_HOOKS_MAX >= 16U) ? 16U : \
-                  (CO_SVC_HOOKS_MAX >= 8U) ? 8U : (CO_SVC_HOOKS_MAX >= 4U) ? 4U : \
-                  (CO_SVC_HOOKS_MAX >= 2U) ? 2U : 1U)
-
-/* One step of svc_hook's search: @p k slots on if that one starts at or
- * before @p index (k < SVC_POW2: a step of the search; no step for the
- * others). */
-CO_INLINE const co_svc_hook_t *const *svc_step(const co_svc_hook_t *const *at, uint32_t k,
-                                               uint16_t index)
+/* The hook of the service that owns @p e (its slot, co_od_entry_t.svc, is
+ * set with the table: CO_OD_SVC_OF), or NULL. */
+static inline const co_svc_hook_t *svc_hook(const co_od_entry_t *e)
 {
-    if (k < SVC_POW2) {
-        at = (at[k]->first <= index) ? &at[k] : at;
-    }
-    return at;
+    return (e->svc != 0U) ? &co_svc_hooks[e->svc - 1U] : NULL;
 }
 
-/* The service hook whose range holds @p index, or NULL: the last
- * registered range that starts at or before it (the ranges are sorted and do
- * not overlap), if it reaches that far. A branch-free binary search over all
- * CO_SVC_HOOKS_MAX slots, a constant number of steps (co_od_register
- * repeats the last range in the unused slots). */
-CO_HOT const co_svc_hook_t *svc_hook(const co_node_t *node, uint16_t index)
-{
-    const co_svc_hook_t *const *at = node->svc_hooks;
-
-    if ((node->n_svc_hooks == 0U) || (index < at[0]->first)) {
-        return NULL;
-    }
-    if (CO_SVC_HOOKS_MAX > SVC_POW2) {
-        at = svc_step(at, CO_SVC_HOOKS_MAX - SVC_POW2, index);
-    }
-    /* the steps SVC_POW2 / 2 .. 1, written out: the compiler leaves no loop */
-    at = svc_step(at, 16U, index);
-    at = svc_step(at, 8U, index);
-    at = svc_step(at, 4U, index);
-    at = svc_step(at, 2U, index);
-    at = svc_step(at, 1U, index);
-    return (index <= (*at)->last) ? *at : NULL;
-}
-
-uint8_t co_od_svc_ops(const co_node_t *node, uint16_t index)
-{
-    const co_svc_hook_t *h = svc_hook(node, index);
-
-    return (h != NULL) ? h->ops : 0U;
-}
-
-co_result_t co_od_register(co_node_t *node, const co_svc_hook_t *h)
-{
-    uint8_t at = node->n_svc_hooks;
-
-    for (uint8_t i = 0U; i < at; i++) {
-        const co_svc_hook_t *r = node->svc_hooks[i];
-        if ((h->first <= r->last) && (r->first <= h->last)) {
-            return CO_RESULT_HOOK_BOUND; /* an object already has its service */
-        }
-    }
-    if (at >= CO_SVC_HOOKS_MAX) {
-        return CO_RESULT_NO_MEMORY;
-    }
-    node->n_svc_hooks = (uint8_t)(at + 1U);
-    while ((at > 0U) && (node->svc_hooks[at - 1U]->first > h->first)) {
-        node->svc_hooks[at] = node->svc_hooks[at - 1U];
-        at--;
-    }
-    node->svc_hooks[at] = h;
-    for (at = node->n_svc_hooks; at < CO_SVC_HOOKS_MAX; at++) {
-        node->svc_hooks[at] = node->svc_hooks[at - 1U]; /* (for svc_hook's search) */
-    }
-    if ((h->ops & CO_SVC_READ) != 0U) {
-        /* the span [svc_rd_lo, svc_rd_lo + svc_rd_span] grows to take it in */
-        uint16_t hi = (uint16_t)(node->svc_rd_lo + node->svc_rd_span);
-        uint16_t lo = node->svc_rd_lo;
-        if ((node->n_svc_rd == 0U) || (h->first < lo)) {
-            lo = h->first;
-        }
-        if ((node->n_svc_rd == 0U) || (h->last > hi)) {
-            hi = h->last;
-        }
-        node->svc_rd_lo = lo;
-        node->svc_rd_span = (uint16_t)(hi - lo);
-        node->n_svc_rd = 1U;
-    }
-    return CO_RESULT_OK;
-}
-
-/* Before a stored value is read: the owning service's read hook. Only
- * indexes in [svc_rd_lo, svc_rd_lo + svc_rd_span], the span of the hooks
- * that have one, are looked up (the read path of every other object stays
- * short; without read hooks only index 0, which no dictionary has). */
+/* Before a stored value is read: the owning service's read hook. */
 static inline co_err_t svc_read(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s)
 {
-    const co_svc_hook_t *h;
+    const co_svc_hook_t *h = svc_hook(e);
 
-    if ((uint16_t)(e->index - node->svc_rd_lo) > node->svc_rd_span) {
-        return CO_OK;
-    }
-    h = svc_hook(node, e->index);
     return ((h != NULL) && ((h->ops & CO_SVC_READ) != 0U))
                ? h->fn(node, CO_SVC_READ, e, s, NULL, 0U)
                : CO_OK;
@@ -508,7 +421,7 @@ CO_HOT co_err_t write_value(co_node_t *node, const co_od_entry_t *e, const co_od
     if (err != CO_OK) {
         return err;
     }
-    sh = svc_hook(node, e->index);
+    sh = svc_hook(e);
     ops = (sh != NULL) ? sh->ops : 0U;
     if ((ops & CO_SVC_CHECK) != 0U) {
         err = sh->fn(node, CO_SVC_CHECK, e, s, data, len);
@@ -618,24 +531,24 @@ co_err_t co_od_write_part(co_node_t *node, const co_od_entry_t *e, const co_od_s
     }
 }
 
-/* Restore [from, to) of the RAM image: zeros, then the default runs that
+/* Restore [0, to) of the RAM image: zeros, then the default runs that
  * start inside it; a $NODEID run gets the node-ID (a PDO or EMCY COB-ID the
  * COB-ID base, which differs from it only with LSS) added to its value, a
  * native integer of 1, 2 or 4 bytes. */
-void co_od_restore(co_node_t *node, uint16_t from, uint16_t to)
+void co_od_restore(co_node_t *node, uint16_t to)
 {
     const co_dev_t *dev = node->dev;
     const uint8_t *def = (const uint8_t *)dev->defaults;
     uint32_t at = 0U;
 
-    if (to <= from) {
+    if (to == 0U) {
         return;
     }
-    (void)memset(&node->ram[from], 0, (size_t)to - from);
+    (void)memset(node->ram, 0, to);
     for (uint16_t i = 0U; i < dev->n_defaults; i++) {
         const co_od_default_t *d = &dev->default_at[i];
         uint32_t n = d->size & CO_OD_DEF_SIZE;
-        if ((d->off >= from) && (d->off < to)) {
+        if (d->off < to) {
             uint8_t *p = &node->ram[d->off];
             co_copy(p, &def[at], n);
             if ((d->size & CO_OD_DEF_NODEID) != 0U) {
@@ -716,10 +629,10 @@ co_result_t co_od_bind_hook(co_node_t *node, uint16_t index, const co_od_hook_t 
     if (e == NULL) {
         return CO_RESULT_NO_OBJECT;
     }
-    if ((e->hook == 0U) || (node->hooks == NULL) || (e->hook > node->dev->n_hooks)) {
+    h = hook_of(node, e);
+    if (h == NULL) {
         return CO_RESULT_NO_HOOK_SLOT;
     }
-    h = &node->hooks[e->hook - 1U];
     if ((h->read != NULL) || (h->write != NULL)) {
         return CO_RESULT_HOOK_BOUND; /* two plug-ins on one object: the first stays */
     }

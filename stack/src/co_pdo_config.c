@@ -95,7 +95,7 @@ static uint16_t direct_code(const co_node_t *node, const co_od_entry_t *e, const
                             bool tx, uint8_t bits, uint16_t pos)
 {
     uint8_t size = co_type_len(s->type);
-    uint8_t svc = co_od_svc_ops(node, e->index);
+    uint8_t svc = co_od_svc_ops(e);
     uint32_t off = co_od_off(e, s);
     uint32_t n = tx ? ((uint32_t)bits >> 3U) : size; /* TPDO: bytes mapped, RPDO: value size */
     uint32_t code = off | ((n - 1U) << 12U);
@@ -337,8 +337,8 @@ static uint32_t pdo_process(co_node_t *node, uint32_t next)
     return co_tpdo_process(node, co_rpdo_process(node, next));
 }
 
-static co_err_t pdo_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
-                        const co_od_sub_t *s, const uint8_t *data, uint32_t len)
+co_err_t co_pdo_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
+                    const co_od_sub_t *s, const uint8_t *data, uint32_t len)
 {
     uint16_t i;
     bool is_map;
@@ -354,10 +354,6 @@ static co_err_t pdo_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
     return CO_OK;
 }
 
-static const co_svc_hook_t pdo_hooks[] = {
-    {0x1400U, 0x1BFFU, CO_SVC_CHECK | CO_SVC_WRITTEN, CO_ROW_PDO, pdo_obj},
-};
-
 const co_service_t co_svc_pdo = {
-    NULL, pdo_reset, pdo_rx_slots, pdo_rx, pdo_process, pdo_nmt, pdo_hooks, 1U,
+    NULL, pdo_reset, pdo_rx_slots, pdo_rx, pdo_process, pdo_nmt,
 };

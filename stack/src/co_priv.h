@@ -298,19 +298,42 @@ static inline void co_svc_touch_all(co_node_t *node)
                                 (co_svc_touch, co_svc_due): a write alone does not make
                                 the service run at the next co_node_process */
 
-/* A service's hook on the objects it owns, @p first .. @p last. The
- * dictionary engine (co_od.c) calls fn for the accesses @p ops names,
- * before the application's hook of the entry (data/len: the value in wire
- * bytes for CO_SVC_CHECK and CO_SVC_COMMIT, NULL/0 otherwise). */
+/* A service's hook on the objects it owns (the entries whose svc,
+ * CO_OD_SVC_OF(index), names its slot in co_svc_hooks). The dictionary
+ * engine (co_od.c) calls fn for the accesses @p ops names, before the
+ * application's hook of the entry (data/len: the value in wire bytes for
+ * CO_SVC_CHECK and CO_SVC_COMMIT, NULL/0 otherwise). */
 typedef struct co_svc_hook {
-    uint16_t first;
-    uint16_t last;
     uint8_t ops;
     uint8_t row;  /* the owning service's row in co_services[] (CO_ROW_*): a write
                      of its objects makes it run at the next co_node_process */
     co_err_t (*fn)(co_node_t *node, uint8_t op, const co_od_entry_t *e, const co_od_sub_t *s,
                    const uint8_t *data, uint32_t len);
 } co_svc_hook_t;
+/* The services' hooks, slot k - 1 for the entries whose svc is k
+ * (co_services.c; CO_OD_SVC_OF says which objects each slot owns). */
+extern const co_svc_hook_t co_svc_hooks[CO_SVC_N_HOOKS];
+/* The hooks (each service's file). */
+co_err_t co_emcy_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e, const co_od_sub_t *s,
+                     const uint8_t *data, uint32_t len);
+co_err_t co_sync_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e, const co_od_sub_t *s,
+                     const uint8_t *data, uint32_t len);
+co_err_t co_errctl_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e, const co_od_sub_t *s,
+                       const uint8_t *data, uint32_t len);
+co_err_t co_hb_prod_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
+                        const co_od_sub_t *s, const uint8_t *data, uint32_t len);
+co_err_t co_store_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e, const co_od_sub_t *s,
+                      const uint8_t *data, uint32_t len);
+co_err_t co_pdo_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e, const co_od_sub_t *s,
+                    const uint8_t *data, uint32_t len);
+#if CO_TIME
+co_err_t co_time_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e, const co_od_sub_t *s,
+                     const uint8_t *data, uint32_t len);
+#endif
+#if CO_ERROR_BEHAVIOUR
+co_err_t co_errbeh_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
+                       const co_od_sub_t *s, const uint8_t *data, uint32_t len);
+#endif
 
 /* Reset kinds a service sees (co_service_t.reset): CO_RESET_NODE and
  * CO_RESET_COMMUNICATION while the values are restored (before the
@@ -335,8 +358,6 @@ typedef struct co_service {
     uint32_t (*process)(co_node_t *node, uint32_t next);
     /* The NMT state changed from @p from to node->nmt. */
     void (*nmt)(co_node_t *node, co_nmt_state_t from);
-    const co_svc_hook_t *hooks;
-    uint8_t n_hooks;
 } co_service_t;
 
 /* The rows of co_services[] (co_services.c places each service at its row). */
@@ -429,15 +450,14 @@ co_err_t co_od_download(co_node_t *node, uint16_t index, uint8_t sub, const uint
 co_err_t co_od_write_part(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
                           uint32_t offset, const uint8_t *data, uint32_t len, uint32_t total,
                           bool last);
-/* Restore [from, to) of the RAM image to defaults and apply $NODEID. */
-void co_od_restore(co_node_t *node, uint16_t from, uint16_t to);
+/* Restore [0, to) of the RAM image to defaults and apply $NODEID. */
+void co_od_restore(co_node_t *node, uint16_t to);
 
-/* Register a service's hook (co_od.c). CO_RESULT_HOOK_BOUND when it
- * overlaps one already registered, CO_RESULT_NO_MEMORY when the table
- * (CO_SVC_HOOKS_MAX) is full. */
-co_result_t co_od_register(co_node_t *node, const co_svc_hook_t *h);
-/* The CO_SVC_* operations the service owning @p index hooks (0: none). */
-uint8_t co_od_svc_ops(const co_node_t *node, uint16_t index);
+/* The CO_SVC_* operations the service owning @p e hooks (0: none). */
+static inline uint8_t co_od_svc_ops(const co_od_entry_t *e)
+{
+    return (e->svc != 0U) ? co_svc_hooks[e->svc - 1U].ops : 0U;
+}
 /* Store a checked value of @p s from wire bytes (the engine's commit). */
 void co_od_commit(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
                   const uint8_t *data, uint32_t len);

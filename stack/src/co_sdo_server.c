@@ -950,5 +950,5 @@ static void sdo_nmt(co_node_t *node, co_nmt_state_t from)
 }
 
 const co_service_t co_svc_sdo = {
-    NULL, sdo_reset_kind, sdo_rx_slots, sdo_rx, sdo_process, sdo_nmt, NULL, 0U,
+    NULL, sdo_reset_kind, sdo_rx_slots, sdo_rx, sdo_process, sdo_nmt,
 };

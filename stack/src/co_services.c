@@ -25,3 +25,32 @@ const co_service_t *const co_services[] = {
 
 const uint8_t co_n_services = (uint8_t)(sizeof(co_services) / sizeof(co_services[0]));
 /* (a receive slot holds the row above the 11-bit COB-ID: at most 32 rows) */
+
+/* The services' hooks on the objects they own: slot k - 1 for the entries
+ * whose svc is k (CO_OD_SVC_OF in co_od.h names the objects of each slot;
+ * a write of one makes the service of 'row' run at the next
+ * co_node_process unless CO_SVC_SELF). Const: nothing registers at run time. */
+const co_svc_hook_t co_svc_hooks[CO_SVC_N_HOOKS] = {
+    /* 1: 0x1003 */
+    {CO_SVC_READ | CO_SVC_CHECK | CO_SVC_WRITTEN, CO_ROW_EMCY, co_emcy_obj},
+    /* 2: 0x1014, 0x1015 */
+    {CO_SVC_CHECK | CO_SVC_SELF, CO_ROW_EMCY, co_emcy_obj},
+    /* 3: 0x1005..0x1007, 0x1019 */
+    {CO_SVC_CHECK | CO_SVC_WRITTEN, CO_ROW_SYNC, co_sync_obj},
+    /* 4: 0x1016 (and 0x100C, 0x100D with guarding) */
+    {CO_SVC_CHECK | CO_SVC_WRITTEN | CO_SVC_SELF, CO_ROW_ERRCTL, co_errctl_obj},
+    /* 5: 0x1017 */
+    {CO_SVC_WRITTEN | CO_SVC_SELF, CO_ROW_ERRCTL, co_hb_prod_obj},
+    /* 6: 0x1010, 0x1011 */
+    {CO_SVC_COMMIT, CO_ROW_STORE, co_store_obj},
+    /* 7: 0x1400..0x1BFF */
+    {CO_SVC_CHECK | CO_SVC_WRITTEN, CO_ROW_PDO, co_pdo_obj},
+#if CO_TIME
+    /* 8: 0x1012 */
+    {CO_SVC_CHECK | CO_SVC_WRITTEN, CO_ROW_TIME, co_time_obj},
+#endif
+#if CO_ERROR_BEHAVIOUR
+    /* 8 or 9: 0x1029 */
+    {CO_SVC_CHECK, CO_ROW_NMT, co_errbeh_obj},
+#endif
+};

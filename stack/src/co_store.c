@@ -477,7 +477,7 @@ static void store_reset(co_node_t *node, uint8_t kind)
     if (kind == CO_SVC_START) {
         return; /* values are restored by the resets of a kind only */
     }
-    co_od_restore(node, 0U, end);
+    co_od_restore(node, end);
 #if CO_STORAGE
     node->store.damaged = 0U;
     if (cap != 0U) {
@@ -487,7 +487,7 @@ static void store_reset(co_node_t *node, uint8_t kind)
         uint8_t grp = (uint8_t)(b.groups & (uint8_t)~b.restored & (all ? GRP_ALL : GRP_COMM));
         uint16_t crc = 0U;
         if ((grp != 0U) && !stream(node, (uint32_t)b.idx * bank_size(node), AT_RAM, grp, &crc)) {
-            co_od_restore(node, 0U, end);
+            co_od_restore(node, end);
         }
         /* reported after the boot-up by the EMCY service (co_store_damaged):
          * EMCY 0x5530, 0x1001, 0x1003 */
@@ -516,8 +516,8 @@ static void store_reset(co_node_t *node, uint8_t kind)
 /* A checked write to 0x1010 / 0x1011: a sub-entry the core acts on (sub
  * >= 1, UNSIGNED32 in RAM) saves or restores, its value is never stored;
  * any other is stored as usual. */
-static co_err_t store_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
-                          const co_od_sub_t *s, const uint8_t *data, uint32_t len)
+co_err_t co_store_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
+                      const co_od_sub_t *s, const uint8_t *data, uint32_t len)
 {
     (void)op;
     if (!co_store_is_command(e, s)) {
@@ -532,14 +532,10 @@ static co_err_t store_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
 #endif
 }
 
-static const co_svc_hook_t store_hooks[] = {
-    {0x1010U, 0x1011U, CO_SVC_COMMIT, CO_ROW_STORE, store_obj},
-};
-
 const co_service_t co_svc_store = {
 #if CO_STORAGE
-    NULL, store_reset, NULL, NULL, store_process, NULL, store_hooks, 1U,
+    NULL, store_reset, NULL, NULL, store_process, NULL,
 #else
-    NULL, store_reset, NULL, NULL, NULL, NULL, store_hooks, 1U,
+    NULL, store_reset, NULL, NULL, NULL, NULL,
 #endif
 };

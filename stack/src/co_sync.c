@@ -164,8 +164,8 @@ static void sync_rx_frame(co_node_t *node, uint16_t arg, const co_frame_t *f)
  * 0x1006 within the timer horizon (2^31 us); 0x1019 counter overflow 0 or
  * 2..240, and only while no SYNC period is set. A change of 0x1005, 0x1006
  * or 0x1019 starts SYNC over. */
-static co_err_t sync_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
-                         const co_od_sub_t *s, const uint8_t *data, uint32_t len)
+co_err_t co_sync_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
+                     const co_od_sub_t *s, const uint8_t *data, uint32_t len)
 {
     uint16_t index = e->index;
     co_err_t err = CO_OK;
@@ -197,11 +197,6 @@ static co_err_t sync_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
     return err;
 }
 
-static const co_svc_hook_t sync_hooks[] = {
-    {0x1005U, 0x1007U, CO_SVC_CHECK | CO_SVC_WRITTEN, CO_ROW_SYNC, sync_obj},
-    {0x1019U, 0x1019U, CO_SVC_CHECK | CO_SVC_WRITTEN, CO_ROW_SYNC, sync_obj},
-};
-
 const co_service_t co_svc_sync = {
     sync_bind, sync_reset_kind, sync_rx_slots, sync_rx_frame,
 #if CO_SYNC_PRODUCER
@@ -209,5 +204,5 @@ const co_service_t co_svc_sync = {
 #else
     NULL, /* the consumer has no timer */
 #endif
-    NULL, sync_hooks, 2U,
+    NULL,
 };

@@ -65,8 +65,8 @@ static void time_rx_slots(co_node_t *node, uint8_t svc)
 
 /* The CAN-ID is fixed while consumed or produced (bits 31, 30); a new one
  * is received from the next frame on. */
-static co_err_t time_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
-                         const co_od_sub_t *s, const uint8_t *data, uint32_t len)
+co_err_t co_time_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
+                     const co_od_sub_t *s, const uint8_t *data, uint32_t len)
 {
     (void)e;
     if (op == (uint8_t)CO_SVC_WRITTEN) {
@@ -80,12 +80,8 @@ static co_err_t time_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
     return CO_OK;
 }
 
-static const co_svc_hook_t time_hooks[] = {
-    {0x1012U, 0x1012U, CO_SVC_CHECK | CO_SVC_WRITTEN, CO_ROW_TIME, time_obj},
-};
-
 const co_service_t co_svc_time = {
-    time_bind, NULL, time_rx_slots, time_rx, NULL, NULL, time_hooks, 1U,
+    time_bind, NULL, time_rx_slots, time_rx, NULL, NULL,
 };
 
 #else /* !CO_TIME */

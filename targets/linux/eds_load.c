@@ -1073,6 +1073,7 @@ static eds_dev_t *build(ctx_t *c, const char *name, const char *text)
             d->entries[i].nsubs = (uint8_t)o->n;
             d->entries[i].hook = 0U;
             d->entries[i].code = o->code;
+            d->entries[i].svc = (uint8_t)CO_OD_SVC_OF(o->index);
             d->entries[i].subs = &d->subs[ns];
             for (size_t k = 0U; k < o->n; k++) {
                 bsub_t *b = &c->sub[o->first + k];

@@ -48,8 +48,37 @@ static void test_table_order(void **state)
     for (uint8_t k = 0U; k < co_n_services; k++) {
         assert_ptr_equal(co_services[k], want[k]);
     }
-    /* every service's object ranges are registered, none twice */
-    assert_int_equal(NODE->n_svc_hooks, 11);
+    /* every service's objects have its hook, from the const table */
+    {
+        static const struct {
+            uint16_t index;
+            uint8_t row;
+        } own[] = {
+            {0x1003U, CO_ROW_EMCY},   {0x1014U, CO_ROW_EMCY},   {0x1015U, CO_ROW_EMCY},
+            {0x1005U, CO_ROW_SYNC},   {0x1007U, CO_ROW_SYNC},   {0x1019U, CO_ROW_SYNC},
+#if CO_NODE_GUARDING
+            {0x100CU, CO_ROW_ERRCTL}, {0x100DU, CO_ROW_ERRCTL},
+#endif
+            {0x1016U, CO_ROW_ERRCTL}, {0x1017U, CO_ROW_ERRCTL}, {0x1010U, CO_ROW_STORE},
+            {0x1011U, CO_ROW_STORE},
+#if CO_TIME
+            {0x1012U, CO_ROW_TIME},
+#endif
+#if CO_ERROR_BEHAVIOUR
+            {0x1029U, CO_ROW_NMT},
+#endif
+            {0x1400U, CO_ROW_PDO},    {0x1BFFU, CO_ROW_PDO},
+        };
+        for (size_t k = 0U; k < sizeof own / sizeof own[0]; k++) {
+            unsigned slot = CO_OD_SVC_OF(own[k].index);
+            assert_true((slot >= 1U) && (slot <= CO_SVC_N_HOOKS));
+            assert_int_equal(co_svc_hooks[slot - 1U].row, own[k].row);
+        }
+        for (size_t k = 0U; k < CO_SVC_N_HOOKS; k++) {
+            assert_non_null(co_svc_hooks[k].fn);
+            assert_int_not_equal(co_svc_hooks[k].ops, 0U);
+        }
+    }
 }
 
 static void put(uint16_t index, uint32_t v, uint32_t len)

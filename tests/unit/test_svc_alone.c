@@ -4,9 +4,9 @@
  * own service table (a recording service and parameter storage) and its own
  * small dictionary. Shows the hook chain (a service's check before the
  * application's hook, the service's written after the commit, a veto at any
- * step leaves the old value), the refusal of overlapping registrations and
- * of a second application hook on one object, and storage acting on 0x1010
- * without the value being stored.
+ * step leaves the old value), which objects each slot of the const hook
+ * table owns, the refusal of a second application hook on one object, and
+ * storage acting on 0x1010 without the value being stored.
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -22,7 +22,7 @@
 /* ---- what the engine and the storage service see of the node */
 
 typedef struct ram {
-    uint32_t v2000;   /* 0x2000: owned by the recording service, hook slot 0 */
+    uint32_t v1005;   /* 0x1005: owned by the recording service, hook slot 0 */
     uint32_t v3000;   /* 0x3000: nobody's */
     uint32_t save[1]; /* 0x1010 sub1 */
     uint8_t save_n;   /* 0x1010 sub0 */
@@ -32,11 +32,11 @@ static const co_od_sub_t s1010[] = {
     {0, CO_UNSIGNED8, CO_SUB_R | CO_SUB_CONST | CO_SUB_ROM, 1, 0, 0},
     {1, CO_UNSIGNED32, CO_SUB_RW, 4, offsetof(ram_t, save), 0},
 };
-static const co_od_sub_t s2000[] = {{0, CO_UNSIGNED32, CO_SUB_RW, 4, offsetof(ram_t, v2000), 0}};
+static const co_od_sub_t s1005[] = {{0, CO_UNSIGNED32, CO_SUB_RW, 4, offsetof(ram_t, v1005), 0}};
 static const co_od_sub_t s3000[] = {{0, CO_UNSIGNED32, CO_SUB_RW, 4, offsetof(ram_t, v3000), 0}};
 static const co_od_entry_t od[] = {
+    CO_OD_ENTRY(0x1005, 1, 1, CO_OBJ_VAR, s1005),
     CO_OD_ENTRY(0x1010, 2, 0, CO_OBJ_ARRAY, s1010),
-    CO_OD_ENTRY(0x2000, 1, 1, CO_OBJ_VAR, s2000),
     CO_OD_ENTRY(0x3000, 1, 0, CO_OBJ_VAR, s3000),
 };
 static const uint8_t rom[1] = {1};
@@ -65,7 +65,7 @@ static int hal_send(void *ctx, const co_frame_t *f)
 }
 static const co_hal_ops_t hal_ops = {.send = hal_send};
 
-/* ---- the recording service: owns 0x2000 */
+/* ---- the recording service: owns 0x1005 */
 
 static char trail[64];
 static co_err_t svc_veto;
@@ -85,7 +85,7 @@ static co_err_t rec_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
 {
     (void)s;
     (void)data;
-    assert_int_equal(e->index, 0x2000);
+    assert_int_equal(e->index, 0x1005);
     if (op == CO_SVC_READ) {
         note('r');
         return CO_OK;
@@ -97,19 +97,24 @@ static co_err_t rec_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
     }
     assert_int_equal(op, CO_SVC_WRITTEN);
     /* the value is committed when the service hears of it */
-    assert_int_equal(((const ram_t *)(const void *)node->ram)->v2000, 0x12345678U);
+    assert_int_equal(((const ram_t *)(const void *)node->ram)->v1005, 0x12345678U);
     note('w');
     return CO_OK;
 }
 
-static const co_svc_hook_t rec_hooks[] = {
-    {0x2000U, 0x2000U, CO_SVC_READ | CO_SVC_CHECK | CO_SVC_WRITTEN, 0U, rec_obj}};
-static const co_service_t rec_svc = {NULL, NULL, NULL, NULL, NULL, NULL, rec_hooks, 1U};
+static const co_service_t rec_svc = {NULL, NULL, NULL, NULL, NULL, NULL};
 
 const co_service_t *const co_services[] = {&rec_svc, &co_svc_store};
 const uint8_t co_n_services = 2U;
 
-/* ---- the application's hook on 0x2000 */
+/* the hook table: the recording service in the slot of 0x1005 (3), storage
+ * in its own (6); no other service in this executable */
+const co_svc_hook_t co_svc_hooks[CO_SVC_N_HOOKS] = {
+    [2] = {CO_SVC_READ | CO_SVC_CHECK | CO_SVC_WRITTEN, 0U, rec_obj},
+    [5] = {CO_SVC_COMMIT, 1U, co_store_obj},
+};
+
+/* ---- the application's hook on 0x1005 */
 
 static co_err_t app_read(void *ctx, co_od_io_t *io)
 {
@@ -143,12 +148,7 @@ static int setup(void **state)
     node.hooks = hooks;
     node.hal.ops = &hal_ops;
     node.node_id = 1U;
-    co_od_restore(&node, 0U, dev.ram_size);
-    for (uint8_t k = 0U; k < co_n_services; k++) {
-        for (uint8_t h = 0U; h < co_services[k]->n_hooks; h++) {
-            assert_int_equal(co_od_register(&node, &co_services[k]->hooks[h]), CO_RESULT_OK);
-        }
-    }
+    co_od_restore(&node, dev.ram_size);
     trail[0] = '\0';
     svc_veto = CO_OK;
     app_veto = CO_OK;
@@ -176,11 +176,11 @@ static void test_chain_order(void **state)
     uint32_t len = 0U;
 
     (void)state;
-    assert_int_equal(co_od_bind_hook(&node, 0x2000U, &h), CO_RESULT_OK);
-    write_u32(0x2000U, 0x12345678U, CO_OK);
+    assert_int_equal(co_od_bind_hook(&node, 0x1005U, &h), CO_RESULT_OK);
+    write_u32(0x1005U, 0x12345678U, CO_OK);
     assert_string_equal(trail, "cWw");
     trail[0] = '\0';
-    assert_int_equal(co_od_read(&node, 0x2000U, 0U, buf, 4U, &len), CO_OK);
+    assert_int_equal(co_od_read(&node, 0x1005U, 0U, buf, 4U, &len), CO_OK);
     assert_string_equal(trail, "rR");
     assert_int_equal(co_get_u32(buf), 0x12345678U);
     /* an object no service owns: no service hook at all */
@@ -196,61 +196,48 @@ static void test_service_veto_first(void **state)
     co_od_hook_t h = {NULL, app_write, NULL};
 
     (void)state;
-    assert_int_equal(co_od_bind_hook(&node, 0x2000U, &h), CO_RESULT_OK);
+    assert_int_equal(co_od_bind_hook(&node, 0x1005U, &h), CO_RESULT_OK);
     svc_veto = CO_ERR_VALUE;
-    write_u32(0x2000U, 0x12345678U, CO_ERR_VALUE);
+    write_u32(0x1005U, 0x12345678U, CO_ERR_VALUE);
     assert_string_equal(trail, "c");
-    assert_int_equal(ram.v2000, 0x11U);
+    assert_int_equal(ram.v1005, 0x11U);
     /* a veto of the application: the service hears of no write */
     trail[0] = '\0';
     svc_veto = CO_OK;
     app_veto = CO_ERR_STORE_STATE;
-    write_u32(0x2000U, 0x12345678U, CO_ERR_STORE_STATE);
+    write_u32(0x1005U, 0x12345678U, CO_ERR_STORE_STATE);
     assert_string_equal(trail, "cW");
-    assert_int_equal(ram.v2000, 0x11U);
+    assert_int_equal(ram.v1005, 0x11U);
 }
 
-/* two services on one object, or overlapping ranges: refused, the first stays */
-static void test_register_conflict(void **state)
+/* which service's hook an object has is known from its index when the
+ * table is compiled (CO_OD_SVC_OF): every range and nothing beside them */
+static void test_owner_slots(void **state)
 {
-    static const co_svc_hook_t same[] = {{0x2000U, 0x2000U, 0U, 0U, NULL}};
-    static const co_svc_hook_t overlap[] = {{0x1FFFU, 0x2001U, 0U, 0U, NULL}};
-    static const co_svc_hook_t inside[] = {{0x1011U, 0x1011U, 0U, 0U, NULL}};
-    static const co_svc_hook_t free_range[] = {{0x3000U, 0x3000U, 0U, 0U, NULL}};
-    static co_svc_hook_t filler[CO_SVC_HOOKS_MAX];
+    static const struct {
+        uint16_t index;
+        unsigned slot;
+    } owner[] = {
+        {0x0FFFU, 0U}, {0x1000U, 0U}, {0x1002U, 0U}, {0x1003U, 1U}, {0x1004U, 0U},
+        {0x1005U, 3U}, {0x1006U, 3U}, {0x1007U, 3U}, {0x1008U, 0U},
+        {0x100CU, CO_NODE_GUARDING ? 4U : 0U}, {0x100DU, CO_NODE_GUARDING ? 4U : 0U},
+        {0x100EU, 0U}, {0x100FU, 0U}, {0x1010U, 6U}, {0x1011U, 6U},
+        {0x1012U, CO_TIME ? 8U : 0U}, {0x1013U, 0U}, {0x1014U, 2U}, {0x1015U, 2U},
+        {0x1016U, 4U}, {0x1017U, 5U}, {0x1018U, 0U}, {0x1019U, 3U}, {0x101AU, 0U},
+        {0x1028U, 0U}, {0x1029U, CO_ERROR_BEHAVIOUR ? (8U + (unsigned)CO_TIME) : 0U},
+        {0x1200U, 0U}, {0x13FFU, 0U}, {0x1400U, 7U}, {0x1600U, 7U}, {0x1A03U, 7U},
+        {0x1BFFU, 7U}, {0x1C00U, 0U}, {0x2000U, 0U}, {0xFFFFU, 0U},
+    };
 
     (void)state;
-    assert_int_equal(co_od_register(&node, same), CO_RESULT_HOOK_BOUND);
-    assert_int_equal(co_od_register(&node, overlap), CO_RESULT_HOOK_BOUND);
-    assert_int_equal(co_od_register(&node, inside), CO_RESULT_HOOK_BOUND);
-    assert_int_equal(node.n_svc_hooks, 2);
-    write_u32(0x2000U, 0x12345678U, CO_OK);
-    assert_string_equal(trail, "cw"); /* still the recording service's */
-    assert_int_equal(co_od_register(&node, free_range), CO_RESULT_OK);
-    /* the table is full after CO_SVC_HOOKS_MAX ranges; at every count the
-     * search (a fixed number of steps over all slots) finds each range and
-     * nothing between or beyond them */
-    for (uint16_t i = 0U; node.n_svc_hooks < CO_SVC_HOOKS_MAX; i++) {
-        co_svc_hook_t *f = &filler[i];
-        f->first = (uint16_t)(0x4000U + (2U * i));
-        f->last = f->first;
-        f->ops = CO_SVC_SELF;
-        assert_int_equal(co_od_register(&node, f), CO_RESULT_OK);
-        for (uint16_t k = 0U; k <= i; k++) {
-            assert_int_equal(co_od_svc_ops(&node, (uint16_t)(0x4000U + (2U * k))), CO_SVC_SELF);
-            assert_int_equal(co_od_svc_ops(&node, (uint16_t)(0x4001U + (2U * k))), 0U);
-        }
-        assert_int_equal(co_od_svc_ops(&node, 0x2000U), rec_hooks[0].ops);
-        assert_int_equal(co_od_svc_ops(&node, 0x1FFFU), 0U);
-        assert_int_equal(co_od_svc_ops(&node, 0x0FFFU), 0U);
-        assert_int_equal(co_od_svc_ops(&node, 0xFFFFU), 0U);
+    for (size_t k = 0U; k < sizeof owner / sizeof owner[0]; k++) {
+        assert_int_equal(CO_OD_SVC_OF(owner[k].index), owner[k].slot);
+        assert_true(owner[k].slot <= CO_SVC_N_HOOKS);
     }
-    write_u32(0x2000U, 0x12345678U, CO_OK);
-    assert_string_equal(trail, "cwcw"); /* the recording service's in a full table */
-    {
-        static const co_svc_hook_t one_more[] = {{0x5000U, 0x5000U, 0U, 0U, NULL}};
-        assert_int_equal(co_od_register(&node, one_more), CO_RESULT_NO_MEMORY);
-    }
+    /* the table's entries carry it */
+    assert_int_equal(od[0].svc, 3U);
+    assert_int_equal(od[1].svc, 6U);
+    assert_int_equal(od[2].svc, 0U);
 }
 
 /* two plug-ins on one object: the second bind is refused, the first hook stays */
@@ -260,8 +247,8 @@ static void test_bind_twice(void **state)
     co_od_hook_t second = {app_read, NULL, NULL};
 
     (void)state;
-    assert_int_equal(co_od_bind_hook(&node, 0x2000U, &first), CO_RESULT_OK);
-    assert_int_equal(co_od_bind_hook(&node, 0x2000U, &second), CO_RESULT_HOOK_BOUND);
+    assert_int_equal(co_od_bind_hook(&node, 0x1005U, &first), CO_RESULT_OK);
+    assert_int_equal(co_od_bind_hook(&node, 0x1005U, &second), CO_RESULT_HOOK_BOUND);
     assert_ptr_equal(hooks[0].write, app_write);
     assert_null(hooks[0].read);
     assert_int_equal(co_od_bind_hook(&node, 0x3000U, &second), CO_RESULT_NO_HOOK_SLOT);
@@ -283,7 +270,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_setup(test_chain_order, setup),
         cmocka_unit_test_setup(test_service_veto_first, setup),
-        cmocka_unit_test_setup(test_register_conflict, setup),
+        cmocka_unit_test_setup(test_owner_slots, setup),
         cmocka_unit_test_setup(test_bind_twice, setup),
         cmocka_unit_test_setup(test_storage_acts, setup),
     };

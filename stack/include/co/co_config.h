@@ -50,14 +50,6 @@
 #define CO_RX_SLOTS_MAX (3U + (unsigned)(CO_NODE_GUARDING) + (unsigned)(CO_TIME) + \
                          (unsigned)(CO_LSS) + CO_HB_CONSUMERS_MAX)
 #endif
-#ifndef CO_SVC_HOOKS_MAX
-/** Object ranges the services compiled in hook (co_node_t.svc_hooks): the
- *  full core registers 11, a core without guarding, TIME or error
- *  behaviour one less for each; a service added to the table may need
- *  more. */
-#define CO_SVC_HOOKS_MAX (8U + (unsigned)(CO_NODE_GUARDING) + (unsigned)(CO_TIME) + \
-                          (unsigned)(CO_ERROR_BEHAVIOUR))
-#endif
 
 /* ---- PDO */
 

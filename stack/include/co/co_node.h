@@ -289,7 +289,9 @@ typedef struct co_emcy {
     uint8_t n_active;
     uint8_t n_q;
     uint8_t q_head;          /**< the oldest waiting EMCY in q (a ring) */
+#if CO_STORAGE
     uint8_t store_report;    /**< EMCY 0x5530 raised for a damaged parameter set */
+#endif
     /* the active errors (two arrays: no padding) */
     uint16_t active_code[CO_EMCY_ACTIVE_MAX];
     uint8_t active_reg[CO_EMCY_ACTIVE_MAX]; /**< the 0x1001 bits each sets */
@@ -345,8 +347,6 @@ typedef struct co_node {
     uint8_t n_rx;
     uint8_t rx_dirty;
     uint8_t txq_len;
-    uint8_t n_svc_hooks;
-    uint8_t n_svc_rd;        /**< 1 once a service hook with a read hook is registered */
     uint8_t rx_at[16];       /**< per function code (COB-ID >> 7): its only slot,
                                   none, or several (co_node.c) */
     /** co_node_process: bit k: service row k has something new since it
@@ -357,10 +357,6 @@ typedef struct co_node {
      *  the service in the service table above them (co_node.c). */
     uint16_t rx[CO_RX_SLOTS_MAX];
     co_frame_t txq[CO_TXQ_LEN];
-    /** The services' own hooks on the objects they own (co_od.c), sorted by index. */
-    const struct co_svc_hook *svc_hooks[CO_SVC_HOOKS_MAX];
-    uint16_t svc_rd_lo;      /**< indexes with a service read hook: svc_rd_lo .. + svc_rd_span */
-    uint16_t svc_rd_span;
     /* one part per service */
     co_sdo_srv_t sdo;
     co_errctl_t errctl;

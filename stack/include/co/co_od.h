@@ -96,6 +96,29 @@ typedef struct co_od_default {
  *  COB-ID base (it differs from the node-ID only with LSS). */
 #define CO_OD_DEF_COB    0x4000U
 
+/** The core service that owns the object at @p index (co_od_entry_t.svc):
+ *  its hook's slot + 1 in the core's const service-hook table (co_svc_hooks,
+ *  co_services.c), 0 for an object no service of this build owns. A constant
+ *  expression: the generated tables carry it, nothing registers at run time.
+ *  Slots: 1 EMCY history 0x1003, 2 EMCY 0x1014..0x1015, 3 SYNC 0x1005..0x1007
+ *  and 0x1019, 4 heartbeat consumers 0x1016 (and guarding 0x100C..0x100D),
+ *  5 heartbeat producer 0x1017, 6 storage 0x1010..0x1011, 7 PDO
+ *  0x1400..0x1BFF, then TIME 0x1012 and error behaviour 0x1029 where the
+ *  build has them (CO_SVC_N_HOOKS). */
+#define CO_OD_SVC_OF(i) \
+    (((i) == 0x1003U) ? 1U \
+     : (((i) == 0x1014U) || ((i) == 0x1015U)) ? 2U \
+     : ((((i) >= 0x1005U) && ((i) <= 0x1007U)) || ((i) == 0x1019U)) ? 3U \
+     : (((i) == 0x1016U) || ((CO_NODE_GUARDING != 0) && (((i) == 0x100CU) || ((i) == 0x100DU)))) ? 4U \
+     : ((i) == 0x1017U) ? 5U \
+     : (((i) == 0x1010U) || ((i) == 0x1011U)) ? 6U \
+     : (((i) >= 0x1400U) && ((i) <= 0x1BFFU)) ? 7U \
+     : ((CO_TIME != 0) && ((i) == 0x1012U)) ? 8U \
+     : ((CO_ERROR_BEHAVIOUR != 0) && ((i) == 0x1029U)) ? (8U + (unsigned)(CO_TIME)) \
+     : 0U)
+/** Number of slots of the core's service-hook table. */
+#define CO_SVC_N_HOOKS (7U + (unsigned)(CO_TIME) + (unsigned)(CO_ERROR_BEHAVIOUR))
+
 /** One object (12 bytes on a 32-bit CPU). Objects of the same shape (the
  *  PDOs' parameters) share one table of sub-entries: the RAM offsets in it
  *  count from @ref base, where each object's values start (0 for a table
@@ -107,13 +130,15 @@ typedef struct co_od_entry {
     uint8_t  nsubs;          /**< number of sub-entries in @ref subs */
     uint8_t  hook;           /**< hook slot + 1, or 0 for no hook */
     uint8_t  code;           /**< CO_OBJ_* */
+    uint8_t  svc;            /**< CO_OD_SVC_OF(index): the owning service's hook */
 } co_od_entry_t;
 
 /** Initialisers of one co_od_entry_t (the generated dictionaries use them):
  *  a table of its own, and a shared one whose RAM offsets count from @p base. */
-#define CO_OD_ENTRY(index, nsubs, hook, code, subs) {(subs), (index), 0U, (nsubs), (hook), (code)}
+#define CO_OD_ENTRY(index, nsubs, hook, code, subs) \
+    {(subs), (index), 0U, (nsubs), (hook), (code), (uint8_t)CO_OD_SVC_OF(index)}
 #define CO_OD_ENTRY_AT(index, nsubs, hook, code, subs, base) \
-    {(subs), (index), (base), (nsubs), (hook), (code)}
+    {(subs), (index), (base), (nsubs), (hook), (code), (uint8_t)CO_OD_SVC_OF(index)}
 
 /** Offset of the value of @p s (an entry of @p e) in the RAM image, or in
  *  the ROM image with CO_SUB_ROM. */

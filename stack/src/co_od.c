@@ -531,24 +531,24 @@ co_err_t co_od_write_part(co_node_t *node, const co_od_entry_t *e, const co_od_s
     }
 }
 
-/* Restore [from, to) of the RAM image: zeros, then the default runs that
+/* Restore [0, to) of the RAM image: zeros, then the default runs that
  * start inside it; a $NODEID run gets the node-ID (a PDO or EMCY COB-ID the
  * COB-ID base, which differs from it only with LSS) added to its value, a
  * native integer of 1, 2 or 4 bytes. */
-void co_od_restore(co_node_t *node, uint16_t from, uint16_t to)
+void co_od_restore(co_node_t *node, uint16_t to)
 {
     const co_dev_t *dev = node->dev;
     const uint8_t *def = (const uint8_t *)dev->defaults;
     uint32_t at = 0U;
 
-    if (to <= from) {
+    if (to == 0U) {
         return;
     }
-    (void)memset(&node->ram[from], 0, (size_t)to - from);
+    (void)memset(node->ram, 0, to);
     for (uint16_t i = 0U; i < dev->n_defaults; i++) {
         const co_od_default_t *d = &dev->default_at[i];
         uint32_t n = d->size & CO_OD_DEF_SIZE;
-        if ((d->off >= from) && (d->off < to)) {
+        if (d->off < to) {
             uint8_t *p = &node->ram[d->off];
             co_copy(p, &def[at], n);
             if ((d->size & CO_OD_DEF_NODEID) != 0U) {
@@ -629,10 +629,10 @@ co_result_t co_od_bind_hook(co_node_t *node, uint16_t index, const co_od_hook_t 
     if (e == NULL) {
         return CO_RESULT_NO_OBJECT;
     }
-    if ((e->hook == 0U) || (node->hooks == NULL) || (e->hook > node->dev->n_hooks)) {
+    h = hook_of(node, e);
+    if (h == NULL) {
         return CO_RESULT_NO_HOOK_SLOT;
     }
-    h = &node->hooks[e->hook - 1U];
     if ((h->read != NULL) || (h->write != NULL)) {
         return CO_RESULT_HOOK_BOUND; /* two plug-ins on one object: the first stays */
     }

@@ -451,8 +451,8 @@ co_err_t co_od_download(co_node_t *node, uint16_t index, uint8_t sub, const uint
 co_err_t co_od_write_part(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
                           uint32_t offset, const uint8_t *data, uint32_t len, uint32_t total,
                           bool last);
-/* Restore [from, to) of the RAM image to defaults and apply $NODEID. */
-void co_od_restore(co_node_t *node, uint16_t from, uint16_t to);
+/* Restore [0, to) of the RAM image to defaults and apply $NODEID. */
+void co_od_restore(co_node_t *node, uint16_t to);
 
 /* The CO_SVC_* operations the service owning @p e hooks (0: none). */
 static inline uint8_t co_od_svc_ops(const co_od_entry_t *e)

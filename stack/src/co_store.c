@@ -477,7 +477,7 @@ static void store_reset(co_node_t *node, uint8_t kind)
     if (kind == CO_SVC_START) {
         return; /* values are restored by the resets of a kind only */
     }
-    co_od_restore(node, 0U, end);
+    co_od_restore(node, end);
 #if CO_STORAGE
     node->store.damaged = 0U;
     if (cap != 0U) {
@@ -487,7 +487,7 @@ static void store_reset(co_node_t *node, uint8_t kind)
         uint8_t grp = (uint8_t)(b.groups & (uint8_t)~b.restored & (all ? GRP_ALL : GRP_COMM));
         uint16_t crc = 0U;
         if ((grp != 0U) && !stream(node, (uint32_t)b.idx * bank_size(node), AT_RAM, grp, &crc)) {
-            co_od_restore(node, 0U, end);
+            co_od_restore(node, end);
         }
         /* reported after the boot-up by the EMCY service (co_store_damaged):
          * EMCY 0x5530, 0x1001, 0x1003 */

@@ -46,15 +46,13 @@ CO_HOT bool send(co_node_t *node, uint16_t i, const uint8_t *data)
         uint16_t off = node->dev->pdo[i].inhibit;
         uint32_t inhibit = (off == CO_PDO_NONE) ? 0U : co_dict_us(co_ram_u16(node, off), 100UL);
         uint32_t ev = co_pdo_event_us(node, i);
-        p->flags &= (uint16_t)~(CO_PDO_F_EVENT | CO_PDO_F_INHIBIT | CO_PDO_F_TIMER);
-        if (inhibit != 0U) {
-            p->inhibit = node->now + inhibit;
-            p->flags |= CO_PDO_F_INHIBIT;
-        }
-        if (ev != 0U) {
-            p->timer = node->now + ev;
-            p->flags |= CO_PDO_F_TIMER;
-        }
+        /* the times count only with their flags */
+        p->inhibit = node->now + inhibit;
+        p->timer = node->now + ev;
+        p->flags = (uint16_t)((p->flags & ~(uint32_t)(CO_PDO_F_EVENT | CO_PDO_F_INHIBIT |
+                                                     CO_PDO_F_TIMER)) |
+                              ((inhibit != 0U) ? CO_PDO_F_INHIBIT : 0U) |
+                              ((ev != 0U) ? CO_PDO_F_TIMER : 0U));
     }
     return true;
 }

@@ -152,3 +152,46 @@ def test_edge_device(tmp_path):
     header = (tmp_path / "edge.h").read_text()
     assert "uint8_t x2007_i24_array[3][3];" in header
     assert "#define EDGE_HOOK_2006 0U" in header
+
+
+STORE = r'''
+[device]
+name = "store"
+vendor_id = 1
+product_code = 1
+device_type = 0x000F0191
+
+[[object]]
+index = 0x1001
+name = "Error register"
+type = "UNSIGNED8"
+access = "ro"
+
+[[object]]
+index = 0x1010
+name = "Store parameters"
+array = 3
+element = { name = "Save", type = "UNSIGNED32", access = "rw" }
+defaults = [1, 1, 1]
+
+[[object]]
+index = 0x1017
+name = "Producer heartbeat time"
+type = "UNSIGNED16"
+access = "rw"
+default = 1000
+'''
+
+
+def test_store_commands_have_no_default(tmp_path):
+    """0x1010 / 0x1011 sub 1.. read what the store service writes at every
+    reset (the capability), never their description's default: the default
+    image leaves them out (they restore to 0 before the service writes them)."""
+    src = tmp_path / "store.toml"
+    src.write_text(textwrap.dedent(STORE))
+    r = run_odgen(src, tmp_path)
+    assert r.returncode == 0, r.stderr
+    c = (tmp_path / "store.c").read_text()
+    defaults = c[c.index("typedef struct store_defaults"):c.index("} store_defaults_t;")]
+    assert "x1017_producer_heartbeat_time" in defaults
+    assert "x1010" not in defaults

@@ -148,7 +148,7 @@ static int setup(void **state)
     node.hooks = hooks;
     node.hal.ops = &hal_ops;
     node.node_id = 1U;
-    co_od_restore(&node, 0U, dev.ram_size);
+    co_od_restore(&node, dev.ram_size);
     trail[0] = '\0';
     svc_veto = CO_OK;
     app_veto = CO_OK;

@@ -145,6 +145,15 @@ def c_value(s: Sub) -> str | None:
     return c_bytes(data) if data else None
 
 
+def store_command(s: Sub) -> bool:
+    """A sub-entry of 0x1010 / 0x1011 the core acts on (co_store_is_command):
+    its value is what the store service writes at every reset (the
+    capability), never the description's default, which needs no room in
+    the default image."""
+    return s.index in (0x1010, 0x1011) and s.sub != 0 and s.type == "UNSIGNED32" and \
+        not s.rom and not s.hookio
+
+
 def field_init(f: Field) -> str | None:
     if f.dims and f.subs[0].elem == 0:
         vals = [c_value(s) for s in f.subs]
@@ -285,7 +294,7 @@ def generate(dev: Device, toml_name: str, warn=None) -> tuple[str, str]:
     nodeid_fields = {s.field for s in nodeid if s.elem < 0}
     items = []   # (member name, declaration, value, align, field or None, nodeid sub or None)
     for f in ram:
-        if f.subs and f.name not in nodeid_fields:
+        if f.subs and f.name not in nodeid_fields and not all(store_command(s) for s in f.subs):
             v = field_init(f)
             if v is not None:
                 items.append((f.name, f.decl(), v, f.align, f, None))

@@ -79,12 +79,11 @@ static void entry_io(co_node_t *node, uint32_t v, uint16_t code, uint16_t pos,
         return;
     }
     /* the low bits, extended to the value's size by the sign for signed types */
-    bits_copy(tmp, 0U, rx, pos, bits);
-    if (sign && ((tmp[(bits - 1U) >> 3U] & (1U << ((bits - 1U) & 7U))) != 0U)) {
-        for (uint8_t b = bits; b < (uint8_t)(size * 8U); b++) {
-            tmp[b >> 3U] |= (uint8_t)(1U << (b & 7U));
-        }
+    if (sign) {
+        uint16_t top = (uint16_t)(pos + bits - 1U);
+        (void)memset(tmp, ((rx[top >> 3U] & (1U << (top & 7U))) != 0U) ? 0xFF : 0x00, sizeof tmp);
     }
+    bits_copy(tmp, 0U, rx, pos, bits);
     if (s != NULL) {
         (void)co_od_write_value(node, e, s, tmp, size);
     } else if (CO_NATIVE_LE) {

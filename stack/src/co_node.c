@@ -290,8 +290,7 @@ CO_NOINLINE void co_node_stalled(co_node_t *node, uint32_t now_us)
         node->errctl.hbc_deadline[k] = now_us;
     }
     for (uint16_t i = 0U; i < n; i++) {
-        node->pdo.p[i].timer = now_us;
-        node->pdo.p[i].inhibit = now_us;
+        node->pdo.p[i].at = now_us - (uint32_t)CO_HORIZON_US; /* every PDO time has ended */
     }
 }
 

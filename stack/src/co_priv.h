@@ -761,14 +761,26 @@ CO_INLINE void co_pdo_store_direct(co_node_t *node, uint16_t i, const uint8_t *d
     }
 }
 
-/* Event timer of PDO i in us (0: off). */
-static inline uint32_t co_pdo_event_us(const co_node_t *node, uint16_t i)
+/* Event timer of PDO i in us (0: off), inhibit time of TPDO i in us (0:
+ * none): in a build for size one copy each (co_pdo_config.c). */
+#if CO_FAST
+CO_INLINE uint32_t co_pdo_event_us(const co_node_t *node, uint16_t i)
 {
     uint16_t off = node->dev->pdo[i].event;
     uint32_t unit = (CO_SET(node, pdo.event_timer_unit) == CO_PDO_TIMER_100US) ? 100UL : 1000UL;
 
     return (off == CO_PDO_NONE) ? 0U : co_dict_us(co_ram_u16(node, off), unit);
 }
+CO_INLINE uint32_t co_pdo_inhibit_us(const co_node_t *node, uint16_t i)
+{
+    uint16_t off = node->dev->pdo[i].inhibit;
+
+    return (off == CO_PDO_NONE) ? 0U : co_dict_us(co_ram_u16(node, off), 100UL);
+}
+#else
+uint32_t co_pdo_event_us(const co_node_t *node, uint16_t i);
+uint32_t co_pdo_inhibit_us(const co_node_t *node, uint16_t i);
+#endif
 /* The mapped objects of PDO i (co_pdo_map.c), the resolved entries
  * directly, the others through the dictionary: sample them into @p out (8
  * bytes, zero past the mapping; an object that cannot be read is sent as

@@ -88,7 +88,6 @@ static bool length_ok(co_node_t *node, uint16_t i, uint8_t dlc)
 void co_rpdo_rx(co_node_t *node, uint16_t i, const co_frame_t *f)
 {
     co_pdo_t *p = &node->pdo.p[i];
-    uint32_t ev;
 
     if ((node->nmt != (uint8_t)CO_NMT_OPERATIONAL) || co_frame_is_rtr(f) ||
         !co_pdo_usable(node, i)) {
@@ -100,16 +99,13 @@ void co_rpdo_rx(co_node_t *node, uint16_t i, const co_frame_t *f)
         !length_ok(node, i, f->dlc)) {
         return;
     }
-    ev = co_pdo_event_us(node, i);
-    if (ev != 0U) {
-        if ((p->flags & CO_PDO_F_TIMER) == 0U) {
-            /* a new deadline (a later one only costs co_node_process an
-             * early look) */
-            co_svc_touch(node, CO_ROW_PDO);
-        }
-        p->timer = node->now + ev;
-        p->flags |= CO_PDO_F_TIMER;
+    if ((p->flags & CO_PDO_F_TIMER) == 0U) {
+        /* deadline monitoring starts (a later deadline only costs
+         * co_node_process an early look; an event timer of 0 is none) */
+        co_svc_touch(node, CO_ROW_PDO);
     }
+    p->at = node->now; /* the deadline runs from the last reception */
+    p->flags |= CO_PDO_F_TIMER;
     if (co_pdo_type(node, i) <= 240U) {
         /* synchronous: takes effect at the next SYNC, if it came in time */
         if (co_sync_window(node)) {
@@ -145,14 +141,16 @@ uint32_t co_rpdo_process(co_node_t *node, uint32_t next)
     }
     for (uint16_t i = 0U; i < node->dev->n_rpdo; i++) {
         co_pdo_t *p = &node->pdo.p[i];
-        if ((p->flags & CO_PDO_F_TIMER) == 0U) {
-            continue;
+        uint32_t ev = ((p->flags & CO_PDO_F_TIMER) != 0U) ? co_pdo_event_us(node, i) : 0U;
+        uint32_t end = p->at + ev;
+        if (ev == 0U) {
+            continue; /* not received yet, or no deadline monitoring */
         }
-        if (co_time_reached(node->now, p->timer)) {
+        if (co_time_reached(node->now, end)) {
             p->flags &= (uint16_t)~CO_PDO_F_TIMER;
             rpdo_error(node, i, CO_PDO_F_TIMEOUT, CO_PDO_F_TIMEOUT);
         } else {
-            next = co_deadline_min(node->now, next, p->timer);
+            next = co_deadline_min(node->now, next, end);
         }
     }
     return next;

@@ -43,16 +43,11 @@ CO_HOT bool send(co_node_t *node, uint16_t i, const uint8_t *data)
     }
     p->flags |= CO_PDO_F_SENT;
     if (co_pdo_type(node, i) >= 254U) {
-        uint16_t off = node->dev->pdo[i].inhibit;
-        uint32_t inhibit = (off == CO_PDO_NONE) ? 0U : co_dict_us(co_ram_u16(node, off), 100UL);
-        uint32_t ev = co_pdo_event_us(node, i);
-        /* the times count only with their flags */
-        p->inhibit = node->now + inhibit;
-        p->timer = node->now + ev;
-        p->flags = (uint16_t)((p->flags & ~(uint32_t)(CO_PDO_F_EVENT | CO_PDO_F_INHIBIT |
-                                                     CO_PDO_F_TIMER)) |
-                              ((inhibit != 0U) ? CO_PDO_F_INHIBIT : 0U) |
-                              ((ev != 0U) ? CO_PDO_F_TIMER : 0U));
+        /* the event timer and the inhibit time start now (times of 0 end at
+         * once: event_timers) */
+        p->at = node->now;
+        p->flags = (uint16_t)((p->flags & ~(uint32_t)CO_PDO_F_EVENT) | CO_PDO_F_INHIBIT |
+                              CO_PDO_F_TIMER);
     }
     return true;
 }
@@ -154,38 +149,45 @@ void co_tpdo_rtr(co_node_t *node, uint16_t i)
 }
 #endif
 
-/* The event timer and the inhibit time of an event-driven TPDO, at now. */
-CO_INLINE void event_timers(const co_node_t *node, co_pdo_t *p)
+/* The event timer and the inhibit time of event-driven TPDO i (@p ev, @p
+ * inh us, both running from p->at; an event timer of 0 is off, an inhibit
+ * time of 0 ends at once), at now. */
+CO_INLINE void event_timers(co_node_t *node, co_pdo_t *p, uint32_t ev, uint32_t inh)
 {
-    if (((p->flags & CO_PDO_F_TIMER) != 0U) && co_time_reached(node->now, p->timer)) {
+    if (((p->flags & CO_PDO_F_TIMER) != 0U) && (ev != 0U) &&
+        co_time_reached(node->now, p->at + ev)) {
         p->flags |= CO_PDO_F_EVENT;
     }
-    if (((p->flags & CO_PDO_F_INHIBIT) != 0U) && co_time_reached(node->now, p->inhibit)) {
+    if (((p->flags & CO_PDO_F_INHIBIT) != 0U) && co_time_reached(node->now, p->at + inh)) {
         p->flags &= (uint16_t)~CO_PDO_F_INHIBIT;
     }
 }
 
-/* The event timer as a deadline while it runs. Once expired it has set
- * CO_PDO_F_EVENT, whose own deadline (inhibit time, TX retry) counts: an
- * expired timer is never a deadline (it would be one in the past, and the
- * caller's loop would spin until the TPDO can go). */
-CO_INLINE uint32_t timer_next(const co_node_t *node, const co_pdo_t *p, uint32_t next)
+/* The event timer (@p ev us) as a deadline while it runs. Once expired it
+ * has set CO_PDO_F_EVENT, whose own deadline (inhibit time, TX retry)
+ * counts: an expired timer is never a deadline (it would be one in the
+ * past, and the caller's loop would spin until the TPDO can go). */
+CO_INLINE uint32_t timer_next(const co_node_t *node, const co_pdo_t *p, uint32_t ev,
+                              uint32_t next)
 {
-    if (((p->flags & CO_PDO_F_TIMER) != 0U) && !co_time_reached(node->now, p->timer)) {
-        return co_deadline_min(node->now, next, p->timer);
+    uint32_t end = p->at + ev;
+
+    if (((p->flags & CO_PDO_F_TIMER) != 0U) && (ev != 0U) && !co_time_reached(node->now, end)) {
+        return co_deadline_min(node->now, next, end);
     }
     return next;
 }
 
 /* A due event-driven TPDO (CO_PDO_F_EVENT): sent with @p now unless the
- * inhibit time holds it back; then the next deadline. */
-CO_INLINE uint32_t event_due(co_node_t *node, uint16_t i, uint32_t next, const uint8_t *now)
+ * inhibit time (@p inh us) holds it back; then the next deadline. */
+CO_INLINE uint32_t event_due(co_node_t *node, uint16_t i, uint32_t inh, uint32_t next,
+                             const uint8_t *now)
 {
     const co_pdo_t *p = &node->pdo.p[i];
     uint32_t at = next;
 
     if ((p->flags & CO_PDO_F_INHIBIT) != 0U) {
-        at = co_deadline_min(node->now, next, p->inhibit);
+        at = co_deadline_min(node->now, next, p->at + inh);
     } else if (!send(node, i, now)) {
         at = co_deadline_min(node->now, next, node->now + RETRY_US);
     } else {
@@ -230,15 +232,16 @@ static CO_NOINLINE bool masked_change(const co_node_t *node, uint16_t i, const u
 CO_HOT uint32_t event_driven(co_node_t *node, uint16_t i, uint32_t next, bool detect)
 {
     co_pdo_t *p = &node->pdo.p[i];
+    uint32_t ev = co_pdo_event_us(node, i);
+    uint32_t inh = co_pdo_inhibit_us(node, i);
     uint8_t now[8];
 
-    event_timers(node, p);
-    if (!detect && ((p->flags & CO_PDO_F_TIMER) == 0U)) {
-        uint32_t ev = co_pdo_event_us(node, i);
-        if (ev != 0U) {
-            p->timer = node->now + ev;
-            p->flags |= CO_PDO_F_TIMER;
-        }
+    event_timers(node, p, ev, inh);
+    if (!detect && ((p->flags & CO_PDO_F_TIMER) == 0U) && (ev != 0U)) {
+        /* (an inhibit time runs only after a transmission, which starts the
+         * timer too) */
+        p->at = node->now;
+        p->flags |= CO_PDO_F_TIMER;
     }
     if ((detect || ((p->flags & CO_PDO_F_EVENT) != 0U)) &&
         ((p->flags & (CO_PDO_F_EVENT | CO_PDO_F_INHIBIT)) !=
@@ -256,9 +259,9 @@ CO_HOT uint32_t event_driven(co_node_t *node, uint16_t i, uint32_t next, bool de
         }
     }
     if ((p->flags & CO_PDO_F_EVENT) != 0U) {
-        next = event_due(node, i, next, now);
+        next = event_due(node, i, inh, next, now);
     }
-    return timer_next(node, p, next);
+    return timer_next(node, p, ev, next);
 }
 
 /* At a SYNC: the synchronous TPDOs (RTR-only 253 and event-driven types

@@ -29,8 +29,9 @@ typedef struct co_pdo_desc {
 
 /** Runtime state of one PDO (private to the core). */
 typedef struct co_pdo {
-    uint32_t timer;   /**< TPDO event timer / RPDO deadline (absolute us) */
-    uint32_t inhibit; /**< TPDO: earliest next event-driven transmission */
+    uint32_t at;      /**< when its times started (us): TPDO the last event-driven
+                           transmission (event timer and inhibit time run from it),
+                           RPDO the last reception (deadline monitoring) */
     uint16_t flags;
     uint8_t count;    /**< TPDO: SYNCs counted; RPDO: length of the buffered frame */
     uint8_t len;      /**< bytes the mapping covers */

@@ -57,8 +57,12 @@ def test_trace_file_in_candump_format(daemons, sniffer, network, eds_path, tmp_p
         candump.wait()
         candump_log.close()
         theirs = (tmp_path / "candump.log").read_text().splitlines()
-        # the same frames with the same kernel timestamps
-        assert lines == theirs
+        # the same frames with the same kernel timestamps; the order of two
+        # frames close in time may differ between two sockets (the kernel
+        # delivers a frame sent on one CPU and one looped back on another to
+        # each receive queue in its own order: seen once, 605#70 and the
+        # answer 585#17 0.7 ms apart swapped in candump's log)
+        assert sorted(lines) == sorted(theirs)
 
 
 def test_trace_to_stdout(daemons, sniffer, tmp_path):

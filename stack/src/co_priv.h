@@ -92,7 +92,9 @@ static inline bool co_cob_restricted(uint32_t id)
            ((id >= 0x6E0U) && (id <= 0x6FFU)) || (id >= 0x701U);
 }
 
-/* Earliest of a deadline set and another candidate. */
+/* Earliest of a deadline set and another candidate (in a build for size
+ * one copy, co_node.c: the services' timers call it in many places). */
+#if CO_FAST
 static inline uint32_t co_deadline_min(uint32_t now, uint32_t cur, uint32_t cand)
 {
     if (cur == CO_NO_DEADLINE) {
@@ -100,6 +102,9 @@ static inline uint32_t co_deadline_min(uint32_t now, uint32_t cur, uint32_t cand
     }
     return ((int32_t)(cand - now) < (int32_t)(cur - now)) ? cand : cur;
 }
+#else
+uint32_t co_deadline_min(uint32_t now, uint32_t cur, uint32_t cand);
+#endif
 
 /* Native values in the RAM image, by offset (any alignment). */
 static inline uint32_t co_ram_u32(const co_node_t *node, uint16_t off)

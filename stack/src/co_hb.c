@@ -7,8 +7,6 @@
 
 enum { HBC_UNUSED = 0, HBC_WAITING, HBC_ACTIVE, HBC_LOST };
 enum { GUARD_OFF = 0, GUARD_ARMED, GUARD_LOST };
-#define HB_ON    0x01U /* co_errctl_t.hb_flags: the producer runs */
-#define HB_MUTED 0x02U /* heartbeats held back (co_node_hb_mute) */
 
 static uint32_t ms_to_us(uint32_t ms)
 {
@@ -87,26 +85,6 @@ static void guard_check(co_node_t *node)
 #endif
 }
 
-/* 0x1017 written (CiA 301: the producer's cycle time). Switched on, the
- * cycle starts at the write; written while the producer runs, the cycle
- * goes on: the next heartbeat is due one (new) period after the last one,
- * at once if that has passed. A write does not restart the cycle, or a
- * master writing 0x1017 faster than its period would silence the node. */
-static void producer_changed(co_node_t *node)
-{
-    bool on = heartbeat_producing(node);
-
-    if (on && ((node->errctl.hb_flags & HB_ON) == 0U)) {
-        node->errctl.hb_last = node->now;
-    }
-    node->errctl.hb_flags = (uint8_t)((node->errctl.hb_flags & ~HB_ON) | (on ? HB_ON : 0U));
-    if (on) {
-        /* the next heartbeat: errctl_process needs to run no sooner */
-        co_svc_due(node, node->errctl.hb_last + ms_to_us(*node->errctl.hb_prod));
-    }
-    guard_check(node);
-}
-
 /* Entry @p k starts over from its 0x1016 value: a used one waits for its
  * producer's first heartbeat, with no deadline until then. */
 static void consumer_start(co_node_t *node, uint8_t k)
@@ -131,8 +109,6 @@ static void hb_reset(co_node_t *node)
     node->errctl.guard_state = (uint8_t)GUARD_OFF;
     /* The boot-up frame counts as the first heartbeat. */
     node->errctl.hb_last = node->now;
-    node->errctl.hb_flags = (uint8_t)((node->errctl.hb_flags & ~HB_ON) |
-                                      (heartbeat_producing(node) ? HB_ON : 0U));
     for (uint8_t k = 0U; k < node->errctl.n_hb_cons; k++) {
         consumer_start(node, k);
     }
@@ -205,7 +181,7 @@ static uint32_t errctl_process(co_node_t *node, uint32_t next)
         uint32_t period = ms_to_us(*node->errctl.hb_prod);
         if (co_time_reached(now, node->errctl.hb_last + period)) {
             uint8_t st = node->nmt;
-            if ((node->errctl.hb_flags & HB_MUTED) == 0U) {
+            if (node->errctl.hb_muted == 0U) {
                 co_tx(node, 0x700UL + node->node_id, &st, 1U);
             }
             node->errctl.hb_last += period;
@@ -248,9 +224,9 @@ static uint32_t errctl_process(co_node_t *node, uint32_t next)
 
 void co_node_hb_mute(co_node_t *node, bool muted, uint32_t now_us)
 {
-    bool was = (node->errctl.hb_flags & HB_MUTED) != 0U;
+    bool was = node->errctl.hb_muted != 0U;
 
-    node->errctl.hb_flags = (uint8_t)((node->errctl.hb_flags & ~HB_MUTED) | (muted ? HB_MUTED : 0U));
+    node->errctl.hb_muted = muted ? 1U : 0U;
     if (was && !muted && heartbeat_producing(node)) {
         /* the first heartbeat at once */
         node->errctl.hb_last = now_us - ms_to_us(*node->errctl.hb_prod);
@@ -384,17 +360,34 @@ co_err_t co_errctl_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
     return CO_OK;
 }
 
-/* 0x1017 written: nothing to check before (a hook of its own, so that the
- * engine asks only this after the write). */
+/* 0x1017 (CiA 301: the producer's cycle time), checked: the value it
+ * replaces says whether the producer runs. Switched on, the cycle starts at
+ * the write; written while the producer runs, the cycle goes on: the next
+ * heartbeat is due one (new) period after the last one, at once if that
+ * has passed. A write does not restart the cycle, or a master writing
+ * 0x1017 faster than its period would silence the node. (A write the
+ * application's hook then refuses leaves a producer that was off with a
+ * cycle start it does not use.) With guarding, once written: life guarding
+ * may end (the heartbeat replaces it). */
 co_err_t co_hb_prod_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
                         const co_od_sub_t *s, const uint8_t *data, uint32_t len)
 {
-    (void)op;
     (void)e;
     (void)s;
-    (void)data;
-    (void)len;
-    producer_changed(node);
+    if (op != (uint8_t)CO_SVC_CHECK) {
+        guard_check(node); /* (written: only with guarding, co_svc_hooks) */
+    } else if ((node->errctl.hb_prod != NULL) && (len == 2U)) {
+        uint16_t ms = co_get_u16(data);
+        if (*node->errctl.hb_prod == 0U) {
+            node->errctl.hb_last = node->now;
+        }
+        if (ms != 0U) {
+            /* the next heartbeat: errctl_process needs to run no sooner */
+            co_svc_due(node, node->errctl.hb_last + ms_to_us(ms));
+        }
+    } else {
+        /* not the producer time the service uses */
+    }
     return CO_OK;
 }
 

@@ -264,8 +264,7 @@ typedef struct co_errctl {
 #endif
     uint8_t n_hb_cons;
     uint8_t guard_state;     /**< 0 off, 1 armed (first RTR seen), 2 lost */
-    uint8_t hb_flags;        /**< co_hb.c: producer running (0x01), heartbeats held back
-                                  (0x02, co_node_hb_mute) */
+    uint8_t hb_muted;        /**< 1: heartbeats held back (co_node_hb_mute) */
     /* the heartbeat consumers, one element each (three arrays: no padding) */
     uint32_t hbc_deadline[CO_HB_CONSUMERS_MAX];
     uint8_t hbc_state[CO_HB_CONSUMERS_MAX]; /**< 0 unused, 1 waiting for first, 2 active,

@@ -33,9 +33,17 @@ static uint8_t update_errreg(co_node_t *node)
     return r;
 }
 
-static uint32_t cob_id(const co_node_t *node)
+/* The CAN-ID EMCYs go out on, 0 while none may go: in Stopped, with the
+ * COB-ID not valid, and while unconfigured. */
+static uint32_t emcy_id(const co_node_t *node)
 {
-    return (node->emcy.cob != NULL) ? *node->emcy.cob : (0x80UL + node->node_id);
+    uint32_t cob = (node->emcy.cob != NULL) ? *node->emcy.cob : (0x80UL + node->node_id);
+
+    if ((node->nmt == (uint8_t)CO_NMT_STOPPED) || ((cob & 0x80000000UL) != 0U) ||
+        (node->node_id == CO_NODE_ID_UNCONFIGURED)) {
+        cob = 0U;
+    }
+    return cob & 0x7FFUL;
 }
 
 static uint32_t inhibit_us(const co_node_t *node)
@@ -63,9 +71,9 @@ static void drain(co_node_t *node)
     co_emcy_t *m = &node->emcy;
 
     while ((m->n_q > 0U) && !inhibited(node)) {
-        uint32_t cob = cob_id(node);
-        if ((node->nmt != (uint8_t)CO_NMT_STOPPED) && ((cob & 0x80000000UL) == 0U)) {
-            co_tx(node, cob & 0x7FFUL, m->q[m->q_head].data, 8U);
+        uint32_t id = emcy_id(node);
+        if (id != 0U) {
+            co_tx(node, id, m->q[m->q_head].data, 8U);
         }
         m->q_head = (uint8_t)((m->q_head + 1U) % CO_EMCY_QUEUE_LEN);
         m->n_q--;
@@ -81,8 +89,7 @@ static void send_code(co_node_t *node, uint16_t code, const uint8_t *mfr)
     static const uint8_t none[5] = {0U, 0U, 0U, 0U, 0U};
     co_emcy_t *m = &node->emcy;
 
-    if ((node->nmt == (uint8_t)CO_NMT_STOPPED) || ((cob_id(node) & 0x80000000UL) != 0U) ||
-        (node->node_id == CO_NODE_ID_UNCONFIGURED)) {
+    if (emcy_id(node) == 0U) {
         return; /* no EMCY in Stopped; not valid; nothing while unconfigured */
     }
     if (m->n_q < CO_EMCY_QUEUE_LEN) {

@@ -142,6 +142,21 @@ static uint8_t services_running(const co_node_t *node)
     return (node->node_id == CO_NODE_ID_UNCONFIGURED) ? CO_SVC_UNCONFIGURED_ROWS : co_n_services;
 }
 
+/* The services' reset entries with @p kind, in table order, all of them;
+ * or (@p slots) the rx_slots entries of the running ones, each with its
+ * row. */
+static void services_walk(co_node_t *node, bool slots, uint8_t kind)
+{
+    uint8_t rows = slots ? services_running(node) : co_n_services;
+
+    for (uint8_t k = 0U; k < rows; k++) {
+        void (*fn)(co_node_t *, uint8_t) = slots ? co_services[k]->rx_slots : co_services[k]->reset;
+        if (fn != NULL) {
+            fn(node, slots ? k : kind);
+        }
+    }
+}
+
 /* Until the table is rebuilt, every frame goes the way of a function code
  * with several slots and finds the table stale: the first one rebuilds it
  * (co_node_rx). */
@@ -159,11 +174,7 @@ void co_rx_rebuild(co_node_t *node)
     node->n_rx = 0U;
     node->pdo.n_rx = 0U;
     (void)memset(node->rx_at, (int)CO_RX_AT_NONE, sizeof node->rx_at);
-    for (uint8_t k = 0U; k < services_running(node); k++) {
-        if (co_services[k]->rx_slots != NULL) {
-            co_services[k]->rx_slots(node, k);
-        }
-    }
+    services_walk(node, true, 0U);
     if (CO_CB(node, rx_set) != NULL) {
         node->cb->rx_set(node->cb->ctx, node);
     }
@@ -405,11 +416,7 @@ void co_node_set_state(co_node_t *node, co_nmt_state_t st)
 
 static void services_reset(co_node_t *node, uint8_t kind)
 {
-    for (uint8_t k = 0U; k < co_n_services; k++) {
-        if (co_services[k]->reset != NULL) {
-            co_services[k]->reset(node, kind);
-        }
-    }
+    services_walk(node, false, kind);
 }
 
 /* Initialising: the communication services start from their reset values,

@@ -230,40 +230,42 @@ CO_HOT void rx_slot(co_node_t *node, const co_frame_t *f, uint16_t cob, uint16_t
 }
 
 /* A function code with several slots (or a stale table): a search of the
- * services' slots, then the PDOs'; the slot's CO_RX_AT_* code (wider for
- * a PDO slot of any index), CO_RX_AT_NONE if none is for @p cob. */
-CO_NOINLINE static uint16_t rx_many(co_node_t *node, uint16_t cob)
+ * services' slots, then the PDOs'. */
+CO_NOINLINE static void rx_many(co_node_t *node, const co_frame_t *f, uint16_t cob,
+                                uint32_t now_us)
 {
     co_rx_settle(node); /* a frame that came while the table was out of date */
     for (uint8_t k = 0U; k < node->n_rx; k++) {
         if ((node->rx[k] & 0x7FFU) == cob) {
-            return (uint16_t)(k + 1U);
+            rx_slot(node, f, cob, (uint16_t)(k + 1U), now_us);
+            return;
         }
     }
     for (uint16_t k = 0U; k < node->pdo.n_rx; k++) {
         if (node->pdo.rx[k].cob == cob) {
-            return (uint16_t)(CO_RX_AT_PDO + k);
+            rx_slot(node, f, cob, (uint16_t)(CO_RX_AT_PDO + k), now_us);
+            return;
         }
     }
-    return CO_RX_AT_NONE;
 }
 
 /* The function code's only slot, or a search where it has several. */
 void co_node_rx(co_node_t *node, const co_frame_t *f, uint32_t now_us)
 {
     uint16_t cob;
-    uint16_t at;
+    uint8_t at;
 
     if ((f->id & CO_FRAME_EFF) != 0U) {
         return; /* the predefined connection set is 11-bit only */
     }
     cob = (uint16_t)(f->id & 0x7FFU);
     at = node->rx_at[cob >> 7U];
-    if (at == CO_RX_AT_MANY) {
-        at = rx_many(node, cob);
-    }
     if (at == CO_RX_AT_NONE) {
         return; /* not for this node */
+    }
+    if (at == CO_RX_AT_MANY) {
+        rx_many(node, f, cob, now_us);
+        return;
     }
     rx_slot(node, f, cob, at, now_us);
 }

@@ -236,24 +236,6 @@ static co_err_t check_write(const co_node_t *node, uint16_t i, bool is_map, uint
                : CO_OK;
 }
 
-#if !CO_FAST
-static CO_NOINLINE uint32_t time_us(const co_node_t *node, uint16_t off, uint32_t unit)
-{
-    return (off == CO_PDO_NONE) ? 0U : co_dict_us(co_ram_u16(node, off), unit);
-}
-
-uint32_t co_pdo_event_us(const co_node_t *node, uint16_t i)
-{
-    return time_us(node, node->dev->pdo[i].event,
-                   (CO_SET(node, pdo.event_timer_unit) == CO_PDO_TIMER_100US) ? 100UL : 1000UL);
-}
-
-uint32_t co_pdo_inhibit_us(const co_node_t *node, uint16_t i)
-{
-    return time_us(node, node->dev->pdo[i].inhibit, 100UL);
-}
-#endif
-
 /* Forget what a PDO was doing (errors stay until correct PDOs resume). */
 static void restart(co_node_t *node, uint16_t i)
 {

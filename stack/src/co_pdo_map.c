@@ -9,6 +9,24 @@
  */
 #include "co_priv.h"
 
+#if !CO_FAST
+static CO_NOINLINE uint32_t time_us(const co_node_t *node, uint16_t off, uint32_t unit)
+{
+    return (off == CO_PDO_NONE) ? 0U : co_dict_us(co_ram_u16(node, off), unit);
+}
+
+uint32_t co_pdo_event_us(const co_node_t *node, uint16_t i)
+{
+    return time_us(node, node->dev->pdo[i].event,
+                   (CO_SET(node, pdo.event_timer_unit) == CO_PDO_TIMER_100US) ? 100UL : 1000UL);
+}
+
+uint32_t co_pdo_inhibit_us(const co_node_t *node, uint16_t i)
+{
+    return time_us(node, node->dev->pdo[i].inhibit, 100UL);
+}
+#endif
+
 /* @p n bits at bit @p spos of @p src to bit @p dpos of @p dst (little-endian
  * bit strings); whole bytes at byte boundaries at once. */
 static void bits_copy(uint8_t *dst, uint16_t dpos, const uint8_t *src, uint16_t spos, uint8_t n)

@@ -767,7 +767,7 @@ CO_INLINE void co_pdo_store_direct(co_node_t *node, uint16_t i, const uint8_t *d
 }
 
 /* Event timer of PDO i in us (0: off), inhibit time of TPDO i in us (0:
- * none): in a build for size one copy each (co_pdo_config.c). */
+ * none): in a build for size one copy each (co_pdo_map.c). */
 #if CO_FAST
 CO_INLINE uint32_t co_pdo_event_us(const co_node_t *node, uint16_t i)
 {

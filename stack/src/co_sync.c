@@ -83,8 +83,8 @@ static void sync_rx(co_node_t *node, const co_frame_t *f)
         co_emcy_raise(node, CO_EMCY_SYNC_LENGTH, CO_ERREG_COMM, NULL);
         return;
     }
-    if ((node->emcy.n_active != 0U) && co_emcy_is_active(node, CO_EMCY_SYNC_LENGTH)) {
-        co_emcy_clear(node, CO_EMCY_SYNC_LENGTH);
+    if (node->emcy.n_active != 0U) {
+        co_emcy_clear(node, CO_EMCY_SYNC_LENGTH); /* (nothing if it is not active) */
     }
     on_sync(node, (want != 0U) ? f->data[0] : 0U);
 }

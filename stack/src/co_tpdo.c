@@ -26,8 +26,9 @@ CO_HOT void build(co_node_t *node, uint16_t i, uint8_t *out)
 }
 
 /* Send @p data (8 bytes, zero beyond the mapping) now, or not at all. An
- * event-driven TPDO (254/255) restarts its inhibit time and event timer. */
-CO_HOT bool send(co_node_t *node, uint16_t i, const uint8_t *data)
+ * event-driven TPDO (254/255, @p event) restarts its inhibit time and event
+ * timer. */
+CO_HOT bool send(co_node_t *node, uint16_t i, const uint8_t *data, bool event)
 {
     co_pdo_t *p = &node->pdo.p[i];
     co_frame_t f;
@@ -42,7 +43,7 @@ CO_HOT bool send(co_node_t *node, uint16_t i, const uint8_t *data)
         (void)memcpy(p->data, data, 8U);
     }
     p->flags |= CO_PDO_F_SENT;
-    if (co_pdo_type(node, i) >= 254U) {
+    if (event) {
         /* the event timer and the inhibit time start now (times of 0 end at
          * once: event_timers) */
         p->at = node->now;
@@ -53,20 +54,30 @@ CO_HOT bool send(co_node_t *node, uint16_t i, const uint8_t *data)
 }
 
 /* Synchronous send: sampled now, sent now or, if the TX path is full, while
- * the synchronous window stays open. */
+ * the synchronous window stays open. A build for speed samples straight
+ * into the frame; a build for size sends through send(). */
 static void send_sync(co_node_t *node, uint16_t i)
 {
     co_pdo_t *p = &node->pdo.p[i];
+    bool sent;
+#if CO_FAST
     co_frame_t f;
 
-    build(node, i, f.data); /* sampled straight into the frame */
+    build(node, i, f.data);
     f.id = co_pdo_cob(node, i) & 0x7FFUL;
     f.dlc = p->len;
     (void)memcpy(p->data, f.data, 8U);
     p->flags &= (uint16_t)~CO_PDO_F_EVENT;
-    if (co_tx_now(node, &f)) {
+    sent = co_tx_now(node, &f);
+    if (sent) {
         p->flags |= CO_PDO_F_SENT;
-    } else {
+    }
+#else
+    build(node, i, p->data);
+    p->flags &= (uint16_t)~CO_PDO_F_EVENT;
+    sent = send(node, i, p->data, false);
+#endif
+    if (!sent) {
         p->flags |= CO_PDO_F_SYNC_PEND;
         co_svc_touch(node, CO_ROW_PDO); /* retried while the window is open */
     }
@@ -130,10 +141,10 @@ static bool answer_rtr(co_node_t *node, uint16_t i)
     uint8_t now[8];
 
     if ((type == 252U) && ((p->flags & CO_PDO_F_SAMPLED) != 0U)) {
-        return send(node, i, p->data);
+        return send(node, i, p->data, false);
     }
     build(node, i, now);
-    return send(node, i, now);
+    return send(node, i, now, type >= 254U);
 }
 
 void co_tpdo_rtr(co_node_t *node, uint16_t i)
@@ -188,7 +199,7 @@ CO_INLINE uint32_t event_due(co_node_t *node, uint16_t i, uint32_t inh, uint32_t
 
     if ((p->flags & CO_PDO_F_INHIBIT) != 0U) {
         at = co_deadline_min(node->now, next, p->at + inh);
-    } else if (!send(node, i, now)) {
+    } else if (!send(node, i, now, true)) {
         at = co_deadline_min(node->now, next, node->now + RETRY_US);
     } else {
         /* sent */
@@ -302,7 +313,7 @@ CO_HOT uint32_t at_process(co_node_t *node, uint16_t i, uint8_t type, uint32_t n
 #endif
     if ((p->flags & CO_PDO_F_SYNC_PEND) != 0U) {
         /* CiA 301: synchronous PDOs outside the window are not sent */
-        if (!co_sync_window(node) || send(node, i, p->data)) {
+        if (!co_sync_window(node) || send(node, i, p->data, false)) {
             p->flags &= (uint16_t)~CO_PDO_F_SYNC_PEND;
         } else {
             next = co_deadline_min(node->now, next, node->now + RETRY_US);

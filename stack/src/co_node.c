@@ -172,7 +172,6 @@ void co_rx_rebuild(co_node_t *node)
 {
     node->rx_dirty = 0U;
     node->n_rx = 0U;
-    node->pdo.n_rx = 0U;
     (void)memset(node->rx_at, (int)CO_RX_AT_NONE, sizeof node->rx_at);
     services_walk(node, true, 0U);
     if (CO_CB(node, rx_set) != NULL) {
@@ -180,20 +179,34 @@ void co_rx_rebuild(co_node_t *node)
     }
 }
 
+/* The PDOs that may receive (co_pdo_rx_cob), none while the PDO service
+ * does not run (an unconfigured node). */
+static uint16_t pdo_n_rx(const co_node_t *node)
+{
+    return (node->node_id != CO_NODE_ID_UNCONFIGURED) ? co_pdo_n_rx(node) : 0U;
+}
+
 bool co_node_rx_cob(const co_node_t *node, uint16_t i, uint16_t *cob)
 {
-    bool found = false;
+    uint16_t k = node->n_rx;
 
-    if (i < node->n_rx) {
+    if (i < k) {
         *cob = (uint16_t)(node->rx[i] & 0x7FFU);
-        found = true;
-    } else if ((uint16_t)(i - node->n_rx) < node->pdo.n_rx) {
-        *cob = node->pdo.rx[i - node->n_rx].cob;
-        found = true;
-    } else {
-        /* past the last */
+        return true;
     }
-    return found;
+    /* then the PDOs that receive one */
+    for (uint16_t p = 0U; p < pdo_n_rx(node); p++) {
+        uint16_t id = co_pdo_rx_cob(node, p);
+        if (id == CO_PDO_RX_NONE) {
+            continue;
+        }
+        if (k == i) {
+            *cob = id;
+            return true;
+        }
+        k++;
+    }
+    return false;
 }
 
 /* The frame to the service of the slot @p at says (a CO_RX_AT_* code,
@@ -217,12 +230,12 @@ CO_HOT void rx_slot(co_node_t *node, const co_frame_t *f, uint16_t cob, uint16_t
             co_svc_touch(node, kind);
         }
     } else {
-        const co_pdo_slot_t *ps = &node->pdo.rx[at - CO_RX_AT_PDO];
-        if (ps->cob != cob) {
+        uint16_t i = (uint16_t)(at - CO_RX_AT_PDO);
+        if (co_pdo_rx_cob(node, i) != cob) {
             return;
         }
         co_node_clock(node, now_us);
-        co_svc_pdo.rx(node, ps->pdo, f); /* (known: called directly) */
+        co_svc_pdo.rx(node, i, f); /* (known: called directly) */
         return;
     }
     co_node_clock(node, now_us);
@@ -241,8 +254,8 @@ CO_NOINLINE static void rx_many(co_node_t *node, const co_frame_t *f, uint16_t c
             return;
         }
     }
-    for (uint16_t k = 0U; k < node->pdo.n_rx; k++) {
-        if (node->pdo.rx[k].cob == cob) {
+    for (uint16_t k = 0U; k < pdo_n_rx(node); k++) {
+        if (co_pdo_rx_cob(node, k) == cob) {
             rx_slot(node, f, cob, (uint16_t)(CO_RX_AT_PDO + k), now_us);
             return;
         }
@@ -597,7 +610,7 @@ co_result_t co_node_init(co_node_t *node, const co_node_config_t *cfg, uint32_t 
         return CO_RESULT_BAD_CONFIG;
     }
     if (((cfg->dev->n_rpdo + cfg->dev->n_tpdo) != 0U) &&
-        ((cfg->dev->pdo == NULL) || (cfg->pdo == NULL) || (cfg->pdo_rx == NULL))) {
+        ((cfg->dev->pdo == NULL) || (cfg->pdo == NULL))) {
         return CO_RESULT_BAD_CONFIG;
     }
     id = (cfg->dev->set.lss.node_id == CO_LSS_ID_ONLY) ? CO_NODE_ID_UNCONFIGURED : cfg->node_id;
@@ -619,7 +632,6 @@ co_result_t co_node_init(co_node_t *node, const co_node_config_t *cfg, uint32_t 
     node->cob_base = id;
     node->sdo.timeout_us = (cfg->sdo_timeout_us != 0U) ? cfg->sdo_timeout_us : 1000000UL;
     node->pdo.p = cfg->pdo;
-    node->pdo.rx = cfg->pdo_rx;
     node->now = now_us;
     node->svc_run = CO_SVC_ALL;
     r = bind_services(node); /* LSS first: an LSS-stored node-ID replaces cfg->node_id */

@@ -294,29 +294,18 @@ static void pdo_nmt(co_node_t *node, co_nmt_state_t from)
 
 static void pdo_rx_slots(co_node_t *node, uint8_t svc)
 {
-    /* TPDOs are received only for their remote requests */
-    uint16_t n = (uint16_t)(node->dev->n_rpdo + (CO_PDO_RTR ? node->dev->n_tpdo : 0U));
-    uint16_t used = 0U;
-
-    (void)svc; /* (no PDO table: no PDOs, co_node_init) */
-    for (uint16_t i = 0U; i < n; i++) {
-        uint32_t cob = co_pdo_cob(node, i);
-        uint16_t id = (uint16_t)(cob & 0x7FFU);
-        if (((cob & CO_PDO_COB_INVALID) != 0U) ||
-            (is_tpdo(node, i) && (!CO_PDO_RTR || ((cob & CO_PDO_COB_NO_RTR) != 0U)))) {
-            continue; /* not received: invalid, or a TPDO that answers no RTR */
+    (void)svc; /* (PDO frames go to the PDO service directly: co_node_rx) */
+    for (uint16_t i = 0U; i < co_pdo_n_rx(node); i++) {
+        uint16_t id = co_pdo_rx_cob(node, i);
+        if (id != CO_PDO_RX_NONE) {
+            co_rx_accept(node, id,
+                         (i < (CO_RX_AT_MANY - CO_RX_AT_PDO)) ? (uint8_t)(CO_RX_AT_PDO + i)
+                                                              : CO_RX_AT_MANY);
         }
-        node->pdo.rx[used].cob = id;
-        node->pdo.rx[used].pdo = i;
-        co_rx_accept(node, id,
-                     (used < (CO_RX_AT_MANY - CO_RX_AT_PDO)) ? (uint8_t)(CO_RX_AT_PDO + used)
-                                                             : CO_RX_AT_MANY);
-        used++;
     }
-    node->pdo.n_rx = used;
 }
 
-/* A frame on the COB-ID of PDO @p i (the node's PDO table, co_node_rx). */
+/* A frame on the COB-ID of PDO @p i (co_node_rx). */
 static void pdo_rx(co_node_t *node, uint16_t i, const co_frame_t *f)
 {
 #if CO_PDO_RTR

@@ -235,9 +235,10 @@ void co_rx_add(co_node_t *node, uint16_t cob, uint8_t svc);
 /* co_node_t.rx: the service's row above the COB-ID */
 #define CO_RX_ROW_SHIFT 11U
 /* co_node_t.rx_at, per function code (COB-ID >> 7): no slot, the only
- * slot (the node's rx[k]: 1 + k, at most CO_RX_SLOTS_MAX; the PDO table's
- * pdo.rx[k]: CO_RX_AT_PDO + k), or several (CO_RX_AT_MANY: a search of both
- * tables, also for a slot whose index does not fit). */
+ * slot (the node's rx[k]: 1 + k, at most CO_RX_SLOTS_MAX; PDO i, which
+ * receives co_pdo_rx_cob: CO_RX_AT_PDO + i), or several (CO_RX_AT_MANY: a
+ * search of the node's slots and the PDOs, also for a PDO whose index does
+ * not fit). */
 #define CO_RX_AT_NONE 0x00U
 #define CO_RX_AT_PDO  0x80U
 #define CO_RX_AT_MANY 0xFFU
@@ -613,6 +614,27 @@ CO_INLINE uint32_t co_pdo_cob(const co_node_t *node, uint16_t i)
 CO_INLINE uint8_t co_pdo_type(const co_node_t *node, uint16_t i)
 {
     return co_ram_u8(node, node->dev->pdo[i].type);
+}
+
+/* The PDOs the receive table covers: the RPDOs, and with CO_PDO_RTR the
+ * TPDOs (their remote requests). */
+CO_INLINE uint16_t co_pdo_n_rx(const co_node_t *node)
+{
+    return (uint16_t)(node->dev->n_rpdo + (CO_PDO_RTR ? node->dev->n_tpdo : 0U));
+}
+
+/* The CAN-ID PDO i receives (of those co_pdo_n_rx covers), CO_PDO_RX_NONE
+ * when it receives none: invalid, or a TPDO that answers no RTR. */
+#define CO_PDO_RX_NONE 0xFFFFU
+CO_INLINE uint16_t co_pdo_rx_cob(const co_node_t *node, uint16_t i)
+{
+    uint32_t cob = co_pdo_cob(node, i);
+
+    if (((cob & CO_PDO_COB_INVALID) != 0U) ||
+        (CO_PDO_RTR && (i >= node->dev->n_rpdo) && ((cob & CO_PDO_COB_NO_RTR) != 0U))) {
+        return CO_PDO_RX_NONE;
+    }
+    return (uint16_t)(cob & 0x7FFU);
 }
 
 /* Valid COB-ID and an enabled, valid mapping. */

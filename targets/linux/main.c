@@ -38,7 +38,6 @@ typedef struct dnode {
     void *ram;
     co_od_hook_t *hooks;
     co_pdo_t *pdo;          /* the device's RPDOs then TPDOs */
-    co_pdo_slot_t *pdo_rx;
     void *mem;              /* the device's instances, plants and plug-in state */
     co_lx_port_t port;
     co_lx_nv_t nv;
@@ -228,11 +227,9 @@ static int start_node(dnode_t *d, const opt_node_t *spec, const char *iface)
     {
         size_t n_pdo = (size_t)d->dev->dev->n_rpdo + d->dev->dev->n_tpdo;
         d->pdo = (co_pdo_t *)calloc((n_pdo != 0U) ? n_pdo : 1U, sizeof *d->pdo);
-        d->pdo_rx = (co_pdo_slot_t *)calloc((n_pdo != 0U) ? n_pdo : 1U, sizeof *d->pdo_rx);
     }
     d->mem = calloc(1U, (mem_size != 0U) ? mem_size : 1U);
-    if ((d->ram == NULL) || (d->hooks == NULL) || (d->mem == NULL) || (d->pdo == NULL) ||
-        (d->pdo_rx == NULL)) {
+    if ((d->ram == NULL) || (d->hooks == NULL) || (d->mem == NULL) || (d->pdo == NULL)) {
         log_line(d->tag, CO_LX_ERROR, "out of memory");
         return -1;
     }
@@ -258,7 +255,6 @@ static int start_node(dnode_t *d, const opt_node_t *spec, const char *iface)
     cfg.ram = d->ram;
     cfg.hooks = d->hooks;
     cfg.pdo = d->pdo;
-    cfg.pdo_rx = d->pdo_rx;
     (void)memset(&app, 0, sizeof app);
     app.ctx = d;
     app.nmt_state = cb_nmt_state;
@@ -307,7 +303,6 @@ static void stop_node(dnode_t *d)
     free(d->ram);
     free(d->hooks);
     free(d->pdo);
-    free(d->pdo_rx);
     free(d->mem);
     dev_eds_close(&d->eds);
 }

@@ -8,10 +8,8 @@
 #include "size_dev.h"
 
 #define PROBE(name, size) char name[size]
-PROBE(probe_core, sizeof(co_node_t) + sizeof(((size_dev_node_t *)0)->pdo) +
-                      sizeof(((size_dev_node_t *)0)->pdo_rx));
+PROBE(probe_core, sizeof(co_node_t) + sizeof(((size_dev_node_t *)0)->pdo));
 /* the RAM image and the hook table (a node of a device without hooks has none) */
 PROBE(probe_dict, sizeof(size_dev_node_t) - offsetof(size_dev_node_t, ram) -
-                      sizeof(((size_dev_node_t *)0)->pdo) -
-                      sizeof(((size_dev_node_t *)0)->pdo_rx));
+                      sizeof(((size_dev_node_t *)0)->pdo));
 PROBE(probe_node, sizeof(size_dev_node_t));

@@ -68,7 +68,6 @@ typedef struct fx {
     co_node_t node;
     void *ram;
     co_pdo_t pdo[4];
-    co_pdo_slot_t slot[4];
 } fx_t;
 
 static int setup(void **state)
@@ -89,7 +88,6 @@ static int setup(void **state)
     cfg.node_id = 5U;
     cfg.ram = f->ram;
     cfg.pdo = f->pdo;
-    cfg.pdo_rx = f->slot;
     assert_int_equal(co_node_init(&f->node, &cfg, 0U), CO_RESULT_OK);
     tb_attach(&f->bus, 0U, &f->node);
     tb_expect(&f->bus, "705 00");

@@ -258,7 +258,6 @@ def generate(dev: Device, toml_name: str, warn=None) -> tuple[str, str]:
           f"    {cn}_ram_t ram;",
           *([f"    co_od_hook_t hooks[{n_hooks}U];"] if n_hooks else []),
           f"    co_pdo_t pdo[{max(n_pdo_h, 1)}U];",
-          f"    co_pdo_slot_t pdo_rx[CO_PDO_RX_SLOTS({len(pdos_h[0])}U, {len(pdos_h[1])}U)];",
           f"}} {cn}_node_t;", "",
           "/** Zero @p cfg and point it at the device, the RAM image and the hook table",
           " *  of @p n; the caller sets hal, node_id and callbacks, then co_node_init(). */",
@@ -480,7 +479,6 @@ def generate(dev: Device, toml_name: str, warn=None) -> tuple[str, str]:
           "    cfg->ram = &n->ram;",
           f"    cfg->hooks = {'n->hooks' if n_hooks else 'NULL'}; /* {n_hooks} hook slots */",
           "    cfg->pdo = n->pdo;",
-          "    cfg->pdo_rx = n->pdo_rx;",
           "}", ""]
     return "\n".join(h), "\n".join(c)
 

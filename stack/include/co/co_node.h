@@ -195,7 +195,6 @@ typedef struct co_node_config {
     const co_node_callbacks_t *cb;
     uint32_t sdo_timeout_us;       /**< 0: 1 s */
     co_pdo_t *pdo;                 /**< dev->n_rpdo + dev->n_tpdo elements */
-    co_pdo_slot_t *pdo_rx;         /**< CO_PDO_RX_SLOTS(dev->n_rpdo, dev->n_tpdo) elements */
 } co_node_config_t;
 
 /** Node-ID of an unconfigured node (CiA 305): it sends nothing and answers
@@ -318,8 +317,6 @@ typedef struct co_time {
 /** PDO (co_pdo_config.c, co_rpdo.c, co_tpdo.c). */
 typedef struct co_pdo_svc {
     co_pdo_t *p;             /**< dev->n_rpdo + dev->n_tpdo */
-    co_pdo_slot_t *rx;       /**< the COB-IDs the PDOs receive (n_rx) */
-    uint16_t n_rx;
     uint8_t buffered;        /**< some RPDO may hold data for the next SYNC */
     uint8_t poll;            /**< 1: event-driven TPDOs compare their data at every
                                   co_node_process (change detection) */

@@ -1,8 +1,8 @@
 /*
  * PDO types. A device's PDOs are described by a const table the generator
  * makes (where each PDO's parameters live in the node's RAM image); the
- * runtime state is two caller-allocated arrays of n_rpdo + n_tpdo elements
- * (the generated <device>_node_t holds them). Included by co_node.h.
+ * runtime state is a caller-allocated array of n_rpdo + n_tpdo elements
+ * (the generated <device>_node_t holds it). Included by co_node.h.
  */
 #ifndef CO_PDO_H
 #define CO_PDO_H
@@ -41,18 +41,5 @@ typedef struct co_pdo {
                            entry is a plain value (copied directly, whole, byte-aligned) */
 #endif
 } co_pdo_t;
-
-/** Elements of the PDO receive table (co_node_config_t.pdo_rx) of a device
- *  with @p n_rpdo RPDOs and @p n_tpdo TPDOs: its RPDOs, and its TPDOs only
- *  for their remote requests (CO_PDO_RTR); at least one. */
-#define CO_PDO_RX_SLOTS(n_rpdo, n_tpdo) \
-    ((((n_rpdo) + (CO_PDO_RTR ? (n_tpdo) : 0U)) != 0U) ? \
-         ((n_rpdo) + (CO_PDO_RTR ? (n_tpdo) : 0U)) : 1U)
-
-/** Receive-table entry of a PDO COB-ID (private to the core). */
-typedef struct co_pdo_slot {
-    uint16_t cob;
-    uint16_t pdo;     /**< index into the PDO arrays */
-} co_pdo_slot_t;
 
 #endif /* CO_PDO_H */

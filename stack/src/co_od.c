@@ -107,7 +107,9 @@ co_err_t co_od_lookup(const co_node_t *node, uint16_t index, uint8_t sub,
 static co_err_t check_access(const co_node_t *node, const co_od_sub_t *s, bool write)
 {
     if (write) {
-        if (((s->flags & CO_SUB_W) == 0U) || ((s->flags & (CO_SUB_CONST | CO_SUB_ROM)) != 0U)) {
+        /* (a writable const, CO_SUB_ROM | CO_SUB_W, is a command a service
+         * takes: 0x1010 / 0x1011 without storage, co_store_is_command) */
+        if ((s->flags & (CO_SUB_W | CO_SUB_CONST)) != CO_SUB_W) {
             return (CO_SET(node, sdo.read_only) == CO_SDO_ABORT_NO_ACCESS) ? CO_ERR_NO_ACCESS
                                                                         : CO_ERR_READ_ONLY;
         }
@@ -603,8 +605,8 @@ co_err_t co_od_write(co_node_t *node, uint16_t index, uint8_t sub, const void *d
     if ((err == CO_OK) && !as_app) {
         err = check_access(node, s, true);
     }
-    if ((err == CO_OK) && as_app && ((s->flags & CO_SUB_ROM) != 0U)) {
-        err = CO_ERR_READ_ONLY;
+    if ((err == CO_OK) && as_app && ((s->flags & (CO_SUB_ROM | CO_SUB_W)) == CO_SUB_ROM)) {
+        err = CO_ERR_READ_ONLY; /* (a writable const is a command: check_access) */
     }
     if (err == CO_OK) {
         if (co_od_is_streamed(s) && ((s->flags & CO_SUB_HOOKIO) != 0U)) {

@@ -521,7 +521,8 @@ static inline bool co_lss_enabled(const co_node_t *node)
  * unconfigured state with CO_LSS_COBS_KEEP; co_store.c). */
 void co_store_forget_comm(co_node_t *node);
 /* True for a sub-entry of 0x1010 / 0x1011 the core acts on (sub >= 1,
- * UNSIGNED32 in RAM): a write saves or restores, the value is never stored. */
+ * UNSIGNED32 in RAM, or a writable const: CO_SUB_ROM | CO_SUB_W): a write
+ * saves or restores, the value is never stored. */
 bool co_store_is_command(const co_od_entry_t *e, const co_od_sub_t *s);
 /* co_store_result: the result of the last command, once co_store_busy() is
  * false (an asynchronous HAL: the SDO server answers with it).

@@ -401,11 +401,15 @@ bool co_store_busy(const co_node_t *node)
 }
 #endif
 
+/* (a command's value is in RAM, or a writable const: its writes never
+ * store, co_store_obj takes them) */
 bool co_store_is_command(const co_od_entry_t *e, const co_od_sub_t *s)
 {
+    uint32_t where = s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO | CO_SUB_W);
+
     return ((e->index == 0x1010U) || (e->index == 0x1011U)) && (s->sub != 0U) &&
-           (s->type == (uint8_t)CO_UNSIGNED32) &&
-           ((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) == 0U);
+           (s->type == (uint8_t)CO_UNSIGNED32) && ((where & CO_SUB_HOOKIO) == 0U) &&
+           (where != CO_SUB_ROM);
 }
 
 #if CO_STORAGE
@@ -493,22 +497,20 @@ static void store_reset(co_node_t *node, uint8_t kind)
          * EMCY 0x5530, 0x1001, 0x1003 */
         node->store.damaged = damaged ? 1U : 0U;
     }
-#endif
-    /* What 0x1010 / 0x1011 read: the capability, whatever was written
-     * (without CO_STORAGE none: 0). */
+    /* What 0x1010 / 0x1011 read: the capability, whatever was written.
+     * (Without CO_STORAGE they read 0: a value in RAM is never written and
+     * co_od_restore zeroed it, or a const 0, odgen's choice for such a build.) */
     for (uint16_t index = 0x1010U; index <= 0x1011U; index++) {
         const co_od_entry_t *e = co_od_find(dev->od, dev->od_count, index);
         for (uint8_t k = 0U; (e != NULL) && (k < e->nsubs); k++) {
-            if (co_store_is_command(e, &e->subs[k])) {
-#if CO_STORAGE
-                uint32_t v = (e->subs[k].sub <= last_sub(node, index)) ? cap : 0U;
-#else
-                uint32_t v = 0U;
-#endif
-                (void)memcpy(&node->ram[co_od_off(e, &e->subs[k])], (const uint8_t *)&v, 4U);
+            const co_od_sub_t *s = &e->subs[k];
+            if (co_store_is_command(e, s) && ((s->flags & CO_SUB_ROM) == 0U)) {
+                uint32_t v = (s->sub <= last_sub(node, index)) ? cap : 0U;
+                (void)memcpy(&node->ram[co_od_off(e, s)], (const uint8_t *)&v, 4U);
             }
         }
     }
+#endif
 }
 
 /* ------------------------------------------------------------ service */

@@ -102,3 +102,22 @@ def test_tpdo_rtr(tmp_path: Path) -> None:
     assert "TPDO transmission type 252/253 (0x1800) needs CO_PDO_RTR=1" in r.stderr
     assert run_odgen(rtr, out, "--c", "--build=").returncode == 0
     assert run_odgen(LEAN, out, "--c", "--build=CO_PDO_RTR=0").returncode == 0
+
+
+def test_store_commands_without_storage(tmp_path: Path) -> None:
+    # a core without CO_STORAGE: the commands of 0x1010 / 0x1011 read 0
+    # whatever is written, so they take no RAM: one writable const 0 all of
+    # them name, and the two objects share one table; with storage each has
+    # its RAM value (the capability the store service sets at every reset)
+    seg = ROOT / "tests" / "perf" / "size-seg.toml"
+    lean, full = tmp_path / "lean", tmp_path / "full"
+    assert run_odgen(seg, lean, "--c", "--base", "d",
+                     "--build=CO_STORAGE=0,CO_PERSONALITY=0,CO_SDO_BLOCK=0").returncode == 0
+    assert run_odgen(seg, full, "--c", "--base", "d", "--build=CO_STORAGE=1").returncode == 0
+    h, c = (lean / "d.h").read_text(), (lean / "d.c").read_text()
+    assert "x1010_store_parameters" not in h and "x1011_restore" not in h
+    assert c.count("(uint16_t)(CO_SUB_R | CO_SUB_W | CO_SUB_ROM), 4U, R(store_command_none)") == 4
+    assert "CO_OD_ENTRY(0x1011U, 5U, 0U, (uint8_t)CO_OBJ_ARRAY, s1010)" in c
+    h = (full / "d.h").read_text()
+    assert "uint32_t x1010_store_parameters[4];" in h and "x1011_restore" in h
+    assert "store_command_none" not in (full / "d.c").read_text()

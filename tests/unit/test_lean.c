@@ -62,6 +62,20 @@ static void storage_left_out(void **state)
     tb_xfer(BUS, "601 23 11 10 01 6C 6F 61 64", "581 80 11 10 01 20 00 00 08");
     assert_int_equal(bus.nv_written, 0U);
     tb_expect_none(BUS);
+    {
+        /* the commands need no RAM in such a build: one writable const 0
+         * (odgen), whose writes the store service refuses, the
+         * application's as well; the sub-index 0 stays read-only */
+        static const uint8_t save[4] = {0x73U, 0x61U, 0x76U, 0x65U};
+        const co_od_entry_t *st = co_od_find(lean_test_dev.od, lean_test_dev.od_count, 0x1010U);
+        assert_non_null(st);
+        assert_int_equal(st->subs[1].flags & (CO_SUB_ROM | CO_SUB_W), CO_SUB_ROM | CO_SUB_W);
+        assert_null(co_od_value_ptr(&lean.node, 0x1011U, 2U));
+        assert_int_equal(co_od_write(&lean.node, 0x1010U, 1U, save, 4U, true), CO_ERR_STORE);
+        assert_int_equal(co_od_write(&lean.node, 0x1010U, 0U, save, 1U, true), CO_ERR_READ_ONLY);
+        tb_xfer(BUS, "601 2F 10 10 00 01 00 00 00", "581 80 10 10 00 02 00 01 06");
+        tb_xfer(BUS, "601 40 10 10 03 00 00 00 00", "581 43 10 10 03 00 00 00 00");
+    }
 }
 
 static void services_kept(void **state)

@@ -9,6 +9,7 @@ by index/sub-index. Offsets are left to the C compiler (offsetof).
 """
 from __future__ import annotations
 
+import copy
 import struct
 from dataclasses import dataclass, field
 
@@ -58,7 +59,9 @@ def build_fields(dev: Device) -> list[Field]:
             if s.field in fields:
                 f = fields[s.field]
                 f.subs.append(s)
-                f.dims[0] += 1
+                if f.dims:
+                    f.dims[0] += 1
+                # (else one value several sub-entries read: STORE_CONST)
                 f.size += s.size
                 continue
             ctype, dims, align = scalar_ctype(s)
@@ -154,6 +157,23 @@ def store_command(s: Sub) -> bool:
         not s.rom and not s.hookio
 
 
+# Without storage (a core built with CO_STORAGE=0) the commands of 0x1010 /
+# 0x1011 read 0 whatever is written (the store service refuses them): they
+# need no RAM, all read this one const 0, writable (CO_SUB_ROM | CO_SUB_W:
+# the store service takes the writes, co_store_is_command).
+STORE_CONST = "store_command_none"
+
+
+def commands_const(dev: Device) -> Device:
+    """@p dev with its store commands (store_command) as one const 0."""
+    dev = copy.deepcopy(dev)
+    for o in dev.objects:
+        for s in o.subs:
+            if store_command(s):
+                s.rom, s.field, s.elem, s.default, s.nodeid = True, STORE_CONST, -1, None, False
+    return dev
+
+
 def field_init(f: Field) -> str | None:
     if f.dims and f.subs[0].elem == 0:
         vals = [c_value(s) for s in f.subs]
@@ -183,7 +203,11 @@ def comment(text: str) -> str:
 
 # ------------------------------------------------------------ emitters
 
-def generate(dev: Device, toml_name: str, warn=None) -> tuple[str, str]:
+def generate(dev: Device, toml_name: str, warn=None, storage: bool = True) -> tuple[str, str]:
+    """The C dictionary (.h, .c); @p storage: the core is built with
+    CO_STORAGE (without it the store commands need no RAM)."""
+    if not storage:
+        dev = commands_const(dev)
     cn = dev.cname
     up = cn.upper()
     fields = build_fields(dev)
@@ -379,7 +403,9 @@ def generate(dev: Device, toml_name: str, warn=None) -> tuple[str, str]:
             continue    # the table of the first PDO of its shape
         c.append(f"/* 0x{o.index:04X} {comment(o.name)} ({o.code})" +
                  (f", its RAM offsets from F({sh[1]}): the table of every PDO of this shape"
-                  if sh is not None else "") + " */")
+                  if sh is not None and sh[1] is not None else
+                  ": the table of every object of these const values" if sh is not None
+                  else "") + " */")
         c.append(f"static const co_od_sub_t s{o.index:04X}[] = {{")
         for s in o.subs:
             if s.hookio:
@@ -399,9 +425,9 @@ def generate(dev: Device, toml_name: str, warn=None) -> tuple[str, str]:
     for o in dev.objects:
         hook = f"{o.hook_slot + 1}U" if o.hook else "0U"
         sh = share.get(o.index)
-        if sh is None:
+        if sh is None or sh[1] is None:
             c.append(f"    CO_OD_ENTRY(0x{o.index:04X}U, {len(o.subs)}U, {hook}, "
-                     f"(uint8_t)CO_OBJ_{o.code}, s{o.index:04X}),")
+                     f"(uint8_t)CO_OBJ_{o.code}, s{(sh or (o.index,))[0]:04X}),")
         else:
             c.append(f"    CO_OD_ENTRY_AT(0x{o.index:04X}U, {len(o.subs)}U, {hook}, "
                      f"(uint8_t)CO_OBJ_{o.code}, s{sh[0]:04X}, F({sh[1]})),")
@@ -552,11 +578,15 @@ def shared_tables(dev: Device, ram: list[Field]):
     first: dict = {}
     for o in dev.objects:
         names = {s.field for s in o.subs if s.field and not s.rom and not s.hookio}
-        if not names or any(owners[n] != {o.index} or n not in by_name for n in names):
+        if not names and not all(s.rom for s in o.subs):
+            continue
+        if any(owners[n] != {o.index} or n not in by_name for n in names):
             continue
         if len(names) > 1 and any(by_name[n].align > 4 for n in names):
             continue   # an 8-byte value's alignment differs between ABIs
-        base = min(names, key=lambda n: at[n])
+        # (const values only: the table is the same for every such object,
+        # base None: 0)
+        base = min(names, key=lambda n: at[n]) if names else None
 
         def rel(s):
             return at[s.field] + max(s.elem, 0) * s.size - at[base]
@@ -569,7 +599,7 @@ def shared_tables(dev: Device, ram: list[Field]):
             continue
         lead = first[sig]
         lead_base = min((s.field for s in lead.subs if s.field and not s.rom and not s.hookio),
-                        key=lambda n: at[n])
+                        key=lambda n: at[n], default=None)
         share[lead.index] = (lead.index, lead_base)
         share[o.index] = (lead.index, base)
         same.append((o, lead))

@@ -68,8 +68,11 @@ def main(argv: list[str] | None = None) -> int:
         out = Path(args.out)
         products = {}
         if every or args.c:
+            cfg = build.defaults()
+            cfg.update(opts)
             h, c = gen_c.generate(
-                dev, name, lambda msg: print(f"{src}: warning: {msg}", file=sys.stderr))
+                dev, name, lambda msg: print(f"{src}: warning: {msg}", file=sys.stderr),
+                storage=cfg.get("CO_STORAGE", 1) != 0)
             products[f"{dev.cname}.h"] = h
             products[f"{dev.cname}.c"] = c
         if every or args.eds:

@@ -186,15 +186,6 @@ static void touch_owner(co_node_t *node, const co_svc_hook_t *h)
     }
 }
 
-static inline void svc_written(co_node_t *node, const co_svc_hook_t *h, const co_od_entry_t *e,
-                        const co_od_sub_t *s)
-{
-    touch_owner(node, h);
-    if ((h != NULL) && ((h->ops & CO_SVC_WRITTEN) != 0U)) {
-        (void)h->fn(node, CO_SVC_WRITTEN, e, s, NULL, 0U);
-    }
-}
-
 void *co_od_ram_of(co_node_t *node, uint16_t index, uint8_t sub, uint8_t type)
 {
     const co_od_entry_t *e = co_od_find(node->dev->od, node->dev->od_count, index);
@@ -300,8 +291,8 @@ co_err_t co_od_read_part(co_node_t *node, const co_od_entry_t *e, const co_od_su
     if (n > c->cap) {
         n = c->cap;
     }
-    if ((fixed != 0U) && (offset == 0U) && (n == fixed)) {
-        co_to_wire(c->buf, v, fixed); /* the whole value */
+    if ((fixed != 0U) && (offset == 0U) && (n == fixed) && (CO_FAST || !CO_NATIVE_LE)) {
+        co_to_wire(c->buf, v, fixed); /* the whole value (a build for size: the copy below) */
     } else if ((fixed != 0U) && !CO_NATIVE_LE) {
         /* part of a number: from its wire image (on a little-endian CPU
          * the stored bytes are the wire image: the copy below) */
@@ -385,8 +376,10 @@ void co_od_commit(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
 
     if ((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) == 0U) {
         uint8_t *v = &node->ram[(uint16_t)(e->base + s->off)]; /* a RAM value */
-        if (fixed != 0U) {
+        if ((fixed != 0U) && (CO_FAST || !CO_NATIVE_LE)) {
             co_pdo_from_wire(v, data, fixed); /* 1, 2 and 4 bytes without a call */
+        } else if (fixed != 0U) {
+            co_copy(v, data, fixed); /* (a build for size: the wire bytes are the value) */
         } else {
             if (data != v) {
                 /* (a value gathered in place is its own data) */
@@ -449,16 +442,17 @@ CO_HOT co_err_t write_value(co_node_t *node, const co_od_entry_t *e, const co_od
         /* plain stored value */
     }
     if ((ops & CO_SVC_COMMIT) != 0U) {
-        touch_owner(node, sh);
-        return sh->fn(node, CO_SVC_COMMIT, e, s, data, len); /* the service's commit */
-    }
-    if (CO_FAST && (fixed != 0U) && ((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) == 0U)) {
+        err = sh->fn(node, CO_SVC_COMMIT, e, s, data, len); /* the service's commit */
+    } else if (CO_FAST && (fixed != 0U) && ((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) == 0U)) {
         co_pdo_from_wire(&node->ram[(uint16_t)(e->base + s->off)], data, fixed); /* a number: no call */
     } else {
         co_od_commit(node, e, s, data, len);
     }
-    svc_written(node, sh, e, s);
-    return CO_OK;
+    touch_owner(node, sh);
+    if ((ops & (CO_SVC_COMMIT | CO_SVC_WRITTEN)) == CO_SVC_WRITTEN) {
+        (void)sh->fn(node, CO_SVC_WRITTEN, e, s, NULL, 0U); /* (a commit's result is the answer) */
+    }
+    return err;
 }
 
 co_err_t co_od_write_value(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,

@@ -112,7 +112,7 @@ static void sdo_abort(co_node_t *node, uint16_t index, uint8_t sub, co_err_t err
     sdo_reset(node);
 }
 
-SDO_SHARED static void start(co_node_t *node, uint8_t state)
+SDO_CALL static void start(co_node_t *node, uint8_t state)
 {
     node->sdo.state = state;
     node->sdo.deadline = node->now + node->sdo.timeout_us;
@@ -338,13 +338,16 @@ static co_err_t read_seg(co_node_t *node, uint32_t at, uint8_t *buf, uint32_t ca
 static co_err_t initiate_download(co_node_t *node, const uint8_t *d, uint16_t index, uint8_t sub)
 {
     bool size_ind = (d[0] & CO_SDO_SIZE_IND) != 0U;
+    bool expedited = (d[0] & CO_SDO_EXPEDITED) != 0U;
     uint32_t size = co_get_u32(&d[4]);
     const co_od_entry_t *e;
     const co_od_sub_t *s;
     co_err_t err;
 
-    if ((d[0] & CO_SDO_EXPEDITED) != 0U) {
+    if (expedited) {
         size = size_ind ? (4U - ((uint32_t)(d[0] >> 2U) & 3U)) : 0U;
+    }
+    if (expedited && CO_FAST) {
         err = co_od_download(node, index, sub, &d[4], size);
         co_rx_settle(node); /* a COB-ID written: the receive set (the port's filters) */
         if (err == CO_OK) {
@@ -352,12 +355,28 @@ static co_err_t initiate_download(co_node_t *node, const uint8_t *d, uint16_t in
         }
         return err;
     }
-    if (expedited_only(node)) {
+    if (!expedited && expedited_only(node)) {
         return CO_ERR_CMD;
     }
     err = find_for(node, index, sub, true, &e, &s);
     if (err == CO_OK) {
         err = open_download(node, e, s, size_ind, size);
+    }
+    if (expedited) {
+        /* (a build for size: a download of one segment, its data in the
+         * request; the size not indicated: four bytes, or the object's own
+         * size when it is smaller, as co_od_download) */
+        if (err == CO_OK) {
+            uint8_t fixed = co_type_len(s->type);
+            if (size == 0U) {
+                size = ((fixed != 0U) && (fixed < 4U)) ? fixed : 4U;
+            }
+            err = write_chunk(node, &d[4], size, true);
+        }
+        if (err == CO_OK) {
+            download_done(node, CO_SDO_B0(CO_SDO_SCS_DOWNLOAD_INITIATE), index, sub, true);
+        }
+        return err;
     }
     if ((err == CO_OK) && ((CO_SET(node, sdo.refused) & CO_SDO_XFER_SEG_DOWNLOAD) != 0U)) {
         err = CO_ERR_NO_ACCESS; /* the object's own errors come first */

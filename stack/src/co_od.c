@@ -29,6 +29,20 @@ CO_HOT const co_od_entry_t *find(const co_od_entry_t *od, uint32_t count, uint16
     const co_od_entry_t *e = od;
     uint32_t step;
 
+    if (!CO_FAST) {
+        /* (a build for size: the plain search) */
+        uint32_t lo = 0U;
+        uint32_t hi = count;
+        while (lo < hi) {
+            uint32_t mid = (lo + hi) >> 1U;
+            if (od[mid].index < index) {
+                lo = mid + 1U;
+            } else {
+                hi = mid;
+            }
+        }
+        return ((lo < count) && (od[lo].index == index)) ? &od[lo] : NULL;
+    }
     if (count == 0U) {
         return NULL;
     }
@@ -40,10 +54,11 @@ CO_HOT const co_od_entry_t *find(const co_od_entry_t *od, uint32_t count, uint16
     return (e->index == index) ? e : NULL;
 }
 
-/* Arrays and most records are dense: try the direct slot first. */
+/* Arrays and most records are dense: try the direct slot first (a build
+ * for speed). */
 static const co_od_sub_t *find_sub(const co_od_entry_t *e, uint8_t sub)
 {
-    if ((sub < e->nsubs) && (e->subs[sub].sub == sub)) {
+    if (CO_FAST && (sub < e->nsubs) && (e->subs[sub].sub == sub)) {
         return &e->subs[sub];
     }
     for (uint8_t i = 0U; i < e->nsubs; i++) {
@@ -226,42 +241,27 @@ static inline co_od_hook_t *hook_of(const co_node_t *node, const co_od_entry_t *
     return &node->hooks[e->hook - 1U];
 }
 
-CO_NOINLINE static void io_init(co_od_io_t *io, co_node_t *node, const co_od_entry_t *e,
-                                const co_od_sub_t *s)
+/* The entry's application hook, read or (@p write) write, on @p io (the
+ * caller sets offset, buf, len, total and last, this the rest). Without
+ * such a hook: CO_ERR_NO_ACCESS for a value without storage (CO_SUB_HOOKIO:
+ * nothing else produces or takes it), else CO_OK (nothing to do). */
+CO_NOINLINE static co_err_t app_io(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
+                                   bool write, co_od_io_t *io)
 {
-    (void)memset(io, 0, sizeof *io);
+    co_od_hook_t *h = hook_of(node, e);
+    co_err_t (*fn)(void *ctx, co_od_io_t *io) = NULL;
+
+    if (h != NULL) {
+        fn = write ? h->write : h->read;
+    }
+    if (fn == NULL) {
+        return ((s->flags & CO_SUB_HOOKIO) != 0U) ? CO_ERR_NO_ACCESS : CO_OK;
+    }
     io->node = node;
     io->entry = e;
     io->desc = s;
     io->value = co_od_loc(node, e, s);
-}
-
-/* The entry's read hook. With CO_SUB_HOOKIO (@p hookio) it produces the
- * chunk @p c (no hook: no access); for a stored value it runs before the
- * value is read (it may refresh or veto; no hook: nothing to do). */
-CO_NOINLINE static co_err_t read_hook(co_node_t *node, const co_od_entry_t *e,
-                                      const co_od_sub_t *s, co_od_chunk_t *c, bool hookio)
-{
-    co_od_hook_t *h = hook_of(node, e);
-    co_od_io_t io;
-    co_err_t err;
-
-    if ((h == NULL) || (h->read == NULL)) {
-        return hookio ? CO_ERR_NO_ACCESS : CO_OK;
-    }
-    io_init(&io, node, e, s);
-    if (hookio) {
-        io.offset = c->offset;
-        io.buf = c->buf;
-        io.len = c->cap;
-    }
-    err = h->read(h->ctx, &io);
-    if ((err == CO_OK) && hookio) {
-        c->len = (io.len > c->cap) ? c->cap : io.len;
-        c->total = io.total;
-        c->last = io.last;
-    }
-    return err;
+    return fn(h->ctx, io);
 }
 
 co_err_t co_od_read_part(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
@@ -274,12 +274,23 @@ co_err_t co_od_read_part(co_node_t *node, const co_od_entry_t *e, const co_od_su
     uint32_t n;
 
     if ((s->flags & CO_SUB_HOOKIO) != 0U) {
-        return read_hook(node, e, s, c, true);
+        /* the hook produces the chunk */
+        co_od_io_t io = {NULL, NULL, NULL, NULL, offset, c->buf, c->cap, 0U, false};
+        co_err_t err = app_io(node, e, s, false, &io);
+        if (err == CO_OK) {
+            c->len = (io.len > c->cap) ? c->cap : io.len;
+            c->total = io.total;
+            c->last = io.last;
+        }
+        return err;
     }
     if (offset == 0U) {
+        /* before a stored value is read: the owning service's hook, then
+         * the application's (either may refresh it or veto) */
         co_err_t err = svc_read(node, e, s);
         if ((err == CO_OK) && (e->hook != 0U)) {
-            err = read_hook(node, e, s, c, false);
+            co_od_io_t io = {NULL, NULL, NULL, NULL, 0U, NULL, 0U, 0U, false};
+            err = app_io(node, e, s, false, &io);
         }
         if (err != CO_OK) {
             return err;
@@ -395,7 +406,6 @@ void co_od_commit(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
 CO_HOT co_err_t write_value(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
                             const uint8_t *data, uint32_t len)
 {
-    co_od_hook_t *h;
     const co_svc_hook_t *sh;
     co_err_t err;
     uint8_t fixed = co_type_len(s->type);
@@ -424,22 +434,14 @@ CO_HOT co_err_t write_value(co_node_t *node, const co_od_entry_t *e, const co_od
             return err;
         }
     }
-    h = (e->hook != 0U) ? hook_of(node, e) : NULL;
-    if ((h != NULL) && (h->write != NULL)) {
-        co_od_io_t io;
-        io_init(&io, node, e, s);
-        io.buf = (uint8_t *)(uintptr_t)data;
-        io.len = len;
-        io.total = len;
-        io.last = true;
-        err = h->write(h->ctx, &io);
+    if ((e->hook != 0U) || ((s->flags & CO_SUB_HOOKIO) != 0U)) {
+        /* the application's hook with the whole value (none for a value
+         * without storage: no access) */
+        co_od_io_t io = {NULL, NULL, NULL, NULL, 0U, (uint8_t *)(uintptr_t)data, len, len, true};
+        err = app_io(node, e, s, true, &io);
         if (err != CO_OK) {
             return err;
         }
-    } else if ((s->flags & CO_SUB_HOOKIO) != 0U) {
-        return CO_ERR_NO_ACCESS; /* no stored value, no hook to take it */
-    } else {
-        /* plain stored value */
     }
     if ((ops & CO_SVC_COMMIT) != 0U) {
         err = sh->fn(node, CO_SVC_COMMIT, e, s, data, len); /* the service's commit */
@@ -488,21 +490,13 @@ co_err_t co_od_write_part(co_node_t *node, const co_od_entry_t *e, const co_od_s
                           uint32_t offset, const uint8_t *data, uint32_t len, uint32_t total,
                           bool last)
 {
-    co_od_hook_t *h = hook_of(node, e);
-    co_od_io_t io;
     uint8_t *v = (uint8_t *)co_od_loc(node, e, s);
 
     if ((s->flags & CO_SUB_HOOKIO) != 0U) {
-        if ((h == NULL) || (h->write == NULL)) {
-            return CO_ERR_NO_ACCESS;
-        }
-        io_init(&io, node, e, s);
-        io.offset = offset;
-        io.buf = (uint8_t *)(uintptr_t)data;
-        io.len = len;
-        io.total = total;
-        io.last = last;
-        return h->write(h->ctx, &io);
+        /* the hook takes every chunk */
+        co_od_io_t io = {NULL, NULL, NULL, NULL, offset, (uint8_t *)(uintptr_t)data, len, total,
+                         last};
+        return app_io(node, e, s, true, &io);
     }
     if ((v == NULL) || ((s->flags & CO_SUB_ROM) != 0U)) {
         return CO_ERR_NO_ACCESS;

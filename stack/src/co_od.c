@@ -443,6 +443,12 @@ CO_HOT co_err_t write_value(co_node_t *node, const co_od_entry_t *e, const co_od
             return err;
         }
     }
+    if (CO_FAST && ((ops & CO_SVC_COMMIT) != 0U)) {
+        /* (a build for speed: the commit's result returned at once, the
+         * plain write's path below without this case) */
+        touch_owner(node, sh);
+        return sh->fn(node, CO_SVC_COMMIT, e, s, data, len);
+    }
     if ((ops & CO_SVC_COMMIT) != 0U) {
         err = sh->fn(node, CO_SVC_COMMIT, e, s, data, len); /* the service's commit */
     } else if (CO_FAST && (fixed != 0U) && ((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) == 0U)) {

@@ -151,14 +151,12 @@ CO_NOINLINE co_err_t co_od_lookup_for(const co_node_t *node, uint16_t index, uin
     return lookup_for(node, index, sub, write, e, s);
 }
 
-uint32_t co_od_data_size(const co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s)
+/* The current size of the value @p v of @p s: strings up to their first
+ * NUL character, other values their size. */
+static uint32_t data_size(const uint8_t *v, const co_od_sub_t *s)
 {
-    const uint8_t *v = (const uint8_t *)co_od_loc(node, e, s);
     uint32_t n = s->size;
 
-    if (v == NULL) {
-        return 0U;
-    }
     if ((s->type == (uint8_t)CO_VISIBLE_STRING) || (s->type == (uint8_t)CO_UNICODE_STRING)) {
         /* the text ends at the first NUL character: a zero byte, a zero
          * UTF-16 unit (a loop: memchr costs more flash) */
@@ -297,7 +295,7 @@ co_err_t co_od_read_part(co_node_t *node, const co_od_entry_t *e, const co_od_su
         }
     }
     v = (const uint8_t *)co_od_loc(node, e, s);
-    size = (fixed != 0U) ? s->size : co_od_data_size(node, e, s);
+    size = (CO_FAST && (fixed != 0U)) ? s->size : data_size(v, s);
     n = (offset < size) ? (size - offset) : 0U;
     if (n > c->cap) {
         n = c->cap;

@@ -428,8 +428,6 @@ co_err_t co_od_lookup(const co_node_t *node, uint16_t index, uint8_t sub,
  * (@p write) writable (0x06010001 / 0x06010002). */
 co_err_t co_od_lookup_for(const co_node_t *node, uint16_t index, uint8_t sub, bool write,
                           const co_od_entry_t **e, const co_od_sub_t **s);
-/* Current size of the value (strings: up to the first NUL); 0 for HOOKIO. */
-uint32_t co_od_data_size(const co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s);
 bool co_type_is_signed(uint8_t type);
 /* One chunk of a value being read: the caller sets buf, offset and cap;
  * co_od_read_part sets len, total (0 if a hook does not know it) and last. */

@@ -40,7 +40,7 @@ static uint32_t emcy_id(const co_node_t *node)
     uint32_t cob = (node->emcy.cob != NULL) ? *node->emcy.cob : (0x80UL + node->node_id);
 
     if ((node->nmt == (uint8_t)CO_NMT_STOPPED) || ((cob & 0x80000000UL) != 0U) ||
-        (node->node_id == CO_NODE_ID_UNCONFIGURED)) {
+        co_node_unconfigured(node)) {
         cob = 0U;
     }
     return cob & 0x7FFUL;
@@ -51,33 +51,32 @@ static uint32_t inhibit_us(const co_node_t *node)
     return (node->emcy.inhibit != NULL) ? co_dict_us(*node->emcy.inhibit, 100UL) : 0U;
 }
 
-/* Still within the inhibit time of the last EMCY? emcy_next is at most one
- * inhibit time (< 6.6 s) ahead of now while it runs; any other distance is a
- * time in the past, however long ago. (co_time_reached alone would take a
- * last EMCY more than 2^31 us ago for one in the future and hold the next
- * one back for up to 35 minutes.) */
-static bool inhibited(const co_node_t *node)
-{
-    uint32_t left = node->emcy.next - node->now;
-
-    return (left != 0U) && (left <= inhibit_us(node));
-}
-
 /* The waiting EMCYs go out, oldest first, as far as the inhibit time lets
  * them (more than one only when it is 0); the others wait for
- * emcy_process. The queue is a ring: q_head is the oldest, nothing moves. */
+ * emcy_process. The queue is a ring: q_head is the oldest, nothing moves.
+ * Within the inhibit time of the last EMCY: 'next' is at most one inhibit
+ * time (< 6.6 s) ahead of now while it runs; any other distance is a time
+ * in the past, however long ago. (co_time_reached alone would take a last
+ * EMCY more than 2^31 us ago for one in the future and hold the next one
+ * back for up to 35 minutes.) */
 static void drain(co_node_t *node)
 {
     co_emcy_t *m = &node->emcy;
+    uint32_t inhibit = inhibit_us(node);
 
-    while ((m->n_q > 0U) && !inhibited(node)) {
-        uint32_t id = emcy_id(node);
+    while (m->n_q > 0U) {
+        uint32_t left = m->next - node->now;
+        uint32_t id;
+        if ((left != 0U) && (left <= inhibit)) {
+            break; /* inhibited */
+        }
+        id = emcy_id(node);
         if (id != 0U) {
             co_tx(node, id, m->q[m->q_head].data, 8U);
         }
         m->q_head = (uint8_t)((m->q_head + 1U) % CO_EMCY_QUEUE_LEN);
         m->n_q--;
-        m->next = node->now + inhibit_us(node);
+        m->next = node->now + inhibit;
     }
 }
 
@@ -160,7 +159,7 @@ void co_emcy_raise(co_node_t *node, uint16_t code, uint8_t reg_bits, const uint8
 }
 
 /* The slot of active error @p code, n_active when it is not active. */
-static uint8_t active_at(const co_node_t *node, uint16_t code)
+CO_NOINLINE static uint8_t active_at(const co_node_t *node, uint16_t code)
 {
     uint8_t i = 0U;
 
@@ -217,9 +216,8 @@ static co_err_t emcy_bind(co_node_t *node)
     m->hist_depth = (m->hist_count != NULL)
                         ? co_od_array_len(node, 0x1003U, (uint8_t)CO_UNSIGNED32, 254U)
                         : 0U;
-    m->hist = (m->hist_depth != 0U)
-                  ? (uint32_t *)co_od_ram_of(node, 0x1003U, 1U, (uint8_t)CO_UNSIGNED32)
-                  : NULL;
+    /* (read only for entries 1..hist_depth) */
+    m->hist = (uint32_t *)co_od_ram_of(node, 0x1003U, 1U, (uint8_t)CO_UNSIGNED32);
     m->cob = (uint32_t *)co_od_ram_of(node, 0x1014U, 0U, (uint8_t)CO_UNSIGNED32);
     m->inhibit = (uint16_t *)co_od_ram_of(node, 0x1015U, 0U, (uint8_t)CO_UNSIGNED16);
     return CO_OK;
@@ -245,12 +243,12 @@ static void emcy_reset(co_node_t *node, uint8_t kind)
 }
 
 /* Leaving Initialising, after the boot-up frame. */
-static void emcy_nmt(co_node_t *node, co_nmt_state_t from)
+static void emcy_nmt(co_node_t *node, uint8_t from)
 {
     static const uint16_t ended[4] = {CO_EMCY_HB_GUARD, CO_EMCY_PDO_SHORT, CO_EMCY_PDO_LONG,
                                       CO_EMCY_RPDO_TIMEOUT};
 
-    if (from != CO_NMT_INITIALISING) {
+    if (from != (uint8_t)CO_NMT_INITIALISING) {
         return;
     }
     if ((CO_SET(node, nmt.boot_emcy) != 0U) && (node->emcy.cob != NULL) &&

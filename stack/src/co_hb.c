@@ -26,7 +26,7 @@ static void update_error(co_node_t *node)
 {
     bool lost = (CO_NODE_GUARDING != 0) && (node->errctl.guard_state == (uint8_t)GUARD_LOST);
 
-    for (uint8_t k = 0U; (k < node->errctl.n_hb_cons) && !lost; k++) {
+    for (uint32_t k = 0U; (k < node->errctl.n_hb_cons) && !lost; k++) {
         lost = (node->errctl.hbc_state[k] == (uint8_t)HBC_LOST);
     }
     if (lost) {
@@ -109,8 +109,8 @@ static void hb_reset(co_node_t *node)
     node->errctl.guard_state = (uint8_t)GUARD_OFF;
     /* The boot-up frame counts as the first heartbeat. */
     node->errctl.hb_last = node->now;
-    for (uint8_t k = 0U; k < node->errctl.n_hb_cons; k++) {
-        consumer_start(node, k);
+    for (uint32_t k = 0U; k < node->errctl.n_hb_cons; k++) {
+        consumer_start(node, (uint8_t)k);
     }
 }
 
@@ -191,7 +191,7 @@ static uint32_t errctl_process(co_node_t *node, uint32_t next)
         }
         next = co_deadline_min(now, next, node->errctl.hb_last + period);
     }
-    for (uint8_t k = 0U; k < node->errctl.n_hb_cons; k++) {
+    for (uint32_t k = 0U; k < node->errctl.n_hb_cons; k++) {
         co_errctl_t *c = &node->errctl;
         if (c->hbc_state[k] == (uint8_t)HBC_ACTIVE) {
             if (co_time_reached(now, c->hbc_deadline[k])) {
@@ -243,9 +243,8 @@ static co_err_t errctl_bind(co_node_t *node)
 
     c->n_hb_cons = co_od_array_len(node, 0x1016U, (uint8_t)CO_UNSIGNED32,
                                    (uint8_t)CO_HB_CONSUMERS_MAX);
-    c->hb_cons = (c->n_hb_cons != 0U)
-                     ? (uint32_t *)co_od_ram_of(node, 0x1016U, 1U, (uint8_t)CO_UNSIGNED32)
-                     : NULL;
+    /* (read only for entries 1..n_hb_cons) */
+    c->hb_cons = (uint32_t *)co_od_ram_of(node, 0x1016U, 1U, (uint8_t)CO_UNSIGNED32);
     c->hb_prod = (uint16_t *)co_od_ram_of(node, 0x1017U, 0U, (uint8_t)CO_UNSIGNED16);
 #if CO_NODE_GUARDING
     c->guard_time = (uint16_t *)co_od_ram_of(node, 0x100CU, 0U, (uint8_t)CO_UNSIGNED16);
@@ -266,7 +265,7 @@ static void errctl_rx_slots(co_node_t *node, uint8_t svc)
 #if CO_NODE_GUARDING
     co_rx_add(node, (uint16_t)(0x700U + node->node_id), svc);
 #endif
-    for (uint8_t k = 0U; k < node->errctl.n_hb_cons; k++) {
+    for (uint32_t k = 0U; k < node->errctl.n_hb_cons; k++) {
         uint8_t id = (uint8_t)((node->errctl.hb_cons[k] >> 16U) & 0x7FU);
         if ((node->errctl.hbc_state[k] != (uint8_t)HBC_UNUSED) && (id != node->node_id)) {
             co_rx_add(node, (uint16_t)(0x700U + id), svc);
@@ -291,10 +290,10 @@ static void errctl_rx(co_node_t *node, uint16_t arg, const co_frame_t *f)
     if (co_frame_is_rtr(f) || (f->dlc < 1U)) {
         return; /* no heartbeat */
     }
-    for (uint8_t k = 0U; k < node->errctl.n_hb_cons; k++) {
+    for (uint32_t k = 0U; k < node->errctl.n_hb_cons; k++) {
         if ((node->errctl.hbc_state[k] != (uint8_t)HBC_UNUSED) &&
             (((node->errctl.hb_cons[k] >> 16U) & 0x7FU) == id)) {
-            hb_rx(node, k, id, f);
+            hb_rx(node, (uint8_t)k, id, f);
             return;
         }
     }
@@ -314,7 +313,7 @@ static co_err_t hb_consumer_check(const co_node_t *node, uint8_t sub, uint32_t v
     if (id > 127U) {
         return CO_ERR_VALUE;
     }
-    for (uint8_t k = 0U; k < node->errctl.n_hb_cons; k++) {
+    for (uint32_t k = 0U; k < node->errctl.n_hb_cons; k++) {
         uint32_t o = node->errctl.hb_cons[k];
         if (((uint8_t)(k + 1U) != sub) && (((o >> 16U) & 0xFFU) == id) && ((o & 0xFFFFU) != 0U)) {
             return CO_ERR_PARAM_INCOMPAT;
@@ -328,7 +327,9 @@ co_err_t co_errctl_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
 {
     co_errctl_t *c = &node->errctl;
     uint8_t sub = s->sub;
-    bool consumer = (e->index == 0x1016U) && (sub > 0U) && (sub <= c->n_hb_cons);
+    /* (the hook of 0x1016 only, without guarding) */
+    bool consumer = ((CO_NODE_GUARDING == 0) || (e->index == 0x1016U)) && (sub > 0U) &&
+                    (sub <= c->n_hb_cons);
 
     if (op == (uint8_t)CO_SVC_CHECK) {
         if ((e->index < 0x1016U) && (CO_SET(node, nmt.guarding_hb_exclusive) != 0U) &&

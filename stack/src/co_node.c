@@ -15,46 +15,58 @@ static bool hal_send(co_node_t *node, const co_frame_t *f)
     return node->hal.ops->send(node->hal.ctx, f) == 0;
 }
 
+#if !CO_FAST
+bool co_tx_now(co_node_t *node, const co_frame_t *f)
+{
+    return (node->txq_len == 0U) && hal_send(node, f);
+}
+#endif
+
 /* The hold-back queue is kept in CAN priority order (lowest identifier
  * first; frames of one identifier in the order they were made), so that a
  * controller that frees a mailbox gets the frame that would win arbitration. */
 static void tx_drain(co_node_t *node)
 {
-    uint8_t kept = 0U;
+    uint32_t kept = 0U;
 
     /* in order until the controller refuses one; that one and the rest move
      * to the front (in this loop: no call of the C library's memmove) */
-    for (uint8_t k = 0U; k < node->txq_len; k++) {
+    for (uint32_t k = 0U; k < node->txq_len; k++) {
         if (kept == 0U) {
             const co_txq_frame_t *q = &node->txq[k];
             co_frame_t f;
-            f.id = q->id;
-            f.dlc = q->dlc;
+            f.id = (uint32_t)q->id_dlc >> 4U;
+            f.dlc = (uint8_t)(q->id_dlc & 0x0FU);
             (void)memcpy(f.data, q->data, sizeof f.data);
             if (hal_send(node, &f)) {
                 continue;
             }
         }
         if (kept != k) {
-            node->txq[kept] = node->txq[k];
+            co_copy(&node->txq[kept], &node->txq[k], sizeof node->txq[0]);
         }
         kept++;
     }
-    node->txq_len = kept;
+    node->txq_len = (uint8_t)kept;
 }
 
 void co_tx_frame(co_node_t *node, const co_frame_t *f)
 {
-    uint32_t cob = co_frame_cob(f);
+    uint16_t key;
+    uint16_t last;
     uint8_t at;
 
-    if ((node->txq_len == 0U) && hal_send(node, f)) {
+    if (co_tx_now(node, f)) {
         return;
     }
+    /* the queue's key: CAN-ID, then length; 'last' the greatest key of the
+     * CAN-ID */
+    key = (uint16_t)((co_frame_cob(f) << 4U) | f->dlc);
+    last = (uint16_t)(key | 0x0FU);
     if (node->txq_len == CO_TXQ_LEN) {
         /* full: the frame of lowest priority is lost (the new one, when
          * nothing waiting ranks below it) */
-        if (node->txq[CO_TXQ_LEN - 1U].id <= cob) {
+        if (node->txq[CO_TXQ_LEN - 1U].id_dlc <= last) {
             return;
         }
         node->txq_len--;
@@ -62,12 +74,11 @@ void co_tx_frame(co_node_t *node, const co_frame_t *f)
     /* behind the frames of the same or a higher priority; the ones of
      * lower priority move back as they are passed (no memmove) */
     at = node->txq_len;
-    while ((at > 0U) && (node->txq[at - 1U].id > cob)) {
-        node->txq[at] = node->txq[at - 1U];
+    while ((at > 0U) && (node->txq[at - 1U].id_dlc > last)) {
+        co_copy(&node->txq[at], &node->txq[at - 1U], sizeof node->txq[0]);
         at--;
     }
-    node->txq[at].id = (uint16_t)cob;
-    node->txq[at].dlc = f->dlc;
+    node->txq[at].id_dlc = key;
     (void)memcpy(node->txq[at].data, f->data, sizeof f->data);
     node->txq_len++;
     tx_drain(node); /* the controller may have room again */
@@ -139,20 +150,26 @@ void co_rx_add(co_node_t *node, uint16_t cob, uint8_t svc)
 /* The rows of co_services[] that run: all, or only LSS while unconfigured. */
 static uint8_t services_running(const co_node_t *node)
 {
-    return (node->node_id == CO_NODE_ID_UNCONFIGURED) ? CO_SVC_UNCONFIGURED_ROWS : co_n_services;
+    return co_node_unconfigured(node) ? CO_SVC_UNCONFIGURED_ROWS : co_n_services;
 }
 
-/* The services' reset entries with @p kind, in table order, all of them;
- * or (@p slots) the rx_slots entries of the running ones, each with its
- * row. */
-static void services_walk(co_node_t *node, bool slots, uint8_t kind)
+/* The services' entries of one kind in table order, with @p arg: reset
+ * (the reset kind) and nmt (the state left) of all of them, rx_slots (its
+ * row) of the running ones. */
+#define WALK_RESET 0U
+#define WALK_SLOTS 1U
+#define WALK_NMT   2U
+static void services_walk(co_node_t *node, uint8_t entry, uint8_t arg)
 {
-    uint8_t rows = slots ? services_running(node) : co_n_services;
+    uint32_t rows = (entry == WALK_SLOTS) ? services_running(node) : co_n_services;
 
-    for (uint8_t k = 0U; k < rows; k++) {
-        void (*fn)(co_node_t *, uint8_t) = slots ? co_services[k]->rx_slots : co_services[k]->reset;
+    for (uint32_t k = 0U; k < rows; k++) {
+        const co_service_t *svc = co_services[k];
+        void (*fn)(co_node_t *, uint8_t) = (entry == WALK_RESET)   ? svc->reset
+                                           : (entry == WALK_SLOTS) ? svc->rx_slots
+                                                                   : svc->nmt;
         if (fn != NULL) {
-            fn(node, slots ? k : kind);
+            fn(node, (entry == WALK_SLOTS) ? (uint8_t)k : arg);
         }
     }
 }
@@ -173,7 +190,7 @@ void co_rx_rebuild(co_node_t *node)
     node->rx_dirty = 0U;
     node->n_rx = 0U;
     (void)memset(node->rx_at, (int)CO_RX_AT_NONE, sizeof node->rx_at);
-    services_walk(node, true, 0U);
+    services_walk(node, WALK_SLOTS, 0U);
     if (CO_CB(node, rx_set) != NULL) {
         node->cb->rx_set(node->cb->ctx, node);
     }
@@ -183,7 +200,7 @@ void co_rx_rebuild(co_node_t *node)
  * does not run (an unconfigured node). */
 static uint16_t pdo_n_rx(const co_node_t *node)
 {
-    return (node->node_id != CO_NODE_ID_UNCONFIGURED) ? co_pdo_n_rx(node) : 0U;
+    return co_node_unconfigured(node) ? 0U : co_pdo_n_rx(node);
 }
 
 bool co_node_rx_cob(const co_node_t *node, uint16_t i, uint16_t *cob)
@@ -248,7 +265,7 @@ CO_NOINLINE static void rx_many(co_node_t *node, const co_frame_t *f, uint16_t c
                                 uint32_t now_us)
 {
     co_rx_settle(node); /* a frame that came while the table was out of date */
-    for (uint8_t k = 0U; k < node->n_rx; k++) {
+    for (uint32_t k = 0U; k < node->n_rx; k++) {
         if ((node->rx[k] & 0x7FFU) == cob) {
             rx_slot(node, f, cob, (uint16_t)(k + 1U), now_us);
             return;
@@ -310,10 +327,10 @@ CO_NOINLINE void co_node_stalled(co_node_t *node, uint32_t now_us)
 #if CO_LSS
     node->lss.switch_at = now_us;
 #endif
-    for (uint8_t k = 0U; k < node->errctl.n_hb_cons; k++) {
+    for (uint32_t k = 0U; k < node->errctl.n_hb_cons; k++) {
         node->errctl.hbc_deadline[k] = now_us;
     }
-    for (uint16_t i = 0U; i < n; i++) {
+    for (uint32_t i = 0U; i < n; i++) {
         node->pdo.p[i].at = now_us - (uint32_t)CO_HORIZON_US; /* every PDO time has ended */
     }
 }
@@ -363,9 +380,9 @@ static uint32_t run_rows(co_node_t *node, uint16_t run, uint32_t next)
     uint16_t todo = run;
     uint32_t due = next;
 
-    for (uint8_t pass = 0U; (pass < 2U) && (todo != 0U); pass++) {
+    for (uint32_t pass = 0U; (pass < 2U) && (todo != 0U); pass++) {
         node->svc_run = 0U;
-        for (uint8_t k = 0U; (k < rows) && ((((uint32_t)todo | node->svc_run) >> k) != 0U); k++) {
+        for (uint32_t k = 0U; (k < rows) && ((((uint32_t)todo | node->svc_run) >> k) != 0U); k++) {
             if (((((uint32_t)todo | node->svc_run) >> k) & 1U) != 0U) {
                 node->svc_run &= (uint16_t)~(1U << k);
                 if (co_services[k]->process != NULL) {
@@ -412,18 +429,14 @@ uint32_t co_node_process(co_node_t *node, uint32_t now_us)
 
 void co_node_set_state(co_node_t *node, co_nmt_state_t st)
 {
-    co_nmt_state_t from = (co_nmt_state_t)node->nmt;
+    uint8_t from = node->nmt;
 
-    if (node->nmt == (uint8_t)st) {
+    if (from == (uint8_t)st) {
         return;
     }
     node->nmt = (uint8_t)st;
     co_svc_touch_all(node);
-    for (uint8_t k = 0U; k < co_n_services; k++) {
-        if (co_services[k]->nmt != NULL) {
-            co_services[k]->nmt(node, from);
-        }
-    }
+    services_walk(node, WALK_NMT, from);
     if (CO_CB(node, nmt_state) != NULL) {
         node->cb->nmt_state(node->cb->ctx, node, st);
     }
@@ -431,7 +444,7 @@ void co_node_set_state(co_node_t *node, co_nmt_state_t st)
 
 static void services_reset(co_node_t *node, uint8_t kind)
 {
-    services_walk(node, false, kind);
+    services_walk(node, WALK_RESET, kind);
 }
 
 /* Initialising: the communication services start from their reset values,
@@ -441,7 +454,7 @@ static void boot(co_node_t *node)
     node->nmt = (uint8_t)CO_NMT_INITIALISING;
     services_reset(node, CO_SVC_START);
     co_rx_invalidate(node);
-    if (node->node_id == CO_NODE_ID_UNCONFIGURED) {
+    if (co_node_unconfigured(node)) {
         return; /* LSS init: no boot-up, no NMT until a valid node-ID */
     }
     if (CO_SET(node, nmt.bootup) == CO_BOOTUP_FRAME) {
@@ -558,12 +571,12 @@ static const uint16_t left_out[] = {
 /* Every service finds its objects (its hooks are const: co_svc_hooks). */
 static co_result_t bind_services(co_node_t *node)
 {
-    for (uint8_t k = 0U; left_out[k] != 0U; k++) {
+    for (uint32_t k = 0U; left_out[k] != 0U; k++) {
         if (co_od_find(node->dev->od, node->dev->od_count, left_out[k]) != NULL) {
             return CO_RESULT_DEV_INCOMPAT;
         }
     }
-    for (uint8_t k = 0U; k < co_n_services; k++) {
+    for (uint32_t k = 0U; k < co_n_services; k++) {
         const co_service_t *svc = co_services[k];
         if ((svc->bind != NULL) && (svc->bind(node) != CO_OK)) {
             return CO_RESULT_DEV_INCOMPAT;
@@ -571,29 +584,29 @@ static co_result_t bind_services(co_node_t *node)
     }
 #if !CO_PERSONALITY
     {
-        /* every setting 0 (CiA 301) but lss.slave: a service (CO_LSS), not
-         * a deviation; and without block SDO (CO_SDO_BLOCK=0) "no block",
-         * which such a core does anyway (odgen/build.py says the same) */
+        /* every setting 0 (CiA 301) but lss.slave where the build has LSS:
+         * a service, not a deviation; and without block SDO (CO_SDO_BLOCK=0)
+         * "no block", which such a core does anyway (odgen/build.py says the
+         * same) */
         const uint8_t *b = (const uint8_t *)&node->dev->set;
-        uint8_t any = 0U;
+        uint32_t any = node->dev->nodeid_index;
         for (size_t k = 0U; k < sizeof node->dev->set; k++) {
-            bool cia = (k == offsetof(co_settings_t, lss.slave)) ||
+            bool cia = ((CO_LSS != 0) && (k == offsetof(co_settings_t, lss.slave))) ||
                        ((CO_SDO_BLOCK == 0) && (k == offsetof(co_settings_t, sdo.refused)) &&
                         (b[k] == CO_SDO_XFER_BLOCK));
             any |= cia ? 0U : b[k];
         }
-        if ((any != 0U) || (node->dev->nodeid_index != 0U)) {
+        if (any != 0U) {
             return CO_RESULT_DEV_INCOMPAT; /* a deviation this build leaves out */
         }
+    }
+#elif !CO_LSS
+    if (node->dev->set.lss.slave != 0U) {
+        return CO_RESULT_DEV_INCOMPAT;
     }
 #endif
 #if !CO_LIMITS
     if (node->dev->limits != NULL) {
-        return CO_RESULT_DEV_INCOMPAT;
-    }
-#endif
-#if !CO_LSS
-    if (node->dev->set.lss.slave != 0U) {
         return CO_RESULT_DEV_INCOMPAT;
     }
 #endif
@@ -685,7 +698,7 @@ co_err_t co_node_set_id(co_node_t *node, uint8_t id, uint32_t now_us)
     }
     co_node_clock(node, now_us);
     node->pending_id = id;
-    if ((node->node_id == CO_NODE_ID_UNCONFIGURED) && (id != CO_NODE_ID_UNCONFIGURED)) {
+    if (co_node_unconfigured(node) && (id != CO_NODE_ID_UNCONFIGURED)) {
         reset(node, CO_RESET_NODE); /* out of LSS init: initialise now */
         co_rx_settle(node);
     }
@@ -711,7 +724,7 @@ co_reset_t co_node_take_id(co_node_t *node, co_reset_t kind)
     }
     node->cob_base = co_node_cob_base_for(node, to);
     node->node_id = to;
-    if ((from != CO_NODE_ID_UNCONFIGURED) || (to == CO_NODE_ID_UNCONFIGURED)) {
+    if ((CO_LSS == 0) || (from != CO_NODE_ID_UNCONFIGURED) || (to == CO_NODE_ID_UNCONFIGURED)) {
         return kind;
     }
     if (CO_SET(node, lss.cob_ids) == CO_LSS_COBS_KEEP) {

@@ -276,7 +276,7 @@ static void pdo_reset(co_node_t *node, uint8_t kind)
     }
 }
 
-static void pdo_nmt(co_node_t *node, co_nmt_state_t from)
+static void pdo_nmt(co_node_t *node, uint8_t from)
 {
     uint16_t n = (uint16_t)(node->dev->n_rpdo + node->dev->n_tpdo);
 

@@ -209,10 +209,14 @@ void co_node_clock(co_node_t *node, uint32_t now_us);
 /* ---- transmit (co_node.c) */
 /* Send @p f now or not at all: false while frames are held back or the HAL
  * refuses it. */
+#if CO_FAST
 static inline bool co_tx_now(co_node_t *node, const co_frame_t *f)
 {
     return (node->txq_len == 0U) && (node->hal.ops->send(node->hal.ctx, f) == 0);
 }
+#else
+bool co_tx_now(co_node_t *node, const co_frame_t *f); /* (one copy: co_node.c) */
+#endif
 /* Send @p f, or hold it back while the TX path is full (CO_TXQ_LEN). The
  * core sends 11-bit data frames only (what the queue keeps: co_txq_frame_t). */
 void co_tx_frame(co_node_t *node, const co_frame_t *f);
@@ -364,7 +368,7 @@ typedef struct co_service {
     /* Timers: returns the earlier of @p next and its own deadline. */
     uint32_t (*process)(co_node_t *node, uint32_t next);
     /* The NMT state changed from @p from to node->nmt. */
-    void (*nmt)(co_node_t *node, co_nmt_state_t from);
+    void (*nmt)(co_node_t *node, uint8_t from);
 } co_service_t;
 
 /* The rows of co_services[] (co_services.c places each service at its row). */
@@ -508,6 +512,12 @@ uint32_t co_store_lss_unit(const co_node_t *node);
 /* Rows at the head of co_services[] that run while the node is unconfigured
  * (the LSS service); the others wait for a valid node-ID. */
 #define CO_SVC_UNCONFIGURED_ROWS ((uint8_t)(CO_LSS))
+/* The node waits for a node-ID (LSS); never in a build without LSS, whose
+ * co_node_init refuses a device that would. */
+static inline bool co_node_unconfigured(const co_node_t *node)
+{
+    return (CO_LSS != 0) && (node->node_id == CO_NODE_ID_UNCONFIGURED);
+}
 /* The device is an LSS slave (and the build has LSS). LSS is a service
  * (CO_LSS), not a deviation: read past CO_PERSONALITY, as co_node_init does. */
 static inline bool co_lss_enabled(const co_node_t *node)

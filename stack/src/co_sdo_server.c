@@ -960,7 +960,7 @@ static void sdo_rx_slots(co_node_t *node, uint8_t svc)
 }
 
 /* No SDO in Stopped: an open transfer ends silently. */
-static void sdo_nmt(co_node_t *node, co_nmt_state_t from)
+static void sdo_nmt(co_node_t *node, uint8_t from)
 {
     (void)from;
     if (node->nmt == (uint8_t)CO_NMT_STOPPED) {

@@ -338,7 +338,7 @@ static void deliver(const co_frame_t *f)
     uint8_t ccs = (uint8_t)(cs >> 5U);
 
     for (uint8_t i = 0U; i < fz.n.node.txq_len; i++) {
-        if ((fz.n.node.txq[i].id & 0x7FFU) == (0x580U + NODE_ID)) {
+        if ((fz.n.node.txq[i].id_dlc >> 4U) == (0x580U + NODE_ID)) {
             held_sdo++;
         }
     }

@@ -325,11 +325,11 @@ typedef struct co_pdo_svc {
 struct co_svc_hook;
 
 /** A frame held back while the TX path is full (co_node.c): the core sends
- *  only 11-bit data frames, so it keeps the payload, identifier and length
- *  (12 bytes instead of the 16 of a co_frame_t). */
+ *  only 11-bit data frames of at most 8 bytes, so it keeps the payload and,
+ *  in one number, identifier and length (10 bytes instead of the 16 of a
+ *  co_frame_t). */
 typedef struct co_txq_frame {
-    uint16_t id;   /**< CAN-ID */
-    uint8_t dlc;
+    uint16_t id_dlc; /**< CAN-ID << 4 | length */
     uint8_t data[8];
 } co_txq_frame_t;
 

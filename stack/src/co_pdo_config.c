@@ -305,10 +305,11 @@ static void pdo_rx_slots(co_node_t *node, uint8_t svc)
     }
 }
 
-/* A frame on the COB-ID of PDO @p i (co_node_rx). */
+#if CO_PDO_RTR
+/* A frame on the COB-ID of PDO @p i (co_node_rx); without CO_PDO_RTR only
+ * RPDOs receive, and their frames go to co_rpdo_rx directly. */
 static void pdo_rx(co_node_t *node, uint16_t i, const co_frame_t *f)
 {
-#if CO_PDO_RTR
     if (i < node->dev->n_rpdo) {
         co_rpdo_rx(node, i, f);
     } else if (co_frame_is_rtr(f)) {
@@ -316,10 +317,8 @@ static void pdo_rx(co_node_t *node, uint16_t i, const co_frame_t *f)
     } else {
         /* another node's data frame on this TPDO's identifier */
     }
-#else
-    co_rpdo_rx(node, i, f); /* only RPDOs are received */
-#endif
 }
+#endif
 
 static uint32_t pdo_process(co_node_t *node, uint32_t next)
 {
@@ -344,5 +343,11 @@ co_err_t co_pdo_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
 }
 
 const co_service_t co_svc_pdo = {
-    NULL, pdo_reset, pdo_rx_slots, pdo_rx, pdo_process, pdo_nmt,
+    NULL, pdo_reset, pdo_rx_slots,
+#if CO_PDO_RTR
+    pdo_rx,
+#else
+    co_rpdo_rx, /* only RPDOs receive */
+#endif
+    pdo_process, pdo_nmt,
 };

@@ -92,7 +92,7 @@ static co_err_t check_entry(const co_node_t *node, bool tx, uint32_t v, uint8_t 
  * directly when no service hooks the object at all, the value has no
  * limits and is not a BOOLEAN (the dictionary refuses values above 1). */
 static uint16_t direct_code(const co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
-                            bool tx, uint8_t bits, uint16_t pos)
+                            bool tx, uint32_t bits, uint32_t pos)
 {
     uint8_t size = co_type_len(s->type);
     uint8_t svc = co_od_svc_ops(e);
@@ -131,8 +131,8 @@ static co_err_t check_mapping(const co_node_t *node, uint16_t i, uint8_t new_cou
 {
     const co_pdo_desc_t *d = &node->dev->pdo[i];
     bool tx = is_tpdo(node, i);
-    uint16_t total = 0U;
-    uint8_t count = (p != NULL) ? co_ram_u8(node, d->count) : new_count;
+    uint32_t total = 0U;
+    uint32_t count = (p != NULL) ? co_ram_u8(node, d->count) : new_count;
     bool direct;
 
     if (p != NULL) {
@@ -143,7 +143,7 @@ static co_err_t check_mapping(const co_node_t *node, uint16_t i, uint8_t new_cou
         return CO_ERR_MAP_LEN;
     }
     direct = count <= CO_PDO_FAST_MAX;
-    for (uint8_t k = 0U; k < count; k++) {
+    for (uint32_t k = 0U; k < count; k++) {
         uint8_t bits;
         const co_od_entry_t *e = NULL;
         const co_od_sub_t *s;
@@ -158,7 +158,7 @@ static co_err_t check_mapping(const co_node_t *node, uint16_t i, uint8_t new_cou
             direct = direct && (p->plain[k] != CO_PDO_SLOW) && ((bits & 7U) == 0U);
         }
 #endif
-        total = (uint16_t)(total + bits);
+        total += bits;
     }
     if (total > 64U) {
         return CO_ERR_MAP_LEN;
@@ -265,26 +265,26 @@ static void pdo_written(co_node_t *node, uint16_t i, bool is_map, uint8_t sub)
 
 static void pdo_reset(co_node_t *node, uint8_t kind)
 {
-    uint16_t n = (uint16_t)(node->dev->n_rpdo + node->dev->n_tpdo);
+    uint32_t n = (uint32_t)node->dev->n_rpdo + node->dev->n_tpdo;
 
     if (kind != CO_SVC_START) {
         return;
     }
-    for (uint16_t i = 0U; i < n; i++) {
+    for (uint32_t i = 0U; i < n; i++) {
         (void)memset(&node->pdo.p[i], 0, sizeof node->pdo.p[i]);
-        (void)check_mapping(node, i, 0U, &node->pdo.p[i]);
+        (void)check_mapping(node, (uint16_t)i, 0U, &node->pdo.p[i]);
     }
 }
 
 static void pdo_nmt(co_node_t *node, uint8_t from)
 {
-    uint16_t n = (uint16_t)(node->dev->n_rpdo + node->dev->n_tpdo);
+    uint32_t n = (uint32_t)node->dev->n_rpdo + node->dev->n_tpdo;
 
     /* Entering or leaving Operational, every PDO starts over: buffered
      * synchronous data and pending transmissions are dropped, event-driven
      * TPDOs send their current data once on entering Operational. */
-    for (uint16_t i = 0U; i < n; i++) {
-        restart(node, i);
+    for (uint32_t i = 0U; i < n; i++) {
+        restart(node, (uint16_t)i);
     }
     (void)from;
     if (node->nmt == (uint8_t)CO_NMT_OPERATIONAL) {
@@ -295,8 +295,8 @@ static void pdo_nmt(co_node_t *node, uint8_t from)
 static void pdo_rx_slots(co_node_t *node, uint8_t svc)
 {
     (void)svc; /* (PDO frames go to the PDO service directly: co_node_rx) */
-    for (uint16_t i = 0U; i < co_pdo_n_rx(node); i++) {
-        uint16_t id = co_pdo_rx_cob(node, i);
+    for (uint32_t i = 0U; i < co_pdo_n_rx(node); i++) {
+        uint16_t id = co_pdo_rx_cob(node, (uint16_t)i);
         if (id != CO_PDO_RX_NONE) {
             co_rx_accept(node, id,
                          (i < (CO_RX_AT_MANY - CO_RX_AT_PDO)) ? (uint8_t)(CO_RX_AT_PDO + i)

@@ -35,9 +35,9 @@ static void bits_copy(uint8_t *dst, uint16_t dpos, const uint8_t *src, uint16_t 
         co_copy(&dst[dpos >> 3U], &src[spos >> 3U], (size_t)n >> 3U);
         return;
     }
-    for (uint8_t b = 0U; b < n; b++) {
-        uint16_t s = (uint16_t)(spos + b);
-        uint16_t d = (uint16_t)(dpos + b);
+    for (uint32_t b = 0U; b < n; b++) {
+        uint32_t s = spos + b;
+        uint32_t d = dpos + b;
         uint8_t mask = (uint8_t)(1U << (d & 7U));
         if ((src[s >> 3U] & (1U << (s & 7U))) != 0U) {
             dst[d >> 3U] |= mask;
@@ -118,20 +118,20 @@ static void pdo_io(co_node_t *node, uint16_t i, const uint8_t *rx, uint8_t dlc, 
 {
     const co_pdo_desc_t *d = &node->dev->pdo[i];
     const co_pdo_t *p = &node->pdo.p[i];
-    uint8_t count = co_ram_u8(node, d->count);
-    uint16_t avail = (uint16_t)(((tx != NULL) || (dlc > 8U)) ? 64U : (dlc * 8U));
-    uint16_t pos = 0U;
+    uint32_t count = co_ram_u8(node, d->count);
+    uint32_t avail = ((tx != NULL) || (dlc > 8U)) ? 64U : (dlc * 8U);
+    uint32_t pos = 0U;
 
     if (tx != NULL) {
         (void)memset(tx, 0, 8U);
     }
-    for (uint8_t k = 0U; k < count; k++) {
+    for (uint32_t k = 0U; k < count; k++) {
         uint32_t v = co_ram_u32(node, (uint16_t)(d->map + (4U * k)));
-        uint16_t end = (uint16_t)(pos + (v & 0xFFU));
+        uint32_t end = pos + (v & 0xFFU);
         if (end > avail) {
             break;
         }
-        entry_io(node, v, co_pdo_code(p, k), pos, rx, tx);
+        entry_io(node, v, co_pdo_code(p, (uint8_t)k), (uint16_t)pos, rx, tx);
         pos = end;
     }
 }

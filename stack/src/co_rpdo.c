@@ -6,7 +6,7 @@
 
 static bool any_rpdo(const co_node_t *node, uint16_t flag)
 {
-    for (uint16_t i = 0U; i < node->dev->n_rpdo; i++) {
+    for (uint32_t i = 0U; i < node->dev->n_rpdo; i++) {
         if ((node->pdo.p[i].flags & flag) != 0U) {
             return true;
         }
@@ -125,11 +125,11 @@ void co_rpdo_sync(co_node_t *node)
         return;
     }
     node->pdo.buffered = 0U;
-    for (uint16_t i = 0U; i < node->dev->n_rpdo; i++) {
+    for (uint32_t i = 0U; i < node->dev->n_rpdo; i++) {
         co_pdo_t *p = &node->pdo.p[i];
         if ((p->flags & CO_PDO_F_RXBUF) != 0U) {
             p->flags &= (uint16_t)~CO_PDO_F_RXBUF;
-            apply(node, i, p->data, p->count);
+            apply(node, (uint16_t)i, p->data, p->count);
         }
     }
 }
@@ -139,16 +139,16 @@ uint32_t co_rpdo_process(co_node_t *node, uint32_t next)
     if (node->nmt != (uint8_t)CO_NMT_OPERATIONAL) {
         return next; /* leaving Operational disarms every deadline */
     }
-    for (uint16_t i = 0U; i < node->dev->n_rpdo; i++) {
+    for (uint32_t i = 0U; i < node->dev->n_rpdo; i++) {
         co_pdo_t *p = &node->pdo.p[i];
-        uint32_t ev = ((p->flags & CO_PDO_F_TIMER) != 0U) ? co_pdo_event_us(node, i) : 0U;
+        uint32_t ev = ((p->flags & CO_PDO_F_TIMER) != 0U) ? co_pdo_event_us(node, (uint16_t)i) : 0U;
         uint32_t end = p->at + ev;
         if (ev == 0U) {
             continue; /* not received yet, or no deadline monitoring */
         }
         if (co_time_reached(node->now, end)) {
             p->flags &= (uint16_t)~CO_PDO_F_TIMER;
-            rpdo_error(node, i, CO_PDO_F_TIMEOUT, CO_PDO_F_TIMEOUT);
+            rpdo_error(node, (uint16_t)i, CO_PDO_F_TIMEOUT, CO_PDO_F_TIMEOUT);
         } else {
             next = co_deadline_min(node->now, next, end);
         }

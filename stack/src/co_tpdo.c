@@ -332,7 +332,7 @@ CO_HOT uint32_t at_process(co_node_t *node, uint16_t i, uint8_t type, uint32_t n
  * the next deadline). */
 CO_HOT uint32_t tpdo_pass(co_node_t *node, uint32_t next, bool sync, uint8_t counter)
 {
-    uint16_t n = (uint16_t)(node->dev->n_rpdo + node->dev->n_tpdo);
+    uint32_t n = (uint32_t)node->dev->n_rpdo + node->dev->n_tpdo;
     bool detect = CO_SET(node, tpdo.change_detection) != CO_TPDO_CHANGE_IGNORED;
 
     if (!sync) {
@@ -341,7 +341,8 @@ CO_HOT uint32_t tpdo_pass(co_node_t *node, uint32_t next, bool sync, uint8_t cou
     if (node->nmt != (uint8_t)CO_NMT_OPERATIONAL) {
         return next;
     }
-    for (uint16_t i = node->dev->n_rpdo; i < n; i++) {
+    for (uint32_t k = node->dev->n_rpdo; k < n; k++) {
+        uint16_t i = (uint16_t)k;
         uint8_t type = co_pdo_type(node, i);
         if (!co_pdo_usable(node, i)) {
             continue;

@@ -43,9 +43,10 @@ static co_err_t check_entry(const co_node_t *node, bool tx, uint32_t v, uint8_t 
 {
     uint16_t index = (uint16_t)(v >> 16U);
     uint8_t sub = (uint8_t)((v >> 8U) & 0xFFU);
-    uint8_t size;
+    uint32_t size;
+    uint32_t n = v & 0xFFU;
 
-    *bits = (uint8_t)(v & 0xFFU);
+    *bits = (uint8_t)n;
     *obj = NULL;
     if ((index >= 0x0001U) && (index <= 0x0007U) && (sub == 0U)) {
         /* dummy entry: a gap in an RPDO (types BOOLEAN .. UNSIGNED32) */
@@ -69,10 +70,10 @@ static co_err_t check_entry(const co_node_t *node, bool tx, uint32_t v, uint8_t 
         *obj = s;
     }
     /* bit granularity: any length up to the object's size (the low bits) */
-    if ((*bits == 0U) || (*bits > (uint8_t)(size * 8U))) {
+    if ((n == 0U) || (n > (size * 8U))) {
         return CO_ERR_PARAM_INCOMPAT;
     }
-    if (((*bits & 7U) != 0U) && (CO_SET(node, pdo.granularity) == CO_PDO_MAP_BYTES)) {
+    if (((n & 7U) != 0U) && (CO_SET(node, pdo.granularity) == CO_PDO_MAP_BYTES)) {
         return CO_ERR_NO_MAP; /* granularity 8: whole bytes only */
     }
     return CO_OK;

@@ -535,9 +535,6 @@ void co_od_restore(co_node_t *node, uint16_t to)
     const uint8_t *def = (const uint8_t *)dev->defaults;
     uint32_t at = 0U;
 
-    if (to == 0U) {
-        return;
-    }
     (void)memset(node->ram, 0, to);
     for (uint16_t i = 0U; i < dev->n_defaults; i++) {
         const co_od_default_t *d = &dev->default_at[i];

@@ -825,11 +825,14 @@ SDO_RARE static co_err_t transfer_request(co_node_t *node, const uint8_t *d)
     if ((d[0] & want[st - 1U][0]) != want[st - 1U][1]) {
         return CO_ERR_CMD;
     }
+    if ((st <= (uint8_t)S_UL_SEG) && ((d[0] & CO_SDO_TOGGLE) != t->toggle)) {
+        return CO_ERR_TOGGLE; /* a segment: its toggle bit */
+    }
     if (st == (uint8_t)S_DL_SEG) {
-        return ((d[0] & CO_SDO_TOGGLE) != t->toggle) ? CO_ERR_TOGGLE : download_segment(node, d);
+        return download_segment(node, d);
     }
     if (st == (uint8_t)S_UL_SEG) {
-        return ((d[0] & CO_SDO_TOGGLE) != t->toggle) ? CO_ERR_TOGGLE : upload_segment(node);
+        return upload_segment(node);
     }
 #if CO_SDO_BLOCK
     if (st == (uint8_t)S_BLK_DL_END) {

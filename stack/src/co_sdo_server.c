@@ -334,11 +334,14 @@ static co_err_t read_seg(co_node_t *node, uint32_t at, uint8_t *buf, uint32_t ca
  * straight from it (no transfer state, no staging copy); a value of fixed
  * size must come with its size: as indicated (else 0x06070010), or without
  * an indication the four bytes, or the object's own size when it is
- * smaller (co_od_download). Else a segmented download opens. */
-static co_err_t initiate_download(co_node_t *node, const uint8_t *d, uint16_t index, uint8_t sub)
+ * smaller (co_od_download). Else a segmented download opens, or with
+ * @p block (a block download initiate) a block download. */
+static co_err_t initiate_download(co_node_t *node, const uint8_t *d, uint16_t index, uint8_t sub,
+                                  bool block)
 {
-    bool size_ind = (d[0] & CO_SDO_SIZE_IND) != 0U;
-    bool expedited = (d[0] & CO_SDO_EXPEDITED) != 0U;
+    bool blk = (CO_SDO_BLOCK != 0) && block;
+    bool size_ind = (d[0] & (blk ? CO_SDO_BLK_SIZE_IND : CO_SDO_SIZE_IND)) != 0U;
+    bool expedited = !blk && ((d[0] & CO_SDO_EXPEDITED) != 0U);
     uint32_t size = co_get_u32(&d[4]);
     const co_od_entry_t *e;
     const co_od_sub_t *s;
@@ -354,6 +357,9 @@ static co_err_t initiate_download(co_node_t *node, const uint8_t *d, uint16_t in
             download_done(node, CO_SDO_B0(CO_SDO_SCS_DOWNLOAD_INITIATE), index, sub, false);
         }
         return err;
+    }
+    if (blk && ((d[0] & CO_SDO_BLK_END) != 0U)) {
+        return CO_ERR_CMD; /* a block download's end without a transfer */
     }
     if (!expedited && expedited_only(node)) {
         return CO_ERR_CMD;
@@ -378,12 +384,28 @@ static co_err_t initiate_download(co_node_t *node, const uint8_t *d, uint16_t in
         }
         return err;
     }
-    if ((err == CO_OK) && ((CO_SET(node, sdo.refused) & CO_SDO_XFER_SEG_DOWNLOAD) != 0U)) {
+    if ((err == CO_OK) && !blk &&
+        ((CO_SET(node, sdo.refused) & CO_SDO_XFER_SEG_DOWNLOAD) != 0U)) {
         err = CO_ERR_NO_ACCESS; /* the object's own errors come first */
     }
     if (err == CO_OK) {
-        start(node, S_DL_SEG);
-        reply(node, CO_SDO_B0(CO_SDO_SCS_DOWNLOAD_INITIATE), index, sub, 0U);
+        uint8_t st = (uint8_t)S_DL_SEG;
+        uint8_t cmd = CO_SDO_B0(CO_SDO_SCS_DOWNLOAD_INITIATE);
+        uint32_t data = 0U;
+#if CO_SDO_BLOCK
+        if (blk) {
+            if ((d[0] & CO_SDO_BLK_CRC) != 0U) {
+                node->sdo.flags |= F_CRC;
+            }
+            node->sdo.blksize = (uint8_t)SDO_BLKSIZE;
+            st = (uint8_t)S_BLK_DL;
+            cmd = (uint8_t)(CO_SDO_B0(CO_SDO_SCS_BLOCK_DOWNLOAD) | CO_SDO_BLK_CRC |
+                            CO_SDO_BLK_INITIATE);
+            data = SDO_BLKSIZE;
+        }
+#endif
+        start(node, st);
+        reply(node, cmd, index, sub, data);
     }
     return err;
 }
@@ -414,18 +436,43 @@ static co_err_t respond_upload(co_node_t *node, uint16_t index, uint8_t sub, boo
 /* Called in S_IDLE (no transfer open): the first chunk staged, the
  * transfer state opened, respond_upload answers (an expedited answer
  * closes it again: one path for the initiates of both kinds). */
-static co_err_t initiate_upload(co_node_t *node, uint16_t index, uint8_t sub)
+static co_err_t initiate_upload(co_node_t *node, const uint8_t *d, uint16_t index, uint8_t sub,
+                                bool block)
 {
+    co_sdo_srv_t *t = &node->sdo;
+    bool blk = (CO_SDO_BLOCK != 0) && block; /* a block upload initiate */
     const co_od_entry_t *e;
     const co_od_sub_t *s;
     co_od_chunk_t c;
-    co_err_t err = stage_upload(node, index, sub, &c, &e, &s);
+    co_err_t err;
 
+    if (blk && ((d[0] & CO_SDO_BLK_SUB_MASK) != CO_SDO_BLK_INITIATE)) {
+        return CO_ERR_CMD;
+    }
+    if (blk && ((d[4] == 0U) || (d[4] > 127U))) {
+        return CO_ERR_BLKSIZE;
+    }
+    err = stage_upload(node, index, sub, &c, &e, &s);
     if (err != CO_OK) {
         return err;
     }
-    open_upload(&node->sdo, e, s, &c);
-    return respond_upload(node, index, sub, c.last);
+    open_upload(t, e, s, &c);
+    if (!blk || ((d[5] != 0U) && ((t->flags & F_SIZE) != 0U) && (t->size <= d[5]))) {
+        /* (a block upload: the protocol switch to segmented/expedited) */
+        return respond_upload(node, index, sub, c.last);
+    }
+#if CO_SDO_BLOCK
+    t->blksize = d[4];
+    if ((d[0] & CO_SDO_BLK_CRC) != 0U) {
+        t->flags |= F_CRC;
+    }
+    start(node, S_BLK_UL_INI);
+    reply(node,
+          (uint8_t)(CO_SDO_B0(CO_SDO_SCS_BLOCK_UPLOAD) | CO_SDO_BLK_CRC |
+                    (((t->flags & F_SIZE) != 0U) ? CO_SDO_BLK_SIZE_IND : 0U)),
+          index, sub, t->size);
+#endif
+    return CO_OK;
 }
 
 /* ------------------------------------------------------------ segmented */
@@ -478,33 +525,6 @@ static co_err_t upload_segment(co_node_t *node)
 
 #if CO_SDO_BLOCK
 /* ------------------------------------------------------------ block download */
-
-static co_err_t block_download_initiate(co_node_t *node, const uint8_t *d, uint16_t index,
-                                        uint8_t sub)
-{
-    const co_od_entry_t *e;
-    const co_od_sub_t *s;
-    co_err_t err;
-
-    if ((d[0] & CO_SDO_BLK_END) != 0U) {
-        return CO_ERR_CMD; /* end without a transfer */
-    }
-    err = find_for(node, index, sub, true, &e, &s);
-    if (err == CO_OK) {
-        err = open_download(node, e, s, (d[0] & CO_SDO_BLK_SIZE_IND) != 0U, co_get_u32(&d[4]));
-    }
-    if (err == CO_OK) {
-        if ((d[0] & CO_SDO_BLK_CRC) != 0U) {
-            node->sdo.flags |= F_CRC;
-        }
-        node->sdo.blksize = (uint8_t)SDO_BLKSIZE;
-        start(node, S_BLK_DL);
-        reply(node,
-              (uint8_t)(CO_SDO_B0(CO_SDO_SCS_BLOCK_DOWNLOAD) | CO_SDO_BLK_CRC | CO_SDO_BLK_INITIATE),
-              index, sub, SDO_BLKSIZE);
-    }
-    return err;
-}
 
 /* The sub-block's acknowledge (the last good sequence number, the next
  * block size in bytes 1 and 2); the next sub-block counts from 0. */
@@ -573,43 +593,6 @@ static co_err_t block_download_end(co_node_t *node, const uint8_t *d)
 }
 
 /* ------------------------------------------------------------ block upload */
-
-SDO_RARE static co_err_t block_upload_initiate(co_node_t *node, const uint8_t *d,
-                                                  uint16_t index, uint8_t sub)
-{
-    co_sdo_srv_t *t = &node->sdo;
-    uint8_t blksize = d[4];
-    uint8_t pst = d[5];
-    const co_od_entry_t *e;
-    const co_od_sub_t *s;
-    co_od_chunk_t c;
-    co_err_t err;
-
-    if ((d[0] & CO_SDO_BLK_SUB_MASK) != CO_SDO_BLK_INITIATE) {
-        return CO_ERR_CMD;
-    }
-    if ((blksize == 0U) || (blksize > 127U)) {
-        return CO_ERR_BLKSIZE;
-    }
-    err = stage_upload(node, index, sub, &c, &e, &s);
-    if (err != CO_OK) {
-        return err;
-    }
-    open_upload(t, e, s, &c);
-    if ((pst != 0U) && ((t->flags & F_SIZE) != 0U) && (t->size <= pst)) {
-        return respond_upload(node, index, sub, c.last); /* protocol switch to segmented/expedited */
-    }
-    t->blksize = blksize;
-    if ((d[0] & CO_SDO_BLK_CRC) != 0U) {
-        t->flags |= F_CRC;
-    }
-    start(node, S_BLK_UL_INI);
-    reply(node,
-          (uint8_t)(CO_SDO_B0(CO_SDO_SCS_BLOCK_UPLOAD) | CO_SDO_BLK_CRC |
-                    (((t->flags & F_SIZE) != 0U) ? CO_SDO_BLK_SIZE_IND : 0U)),
-          index, sub, t->size);
-    return CO_OK;
-}
 
 /* Send segments of the current sub-block until it is complete or the TX
  * path is full (then co_sdo_process resumes). The value is read a chunk of
@@ -775,16 +758,16 @@ static void idle_request(co_node_t *node, const uint8_t *d)
 #endif
 
     if (ccs == CO_SDO_CCS_DOWNLOAD_INITIATE) {
-        err = initiate_download(node, d, index, sub); /* (the most frequent first) */
+        err = initiate_download(node, d, index, sub, false); /* (the most frequent first) */
     } else if (ccs == CO_SDO_CCS_UPLOAD_INITIATE) {
-        err = initiate_upload(node, index, sub);
+        err = initiate_upload(node, d, index, sub, false);
     } else if (ccs == CO_SDO_CS_ABORT) {
         err = CO_OK; /* abort with nothing open: nothing to do */
 #if CO_SDO_BLOCK
     } else if (blocks && (ccs == CO_SDO_CCS_BLOCK_UPLOAD)) {
-        err = block_upload_initiate(node, d, index, sub);
+        err = initiate_upload(node, d, index, sub, true);
     } else if (blocks && (ccs == CO_SDO_CCS_BLOCK_DOWNLOAD)) {
-        err = block_download_initiate(node, d, index, sub);
+        err = initiate_download(node, d, index, sub, true);
 #endif
     } else if ((ccs == CO_SDO_CCS_DOWNLOAD_SEGMENT) || (ccs == CO_SDO_CCS_UPLOAD_SEGMENT)) {
         index = 0U; /* a segment without a transfer carries no index */

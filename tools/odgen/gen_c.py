@@ -164,13 +164,19 @@ def store_command(s: Sub) -> bool:
 STORE_CONST = "store_command_none"
 
 
-def commands_const(dev: Device) -> Device:
-    """@p dev with its store commands (store_command) as one const 0."""
+def consts(dev: Device, storage: bool) -> Device:
+    """@p dev as the C tables hold it: without storage its store commands
+    (store_command) one const 0; const values of one type, size and value
+    one field of the ROM image (the identity's zeros, equal sub-index
+    counts: a const is only ever read)."""
     dev = copy.deepcopy(dev)
+    seen: dict = {}
     for o in dev.objects:
         for s in o.subs:
-            if store_command(s):
-                s.rom, s.field, s.elem, s.default, s.nodeid = True, STORE_CONST, -1, None, False
+            if not storage and store_command(s):
+                s.rom, s.field, s.elem, s.default, s.nodeid = True, STORE_CONST, -1, 0, False
+            if s.rom and s.field and s.elem < 0:
+                s.field = seen.setdefault((s.type, s.size, repr(s.default)), s.field)
     return dev
 
 
@@ -206,8 +212,7 @@ def comment(text: str) -> str:
 def generate(dev: Device, toml_name: str, warn=None, storage: bool = True) -> tuple[str, str]:
     """The C dictionary (.h, .c); @p storage: the core is built with
     CO_STORAGE (without it the store commands need no RAM)."""
-    if not storage:
-        dev = commands_const(dev)
+    dev = consts(dev, storage)
     cn = dev.cname
     up = cn.upper()
     fields = build_fields(dev)

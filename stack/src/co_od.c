@@ -387,14 +387,14 @@ void co_od_commit(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
         uint8_t *v = &node->ram[(uint16_t)(e->base + s->off)]; /* a RAM value */
         if ((fixed != 0U) && (CO_FAST || !CO_NATIVE_LE)) {
             co_pdo_from_wire(v, data, fixed); /* 1, 2 and 4 bytes without a call */
-        } else if (fixed != 0U) {
-            co_copy(v, data, fixed); /* (a build for size: the wire bytes are the value) */
         } else {
+            /* (a build for size on a little-endian CPU: a number's wire
+             * bytes are its value, len its size) */
             if (data != v) {
                 /* (a value gathered in place is its own data) */
                 co_copy(v, data, len);
             }
-            if (len < s->size) {
+            if ((fixed == 0U) && (len < s->size)) {
                 (void)memset(&v[len], 0, s->size - len);
             }
         }

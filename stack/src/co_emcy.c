@@ -213,9 +213,7 @@ static co_err_t emcy_bind(co_node_t *node)
 
     m->errreg = (uint8_t *)co_od_ram_of(node, 0x1001U, 0U, (uint8_t)CO_UNSIGNED8);
     m->hist_count = (uint8_t *)co_od_ram_of(node, 0x1003U, 0U, (uint8_t)CO_UNSIGNED8);
-    m->hist_depth = (m->hist_count != NULL)
-                        ? co_od_array_len(node, 0x1003U, (uint8_t)CO_UNSIGNED32, 254U)
-                        : 0U;
+    m->hist_depth = co_od_array_len(node, 0x1003U, (uint8_t)CO_UNSIGNED32, 254U);
     /* (read only for entries 1..hist_depth) */
     m->hist = (uint32_t *)co_od_ram_of(node, 0x1003U, 1U, (uint8_t)CO_UNSIGNED32);
     m->cob = (uint32_t *)co_od_ram_of(node, 0x1014U, 0U, (uint8_t)CO_UNSIGNED32);
@@ -302,16 +300,11 @@ co_err_t co_emcy_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
         if ((sub > 0U) && (m->hist_count != NULL) && (sub > *m->hist_count)) {
             err = CO_ERR_NO_DATA;
         }
-    } else if (op == (uint8_t)CO_SVC_CHECK) {
-        if ((sub == 0U) && (len == 1U) && (data[0] != 0U)) {
-            err = CO_ERR_VALUE;
-        }
-    } else if ((sub == 0U) && (m->hist != NULL)) { /* written */
-        for (uint8_t i = 0U; i < m->hist_depth; i++) {
-            m->hist[i] = 0U;
-        }
+    } else if ((sub == 0U) && (len == 1U) && (data[0] != 0U)) { /* checked */
+        err = CO_ERR_VALUE;
     } else {
-        /* a history entry written by the application */
+        /* 0 written to sub0: the history is empty (entries beyond the
+         * number of errors hold no data; the next error is entry 1) */
     }
     return err;
 }

@@ -310,10 +310,9 @@ CO_NOINLINE void co_node_stalled(co_node_t *node, uint32_t now_us)
 {
     uint16_t n = (uint16_t)(node->dev->n_rpdo + node->dev->n_tpdo);
 
-    if (node->errctl.hb_prod != NULL) {
-        /* the next heartbeat due now */
-        node->errctl.hb_last = now_us - co_dict_us(*node->errctl.hb_prod, 1000UL);
-    }
+    /* the next heartbeat due now (the last one long past: then the cycle
+     * starts over from now) */
+    node->errctl.hb_last = now_us - (uint32_t)CO_HORIZON_US;
 #if CO_NODE_GUARDING
     node->errctl.guard_deadline = now_us;
 #endif
@@ -492,7 +491,7 @@ static bool take_nodeid(co_node_t *node)
  * node-ID object takes its node-ID from it first ($NODEID defaults follow
  * it); after a node reset that object has its stored value, so the image is
  * restored again if the node-ID changes. */
-static void reset(co_node_t *node, co_reset_t kind_asked)
+CO_NOINLINE static void reset(co_node_t *node, co_reset_t kind_asked)
 {
     /* a new node-ID (LSS, co_node_set_id) takes effect here (CiA 305) */
     co_reset_t kind = co_node_take_id(node, kind_asked);

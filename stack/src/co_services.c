@@ -32,7 +32,7 @@ const uint8_t co_n_services = (uint8_t)(sizeof(co_services) / sizeof(co_services
  * co_node_process unless CO_SVC_SELF). Const: nothing registers at run time. */
 const co_svc_hook_t co_svc_hooks[CO_SVC_N_HOOKS] = {
     /* 1: 0x1003 */
-    {CO_SVC_READ | CO_SVC_CHECK | CO_SVC_WRITTEN, CO_ROW_EMCY, co_emcy_obj},
+    {CO_SVC_READ | CO_SVC_CHECK, CO_ROW_EMCY, co_emcy_obj},
     /* 2: 0x1014, 0x1015 */
     {CO_SVC_CHECK | CO_SVC_SELF, CO_ROW_EMCY, co_emcy_obj},
     /* 3: 0x1005..0x1007, 0x1019 */

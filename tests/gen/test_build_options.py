@@ -121,3 +121,20 @@ def test_store_commands_without_storage(tmp_path: Path) -> None:
     h = (full / "d.h").read_text()
     assert "uint32_t x1010_store_parameters[4];" in h and "x1011_restore" in h
     assert "store_command_none" not in (full / "d.c").read_text()
+
+
+def test_pdo_block_padding_holds_bytes(tmp_path: Path) -> None:
+    # a TPDO's block has a byte of padding after its SYNC start value: one-byte
+    # communication values no block holds go there (the RAM image shrinks by
+    # those bytes; the shared tables' offsets stay, the source checks them)
+    seg = ROOT / "tests" / "perf" / "size-seg.toml"
+    assert run_odgen(seg, tmp_path, "--c", "--base", "d", "--build=CO_STORAGE=1").returncode == 0
+    h = [line.split(";")[0].strip() for line in (tmp_path / "d.h").read_text().splitlines()]
+    at = h.index("uint8_t x1800_sync_start_value")
+    assert h[at + 1] == "uint8_t x1019_synchronous_counter_overflow_value"
+    assert h[at + 2] == "uint16_t x1800_inhibit_time"
+    at = h.index("uint8_t x1801_sync_start_value")
+    assert h[at + 1] == "uint8_t x1280_node_id_of_the_sdo_server"
+    assert h[at + 2] == "uint16_t x1801_inhibit_time"
+    assert "uint8_t x1802_sync_start_value" in h
+    assert h[h.index("uint8_t x1802_sync_start_value") + 1] == "uint16_t x1802_inhibit_time"

@@ -219,6 +219,11 @@ def generate(dev: Device, toml_name: str, warn=None, storage: bool = True) -> tu
     pdos_h = pdo_table(dev, warn)
     blocks = pdo_blocks(dev, fields, pdos_h)
     in_block = {f.name for b in blocks for f in b}
+    # the padding inside a PDO's block (a TPDO's byte after its SYNC start
+    # value) holds communication values of one byte that no block has
+    fill = [f for f in sort_region(fields, "comm") if f.name not in in_block and f.size == 1]
+    blocks = [fill_holes(b, fill) for b in blocks]
+    in_block = {f.name for b in blocks for f in b}
     ram = [f for b in blocks for f in b] + \
         [f for r, _ in REGIONS for f in sort_region(fields, r) if f.name not in in_block]
     share, same = shared_tables(dev, ram)
@@ -554,6 +559,19 @@ def pdo_blocks(dev: Device, fields: list[Field], pdos) -> list[list[Field]]:
         rest.sort(key=lambda f: (f.align, f.subs[0].index, f.subs[0].sub))
         blocks.append(big + entries + count + rest)
     return blocks
+
+
+def fill_holes(block: list[Field], fill: list[Field]) -> list[Field]:
+    """@p block (starting aligned) with the padding bytes before its values
+    taken by one-byte fields of @p fill (removed from it)."""
+    out, off = [], 0
+    for f in block:
+        while fill and off % f.align != 0:
+            out.append(fill.pop(0))
+            off += 1
+        off = (off + f.align - 1) // f.align * f.align + f.size
+        out.append(f)
+    return out
 
 
 def offsets(ram: list[Field]) -> dict[str, int]:

@@ -85,12 +85,14 @@ static bool length_ok(co_node_t *node, uint16_t i, uint8_t dlc)
     return true;
 }
 
+/* A frame on the COB-ID of RPDO i, which the node's dispatch found valid
+ * (co_pdo_rx_cob). */
 void co_rpdo_rx(co_node_t *node, uint16_t i, const co_frame_t *f)
 {
     co_pdo_t *p = &node->pdo.p[i];
 
     if ((node->nmt != (uint8_t)CO_NMT_OPERATIONAL) || co_frame_is_rtr(f) ||
-        !co_pdo_usable(node, i)) {
+        ((p->flags & CO_PDO_F_MAP_OK) == 0U)) {
         return;
     }
     /* the usual case, the expected length and no error to end, costs one test */

@@ -147,9 +147,12 @@ static bool answer_rtr(co_node_t *node, uint16_t i)
     return send(node, i, now, type >= 254U);
 }
 
+/* A remote request on the COB-ID of TPDO i, which the node's dispatch found
+ * valid and answering RTRs (co_pdo_rx_cob). */
 void co_tpdo_rtr(co_node_t *node, uint16_t i)
 {
-    if ((node->nmt != (uint8_t)CO_NMT_OPERATIONAL) || !co_pdo_usable(node, i)) {
+    if ((node->nmt != (uint8_t)CO_NMT_OPERATIONAL) ||
+        ((node->pdo.p[i].flags & CO_PDO_F_MAP_OK) == 0U)) {
         return;
     }
     /* answered at once; only when the TX path is full does co_tpdo_process retry */

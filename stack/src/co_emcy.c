@@ -286,13 +286,14 @@ co_err_t co_emcy_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
     uint8_t sub = s->sub;
     co_err_t err = CO_OK;
 
+    (void)len;
     if (e->index != 0x1003U) {
         /* 0x1014 / 0x1015 (CO_SVC_SELF): a new COB-ID or inhibit time
          * concerns emcy_process only for an EMCY that waits */
         if (m->n_q > 0U) {
             co_svc_touch(node, CO_ROW_EMCY);
         }
-        if ((e->index == 0x1014U) && (sub == 0U) && (len == 4U) && (m->cob != NULL)) {
+        if ((e->index == 0x1014U) && (m->cob != NULL)) { /* (then an UNSIGNED32) */
             err = co_check_cob(*m->cob, co_get_u32(data), 0x80000000UL, false, 0x40000000UL,
                                false);
         }
@@ -300,7 +301,7 @@ co_err_t co_emcy_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
         if ((sub > 0U) && (m->hist_count != NULL) && (sub > *m->hist_count)) {
             err = CO_ERR_NO_DATA;
         }
-    } else if ((sub == 0U) && (len == 1U) && (data[0] != 0U)) { /* checked */
+    } else if ((sub == 0U) && (data[0] != 0U)) { /* checked (an UNSIGNED8) */
         err = CO_ERR_VALUE;
     } else {
         /* 0 written to sub0: the history is empty (entries beyond the

@@ -331,13 +331,15 @@ co_err_t co_errctl_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
     bool consumer = ((CO_NODE_GUARDING == 0) || (e->index == 0x1016U)) && (sub > 0U) &&
                     (sub <= c->n_hb_cons);
 
+    (void)len;
+
     if (op == (uint8_t)CO_SVC_CHECK) {
         if ((e->index < 0x1016U) && (CO_SET(node, nmt.guarding_hb_exclusive) != 0U) &&
             heartbeat_producing(node)) {
             return CO_ERR_RESOURCE; /* guarding refused while the heartbeat runs */
         }
-        return (consumer && (len == 4U)) ? hb_consumer_check(node, sub, co_get_u32(data))
-                                         : CO_OK;
+        /* (an entry the service monitors is an UNSIGNED32: 4 bytes) */
+        return consumer ? hb_consumer_check(node, sub, co_get_u32(data)) : CO_OK;
     }
     if (consumer) {
         /* only this entry starts over: CiA 301 does not say what a write
@@ -375,9 +377,10 @@ co_err_t co_hb_prod_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
 {
     (void)e;
     (void)s;
+    (void)len;
     if (op != (uint8_t)CO_SVC_CHECK) {
         guard_check(node); /* (written: only with guarding, co_svc_hooks) */
-    } else if ((node->errctl.hb_prod != NULL) && (len == 2U)) {
+    } else if (node->errctl.hb_prod != NULL) { /* (then an UNSIGNED16: 2 bytes) */
         uint16_t ms = co_get_u16(data);
         if (*node->errctl.hb_prod == 0U) {
             node->errctl.hb_last = node->now;

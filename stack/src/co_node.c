@@ -99,15 +99,12 @@ void co_node_tx_ready(co_node_t *node, uint32_t now_us)
 void co_tx(co_node_t *node, uint32_t id, const uint8_t *data, uint8_t len)
 {
     co_frame_t f;
-    uint8_t n = (len > 8U) ? 8U : len;
 
-    /* co_frame_set, with the core's copy */
+    /* co_frame_set, with the core's copy (the core's frames: data, 0..8 bytes) */
     f.id = id;
-    f.dlc = n;
+    f.dlc = len;
     (void)memset(f.data, 0, sizeof f.data);
-    if (data != NULL) {
-        co_copy(f.data, data, n);
-    }
+    co_copy(f.data, data, len);
     co_tx_frame(node, &f);
 }
 

@@ -220,6 +220,7 @@ bool co_tx_now(co_node_t *node, const co_frame_t *f); /* (one copy: co_node.c) *
 /* Send @p f, or hold it back while the TX path is full (CO_TXQ_LEN). The
  * core sends 11-bit data frames only (what the queue keeps: co_txq_frame_t). */
 void co_tx_frame(co_node_t *node, const co_frame_t *f);
+/* A data frame of @p len (0..8) bytes from @p data, zeros past them. */
 void co_tx(co_node_t *node, uint32_t id, const uint8_t *data, uint8_t len);
 /* The receive table is out of date (a COB-ID changed): the node rebuilds it
  * from the services' rx_slots before it looks up the next frame. */

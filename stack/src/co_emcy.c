@@ -85,7 +85,6 @@ static void drain(co_node_t *node)
  * out at once when nothing is ahead of it and no inhibit time runs. */
 static void send_code(co_node_t *node, uint16_t code, const uint8_t *mfr)
 {
-    static const uint8_t none[5] = {0U, 0U, 0U, 0U, 0U};
     co_emcy_t *m = &node->emcy;
 
     if (emcy_id(node) == 0U) {
@@ -93,9 +92,12 @@ static void send_code(co_node_t *node, uint16_t code, const uint8_t *mfr)
     }
     if (m->n_q < CO_EMCY_QUEUE_LEN) {
         uint8_t *d = m->q[(m->q_head + m->n_q) % CO_EMCY_QUEUE_LEN].data;
+        (void)memset(d, 0, 8U);
+        if (mfr != NULL) {
+            co_copy(&d[3], mfr, 5U);
+        }
         co_put_u16(d, code);
         d[2] = update_errreg(node);
-        co_copy(&d[3], (mfr != NULL) ? mfr : none, 5U);
         m->n_q++;
     }
     drain(node);

@@ -180,9 +180,8 @@ static uint32_t errctl_process(co_node_t *node, uint32_t next)
          * state); only the boot-up marks a transition. */
         uint32_t period = ms_to_us(*node->errctl.hb_prod);
         if (co_time_reached(now, node->errctl.hb_last + period)) {
-            uint8_t st = node->nmt;
             if (node->errctl.hb_muted == 0U) {
-                co_tx(node, 0x700UL + node->node_id, &st, 1U);
+                co_tx(node, 0x700UL + node->node_id, &node->nmt, 1U); /* its state */
             }
             node->errctl.hb_last += period;
             if (co_time_reached(now, node->errctl.hb_last + period)) {

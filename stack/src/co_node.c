@@ -454,8 +454,8 @@ static void boot(co_node_t *node)
         return; /* LSS init: no boot-up, no NMT until a valid node-ID */
     }
     if (CO_SET(node, nmt.bootup) == CO_BOOTUP_FRAME) {
-        static const uint8_t bootup = 0x00U;
-        co_tx(node, 0x700UL + node->node_id, &bootup, 1U);
+        /* the boot-up: one byte, the state Initialising (0x00) */
+        co_tx(node, 0x700UL + node->node_id, &node->nmt, 1U);
     }
     co_node_set_state(node, CO_NMT_PRE_OPERATIONAL);
 }

@@ -121,11 +121,11 @@ void co_rpdo_rx(co_node_t *node, uint16_t i, const co_frame_t *f)
     apply(node, i, f->data, f->dlc);
 }
 
+/* At a SYNC (co_sync.c, when pdo.buffered says an RPDO may hold data):
+ * the buffered synchronous RPDOs take effect. Only in Operational does an
+ * RPDO buffer its data, and every NMT state change drops them (restart). */
 void co_rpdo_sync(co_node_t *node)
 {
-    if ((node->nmt != (uint8_t)CO_NMT_OPERATIONAL) || (node->pdo.buffered == 0U)) {
-        return;
-    }
     node->pdo.buffered = 0U;
     for (uint32_t i = 0U; i < node->dev->n_rpdo; i++) {
         co_pdo_t *p = &node->pdo.p[i];
@@ -136,11 +136,10 @@ void co_rpdo_sync(co_node_t *node)
     }
 }
 
+/* The RPDO deadlines (armed only in Operational: every NMT state change
+ * disarms them, restart in co_pdo_config.c). */
 uint32_t co_rpdo_process(co_node_t *node, uint32_t next)
 {
-    if (node->nmt != (uint8_t)CO_NMT_OPERATIONAL) {
-        return next; /* leaving Operational disarms every deadline */
-    }
     for (uint32_t i = 0U; i < node->dev->n_rpdo; i++) {
         co_pdo_t *p = &node->pdo.p[i];
         uint32_t ev = ((p->flags & CO_PDO_F_TIMER) != 0U) ? co_pdo_event_us(node, (uint16_t)i) : 0U;

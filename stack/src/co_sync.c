@@ -177,7 +177,7 @@ co_err_t co_sync_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
         }
     } else if (s->sub != 0U) {
         /* not a SYNC parameter */
-    } else if ((index == 0x1005U) && (len == 4U) && (node->sync.cob != NULL)) {
+    } else if ((index == 0x1005U) && (node->sync.cob != NULL)) { /* (an UNSIGNED32: sync_bind) */
         err = co_check_cob(*node->sync.cob, co_get_u32(data), COB_SYNC_GEN, true, 0U, true);
 #if CO_SYNC_PRODUCER /* (without, a device has no 0x1006: sync_bind) */
     } else if ((index == 0x1006U) && (len == 4U) && (co_get_u32(data) > CO_HORIZON_US)) {

@@ -494,15 +494,13 @@ co_err_t co_od_write_part(co_node_t *node, const co_od_entry_t *e, const co_od_s
                           uint32_t offset, const uint8_t *data, uint32_t len, uint32_t total,
                           bool last)
 {
-    uint8_t *v = (uint8_t *)co_od_loc(node, e, s);
-
     if ((s->flags & CO_SUB_HOOKIO) != 0U) {
         /* the hook takes every chunk */
         co_od_io_t io = {NULL, NULL, NULL, NULL, offset, (uint8_t *)(uintptr_t)data, len, total,
                          last};
         return app_io(node, e, s, true, &io);
     }
-    if ((v == NULL) || ((s->flags & CO_SUB_ROM) != 0U)) {
+    if ((s->flags & CO_SUB_ROM) != 0U) {
         return CO_ERR_NO_ACCESS;
     }
     if ((offset > s->size) || (len > (s->size - offset))) {
@@ -514,10 +512,10 @@ co_err_t co_od_write_part(co_node_t *node, const co_od_entry_t *e, const co_od_s
     {
         /* parts gather in the staging area (co_dev_t.stage) when it holds the
          * value; without one they are written in place */
-        uint8_t *at = (node->dev->stage_size >= s->size) ? &node->ram[node->dev->stage] : v;
-        if (len > 0U) {
-            co_copy(&at[offset], data, len);
-        }
+        uint16_t to = (node->dev->stage_size >= s->size) ? node->dev->stage
+                                                          : (uint16_t)(e->base + s->off);
+        uint8_t *at = &node->ram[to];
+        co_copy(&at[offset], data, len);
         /* complete: checked, hooked and committed as one value (the write
          * hook may veto it, the value is unchanged then unless it was
          * gathered in place) */

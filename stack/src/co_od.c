@@ -308,10 +308,8 @@ co_err_t co_od_read_part(co_node_t *node, const co_od_entry_t *e, const co_od_su
         uint8_t wire[8];
         co_to_wire(wire, v, fixed);
         co_copy(c->buf, &wire[offset], n);
-    } else if (n > 0U) {
-        co_copy(c->buf, &v[offset], n);
     } else {
-        /* empty */
+        co_copy(c->buf, &v[offset], n); /* (n may be 0) */
     }
     c->len = n;
     c->total = size;

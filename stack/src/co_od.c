@@ -201,10 +201,10 @@ static void touch_owner(co_node_t *node, const co_svc_hook_t *h)
 
 void *co_od_ram_of(co_node_t *node, uint16_t index, uint8_t sub, uint8_t type)
 {
-    const co_od_entry_t *e = co_od_find(node->dev->od, node->dev->od_count, index);
-    const co_od_sub_t *s = (e != NULL) ? find_sub(e, sub) : NULL;
+    const co_od_entry_t *e;
+    const co_od_sub_t *s;
 
-    if ((s == NULL) || ((type != 0U) && (s->type != type)) ||
+    if ((co_od_lookup(node, index, sub, &e, &s) != CO_OK) || ((type != 0U) && (s->type != type)) ||
         ((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) != 0U)) {
         return NULL;
     }

@@ -105,8 +105,8 @@ static void hb_reset(co_node_t *node)
 {
 #if CO_NODE_GUARDING
     node->errctl.guard_toggle = 0U;
+    node->errctl.guard_state = (uint8_t)GUARD_OFF; /* (never armed without guarding) */
 #endif
-    node->errctl.guard_state = (uint8_t)GUARD_OFF;
     /* The boot-up frame counts as the first heartbeat. */
     node->errctl.hb_last = node->now;
     for (uint32_t k = 0U; k < node->errctl.n_hb_cons; k++) {

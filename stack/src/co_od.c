@@ -430,7 +430,9 @@ CO_HOT co_err_t write_value(co_node_t *node, const co_od_entry_t *e, const co_od
             return err;
         }
     }
-    if ((e->hook != 0U) || ((s->flags & CO_SUB_HOOKIO) != 0U)) {
+    if (!CO_FAST || (e->hook != 0U) || ((s->flags & CO_SUB_HOOKIO) != 0U)) {
+        /* (a build for size asks app_io without looking first: no hook,
+         * nothing to do) */
         /* the application's hook with the whole value (none for a value
          * without storage: no access) */
         co_od_io_t io = {NULL, NULL, NULL, NULL, 0U, (uint8_t *)(uintptr_t)data, len, len, true};

@@ -251,6 +251,7 @@ static co_err_t stage_upload(co_node_t *node, uint16_t index, uint8_t sub, co_od
     co_err_t err = find_for(node, index, sub, false, e, s);
 
     if (err == CO_OK) {
+        (void)memset(node->sdo.buf, 0, sizeof node->sdo.buf); /* (zeros past the value) */
         c->buf = node->sdo.buf;
         c->offset = 0U;
         c->cap = SEG;
@@ -284,16 +285,12 @@ static bool fits_expedited(const co_node_t *node, bool last, uint32_t size)
 }
 
 /* Expedited upload answer with the @p size bytes staged in t->buf (the
- * bytes past them zero). */
+ * bytes past them zero: stage_upload). */
 static void send_expedited(co_node_t *node, uint16_t index, uint8_t sub, uint32_t size)
 {
     uint32_t n = (size == 0U) ? 1U : size;
-    uint32_t data = co_get_u32(node->sdo.buf);
+    uint32_t data = co_get_u32(node->sdo.buf); /* (zeros past the value: stage_upload) */
 
-    if (size < 4U) {
-        uint32_t keep = ((uint32_t)1U << (8U * size)) - 1U;
-        data &= keep;
-    }
     reply(node,
           (uint8_t)(CO_SDO_B0(CO_SDO_SCS_UPLOAD_INITIATE) | CO_SDO_EXPEDITED | CO_SDO_SIZE_IND |
                     ((4U - n) << CO_SDO_N_SHIFT)),

@@ -19,7 +19,9 @@ static void nmt_rx(co_node_t *node, uint16_t arg, const co_frame_t *f)
     if ((f->data[1] != 0U) && (f->data[1] != node->node_id)) {
         return;
     }
-    co_node_nmt_command(node, f->data[0], node->now);
+    /* (co_node_nmt_command without the clock: the frame's time is set) */
+    co_node_nmt_exec(node, f->data[0]);
+    co_rx_settle(node);
 }
 
 /* 0x1029 Error behaviour (CiA 301): what the device does on a serious

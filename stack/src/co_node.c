@@ -337,13 +337,6 @@ void co_node_clock(co_node_t *node, uint32_t now_us)
     co_node_clock_at(node, now_us);
 }
 
-uint32_t co_deadline_min(uint32_t now, uint32_t cur, uint32_t cand)
-{
-    if (cur == CO_NO_DEADLINE) {
-        return cand;
-    }
-    return ((int32_t)(cand - now) < (int32_t)(cur - now)) ? cand : cur;
-}
 #endif
 
 /* The services that run now: every one once the earliest deadline they

@@ -92,15 +92,20 @@ static inline bool co_cob_restricted(uint32_t id)
            ((id >= 0x6E0U) && (id <= 0x6FFU)) || (id >= 0x701U);
 }
 
-/* Earliest of a deadline set and another candidate (in a build for size
- * one copy, co_node.c: the services' timers call it in many places). */
-#if CO_FAST
-static inline uint32_t co_deadline_min(uint32_t now, uint32_t cur, uint32_t cand)
+/* Earliest of a deadline set and another candidate. */
+CO_INLINE uint32_t co_deadline_earlier(uint32_t now, uint32_t cur, uint32_t cand)
 {
     if (cur == CO_NO_DEADLINE) {
         return cand;
     }
     return ((int32_t)(cand - now) < (int32_t)(cur - now)) ? cand : cur;
+}
+/* The same, in a build for size one copy (co_deadline.c: the services'
+ * timers call it in many places), inlined in a build for speed. */
+#if CO_FAST
+CO_INLINE uint32_t co_deadline_min(uint32_t now, uint32_t cur, uint32_t cand)
+{
+    return co_deadline_earlier(now, cur, cand);
 }
 #else
 uint32_t co_deadline_min(uint32_t now, uint32_t cur, uint32_t cand);

@@ -336,7 +336,6 @@ void co_node_clock(co_node_t *node, uint32_t now_us)
 {
     co_node_clock_at(node, now_us);
 }
-
 #endif
 
 /* The services that run now: every one once the earliest deadline they

@@ -172,7 +172,10 @@ CO_INLINE void event_timers(co_node_t *node, co_pdo_t *p, uint32_t ev, uint32_t 
         co_time_reached(node->now, p->at + ev)) {
         p->flags |= CO_PDO_F_EVENT;
     }
-    if (((p->flags & CO_PDO_F_INHIBIT) != 0U) && co_time_reached(node->now, p->at + inh)) {
+    /* (the time since the transmission, not the end as a point in time: the
+     * end of an inhibit time of 0 would otherwise look in the future again
+     * 2^31 us later) */
+    if (((p->flags & CO_PDO_F_INHIBIT) != 0U) && ((uint32_t)(node->now - p->at) >= inh)) {
         p->flags &= (uint16_t)~CO_PDO_F_INHIBIT;
     }
 }
@@ -180,12 +183,18 @@ CO_INLINE void event_timers(co_node_t *node, co_pdo_t *p, uint32_t ev, uint32_t 
 /* The event timer (@p ev us) as a deadline while it runs. Once expired it
  * has set CO_PDO_F_EVENT, whose own deadline (inhibit time, TX retry)
  * counts: an expired timer is never a deadline (it would be one in the
- * past, and the caller's loop would spin until the TPDO can go). */
+ * past, and the caller's loop would spin until the TPDO can go). A running
+ * inhibit time (@p inh us) is one too, also with no event waiting: it ends
+ * when it ends, not when the next event looks at it (by then, 2^31 us
+ * later, its end would look like a time ahead). */
 CO_INLINE uint32_t timer_next(const co_node_t *node, const co_pdo_t *p, uint32_t ev,
-                              uint32_t next)
+                              uint32_t inh, uint32_t next)
 {
     uint32_t end = p->at + ev;
 
+    if (((p->flags & CO_PDO_F_INHIBIT) != 0U) && (inh != 0U)) {
+        next = co_deadline_min(node->now, next, p->at + inh);
+    }
     if (((p->flags & CO_PDO_F_TIMER) != 0U) && (ev != 0U) && !co_time_reached(node->now, end)) {
         return co_deadline_min(node->now, next, end);
     }
@@ -275,7 +284,7 @@ CO_HOT uint32_t event_driven(co_node_t *node, uint16_t i, uint32_t next, bool de
     if ((p->flags & CO_PDO_F_EVENT) != 0U) {
         next = event_due(node, i, inh, next, now);
     }
-    return timer_next(node, p, ev, next);
+    return timer_next(node, p, ev, inh, next);
 }
 
 /* At a SYNC: the synchronous TPDOs (RTR-only 253 and event-driven types

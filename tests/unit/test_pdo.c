@@ -390,6 +390,53 @@ static void no_change_detect_option(void **state)
     tb_expect_none(BUS);
 }
 
+/* The inhibit time of an event-driven TPDO ends once, whatever time passes
+ * before the next event: a request 40 minutes (more than 2^31 us) after the
+ * last transmission goes out at once. The inhibit time is a deadline of its
+ * own: were it looked at only when the next event comes, its end would by
+ * then look 2^32 us - 40 min (about 32 min) ahead, and the TPDO would wait
+ * for it. Without change detection and without an event timer nothing else
+ * runs the TPDO in between. */
+static void inhibit_after_long_silence(void **state)
+{
+    (void)state;
+    start_operational(1, &(co_settings_t){.tpdo.change_detection = CO_TPDO_CHANGE_IGNORED});
+    /* an inhibit time of 0 */
+    assert_int_equal(co_tpdo_request(&fx.n.node, 0U), CO_OK);
+    tb_advance(BUS, 0);
+    tb_expect(BUS, "181 00 00");
+    for (uint32_t m = 0U; m < 40U; m++) {
+        tb_advance(BUS, 60000000U);
+    }
+    assert_int_equal(co_tpdo_request(&fx.n.node, 0U), CO_OK);
+    tb_advance(BUS, 0);
+    tb_expect(BUS, "181 00 00");
+    /* 10 ms */
+    tb_send(BUS, "000 80 01");
+    tb_xfer(BUS, "601 23 00 18 01 81 01 00 80", "581 60 00 18 01 00 00 00 00");
+    tb_xfer(BUS, "601 2B 00 18 03 64 00 00 00", "581 60 00 18 03 00 00 00 00");
+    tb_xfer(BUS, "601 23 00 18 01 81 01 00 00", "581 60 00 18 01 00 00 00 00");
+    tb_send(BUS, "000 01 01");
+    assert_int_equal(co_tpdo_request(&fx.n.node, 0U), CO_OK);
+    tb_advance(BUS, 0);
+    tb_expect(BUS, "181 00 00");
+    for (uint32_t m = 0U; m < 40U; m++) {
+        tb_advance(BUS, 60000000U);
+    }
+    tb_expect_none(BUS);
+    pfx_set(&fx, 0x6041, 0, 0x0031, 2);
+    assert_int_equal(co_tpdo_request(&fx.n.node, 0U), CO_OK);
+    tb_advance(BUS, 0);
+    tb_expect(BUS, "181 31 00");
+    /* and the next one waits for the inhibit time as ever */
+    assert_int_equal(co_tpdo_request(&fx.n.node, 0U), CO_OK);
+    tb_advance(BUS, 9999);
+    tb_expect_none(BUS);
+    tb_advance(BUS, 1);
+    tb_expect(BUS, "181 31 00");
+    tb_expect_none(BUS);
+}
+
 /* set.tpdo.change_mask (Kollmorgen D4.5 for 255, SSD 630 D§4.4 for 254):
  * the change masks (here 0x2030.. for TPDO1..; sub 1 PDO bytes 0..3, sub 2
  * bytes 4..7) decide which changed bits send an event-driven TPDO. The
@@ -787,6 +834,7 @@ int main(void)
         cmocka_unit_test(inhibit_and_event_timer),
         cmocka_unit_test(event_timer_unit_option),
         cmocka_unit_test(no_change_detect_option),
+        cmocka_unit_test(inhibit_after_long_silence),
         cmocka_unit_test(tpdo_change_masks),
         cmocka_unit_test(tpdo_mask_high_bytes),
         cmocka_unit_test(sync_window),

@@ -21,10 +21,12 @@
 #endif
 #include SLAVE_HEADER
 
-/* Stand-ins for the CAN peripheral: a TX mailbox register and the RX FIFO
- * (identifier, length, data bytes 0..3 and 4..7). */
-static volatile uint32_t can_tx_reg;
-static volatile uint32_t can_rx_fifo[4];
+/* Stand-ins for the CAN peripheral's registers, memory-mapped as on a real
+ * MCU (not RAM): at a bxCAN's addresses (STM32 CAN1), a TX mailbox register
+ * and the RX FIFO's four (identifier, length, data bytes 0..3 and 4..7). */
+#define CAN_BASE    0x40006400UL
+#define can_tx_reg  (*(volatile uint32_t *)(uintptr_t)(CAN_BASE + 0x180UL)) /* TI0R */
+#define can_rx_fifo ((volatile const uint32_t *)(uintptr_t)(CAN_BASE + 0x1B0UL)) /* RI0R.. */
 static int can_send(void *ctx, const co_frame_t *f)
 {
     (void)ctx;

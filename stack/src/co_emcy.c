@@ -209,19 +209,7 @@ static uint32_t emcy_process(co_node_t *node, uint32_t next)
 
 /* ------------------------------------------------------------ service */
 
-static co_err_t emcy_bind(co_node_t *node)
-{
-    co_emcy_t *m = &node->emcy;
-
-    m->errreg = (uint8_t *)co_od_ram_of(node, 0x1001U, 0U, (uint8_t)CO_UNSIGNED8);
-    m->hist_count = (uint8_t *)co_od_ram_of(node, 0x1003U, 0U, (uint8_t)CO_UNSIGNED8);
-    m->hist_depth = co_od_array_len(node, 0x1003U, (uint8_t)CO_UNSIGNED32, 254U);
-    /* (read only for entries 1..hist_depth) */
-    m->hist = (uint32_t *)co_od_ram_of(node, 0x1003U, 1U, (uint8_t)CO_UNSIGNED32);
-    m->cob = (uint32_t *)co_od_ram_of(node, 0x1014U, 0U, (uint8_t)CO_UNSIGNED32);
-    m->inhibit = (uint16_t *)co_od_ram_of(node, 0x1015U, 0U, (uint8_t)CO_UNSIGNED16);
-    return CO_OK;
-}
+/* (its objects: co_binds[], co_services.c) */
 
 /* A reset node has no active errors; the communication starts over with an
  * empty queue and no inhibit time running. */
@@ -313,5 +301,5 @@ co_err_t co_emcy_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
 }
 
 const co_service_t co_svc_emcy = {
-    emcy_bind, emcy_reset, NULL, NULL, emcy_process, emcy_nmt,
+    NULL, emcy_reset, NULL, NULL, emcy_process, emcy_nmt,
 };

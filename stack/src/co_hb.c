@@ -235,22 +235,7 @@ void co_node_hb_mute(co_node_t *node, bool muted, uint32_t now_us)
 
 /* ------------------------------------------------------------ service */
 
-
-static co_err_t errctl_bind(co_node_t *node)
-{
-    co_errctl_t *c = &node->errctl;
-
-    c->n_hb_cons = co_od_array_len(node, 0x1016U, (uint8_t)CO_UNSIGNED32,
-                                   (uint8_t)CO_HB_CONSUMERS_MAX);
-    /* (read only for entries 1..n_hb_cons) */
-    c->hb_cons = (uint32_t *)co_od_ram_of(node, 0x1016U, 1U, (uint8_t)CO_UNSIGNED32);
-    c->hb_prod = (uint16_t *)co_od_ram_of(node, 0x1017U, 0U, (uint8_t)CO_UNSIGNED16);
-#if CO_NODE_GUARDING
-    c->guard_time = (uint16_t *)co_od_ram_of(node, 0x100CU, 0U, (uint8_t)CO_UNSIGNED16);
-    c->life_factor = (uint8_t *)co_od_ram_of(node, 0x100DU, 0U, (uint8_t)CO_UNSIGNED8);
-#endif /* (without guarding co_node_init refuses a device with 0x100C or 0x100D) */
-    return CO_OK;
-}
+/* (its objects: co_binds[], co_services.c) */
 
 static void errctl_reset(co_node_t *node, uint8_t kind)
 {
@@ -395,5 +380,5 @@ co_err_t co_hb_prod_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
 }
 
 const co_service_t co_svc_errctl = {
-    errctl_bind, errctl_reset, errctl_rx_slots, errctl_rx, errctl_process, NULL,
+    NULL, errctl_reset, errctl_rx_slots, errctl_rx, errctl_process, NULL,
 };

@@ -556,7 +556,8 @@ static const uint16_t left_out[] = {
     0U /* the end */
 };
 
-/* Every service finds its objects (its hooks are const: co_svc_hooks). */
+/* Every service finds its objects: its bind, and the core objects of
+ * co_binds[] (its hooks are const: co_svc_hooks). */
 static co_result_t bind_services(co_node_t *node)
 {
     for (uint32_t k = 0U; left_out[k] != 0U; k++) {
@@ -568,6 +569,27 @@ static co_result_t bind_services(co_node_t *node)
         const co_service_t *svc = co_services[k];
         if ((svc->bind != NULL) && (svc->bind(node) != CO_OK)) {
             return CO_RESULT_DEV_INCOMPAT;
+        }
+    }
+    for (uint32_t k = 0U; k < co_n_binds; k++) {
+        const co_bind_t *b = &co_binds[k];
+        uint16_t index = (uint16_t)(0x1000U + b->index);
+        uint8_t type = (uint8_t)(b->spec & 0x1FU);
+        uint8_t kind = (uint8_t)(b->spec & CO_BIND_KIND);
+        uint8_t *at = &((uint8_t *)node)[b->at];
+        void *v;
+        if (kind >= CO_BIND_LEN) {
+            *at = co_od_array_len(node, index, type,
+                                  (kind == CO_BIND_LEN) ? 254U : (uint8_t)CO_HB_CONSUMERS_MAX);
+            continue;
+        }
+        v = co_od_ram_of(node, index, ((b->spec & CO_BIND_SUB1) != 0U) ? 1U : 0U, type);
+        if (kind == CO_BIND_PTR) {
+            (void)memcpy(at, &v, sizeof v);
+        } else if (v != NULL) {
+            return CO_RESULT_DEV_INCOMPAT; /* CO_BIND_NONE */
+        } else {
+            /* absent, as it must be */
         }
     }
 #if !CO_PERSONALITY

@@ -5,6 +5,7 @@
 #define CO_PRIV_H
 
 #include <stdbool.h>
+#include <stddef.h>
 #include <stdint.h>
 #include <string.h>
 
@@ -351,6 +352,31 @@ co_err_t co_time_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e, const 
 co_err_t co_errbeh_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
                        const co_od_sub_t *s, const uint8_t *data, uint32_t len);
 #endif
+
+/* The core objects the services use, bound once at co_node_init (where
+ * they live does not change): one table for all (co_services.c), one loop
+ * (co_node.c) instead of a bind function per service. A row names object
+ * 0x1000 + index, the type its value must have and what the node stores
+ * at byte 'at' of co_node_t: CO_BIND_PTR a pointer to the value of the
+ * sub-index the row names (0 or CO_BIND_SUB1) in the RAM image
+ * (co_od_ram_of: NULL without one); CO_BIND_LEN a uint8_t count of the
+ * array's entries 1..n of that type stored back to back (co_od_array_len,
+ * at most 254; CO_BIND_LEN_HB at most CO_HB_CONSUMERS_MAX); CO_BIND_NONE
+ * nothing: a device with that value in RAM needs what this build leaves
+ * out (CO_ERR_DEV_INCOMPAT). */
+typedef struct co_bind {
+    uint8_t index;
+    uint8_t spec; /* the type (below 0x20) | CO_BIND_SUB1 | CO_BIND_* kind */
+    uint16_t at;
+} co_bind_t;
+#define CO_BIND_SUB1   0x20U
+#define CO_BIND_PTR    0x00U
+#define CO_BIND_NONE   0x40U
+#define CO_BIND_LEN    0x80U
+#define CO_BIND_LEN_HB 0xC0U
+#define CO_BIND_KIND   0xC0U
+extern const co_bind_t co_binds[];
+extern const uint8_t co_n_binds;
 
 /* Reset kinds a service sees (co_service_t.reset): CO_RESET_NODE and
  * CO_RESET_COMMUNICATION while the values are restored (before the

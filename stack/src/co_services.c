@@ -55,3 +55,44 @@ const co_svc_hook_t co_svc_hooks[CO_SVC_N_HOOKS] = {
     {CO_SVC_CHECK, CO_ROW_NMT, co_errbeh_obj},
 #endif
 };
+
+/* The core objects the services use (co_bind_t; co_node_init binds them,
+ * in this order). */
+#define BIND(index, type, kind, field) \
+    {(uint8_t)((index) - 0x1000U), (uint8_t)((uint8_t)(type) | (kind)), \
+     (uint16_t)offsetof(co_node_t, field)}
+const co_bind_t co_binds[] = {
+    /* error control: 0x1016 heartbeat consumers (at most CO_HB_CONSUMERS_MAX
+     * of them; read only for entries 1..n_hb_cons), 0x1017 producer time,
+     * 0x100C / 0x100D life guarding (without guarding co_node_init refuses
+     * a device with them) */
+    BIND(0x1016U, CO_UNSIGNED32, CO_BIND_LEN_HB, errctl.n_hb_cons),
+    BIND(0x1016U, CO_UNSIGNED32, CO_BIND_PTR | CO_BIND_SUB1, errctl.hb_cons),
+    BIND(0x1017U, CO_UNSIGNED16, CO_BIND_PTR, errctl.hb_prod),
+#if CO_NODE_GUARDING
+    BIND(0x100CU, CO_UNSIGNED16, CO_BIND_PTR, errctl.guard_time),
+    BIND(0x100DU, CO_UNSIGNED8, CO_BIND_PTR, errctl.life_factor),
+#endif
+    /* EMCY: 0x1001, 0x1003 (its depth; entries read only for 1..hist_depth),
+     * 0x1014, 0x1015 */
+    BIND(0x1001U, CO_UNSIGNED8, CO_BIND_PTR, emcy.errreg),
+    BIND(0x1003U, CO_UNSIGNED8, CO_BIND_PTR, emcy.hist_count),
+    BIND(0x1003U, CO_UNSIGNED32, CO_BIND_LEN, emcy.hist_depth),
+    BIND(0x1003U, CO_UNSIGNED32, CO_BIND_PTR | CO_BIND_SUB1, emcy.hist),
+    BIND(0x1014U, CO_UNSIGNED32, CO_BIND_PTR, emcy.cob),
+    BIND(0x1015U, CO_UNSIGNED16, CO_BIND_PTR, emcy.inhibit),
+    /* SYNC: 0x1005, 0x1007, 0x1019, 0x1006 (a period only with the producer) */
+    BIND(0x1005U, CO_UNSIGNED32, CO_BIND_PTR, sync.cob),
+    BIND(0x1007U, CO_UNSIGNED32, CO_BIND_PTR, sync.window),
+    BIND(0x1019U, CO_UNSIGNED8, CO_BIND_PTR, sync.overflow),
+#if CO_SYNC_PRODUCER
+    BIND(0x1006U, CO_UNSIGNED32, CO_BIND_PTR, sync.period),
+#else
+    BIND(0x1006U, CO_UNSIGNED32, CO_BIND_NONE, sync),
+#endif
+#if CO_TIME
+    /* TIME: 0x1012 */
+    BIND(0x1012U, CO_UNSIGNED32, CO_BIND_PTR, time.cob),
+#endif
+};
+const uint8_t co_n_binds = (uint8_t)(sizeof(co_binds) / sizeof(co_binds[0]));

@@ -123,22 +123,8 @@ bool co_sync_window_open(const co_node_t *node)
 
 /* ------------------------------------------------------------ service */
 
-static co_err_t sync_bind(co_node_t *node)
-{
-    co_sync_t *y = &node->sync;
-
-    y->cob = (uint32_t *)co_od_ram_of(node, 0x1005U, 0U, (uint8_t)CO_UNSIGNED32);
-    y->window = (uint32_t *)co_od_ram_of(node, 0x1007U, 0U, (uint8_t)CO_UNSIGNED32);
-    y->overflow = (uint8_t *)co_od_ram_of(node, 0x1019U, 0U, (uint8_t)CO_UNSIGNED8);
-#if CO_SYNC_PRODUCER
-    y->period = (uint32_t *)co_od_ram_of(node, 0x1006U, 0U, (uint8_t)CO_UNSIGNED32);
-#else
-    if (co_od_ram_of(node, 0x1006U, 0U, (uint8_t)CO_UNSIGNED32) != NULL) {
-        return CO_ERR_DEV_INCOMPAT;
-    }
-#endif
-    return CO_OK;
-}
+/* (its objects: co_binds[], co_services.c; without the producer a device
+ * with a 0x1006 is refused) */
 
 static void sync_reset_kind(co_node_t *node, uint8_t kind)
 {
@@ -177,9 +163,9 @@ co_err_t co_sync_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
         }
     } else if (s->sub != 0U) {
         /* not a SYNC parameter */
-    } else if ((index == 0x1005U) && (node->sync.cob != NULL)) { /* (an UNSIGNED32: sync_bind) */
+    } else if ((index == 0x1005U) && (node->sync.cob != NULL)) { /* (an UNSIGNED32: co_binds) */
         err = co_check_cob(*node->sync.cob, co_get_u32(data), COB_SYNC_GEN, true, 0U, true);
-#if CO_SYNC_PRODUCER /* (without, a device has no 0x1006: sync_bind) */
+#if CO_SYNC_PRODUCER /* (without, a device has no 0x1006: co_binds) */
     } else if ((index == 0x1006U) && (len == 4U) && (co_get_u32(data) > CO_HORIZON_US)) {
         err = CO_ERR_VALUE_HIGH;
 #endif
@@ -198,7 +184,7 @@ co_err_t co_sync_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
 }
 
 const co_service_t co_svc_sync = {
-    sync_bind, sync_reset_kind, sync_rx_slots, sync_rx_frame,
+    NULL, sync_reset_kind, sync_rx_slots, sync_rx_frame,
 #if CO_SYNC_PRODUCER
     sync_process,
 #else

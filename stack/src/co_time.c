@@ -48,11 +48,7 @@ co_err_t co_time_send(co_node_t *node, uint32_t ms, uint16_t days)
     return CO_OK;
 }
 
-static co_err_t time_bind(co_node_t *node)
-{
-    node->time.cob = (uint32_t *)co_od_ram_of(node, 0x1012U, 0U, (uint8_t)CO_UNSIGNED32);
-    return CO_OK;
-}
+/* (its object: co_binds[], co_services.c) */
 
 static void time_rx_slots(co_node_t *node, uint8_t svc)
 {
@@ -81,7 +77,7 @@ co_err_t co_time_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
 }
 
 const co_service_t co_svc_time = {
-    time_bind, NULL, time_rx_slots, time_rx, NULL, NULL,
+    NULL, NULL, time_rx_slots, time_rx, NULL, NULL,
 };
 
 #else /* !CO_TIME */

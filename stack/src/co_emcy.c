@@ -301,5 +301,5 @@ co_err_t co_emcy_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
 }
 
 const co_service_t co_svc_emcy = {
-    NULL, emcy_reset, NULL, NULL, emcy_process, emcy_nmt,
+    emcy_reset, NULL, NULL, emcy_process, emcy_nmt,
 };

@@ -380,5 +380,5 @@ co_err_t co_hb_prod_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
 }
 
 const co_service_t co_svc_errctl = {
-    NULL, errctl_reset, errctl_rx_slots, errctl_rx, errctl_process, NULL,
+    errctl_reset, errctl_rx_slots, errctl_rx, errctl_process, NULL,
 };

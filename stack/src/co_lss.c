@@ -239,7 +239,7 @@ static uint32_t lss_store_process(co_node_t *node, uint32_t next)
 
 /* bind (co_node_init, before any reset): the stored configuration (node-ID,
  * COB-ID base, bit timing); an LSS-stored node-ID replaces the configured one */
-static co_err_t lss_bind(co_node_t *node)
+static void lss_bind(co_node_t *node)
 {
     uint8_t d[3];
     uint32_t seq = 0U;
@@ -248,7 +248,7 @@ static co_err_t lss_bind(co_node_t *node)
     node->lss.bit_timing = BT_NONE;
     node->lss.active_bt = BT_NONE;
     if (!co_lss_enabled(node) || !lss_has_nv(node) || (rec_newest(node, &seq, d) == 2U)) {
-        return CO_OK;
+        return;
     }
     if (((d[0] >= 1U) && (d[0] <= 127U)) || (d[0] == CO_NODE_ID_UNCONFIGURED)) {
         node->node_id = d[0];
@@ -259,11 +259,14 @@ static co_err_t lss_bind(co_node_t *node)
         (node->hal.ops->bit_timing(node->hal.ctx, d[2]) == 0)) {
         node->lss.active_bt = d[2];
     }
-    return CO_OK;
 }
 
 static void lss_reset(co_node_t *node, uint8_t kind)
 {
+    if (kind == CO_SVC_BIND) {
+        lss_bind(node);
+        return;
+    }
     if (kind != CO_SVC_START) {
         return;
     }
@@ -501,6 +504,6 @@ static void lss_rx_slots(co_node_t *node, uint8_t svc)
 }
 
 /* The first row of co_services[]: it alone runs while unconfigured. */
-const co_service_t co_svc_lss = {lss_bind, lss_reset, lss_rx_slots, lss_rx, lss_process, NULL};
+const co_service_t co_svc_lss = {lss_reset, lss_rx_slots, lss_rx, lss_process, NULL};
 
 #endif /* CO_LSS */

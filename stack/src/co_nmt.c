@@ -66,13 +66,13 @@ co_err_t co_errbeh_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
 }
 
 const co_service_t co_svc_nmt = {
-    NULL, NULL, nmt_rx_slots, nmt_rx, NULL, NULL,
+    NULL, nmt_rx_slots, nmt_rx, NULL, NULL,
 };
 
 #else /* !CO_ERROR_BEHAVIOUR: co_node_init refuses a device with 0x1029 */
 
 const co_service_t co_svc_nmt = {
-    NULL, NULL, nmt_rx_slots, nmt_rx, NULL, NULL,
+    NULL, nmt_rx_slots, nmt_rx, NULL, NULL,
 };
 
 #endif

@@ -556,8 +556,8 @@ static const uint16_t left_out[] = {
     0U /* the end */
 };
 
-/* Every service finds its objects: its bind, and the core objects of
- * co_binds[] (its hooks are const: co_svc_hooks). */
+/* The services find their objects: the core objects of co_binds[] (their
+ * hooks are const: co_svc_hooks); LSS its stored configuration first. */
 static co_result_t bind_services(co_node_t *node)
 {
     for (uint32_t k = 0U; left_out[k] != 0U; k++) {
@@ -565,12 +565,9 @@ static co_result_t bind_services(co_node_t *node)
             return CO_RESULT_DEV_INCOMPAT;
         }
     }
-    for (uint32_t k = 0U; k < co_n_services; k++) {
-        const co_service_t *svc = co_services[k];
-        if ((svc->bind != NULL) && (svc->bind(node) != CO_OK)) {
-            return CO_RESULT_DEV_INCOMPAT;
-        }
-    }
+#if CO_LSS
+    co_services[0]->reset(node, CO_SVC_BIND); /* (its row: the first) */
+#endif
     for (uint32_t k = 0U; k < co_n_binds; k++) {
         const co_bind_t *b = &co_binds[k];
         uint16_t index = (uint16_t)(0x1000U + b->index);

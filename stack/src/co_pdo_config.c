@@ -344,7 +344,7 @@ co_err_t co_pdo_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
 }
 
 const co_service_t co_svc_pdo = {
-    NULL, pdo_reset, pdo_rx_slots,
+    pdo_reset, pdo_rx_slots,
 #if CO_PDO_RTR
     pdo_rx,
 #else

@@ -381,15 +381,16 @@ extern const uint8_t co_n_binds;
 /* Reset kinds a service sees (co_service_t.reset): CO_RESET_NODE and
  * CO_RESET_COMMUNICATION while the values are restored (before the
  * application's nmt_reset callback), then CO_SVC_START before the boot-up
- * frame: the service's state starts over. */
+ * frame: the service's state starts over. CO_SVC_BIND: co_node_init, before
+ * anything else, to the LSS service alone (its stored configuration: an
+ * LSS-stored node-ID replaces the configured one). */
 #define CO_SVC_START 0U
+#define CO_SVC_BIND  3U
 
 /* One service: the same entry points for all, any may be NULL. The node
  * walks co_services[] in its order for each (docs/core.md). */
 typedef struct co_service {
-    /* co_node_init: find the objects the service uses. CO_ERR_DEV_INCOMPAT for
-     * a device that needs what this build leaves out (co_config.h). */
-    co_err_t (*bind)(co_node_t *node);
+    /* (co_node_init finds the objects a service uses: co_binds[]) */
     void (*reset)(co_node_t *node, uint8_t kind);
     /* Add the receive-table slots (co_rx_add with @p svc, its own index). */
     void (*rx_slots)(co_node_t *node, uint8_t svc);

@@ -952,5 +952,5 @@ static void sdo_nmt(co_node_t *node, uint8_t from)
 }
 
 const co_service_t co_svc_sdo = {
-    NULL, sdo_reset_kind, sdo_rx_slots, sdo_rx, sdo_process, sdo_nmt,
+    sdo_reset_kind, sdo_rx_slots, sdo_rx, sdo_process, sdo_nmt,
 };

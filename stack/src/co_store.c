@@ -536,8 +536,8 @@ co_err_t co_store_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
 
 const co_service_t co_svc_store = {
 #if CO_STORAGE
-    NULL, store_reset, NULL, NULL, store_process, NULL,
+    store_reset, NULL, NULL, store_process, NULL,
 #else
-    NULL, store_reset, NULL, NULL, NULL, NULL,
+    store_reset, NULL, NULL, NULL, NULL,
 #endif
 };

@@ -184,7 +184,7 @@ co_err_t co_sync_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
 }
 
 const co_service_t co_svc_sync = {
-    NULL, sync_reset_kind, sync_rx_slots, sync_rx_frame,
+    sync_reset_kind, sync_rx_slots, sync_rx_frame,
 #if CO_SYNC_PRODUCER
     sync_process,
 #else

@@ -77,7 +77,7 @@ co_err_t co_time_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
 }
 
 const co_service_t co_svc_time = {
-    NULL, NULL, time_rx_slots, time_rx, NULL, NULL,
+    NULL, time_rx_slots, time_rx, NULL, NULL,
 };
 
 #else /* !CO_TIME */

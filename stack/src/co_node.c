@@ -541,33 +541,11 @@ void co_node_nmt_command(co_node_t *node, uint8_t cs, uint32_t now_us)
 
 /* -------------------------------------------------------------- init */
 
-/* The objects of the services this build leaves out (co_config.h): a
- * device that has one of them is refused. */
-static const uint16_t left_out[] = {
-#if !CO_NODE_GUARDING
-    0x100CU, 0x100DU,
-#endif
-#if !CO_TIME
-    0x1012U,
-#endif
-#if !CO_ERROR_BEHAVIOUR
-    0x1029U,
-#endif
-    0U /* the end */
-};
-
 /* The services find their objects: the core objects of co_binds[] (their
- * hooks are const: co_svc_hooks); LSS its stored configuration first. */
+ * hooks are const: co_svc_hooks), a device with the objects of a service
+ * this build leaves out refused; then LSS its stored configuration. */
 static co_result_t bind_services(co_node_t *node)
 {
-    for (uint32_t k = 0U; left_out[k] != 0U; k++) {
-        if (co_od_find(node->dev->od, node->dev->od_count, left_out[k]) != NULL) {
-            return CO_RESULT_DEV_INCOMPAT;
-        }
-    }
-#if CO_LSS
-    co_services[0]->reset(node, CO_SVC_BIND); /* (its row: the first) */
-#endif
     for (uint32_t k = 0U; k < co_n_binds; k++) {
         const co_bind_t *b = &co_binds[k];
         uint16_t index = (uint16_t)(0x1000U + b->index);
@@ -580,15 +558,18 @@ static co_result_t bind_services(co_node_t *node)
                                   (kind == CO_BIND_LEN) ? 254U : (uint8_t)CO_HB_CONSUMERS_MAX);
             continue;
         }
-        v = co_od_ram_of(node, index, ((b->spec & CO_BIND_SUB1) != 0U) ? 1U : 0U, type);
-        if (kind == CO_BIND_PTR) {
-            (void)memcpy(at, &v, sizeof v);
-        } else if (v != NULL) {
-            return CO_RESULT_DEV_INCOMPAT; /* CO_BIND_NONE */
-        } else {
-            /* absent, as it must be */
+        if (kind == CO_BIND_NONE) {
+            if (co_od_find(node->dev->od, node->dev->od_count, index) != NULL) {
+                return CO_RESULT_DEV_INCOMPAT;
+            }
+            continue;
         }
+        v = co_od_ram_of(node, index, ((b->spec & CO_BIND_SUB1) != 0U) ? 1U : 0U, type);
+        (void)memcpy(at, &v, sizeof v);
     }
+#if CO_LSS
+    co_services[0]->reset(node, CO_SVC_BIND); /* (its row: the first) */
+#endif
 #if !CO_PERSONALITY
     {
         /* every setting 0 (CiA 301) but lss.slave where the build has LSS:

@@ -362,8 +362,8 @@ co_err_t co_errbeh_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
  * (co_od_ram_of: NULL without one); CO_BIND_LEN a uint8_t count of the
  * array's entries 1..n of that type stored back to back (co_od_array_len,
  * at most 254; CO_BIND_LEN_HB at most CO_HB_CONSUMERS_MAX); CO_BIND_NONE
- * nothing: a device with that value in RAM needs what this build leaves
- * out (CO_ERR_DEV_INCOMPAT). */
+ * nothing: a device with that object needs a service this build leaves
+ * out (co_config.h; co_node_init refuses it: CO_RESULT_DEV_INCOMPAT). */
 typedef struct co_bind {
     uint8_t index;
     uint8_t spec; /* the type (below 0x20) | CO_BIND_SUB1 | CO_BIND_* kind */

@@ -64,14 +64,17 @@ const co_svc_hook_t co_svc_hooks[CO_SVC_N_HOOKS] = {
 const co_bind_t co_binds[] = {
     /* error control: 0x1016 heartbeat consumers (at most CO_HB_CONSUMERS_MAX
      * of them; read only for entries 1..n_hb_cons), 0x1017 producer time,
-     * 0x100C / 0x100D life guarding (without guarding co_node_init refuses
-     * a device with them) */
+     * 0x100C / 0x100D life guarding (a build without refuses a device with
+     * them) */
     BIND(0x1016U, CO_UNSIGNED32, CO_BIND_LEN_HB, errctl.n_hb_cons),
     BIND(0x1016U, CO_UNSIGNED32, CO_BIND_PTR | CO_BIND_SUB1, errctl.hb_cons),
     BIND(0x1017U, CO_UNSIGNED16, CO_BIND_PTR, errctl.hb_prod),
 #if CO_NODE_GUARDING
     BIND(0x100CU, CO_UNSIGNED16, CO_BIND_PTR, errctl.guard_time),
     BIND(0x100DU, CO_UNSIGNED8, CO_BIND_PTR, errctl.life_factor),
+#else
+    BIND(0x100CU, 0U, CO_BIND_NONE, errctl),
+    BIND(0x100DU, 0U, CO_BIND_NONE, errctl),
 #endif
     /* EMCY: 0x1001, 0x1003 (its depth; entries read only for 1..hist_depth),
      * 0x1014, 0x1015 */
@@ -88,11 +91,17 @@ const co_bind_t co_binds[] = {
 #if CO_SYNC_PRODUCER
     BIND(0x1006U, CO_UNSIGNED32, CO_BIND_PTR, sync.period),
 #else
-    BIND(0x1006U, CO_UNSIGNED32, CO_BIND_NONE, sync),
+    BIND(0x1006U, 0U, CO_BIND_NONE, sync),
 #endif
 #if CO_TIME
     /* TIME: 0x1012 */
     BIND(0x1012U, CO_UNSIGNED32, CO_BIND_PTR, time.cob),
+#else
+    BIND(0x1012U, 0U, CO_BIND_NONE, sync),
+#endif
+#if !CO_ERROR_BEHAVIOUR
+    /* error behaviour: 0x1029 (its hook is the NMT service's) */
+    BIND(0x1029U, 0U, CO_BIND_NONE, errctl),
 #endif
 };
 const uint8_t co_n_binds = (uint8_t)(sizeof(co_binds) / sizeof(co_binds[0]));

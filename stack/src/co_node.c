@@ -257,30 +257,43 @@ CO_HOT void rx_slot(co_node_t *node, const co_frame_t *f, uint16_t cob, uint16_t
 }
 
 /* A function code with several slots (or a stale table): a search of the
- * services' slots, then the PDOs'. */
-CO_NOINLINE static void rx_many(co_node_t *node, const co_frame_t *f, uint16_t cob,
-                                uint32_t now_us)
+ * services' slots, then the PDOs'; the slot found (a CO_RX_AT_* code, wider
+ * for a PDO of any index), CO_RX_AT_NONE when none is for @p cob. */
+CO_NOINLINE static uint16_t rx_find(co_node_t *node, uint16_t cob)
 {
     co_rx_settle(node); /* a frame that came while the table was out of date */
     for (uint32_t k = 0U; k < node->n_rx; k++) {
         if ((node->rx[k] & 0x7FFU) == cob) {
-            rx_slot(node, f, cob, (uint16_t)(k + 1U), now_us);
-            return;
+            return (uint16_t)(k + 1U);
         }
     }
     for (uint16_t k = 0U; k < pdo_n_rx(node); k++) {
         if (co_pdo_rx_cob(node, k) == cob) {
-            rx_slot(node, f, cob, (uint16_t)(CO_RX_AT_PDO + k), now_us);
-            return;
+            return (uint16_t)(CO_RX_AT_PDO + k);
         }
+    }
+    return CO_RX_AT_NONE;
+}
+
+/* The search and its dispatch out of co_node_rx (a build for speed: the
+ * frames of a function code with one slot then save no registers for a
+ * call they do not make). */
+CO_NOINLINE static void rx_many(co_node_t *node, const co_frame_t *f, uint16_t cob,
+                                uint32_t now_us)
+{
+    uint16_t at = rx_find(node, cob);
+
+    if (at != CO_RX_AT_NONE) {
+        rx_slot(node, f, cob, at, now_us);
     }
 }
 
-/* The function code's only slot, or a search where it has several. */
+/* The function code's only slot, or a search where it has several (in a
+ * build for size one dispatch for both). */
 void co_node_rx(co_node_t *node, const co_frame_t *f, uint32_t now_us)
 {
     uint16_t cob;
-    uint8_t at;
+    uint16_t at;
 
     if ((f->id & CO_FRAME_EFF) != 0U) {
         return; /* the predefined connection set is 11-bit only */
@@ -291,8 +304,14 @@ void co_node_rx(co_node_t *node, const co_frame_t *f, uint32_t now_us)
         return; /* not for this node */
     }
     if (at == CO_RX_AT_MANY) {
-        rx_many(node, f, cob, now_us);
-        return;
+        if (CO_FAST) {
+            rx_many(node, f, cob, now_us);
+            return;
+        }
+        at = rx_find(node, cob);
+        if (at == CO_RX_AT_NONE) {
+            return;
+        }
     }
     rx_slot(node, f, cob, at, now_us);
 }

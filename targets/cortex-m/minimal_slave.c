@@ -9,6 +9,7 @@
  * own device (SLAVE_HEADER, SLAVE_NODE_T, SLAVE_CONFIG, SLAVE_NODE_ID).
  */
 #include <stdint.h>
+#include <string.h>
 
 #include "co/co_node.h"
 #include "co/co_rxq.h"
@@ -52,15 +53,15 @@ void CAN1_RX0_IRQHandler(void);
 void CAN1_RX0_IRQHandler(void)
 {
     co_frame_t f;
-    uint32_t lo = can_rx_fifo[2];
-    uint32_t hi = can_rx_fifo[3];
+    uint32_t d[2];
 
     f.id = can_rx_fifo[0];
     f.dlc = (uint8_t)(can_rx_fifo[1] & 0x0FU);
-    for (uint8_t k = 0U; k < 4U; k++) {
-        f.data[k] = (uint8_t)(lo >> (8U * k));
-        f.data[4U + k] = (uint8_t)(hi >> (8U * k));
-    }
+    /* the data registers hold bytes 0..3 and 4..7, the first in the low
+     * byte: on the little-endian Cortex-M the frame's bytes as they are */
+    d[0] = can_rx_fifo[2];
+    d[1] = can_rx_fifo[3];
+    (void)memcpy(f.data, d, sizeof f.data);
     (void)co_rxq_push(&rxq, &f);
 }
 

@@ -156,6 +156,8 @@ co_err_t co_sync_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
     uint16_t index = e->index;
     co_err_t err = CO_OK;
 
+    (void)len;
+
     if (op == (uint8_t)CO_SVC_WRITTEN) {
         if (index != 0x1007U) {
             sync_reset(node);
@@ -169,7 +171,7 @@ co_err_t co_sync_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
     } else if ((index == 0x1006U) && (len == 4U) && (co_get_u32(data) > CO_HORIZON_US)) {
         err = CO_ERR_VALUE_HIGH;
 #endif
-    } else if ((index == 0x1019U) && (len == 1U)) {
+    } else if (index == 0x1019U) { /* (an UNSIGNED8: co_binds, the engine's type check) */
         if ((data[0] == 1U) || (data[0] > 240U)) {
             err = CO_ERR_VALUE;
         } else if (producing_period(node)) {

@@ -758,8 +758,6 @@ static void idle_request(co_node_t *node, const uint8_t *d)
         err = initiate_download(node, d, index, sub, false); /* (the most frequent first) */
     } else if (ccs == CO_SDO_CCS_UPLOAD_INITIATE) {
         err = initiate_upload(node, d, index, sub, false);
-    } else if (ccs == CO_SDO_CS_ABORT) {
-        err = CO_OK; /* abort with nothing open: nothing to do */
 #if CO_SDO_BLOCK
     } else if (blocks && (ccs == CO_SDO_CCS_BLOCK_UPLOAD)) {
         err = initiate_upload(node, d, index, sub, true);
@@ -839,13 +837,6 @@ static void sdo_rx(co_node_t *node, uint16_t arg, const co_frame_t *f)
     if ((node->nmt == (uint8_t)CO_NMT_STOPPED) || co_frame_is_rtr(f)) {
         return;
     }
-    if ((t->state == (uint8_t)S_IDLE) && (f->dlc == 8U)) {
-        idle_request(node, d); /* (an abort: nothing is open, nothing to do) */
-        if (t->state == (uint8_t)S_IDLE) {
-            co_svc_untouch(node, CO_ROW_SDO); /* answered, nothing open: no timer */
-        }
-        return;
-    }
     if ((f->dlc >= 1U) && (CO_SDO_CS(d[0]) == CO_SDO_CS_ABORT)
 #if CO_SDO_BLOCK
         && ((t->state != (uint8_t)S_BLK_DL) || (d[0] == CO_SDO_B0(CO_SDO_CS_ABORT)))
@@ -853,27 +844,31 @@ static void sdo_rx(co_node_t *node, uint16_t arg, const co_frame_t *f)
     ) {
         /* client abort, whatever its length: CiA 301 makes the abort
          * unconfirmed, so nothing answers it; the transfer ends (in a
-         * sub-block, byte 0 is a sequence number: only 0x80 aborts) */
+         * sub-block, byte 0 is a sequence number: only 0x80 aborts);
+         * with nothing open nothing happens */
         sdo_reset(node);
-        return;
-    }
-    if (f->dlc != 8U) {
+    } else if (f->dlc != 8U) {
         /* CiA 301: SDO frames are 8 bytes; anything else is not a valid
          * request (with nothing open, the abort names what it carries) */
         sdo_abort(node, (f->dlc >= 3U) ? co_get_u16(&d[1]) : 0U, (f->dlc >= 4U) ? d[3] : 0U,
                   CO_ERR_CMD);
-        return;
-    }
+    } else if (t->state == (uint8_t)S_IDLE) {
+        idle_request(node, d);
+    } else {
 #if CO_SDO_BLOCK
-    if (t->state == (uint8_t)S_BLK_DL) {
-        err = block_download_segment(node, d);
-    } else
+        if (t->state == (uint8_t)S_BLK_DL) {
+            err = block_download_segment(node, d);
+        } else
 #endif
-    {
-        err = transfer_request(node, d); /* (S_IDLE took the 8-byte frames above) */
+        {
+            err = transfer_request(node, d);
+        }
+        if (err != CO_OK) {
+            sdo_abort(node, 0U, 0U, err);
+        }
     }
-    if (err != CO_OK) {
-        sdo_abort(node, 0U, 0U, err);
+    if (t->state == (uint8_t)S_IDLE) {
+        co_svc_untouch(node, CO_ROW_SDO); /* answered, nothing open: no timer */
     }
 }
 

@@ -321,11 +321,6 @@ static void pdo_rx(co_node_t *node, uint16_t i, const co_frame_t *f)
 }
 #endif
 
-static uint32_t pdo_process(co_node_t *node, uint32_t next)
-{
-    return co_tpdo_process(node, co_rpdo_process(node, next));
-}
-
 co_err_t co_pdo_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
                     const co_od_sub_t *s, const uint8_t *data, uint32_t len)
 {
@@ -350,5 +345,5 @@ const co_service_t co_svc_pdo = {
 #else
     co_rpdo_rx, /* only RPDOs receive */
 #endif
-    pdo_process, pdo_nmt,
+    co_tpdo_process, pdo_nmt,
 };

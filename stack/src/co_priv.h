@@ -859,7 +859,7 @@ void co_pdo_sample(co_node_t *node, uint16_t i, uint8_t *out);
 void co_pdo_store(co_node_t *node, uint16_t i, const uint8_t *data, uint8_t dlc);
 void co_rpdo_rx(co_node_t *node, uint16_t i, const co_frame_t *f);
 void co_rpdo_sync(co_node_t *node);
-uint32_t co_rpdo_process(co_node_t *node, uint32_t next);
+void co_rpdo_timeout(co_node_t *node, uint16_t i);
 #if CO_PDO_RTR
 void co_tpdo_rtr(co_node_t *node, uint16_t i);
 #endif

@@ -136,23 +136,11 @@ void co_rpdo_sync(co_node_t *node)
     }
 }
 
-/* The RPDO deadlines (armed only in Operational: every NMT state change
- * disarms them, restart in co_pdo_config.c). */
-uint32_t co_rpdo_process(co_node_t *node, uint32_t next)
+/* RPDO i's deadline missed (co_tpdo.c's pass over the PDOs: armed only in
+ * Operational, every NMT state change disarms it, restart in
+ * co_pdo_config.c): monitoring stops until the next reception, EMCY. */
+void co_rpdo_timeout(co_node_t *node, uint16_t i)
 {
-    for (uint32_t i = 0U; i < node->dev->n_rpdo; i++) {
-        co_pdo_t *p = &node->pdo.p[i];
-        uint32_t ev = ((p->flags & CO_PDO_F_TIMER) != 0U) ? co_pdo_event_us(node, (uint16_t)i) : 0U;
-        uint32_t end = p->at + ev;
-        if (ev == 0U) {
-            continue; /* not received yet, or no deadline monitoring */
-        }
-        if (co_time_reached(node->now, end)) {
-            p->flags &= (uint16_t)~CO_PDO_F_TIMER;
-            rpdo_error(node, (uint16_t)i, CO_PDO_F_TIMEOUT, CO_PDO_F_TIMEOUT);
-        } else {
-            next = co_deadline_min(node->now, next, end);
-        }
-    }
-    return next;
+    node->pdo.p[i].flags &= (uint16_t)~CO_PDO_F_TIMER;
+    rpdo_error(node, i, CO_PDO_F_TIMEOUT, CO_PDO_F_TIMEOUT);
 }

@@ -339,9 +339,27 @@ CO_HOT uint32_t at_process(co_node_t *node, uint16_t i, uint8_t type, uint32_t n
     return next;
 }
 
+/* The deadline of RPDO i (armed at a reception in Operational: every NMT
+ * state change disarms it; an event timer of 0 is none). */
+CO_HOT uint32_t rpdo_deadline(co_node_t *node, uint16_t i, uint32_t next)
+{
+    const co_pdo_t *p = &node->pdo.p[i];
+    uint32_t ev = ((p->flags & CO_PDO_F_TIMER) != 0U) ? co_pdo_event_us(node, i) : 0U;
+    uint32_t end = p->at + ev;
+
+    if (ev == 0U) {
+        return next; /* not received yet, or no deadline monitoring */
+    }
+    if (co_time_reached(node->now, end)) {
+        co_rpdo_timeout(node, i);
+        return next;
+    }
+    return co_deadline_min(node->now, next, end);
+}
+
 /* One pass over the usable TPDOs in Operational: at a SYNC (@p sync, the
- * SYNC's @p counter) or at co_node_process (the timers and events; returns
- * the next deadline). */
+ * SYNC's @p counter) or at co_node_process (the timers and events, and the
+ * RPDOs' deadlines; returns the next deadline). */
 CO_HOT uint32_t tpdo_pass(co_node_t *node, uint32_t next, bool sync, uint8_t counter)
 {
     uint32_t n = (uint32_t)node->dev->n_rpdo + node->dev->n_tpdo;
@@ -353,9 +371,13 @@ CO_HOT uint32_t tpdo_pass(co_node_t *node, uint32_t next, bool sync, uint8_t cou
     if (node->nmt != (uint8_t)CO_NMT_OPERATIONAL) {
         return next;
     }
-    for (uint32_t k = node->dev->n_rpdo; k < n; k++) {
+    for (uint32_t k = sync ? node->dev->n_rpdo : 0U; k < n; k++) {
         uint16_t i = (uint16_t)k;
         uint8_t type = co_pdo_type(node, i);
+        if (k < node->dev->n_rpdo) {
+            next = rpdo_deadline(node, i, next);
+            continue;
+        }
         if (!co_pdo_usable(node, i)) {
             continue;
         }

@@ -264,29 +264,34 @@ static void pdo_written(co_node_t *node, uint16_t i, bool is_map, uint8_t sub)
     restart(node, i);
 }
 
-static void pdo_reset(co_node_t *node, uint8_t kind)
+/* Every PDO starts over (restart); at a reset (@p remap) with no error
+ * state and its mapping taken anew from the dictionary. */
+static CO_NOINLINE void restart_all(co_node_t *node, bool remap)
 {
     uint32_t n = (uint32_t)node->dev->n_rpdo + node->dev->n_tpdo;
 
-    if (kind != CO_SVC_START) {
-        return;
-    }
     for (uint32_t i = 0U; i < n; i++) {
-        (void)memset(&node->pdo.p[i], 0, sizeof node->pdo.p[i]);
-        (void)check_mapping(node, (uint16_t)i, 0U, &node->pdo.p[i]);
+        if (remap) {
+            node->pdo.p[i].flags = 0U;
+            (void)check_mapping(node, (uint16_t)i, 0U, &node->pdo.p[i]);
+        }
+        restart(node, (uint16_t)i);
+    }
+}
+
+static void pdo_reset(co_node_t *node, uint8_t kind)
+{
+    if (kind == CO_SVC_START) {
+        restart_all(node, true);
     }
 }
 
 static void pdo_nmt(co_node_t *node, uint8_t from)
 {
-    uint32_t n = (uint32_t)node->dev->n_rpdo + node->dev->n_tpdo;
-
     /* Entering or leaving Operational, every PDO starts over: buffered
      * synchronous data and pending transmissions are dropped, event-driven
      * TPDOs send their current data once on entering Operational. */
-    for (uint32_t i = 0U; i < n; i++) {
-        restart(node, (uint16_t)i);
-    }
+    restart_all(node, false);
     (void)from;
     if (node->nmt == (uint8_t)CO_NMT_OPERATIONAL) {
         (void)co_tpdo_process(node, CO_NO_DEADLINE);

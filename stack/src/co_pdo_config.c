@@ -124,26 +124,22 @@ static uint16_t direct_code(const co_node_t *node, const co_od_entry_t *e, const
 }
 #endif
 
-/* Validate the first @p new_count entries of PDO i's mapping. With @p p (PDO
- * i's state), its mapping as the dictionary holds it becomes its state:
- * enabled and valid (CO_PDO_F_MAP_OK, len), the first CO_PDO_FAST_MAX
- * entries resolved (p->plain). */
-static co_err_t check_mapping(const co_node_t *node, uint16_t i, uint8_t new_count, co_pdo_t *p)
+/* Validate the first @p count entries of PDO i's mapping as the dictionary
+ * holds them; they become the state @p p: enabled and valid
+ * (CO_PDO_F_MAP_OK, len), the first CO_PDO_FAST_MAX entries resolved
+ * (p->plain). */
+static co_err_t map_state(const co_node_t *node, uint16_t i, uint32_t count, co_pdo_t *p)
 {
     const co_pdo_desc_t *d = &node->dev->pdo[i];
     bool tx = is_tpdo(node, i);
     uint32_t total = 0U;
-    uint32_t count = (p != NULL) ? co_ram_u8(node, d->count) : new_count;
-    bool direct;
+    bool direct = count <= CO_PDO_FAST_MAX;
 
-    if (p != NULL) {
-        p->flags &= (uint16_t)~(CO_PDO_F_MAP_OK | CO_PDO_F_DIRECT);
-        p->len = 0U;
-    }
+    p->flags &= (uint16_t)~(CO_PDO_F_MAP_OK | CO_PDO_F_DIRECT);
+    p->len = 0U;
     if (count > d->map_max) {
         return CO_ERR_MAP_LEN;
     }
-    direct = count <= CO_PDO_FAST_MAX;
     for (uint32_t k = 0U; k < count; k++) {
         uint8_t bits;
         const co_od_entry_t *e = NULL;
@@ -154,7 +150,7 @@ static co_err_t check_mapping(const co_node_t *node, uint16_t i, uint8_t new_cou
             return err;
         }
 #if CO_PDO_FAST_MAX > 0
-        if ((p != NULL) && (k < CO_PDO_FAST_MAX)) {
+        if (k < CO_PDO_FAST_MAX) {
             p->plain[k] = (s != NULL) ? direct_code(node, e, s, tx, bits, total) : CO_PDO_DUMMY;
             direct = direct && (p->plain[k] != CO_PDO_SLOW) && ((bits & 7U) == 0U);
         }
@@ -164,11 +160,17 @@ static co_err_t check_mapping(const co_node_t *node, uint16_t i, uint8_t new_cou
     if (total > 64U) {
         return CO_ERR_MAP_LEN;
     }
-    if ((p != NULL) && (count != 0U)) {
+    if (count != 0U) {
         p->flags |= (uint16_t)(CO_PDO_F_MAP_OK | ((CO_FAST && direct) ? CO_PDO_F_DIRECT : 0U));
         p->len = (uint8_t)((total + 7U) / 8U);
     }
     return CO_OK;
+}
+
+/* PDO i's state from its mapping as the dictionary holds it. */
+static void remap(co_node_t *node, uint16_t i)
+{
+    (void)map_state(node, i, co_ram_u8(node, node->dev->pdo[i].count), &node->pdo.p[i]);
 }
 
 /* A write of sub @p sub of PDO i's mapping (@p is_map) or communication
@@ -201,9 +203,11 @@ static co_err_t check_write(const co_node_t *node, uint16_t i, bool is_map, uint
             return CO_ERR_STORE_STATE;
         }
         if (sub == 0U) {
-            /* A new count is checked against the entries as they stand; the
-             * check reads them from the image, so count them up to data[0]. */
-            return check_mapping(node, i, (uint8_t)v, NULL);
+            /* A new count is checked against the entries as they stand (in
+             * a state of its own: the PDO's changes only once it is written) */
+            co_pdo_t tmp;
+            tmp.flags = 0U;
+            return map_state(node, i, v, &tmp);
         }
         if (co_ram_u8(node, d->count) != 0U) {
             return CO_ERR_NO_ACCESS; /* entries are fixed while the mapping is enabled */
@@ -253,7 +257,7 @@ static void pdo_written(co_node_t *node, uint16_t i, bool is_map, uint8_t sub)
         if (sub != 0U) {
             return;
         }
-        (void)check_mapping(node, i, 0U, &node->pdo.p[i]);
+        remap(node, i);
     } else if (sub == 1U) {
         co_rx_invalidate(node);
     } else if ((sub != 2U) && (sub != 5U)) {
@@ -264,16 +268,16 @@ static void pdo_written(co_node_t *node, uint16_t i, bool is_map, uint8_t sub)
     restart(node, i);
 }
 
-/* Every PDO starts over (restart); at a reset (@p remap) with no error
+/* Every PDO starts over (restart); at a reset (@p reset) with no error
  * state and its mapping taken anew from the dictionary. */
-static CO_NOINLINE void restart_all(co_node_t *node, bool remap)
+static CO_NOINLINE void restart_all(co_node_t *node, bool reset)
 {
     uint32_t n = (uint32_t)node->dev->n_rpdo + node->dev->n_tpdo;
 
     for (uint32_t i = 0U; i < n; i++) {
-        if (remap) {
+        if (reset) {
             node->pdo.p[i].flags = 0U;
-            (void)check_mapping(node, (uint16_t)i, 0U, &node->pdo.p[i]);
+            remap(node, (uint16_t)i);
         }
         restart(node, (uint16_t)i);
     }

@@ -374,7 +374,7 @@ CO_HOT uint32_t tpdo_pass(co_node_t *node, uint32_t next, bool sync, uint8_t cou
     for (uint32_t k = sync ? node->dev->n_rpdo : 0U; k < n; k++) {
         uint16_t i = (uint16_t)k;
         uint8_t type = co_pdo_type(node, i);
-        if (k < node->dev->n_rpdo) {
+        if (!sync && (k < node->dev->n_rpdo)) {
             next = rpdo_deadline(node, i, next);
             continue;
         }

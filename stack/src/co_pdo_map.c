@@ -38,12 +38,8 @@ static void bits_copy(uint8_t *dst, uint16_t dpos, const uint8_t *src, uint16_t 
     for (uint32_t b = 0U; b < n; b++) {
         uint32_t s = spos + b;
         uint32_t d = dpos + b;
-        uint8_t mask = (uint8_t)(1U << (d & 7U));
-        if ((src[s >> 3U] & (1U << (s & 7U))) != 0U) {
-            dst[d >> 3U] |= mask;
-        } else {
-            dst[d >> 3U] &= (uint8_t)~mask;
-        }
+        uint32_t bit = ((uint32_t)src[s >> 3U] >> (s & 7U)) & 1U;
+        dst[d >> 3U] = (uint8_t)((dst[d >> 3U] & ~(1U << (d & 7U))) | (bit << (d & 7U)));
     }
 }
 

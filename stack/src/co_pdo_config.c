@@ -205,8 +205,7 @@ static co_err_t check_write(const co_node_t *node, uint16_t i, bool is_map, uint
         if (sub == 0U) {
             /* A new count is checked against the entries as they stand (in
              * a state of its own: the PDO's changes only once it is written) */
-            co_pdo_t tmp;
-            tmp.flags = 0U;
+            co_pdo_t tmp = {0};
             return map_state(node, i, v, &tmp);
         }
         if (co_ram_u8(node, d->count) != 0U) {

@@ -804,6 +804,51 @@ static void cob_change_and_reset(void **state)
     assert_int_equal(pfx_get(&fx, 0x6040, 0), 0x33);
 }
 
+/* set.pdo.tpdo_after_rpdo (Wandfluh DSV): an applied RPDO n requests TPDO n
+ * when that has type 255, with the data of then, also when they did not
+ * change; not a TPDO of another type, nor one that is not valid. */
+static void tpdo_after_rpdo(void **state)
+{
+    const co_settings_t set = {.pdo.tpdo_after_rpdo = 1U};
+
+    (void)state;
+    start_operational(1, &set);
+    tb_expect(BUS, "181 00 00"); /* entering Operational */
+    tb_send(BUS, "201 05 00");
+    assert_int_equal(pfx_get(&fx, 0x6040, 0), 5);
+    tb_advance(BUS, 0);
+    tb_expect(BUS, "181 00 00"); /* the statusword did not change: requested */
+    tb_expect_none(BUS);
+    pfx_set(&fx, 0x6041, 0, 0x0007, 2);
+    tb_send(BUS, "201 06 00");
+    tb_advance(BUS, 0);
+    tb_expect(BUS, "181 07 00"); /* a change too: one frame */
+    tb_expect_none(BUS);
+    /* CiA 301: no request */
+    start_operational(1, NULL);
+    tb_expect(BUS, "181 00 00");
+    tb_send(BUS, "201 05 00");
+    tb_advance(BUS, 0);
+    tb_expect_none(BUS);
+    /* type 254: not requested */
+    start_operational(1, &set);
+    tb_expect(BUS, "181 00 00");
+    tb_xfer(BUS, "601 2F 00 18 02 FE 00 00 00", "581 60 00 18 02 00 00 00 00");
+    tb_advance(BUS, 0);
+    tb_expect(BUS, "181 00 00"); /* a new type: sent once */
+    tb_send(BUS, "201 05 00");
+    tb_advance(BUS, 0);
+    tb_expect_none(BUS);
+    /* TPDO1 not valid: nothing */
+    start_operational(1, &set);
+    tb_expect(BUS, "181 00 00");
+    tb_xfer(BUS, "601 23 00 18 01 81 01 00 80", "581 60 00 18 01 00 00 00 00");
+    tb_send(BUS, "201 05 00");
+    assert_int_equal(pfx_get(&fx, 0x6040, 0), 5);
+    tb_advance(BUS, 0);
+    tb_expect_none(BUS);
+}
+
 static void tx_path_full(void **state)
 {
     (void)state;
@@ -841,6 +886,7 @@ int main(void)
         cmocka_unit_test(rpdo_length_emcy),
         cmocka_unit_test(rpdo_short_option),
         cmocka_unit_test(rpdo_timeout),
+        cmocka_unit_test(tpdo_after_rpdo),
         cmocka_unit_test(bit_and_byte_mapping),
         cmocka_unit_test(full_size_values),
         cmocka_unit_test(dictionary_path),

@@ -43,14 +43,14 @@ static void bits_copy(uint8_t *dst, uint16_t dpos, const uint8_t *src, uint16_t 
     }
 }
 
-/* One entry @p v at bit @p pos, resolved as @p code (co_pdo_code): sampled
- * into @p tx (an object that cannot be read, a hook's veto, is sent as
- * zeros), or, with @p tx NULL, written from @p rx (a value the object
- * refuses, limits or a hook's veto, is dropped; a dummy entry is a gap). A
+/* One entry @p v at bit @p pos of @p buf, resolved as @p code (co_pdo_code):
+ * sampled into it (@p tx; an object that cannot be read, a hook's veto, is
+ * sent as zeros), or written from it (a value the object refuses, limits or
+ * a hook's veto, is dropped; a dummy entry is a gap). A
  * resolved entry is copied between its RAM value and the bits directly,
  * any other goes through the dictionary. */
-static void entry_io(co_node_t *node, uint32_t v, uint16_t code, uint16_t pos,
-                     const uint8_t *rx, uint8_t *tx)
+static void entry_io(co_node_t *node, uint32_t v, uint16_t code, uint16_t pos, uint8_t *buf,
+                     bool tx)
 {
     uint16_t index = (uint16_t)(v >> 16U);
     uint8_t bits = (uint8_t)(v & 0xFFU);
@@ -70,7 +70,7 @@ static void entry_io(co_node_t *node, uint32_t v, uint16_t code, uint16_t pos,
     } else {
         /* resolved */
     }
-    if (tx != NULL) {
+    if (tx) {
         if (s != NULL) {
             co_od_chunk_t c = {tmp, 0U, 8U, 0U, 0U, false};
             if (co_od_read_part(node, e, s, &c) != CO_OK) {
@@ -86,7 +86,7 @@ static void entry_io(co_node_t *node, uint32_t v, uint16_t code, uint16_t pos,
         } else {
             /* zeros */
         }
-        bits_copy(tx, pos, tmp, 0U, bits);
+        bits_copy(buf, pos, tmp, 0U, bits);
         return;
     }
     if (size == 0U) {
@@ -95,9 +95,9 @@ static void entry_io(co_node_t *node, uint32_t v, uint16_t code, uint16_t pos,
     /* the low bits, extended to the value's size by the sign for signed types */
     if (sign) {
         uint16_t top = (uint16_t)(pos + bits - 1U);
-        (void)memset(tmp, ((rx[top >> 3U] & (1U << (top & 7U))) != 0U) ? 0xFF : 0x00, sizeof tmp);
+        (void)memset(tmp, ((buf[top >> 3U] & (1U << (top & 7U))) != 0U) ? 0xFF : 0x00, sizeof tmp);
     }
-    bits_copy(tmp, 0U, rx, pos, bits);
+    bits_copy(tmp, 0U, buf, pos, bits);
     if (s != NULL) {
         (void)co_od_write_value(node, e, s, tmp, size);
     } else if (CO_NATIVE_LE) {
@@ -108,18 +108,20 @@ static void entry_io(co_node_t *node, uint32_t v, uint16_t code, uint16_t pos,
 }
 
 /* The entries of PDO i (co_pdo_code resolves them when the mapping is
- * enabled). A TPDO (@p tx) samples into @p tx (8 bytes, zero past the
- * mapping); an RPDO writes from @p rx the entries its @p dlc bytes cover. */
-static void pdo_io(co_node_t *node, uint16_t i, const uint8_t *rx, uint8_t dlc, uint8_t *tx)
+ * enabled): sampled into @p buf (8 bytes, zero past the mapping) with
+ * @p dlc CO_PDO_SAMPLE, else written from @p buf, the entries its @p dlc
+ * bytes (0..8) cover. */
+void co_pdo_io(co_node_t *node, uint16_t i, uint8_t *buf, uint8_t dlc)
 {
     const co_pdo_desc_t *d = &node->dev->pdo[i];
     const co_pdo_t *p = &node->pdo.p[i];
     uint32_t count = co_ram_u8(node, d->count);
-    uint32_t avail = ((tx != NULL) || (dlc > 8U)) ? 64U : (dlc * 8U);
+    bool tx = dlc == CO_PDO_SAMPLE;
+    uint32_t avail = tx ? 64U : (dlc * 8U);
     uint32_t pos = 0U;
 
-    if (tx != NULL) {
-        (void)memset(tx, 0, 8U);
+    if (tx) {
+        (void)memset(buf, 0, 8U);
     }
     for (uint32_t k = 0U; k < count; k++) {
         uint32_t v = co_ram_u32(node, (uint16_t)(d->map + (4U * k)));
@@ -127,17 +129,7 @@ static void pdo_io(co_node_t *node, uint16_t i, const uint8_t *rx, uint8_t dlc, 
         if (end > avail) {
             break;
         }
-        entry_io(node, v, co_pdo_code(p, (uint8_t)k), (uint16_t)pos, rx, tx);
+        entry_io(node, v, co_pdo_code(p, (uint8_t)k), (uint16_t)pos, buf, tx);
         pos = end;
     }
-}
-
-void co_pdo_sample(co_node_t *node, uint16_t i, uint8_t *out)
-{
-    pdo_io(node, i, NULL, 0U, out);
-}
-
-void co_pdo_store(co_node_t *node, uint16_t i, const uint8_t *data, uint8_t dlc)
-{
-    pdo_io(node, i, data, dlc, NULL);
 }

@@ -850,13 +850,23 @@ CO_INLINE uint32_t co_pdo_inhibit_us(const co_node_t *node, uint16_t i)
 uint32_t co_pdo_event_us(const co_node_t *node, uint16_t i);
 uint32_t co_pdo_inhibit_us(const co_node_t *node, uint16_t i);
 #endif
-/* The mapped objects of PDO i (co_pdo_map.c), the resolved entries
- * directly, the others through the dictionary: sample them into @p out (8
- * bytes, zero past the mapping; an object that cannot be read is sent as
- * zeros), or write them from @p data (@p dlc bytes; entries the frame does
- * not cover are skipped, a refused value is dropped). */
-void co_pdo_sample(co_node_t *node, uint16_t i, uint8_t *out);
-void co_pdo_store(co_node_t *node, uint16_t i, const uint8_t *data, uint8_t dlc);
+/* The mapped objects of PDO i (co_pdo_map.c, one entry point for both
+ * directions), the resolved entries directly, the others through the
+ * dictionary: sample them into @p out (8 bytes, zero past the mapping; an
+ * object that cannot be read is sent as zeros), or write them from @p data
+ * (@p dlc bytes; entries the frame does not cover are skipped, a refused
+ * value is dropped). */
+#define CO_PDO_SAMPLE 0xFFU
+void co_pdo_io(co_node_t *node, uint16_t i, uint8_t *buf, uint8_t dlc);
+CO_INLINE void co_pdo_sample(co_node_t *node, uint16_t i, uint8_t *out)
+{
+    co_pdo_io(node, i, out, CO_PDO_SAMPLE);
+}
+CO_INLINE void co_pdo_store(co_node_t *node, uint16_t i, const uint8_t *data, uint8_t dlc)
+{
+    /* (data only read: a frame's bytes, or an RPDO's buffered ones) */
+    co_pdo_io(node, i, (uint8_t *)(uintptr_t)data, (dlc > 8U) ? 8U : dlc);
+}
 void co_rpdo_rx(co_node_t *node, uint16_t i, const co_frame_t *f);
 void co_rpdo_sync(co_node_t *node);
 void co_rpdo_timeout(co_node_t *node, uint16_t i);

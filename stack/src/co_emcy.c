@@ -284,8 +284,7 @@ co_err_t co_emcy_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
             co_svc_touch(node, CO_ROW_EMCY);
         }
         if ((e->index == 0x1014U) && (m->cob != NULL)) { /* (then an UNSIGNED32) */
-            err = co_check_cob(*m->cob, co_get_u32(data), 0x80000000UL, false, 0x40000000UL,
-                               false);
+            err = co_check_cob(*m->cob, co_get_u32(data), 0x80000000UL | CO_COB_RSV30);
         }
     } else if (op == (uint8_t)CO_SVC_READ) {
         if ((sub > 0U) && (m->hist_count != NULL) && (sub > *m->hist_count)) {

@@ -222,7 +222,7 @@ static co_err_t check_write(const co_node_t *node, uint16_t i, bool is_map, uint
         if (CO_SET(node, pdo.cob_id_while_valid) != 0U) {
             cob |= (uint32_t)CO_PDO_COB_INVALID;
         }
-        return co_check_cob(cob, co_get_u32(data), CO_PDO_COB_INVALID, false, 0U, false);
+        return co_check_cob(cob, co_get_u32(data), CO_PDO_COB_INVALID);
     }
     if ((sub == 2U) && (v > 240U) && (v < ((tx && CO_PDO_RTR) ? 252U : 254U))) {
         return CO_ERR_VALUE; /* reserved transmission types */

@@ -511,14 +511,21 @@ void *co_od_ram_of(co_node_t *node, uint16_t index, uint8_t sub, uint8_t type);
  * values of @p type are stored back to back, 0 if there are none. */
 uint8_t co_od_array_len(const co_node_t *node, uint16_t index, uint8_t type, uint8_t max);
 
-/* A COB-ID write (CiA 301 7.5.2): 29-bit identifiers are not supported,
- * bits 11..28 are 0, @p reserved bits must be 0, and the CAN-ID may not change
- * while the object is in use: in use is any of @p use_bits set (@p use_when_set)
- * or its one bit clear (!use_when_set: a single bit, the 'valid' bit of EMCY and PDO). A CAN-ID in use
- * (or @p always in use, the SYNC consumer) may not be a restricted one
- * (CiA 301 7.3.5). */
-co_err_t co_check_cob(uint32_t cur, uint32_t v, uint32_t use_bits, bool use_when_set,
-                      uint32_t reserved, bool always);
+/* A COB-ID write (CiA 301 7.5.2) of @p v over @p cur: 29-bit identifiers
+ * are not supported, bits 11..28 are 0 (and bit 30 with CO_COB_RSV30), and
+ * the CAN-ID may not change while the object is in use: in use is any of
+ * the use bits of @p rule set (CO_COB_WHEN_SET) or its one bit clear (a
+ * single bit, the 'valid' bit of EMCY and PDO). A CAN-ID in use (or always,
+ * CO_COB_ALWAYS: the SYNC consumer) may not be a restricted one (CiA 301
+ * 7.3.5). One word for the rule: the callers pass three arguments, all in
+ * registers. */
+co_err_t co_check_cob(uint32_t cur, uint32_t v, uint32_t rule);
+/* co_check_cob's @p rule: the object's use bits (bits 31 and 30 of its
+ * COB-ID) and the flags below */
+#define CO_COB_USE      0xC0000000UL
+#define CO_COB_WHEN_SET 0x01UL /* in use while a use bit is set (else: while clear) */
+#define CO_COB_ALWAYS   0x02UL /* the CAN-ID counts as in use whatever the bits say */
+#define CO_COB_RSV30    0x04UL /* bit 30 is reserved: must be 0 */
 
 /* True while the synchronous window (0x1007) after the last SYNC is open. */
 static inline bool co_sync_window(const co_node_t *node)

@@ -166,7 +166,8 @@ co_err_t co_sync_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
     } else if (s->sub != 0U) {
         /* not a SYNC parameter */
     } else if ((index == 0x1005U) && (node->sync.cob != NULL)) { /* (an UNSIGNED32: co_binds) */
-        err = co_check_cob(*node->sync.cob, co_get_u32(data), COB_SYNC_GEN, true, 0U, true);
+        err = co_check_cob(*node->sync.cob, co_get_u32(data),
+                           COB_SYNC_GEN | CO_COB_WHEN_SET | CO_COB_ALWAYS);
 #if CO_SYNC_PRODUCER /* (without, a device has no 0x1006: co_binds) */
     } else if ((index == 0x1006U) && (len == 4U) && (co_get_u32(data) > CO_HORIZON_US)) {
         err = CO_ERR_VALUE_HIGH;

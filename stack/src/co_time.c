@@ -68,8 +68,8 @@ co_err_t co_time_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
     if (op == (uint8_t)CO_SVC_WRITTEN) {
         co_rx_invalidate(node);
     } else if ((s->sub == 0U) && (len == 4U) && (node->time.cob != NULL)) {
-        return co_check_cob(*node->time.cob, co_get_u32(data), COB_TIME_CONS | COB_TIME_PROD,
-                            true, 0U, false);
+        return co_check_cob(*node->time.cob, co_get_u32(data),
+                            COB_TIME_CONS | COB_TIME_PROD | CO_COB_WHEN_SET);
     } else {
         /* no rule */
     }

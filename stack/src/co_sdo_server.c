@@ -41,17 +41,13 @@ enum {
     S_STORE       /* a download started a save: its answer waits until it is durable */
 };
 
-/* Inlining, per build. SDO_SHARED: helpers that block transfer gives
- * callers enough to be worth a call (bench-size BLK), else inlined.
- * Where the build is for speed (CO_FAST): SDO_RARE, the requests that are
- * not an initiate, stay out of sdo_rx (their stack frame would be paid by
- * every expedited transfer), and SDO_CALL, small helpers with many
- * callers, are inlined; at -Os the other way round (fewer bytes). */
-#if CO_SDO_BLOCK
-#define SDO_SHARED CO_NOINLINE
-#else
-#define SDO_SHARED
-#endif
+/* Inlining, per build. Where the build is for speed (CO_FAST): SDO_RARE,
+ * the requests that are not an initiate, stay out of sdo_rx (their stack
+ * frame would be paid by every expedited transfer), and SDO_CALL, small
+ * helpers with many callers, are inlined; at -Os the other way round
+ * (fewer bytes). The helpers that open a transfer (open_xfer,
+ * open_upload) the compiler places (out of line in a build with block
+ * transfer: bench-size BLK 32 bytes more). */
 #if CO_FAST
 #define SDO_RARE CO_NOINLINE
 #define SDO_CALL
@@ -120,7 +116,7 @@ SDO_CALL static void start(co_node_t *node, uint8_t state)
 
 /* The transfer state of @p s of @p e, @p size bytes (F_SIZE in @p flags:
  * indicated), nothing done yet. */
-SDO_SHARED static void open_xfer(co_sdo_srv_t *t, const co_od_entry_t *e, const co_od_sub_t *s,
+static void open_xfer(co_sdo_srv_t *t, const co_od_entry_t *e, const co_od_sub_t *s,
                       uint32_t size, uint8_t flags)
 {
     t->entry = e;
@@ -262,7 +258,7 @@ static co_err_t stage_upload(co_node_t *node, uint16_t index, uint8_t sub, co_od
 
 /* The transfer state of an upload that goes on segmented or by block, its
  * first chunk staged in t->buf. */
-SDO_SHARED static void open_upload(co_sdo_srv_t *t, const co_od_entry_t *e, const co_od_sub_t *s,
+static void open_upload(co_sdo_srv_t *t, const co_od_entry_t *e, const co_od_sub_t *s,
                         const co_od_chunk_t *c)
 {
     open_xfer(t, e, s, c->last ? c->len : c->total,

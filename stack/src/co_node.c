@@ -261,7 +261,7 @@ CO_HOT void rx_slot(co_node_t *node, const co_frame_t *f, uint16_t cob, uint16_t
 /* A function code with several slots (or a stale table): a search of the
  * services' slots, then the PDOs'; the slot found (a CO_RX_AT_* code, wider
  * for a PDO of any index), CO_RX_AT_NONE when none is for @p cob. */
-CO_NOINLINE static uint16_t rx_find(co_node_t *node, uint16_t cob)
+static uint16_t rx_find(co_node_t *node, uint16_t cob)
 {
     co_rx_settle(node); /* a frame that came while the table was out of date */
     for (uint32_t k = 0U; k < node->n_rx; k++) {

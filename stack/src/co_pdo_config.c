@@ -267,35 +267,23 @@ static void pdo_written(co_node_t *node, uint16_t i, bool is_map, uint8_t sub)
     restart(node, i);
 }
 
-/* Every PDO starts over (restart); at a reset (@p reset) with no error
- * state and its mapping taken anew from the dictionary. */
-static CO_NOINLINE void restart_all(co_node_t *node, bool reset)
+/* An NMT state change: every PDO starts over (restart: buffered synchronous
+ * data and pending transmissions are dropped), event-driven TPDOs send
+ * their current data once on entering Operational. Leaving Initialising
+ * (a reset: co_node.c's boot, the only change from that state), the PDOs
+ * also lose their error states and take their mappings anew from the
+ * dictionary (no reset entry of their own: the PDOs do nothing before). */
+static void pdo_nmt(co_node_t *node, uint8_t from)
 {
     uint32_t n = (uint32_t)node->dev->n_rpdo + node->dev->n_tpdo;
 
     for (uint32_t i = 0U; i < n; i++) {
-        if (reset) {
+        if (from == (uint8_t)CO_NMT_INITIALISING) {
             node->pdo.p[i].flags = 0U;
             remap(node, (uint16_t)i);
         }
         restart(node, (uint16_t)i);
     }
-}
-
-static void pdo_reset(co_node_t *node, uint8_t kind)
-{
-    if (kind == CO_SVC_START) {
-        restart_all(node, true);
-    }
-}
-
-static void pdo_nmt(co_node_t *node, uint8_t from)
-{
-    /* Entering or leaving Operational, every PDO starts over: buffered
-     * synchronous data and pending transmissions are dropped, event-driven
-     * TPDOs send their current data once on entering Operational. */
-    restart_all(node, false);
-    (void)from;
     if (node->nmt == (uint8_t)CO_NMT_OPERATIONAL) {
         (void)co_tpdo_process(node, CO_NO_DEADLINE);
     }
@@ -347,7 +335,7 @@ co_err_t co_pdo_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
 }
 
 const co_service_t co_svc_pdo = {
-    pdo_reset, pdo_rx_slots,
+    NULL, pdo_rx_slots,
 #if CO_PDO_RTR
     pdo_rx,
 #else

@@ -876,7 +876,9 @@ CO_INLINE void co_pdo_store(co_node_t *node, uint16_t i, const uint8_t *data, ui
 }
 void co_rpdo_rx(co_node_t *node, uint16_t i, const co_frame_t *f);
 void co_rpdo_sync(co_node_t *node);
-void co_rpdo_timeout(co_node_t *node, uint16_t i);
+/* Set the error states of RPDO i in @p on (CO_PDO_F_SHORT, _LONG, _TIMEOUT),
+ * clear the others of @p mask, with their EMCYs (co_rpdo.c). */
+void co_rpdo_error(co_node_t *node, uint16_t i, uint16_t mask, uint16_t on);
 #if CO_PDO_RTR
 void co_tpdo_rtr(co_node_t *node, uint16_t i);
 #endif

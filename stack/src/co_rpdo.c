@@ -28,7 +28,7 @@ static const struct {
 /* Set the error states of RPDO i in @p on, clear the others of @p mask; the
  * EMCY goes with the first PDO in a state and ends with the last one
  * leaving it. */
-static void rpdo_error(co_node_t *node, uint16_t i, uint16_t mask, uint16_t on)
+void co_rpdo_error(co_node_t *node, uint16_t i, uint16_t mask, uint16_t on)
 {
     co_pdo_t *p = &node->pdo.p[i];
 
@@ -82,11 +82,11 @@ static bool length_ok(co_node_t *node, uint16_t i, uint8_t dlc)
     uint8_t len = node->pdo.p[i].len;
 
     if ((dlc < len) && (CO_SET(node, pdo.short_rpdo) == CO_RPDO_SHORT_EMCY)) {
-        rpdo_error(node, i, CO_PDO_F_SHORT, CO_PDO_F_SHORT);
+        co_rpdo_error(node, i, CO_PDO_F_SHORT, CO_PDO_F_SHORT);
         return false; /* CiA 301: not processed */
     }
     /* longer than mapped: processed (the first bytes), and reported */
-    rpdo_error(node, i, CO_PDO_F_SHORT | CO_PDO_F_LONG | CO_PDO_F_TIMEOUT,
+    co_rpdo_error(node, i, CO_PDO_F_SHORT | CO_PDO_F_LONG | CO_PDO_F_TIMEOUT,
                (dlc > len) ? CO_PDO_F_LONG : 0U);
     return true;
 }
@@ -140,13 +140,4 @@ void co_rpdo_sync(co_node_t *node)
             apply(node, (uint16_t)i, p->data, p->count);
         }
     }
-}
-
-/* RPDO i's deadline missed (co_tpdo.c's pass over the PDOs: armed only in
- * Operational, every NMT state change disarms it, restart in
- * co_pdo_config.c): monitoring stops until the next reception, EMCY. */
-void co_rpdo_timeout(co_node_t *node, uint16_t i)
-{
-    node->pdo.p[i].flags &= (uint16_t)~CO_PDO_F_TIMER;
-    rpdo_error(node, i, CO_PDO_F_TIMEOUT, CO_PDO_F_TIMEOUT);
 }

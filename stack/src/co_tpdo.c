@@ -351,7 +351,9 @@ CO_HOT uint32_t rpdo_deadline(co_node_t *node, uint16_t i, uint32_t next)
         return next; /* not received yet, or no deadline monitoring */
     }
     if (co_time_reached(node->now, end)) {
-        co_rpdo_timeout(node, i);
+        /* missed: monitoring stops until the next reception, EMCY */
+        node->pdo.p[i].flags &= (uint16_t)~CO_PDO_F_TIMER;
+        co_rpdo_error(node, i, CO_PDO_F_TIMEOUT, CO_PDO_F_TIMEOUT);
         return next;
     }
     return co_deadline_min(node->now, next, end);

@@ -39,9 +39,7 @@ CO_HOT bool send(co_node_t *node, uint16_t i, const uint8_t *data, bool event)
     if (!co_tx_now(node, &f)) {
         return false;
     }
-    if (data != p->data) {
-        (void)memcpy(p->data, data, 8U);
-    }
+    (void)memcpy(p->data, f.data, 8U); /* (from the frame: data may be p->data) */
     p->flags |= CO_PDO_F_SENT;
     if (event) {
         /* the event timer and the inhibit time start now (times of 0 end at

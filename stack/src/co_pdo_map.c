@@ -70,26 +70,23 @@ static void entry_io(co_node_t *node, uint32_t v, uint16_t code, uint16_t pos, u
     } else {
         /* resolved */
     }
+    if (size == 0U) {
+        return; /* a dummy entry (an RPDO's gap), or an object that is not
+                   there (a TPDO's zeros: buf is zero) */
+    }
     if (tx) {
         if (s != NULL) {
             co_od_chunk_t c = {tmp, 0U, 8U, 0U, 0U, false};
             if (co_od_read_part(node, e, s, &c) != CO_OK) {
                 (void)memset(tmp, 0, sizeof tmp);
             }
-        } else if (size != 0U) {
+        } else if (CO_NATIVE_LE) {
             /* the low bytes (on a big-endian CPU the entry maps the whole value) */
-            if (CO_NATIVE_LE) {
-                co_copy(tmp, ram, size);
-            } else {
-                co_to_wire(tmp, ram, size);
-            }
+            co_copy(tmp, ram, size);
         } else {
-            /* zeros */
+            co_to_wire(tmp, ram, size);
         }
         bits_copy(buf, pos, tmp, 0U, bits);
-        return;
-    }
-    if (size == 0U) {
         return;
     }
     /* the low bits, extended to the value's size by the sign for signed types */

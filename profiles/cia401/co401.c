@@ -87,12 +87,13 @@ static uint16_t find_digital(const co401_t *m, uint16_t given, uint16_t base, ui
         const co_od_entry_t *e = co_od_find(dev->od, dev->od_count, index);
         if (e != NULL) {
             uint8_t n = 0U;
-            const co_od_sub_t *first = co_od_find_sub(e, m->cfg.first_sub);
+            co_od_sub_t sub_buf;
+            const co_od_sub_t *first = co_od_find_sub(e, m->cfg.first_sub, &sub_buf);
             uint8_t sz = (first != NULL) ? co_type_size(first->type) : 0U;
             if ((sz != 1U) && (sz != 2U) && (sz != 4U)) {
                 return 0U;
             }
-            while ((co_od_find_sub(e, (uint8_t)(m->cfg.first_sub + n)) != NULL) &&
+            while ((co_od_find_sub(e, (uint8_t)(m->cfg.first_sub + n), &sub_buf) != NULL) &&
                    ((uint32_t)(n + 1U) * sz <= CO401_DIO_BYTES)) {
                 n++;
             }
@@ -115,8 +116,10 @@ static uint8_t count_subs(const co401_t *m, uint16_t index)
     const co_dev_t *dev = m->node->dev;
     const co_od_entry_t *e = co_od_find(dev->od, dev->od_count, index);
     uint8_t n = 0U;
+    co_od_sub_t sub_buf;
 
-    while ((e != NULL) && (n < CO401_AIO_MAX) && (co_od_find_sub(e, (uint8_t)(n + 1U)) != NULL)) {
+    while ((e != NULL) && (n < CO401_AIO_MAX) &&
+           (co_od_find_sub(e, (uint8_t)(n + 1U), &sub_buf) != NULL)) {
         n++;
     }
     return n;

@@ -159,6 +159,7 @@ co_err_t co_device_set(co_device_run_t *run, uint16_t index, uint8_t sub, int64_
     const co_dev_t *dev;
     const co_od_entry_t *e;
     const co_od_sub_t *d;
+    co_od_sub_t sub_buf;
     uint8_t buf[8];
     uint8_t size;
 
@@ -176,7 +177,7 @@ co_err_t co_device_set(co_device_run_t *run, uint16_t index, uint8_t sub, int64_
     }
     dev = run->node->dev;
     e = co_od_find(dev->od, dev->od_count, index);
-    d = (e != NULL) ? co_od_find_sub(e, sub) : NULL;
+    d = (e != NULL) ? co_od_find_sub(e, sub, &sub_buf) : NULL;
     if (d == NULL) {
         return (e == NULL) ? CO_ERR_NO_OBJECT : CO_ERR_NO_SUB;
     }

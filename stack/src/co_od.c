@@ -54,19 +54,52 @@ CO_HOT const co_od_entry_t *find(const co_od_entry_t *od, uint32_t count, uint16
     return (e->index == index) ? e : NULL;
 }
 
-/* Arrays and most records are dense: try the direct slot first (a build
- * for speed). */
-static const co_od_sub_t *find_sub(const co_od_entry_t *e, uint8_t sub)
+/* The descriptor of sub-index r->sub + k of row @p r. */
+static inline const co_od_sub_t *row_sub(const co_od_sub_t *r, uint32_t k, co_od_sub_t *buf)
+{
+    *buf = *r;
+    buf->sub = (uint8_t)((r->sub + 1U + k) - co_od_run_len(r));
+    buf->flags = (uint16_t)(r->flags & CO_SUB_FLAGS);
+    buf->off = (uint16_t)(r->off + (k * r->size));
+    return buf;
+}
+
+const co_od_sub_t *co_od_row_sub(const co_od_sub_t *r, uint32_t k, co_od_sub_t *buf)
+{
+    return row_sub(r, k, buf);
+}
+
+/* The descriptor of @p sub of @p e, from the row that holds it (of a run,
+ * the one @p d before its last: its element n - 1 - d), in @p buf. */
+CO_NOINLINE static const co_od_sub_t *scan_sub(const co_od_entry_t *e, uint8_t sub,
+                                               co_od_sub_t *buf)
+{
+    const co_od_sub_t *r = e->subs;
+
+    for (uint32_t i = e->nsubs; i > 0U; i--) {
+        uint32_t d = (uint8_t)(r->sub - sub);
+        uint32_t n = co_od_run_len(r);
+        if (d < n) {
+            *buf = *r;
+            buf->sub = sub;
+            buf->flags &= CO_SUB_FLAGS;
+            buf->off = (uint16_t)(buf->off + ((n - 1U - d) * buf->size));
+            return buf;
+        }
+        r++;
+    }
+    return NULL;
+}
+
+/* The descriptor of @p sub of @p e (scan_sub); a build for speed first
+ * looks at the row in its dense slot (arrays and most records are dense;
+ * a run's row is never there: co_od.h) and gives it itself, no copy. */
+CO_HOT const co_od_sub_t *find_sub(const co_od_entry_t *e, uint8_t sub, co_od_sub_t *buf)
 {
     if (CO_FAST && (sub < e->nsubs) && (e->subs[sub].sub == sub)) {
         return &e->subs[sub];
     }
-    for (uint8_t i = 0U; i < e->nsubs; i++) {
-        if (e->subs[i].sub == sub) {
-            return &e->subs[i];
-        }
-    }
-    return NULL;
+    return scan_sub(e, sub, buf);
 }
 
 const co_od_entry_t *co_od_find(const co_od_entry_t *od, uint16_t count, uint16_t index)
@@ -76,9 +109,19 @@ const co_od_entry_t *co_od_find(const co_od_entry_t *od, uint16_t count, uint16_
 
 /* (the other finds call co_od_find: in a build for size, the search is one function) */
 
-const co_od_sub_t *co_od_find_sub(const co_od_entry_t *e, uint8_t sub)
+/* The descriptor of @p sub of @p e in @p buf (a copy of a row that is
+ * one, a build for speed) */
+static inline const co_od_sub_t *fill(const co_od_sub_t *s, co_od_sub_t *buf)
 {
-    return find_sub(e, sub);
+    if (CO_FAST && (s != NULL) && (s != buf)) {
+        *buf = *s;
+    }
+    return (s != NULL) ? buf : NULL;
+}
+
+const co_od_sub_t *co_od_find_sub(const co_od_entry_t *e, uint8_t sub, co_od_sub_t *buf)
+{
+    return fill(find_sub(e, sub, buf), buf);
 }
 
 /* Indexed by type 0x00..0x1B; 0 for variable-length types. */
@@ -101,22 +144,28 @@ bool co_type_is_signed(uint8_t type)
            (type == (uint8_t)CO_INTEGER56) || (type == (uint8_t)CO_INTEGER64);
 }
 
+/* @p index / @p sub: *e, and in *s its descriptor (find_sub: @p buf or a
+ * row of the table). */
 CO_HOT co_err_t lookup(const co_node_t *node, uint16_t index, uint8_t sub,
-                       const co_od_entry_t **e, const co_od_sub_t **s)
+                       const co_od_entry_t **e, const co_od_sub_t **s, co_od_sub_t *buf)
 {
     *e = find(node->dev->od, node->dev->od_count, index);
     if (*e == NULL) {
         return (CO_SET(node, sdo.unknown_object) == CO_SDO_ABORT_NO_ACCESS) ? CO_ERR_NO_ACCESS
                                                                          : CO_ERR_NO_OBJECT;
     }
-    *s = find_sub(*e, sub);
+    *s = find_sub(*e, sub, buf);
     return (*s == NULL) ? CO_ERR_NO_SUB : CO_OK;
 }
 
 co_err_t co_od_lookup(const co_node_t *node, uint16_t index, uint8_t sub,
-                      const co_od_entry_t **e, const co_od_sub_t **s)
+                      const co_od_entry_t **e, co_od_sub_t *s)
 {
-    return lookup(node, index, sub, e, s);
+    const co_od_sub_t *p = NULL;
+    co_err_t err = lookup(node, index, sub, e, &p, s);
+
+    (void)fill(p, s);
+    return err;
 }
 
 static co_err_t check_access(const co_node_t *node, const co_od_sub_t *s, bool write)
@@ -136,19 +185,30 @@ static co_err_t check_access(const co_node_t *node, const co_od_sub_t *s, bool w
     return CO_OK;
 }
 
+/* (a build for size: the descriptor always in @p buf) */
 CO_HOT co_err_t lookup_for(const co_node_t *node, uint16_t index, uint8_t sub, bool write,
-                           const co_od_entry_t **e, const co_od_sub_t **s)
+                           const co_od_entry_t **e, const co_od_sub_t **s, co_od_sub_t *buf)
 {
-    co_err_t err = CO_FAST ? lookup(node, index, sub, e, s) : co_od_lookup(node, index, sub, e, s);
+    co_err_t err;
 
+    if (CO_FAST) {
+        err = lookup(node, index, sub, e, s, buf);
+    } else {
+        err = co_od_lookup(node, index, sub, e, buf);
+        *s = buf;
+    }
     return (err == CO_OK) ? check_access(node, *s, write) : err;
 }
 
 /* (one function at -Os: its callers stay small) */
 CO_NOINLINE co_err_t co_od_lookup_for(const co_node_t *node, uint16_t index, uint8_t sub,
-                                      bool write, const co_od_entry_t **e, const co_od_sub_t **s)
+                                      bool write, const co_od_entry_t **e, co_od_sub_t *s)
 {
-    return lookup_for(node, index, sub, write, e, s);
+    const co_od_sub_t *p = NULL;
+    co_err_t err = lookup_for(node, index, sub, write, e, &p, s);
+
+    (void)fill(p, s);
+    return err;
 }
 
 /* The current size of the value @p v of @p s: strings up to their first
@@ -202,29 +262,33 @@ static void touch_owner(co_node_t *node, const co_svc_hook_t *h)
 void *co_od_ram_of(co_node_t *node, uint16_t index, uint8_t sub, uint8_t type)
 {
     const co_od_entry_t *e;
-    const co_od_sub_t *s;
+    co_od_sub_t s;
 
-    if ((co_od_lookup(node, index, sub, &e, &s) != CO_OK) || ((type != 0U) && (s->type != type)) ||
-        ((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) != 0U)) {
+    if ((co_od_lookup(node, index, sub, &e, &s) != CO_OK) || ((type != 0U) && (s.type != type)) ||
+        ((s.flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) != 0U)) {
         return NULL;
     }
-    return &node->ram[co_od_off(e, s)];
+    return &node->ram[co_od_off(e, &s)];
 }
 
 uint8_t co_od_array_len(const co_node_t *node, uint16_t index, uint8_t type, uint8_t max)
 {
     const co_od_entry_t *e = co_od_find(node->dev->od, node->dev->od_count, index);
     uint8_t n = 0U;
+    uint32_t first = 0U;
+    co_od_sub_t s;
 
-    if (e != NULL) {
-        /* sub 1.. of that type, RAM values one after the other */
-        const co_od_sub_t *s = &e->subs[1];
-        uint32_t step = co_type_len(type);
-        while ((n < max) && (((uint32_t)n + 1U) < e->nsubs) && (s[n].sub == (uint8_t)(n + 1U)) &&
-               (s[n].type == type) && ((s[n].flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) == 0U) &&
-               (s[n].off == (uint16_t)(s[0].off + (n * step)))) {
-            n++;
+    /* sub 1.. of that type, RAM values one after the other */
+    while ((e != NULL) && (n < max) && (co_od_find_sub(e, (uint8_t)(n + 1U), &s) != NULL) &&
+           (s.type == type) && ((s.flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) == 0U)) {
+        if (n == 0U) {
+            first = s.off;
+        } else if (s.off != (first + (n * (uint32_t)s.size))) {
+            break;
+        } else {
+            /* the next one */
         }
+        n++;
     }
     return n;
 }
@@ -471,9 +535,10 @@ co_err_t co_od_download(co_node_t *node, uint16_t index, uint8_t sub, const uint
                         uint32_t size)
 {
     const co_od_entry_t *e;
-    const co_od_sub_t *s;
-    co_err_t err = CO_FAST ? lookup_for(node, index, sub, true, &e, &s)
-                           : co_od_lookup_for(node, index, sub, true, &e, &s);
+    co_od_sub_t sd;
+    const co_od_sub_t *s = &sd;
+    co_err_t err = CO_FAST ? lookup_for(node, index, sub, true, &e, &s, &sd)
+                           : co_od_lookup_for(node, index, sub, true, &e, &sd);
     uint8_t fixed;
 
     if (err != CO_OK) {
@@ -565,9 +630,10 @@ co_err_t co_od_read(co_node_t *node, uint16_t index, uint8_t sub, void *buf, uin
                     uint32_t *len)
 {
     const co_od_entry_t *e;
-    const co_od_sub_t *s;
+    co_od_sub_t sd;
+    const co_od_sub_t *s = &sd;
     co_od_chunk_t c = {(uint8_t *)buf, 0U, cap, 0U, 0U, false};
-    co_err_t err = co_od_lookup(node, index, sub, &e, &s);
+    co_err_t err = co_od_lookup(node, index, sub, &e, &sd);
 
     if (err != CO_OK) {
         return err;
@@ -586,8 +652,9 @@ co_err_t co_od_write(co_node_t *node, uint16_t index, uint8_t sub, const void *d
                      uint32_t len, bool as_app)
 {
     const co_od_entry_t *e;
-    const co_od_sub_t *s;
-    co_err_t err = co_od_lookup(node, index, sub, &e, &s);
+    co_od_sub_t sd;
+    const co_od_sub_t *s = &sd;
+    co_err_t err = co_od_lookup(node, index, sub, &e, &sd);
 
     if ((err == CO_OK) && !as_app) {
         err = check_access(node, s, true);

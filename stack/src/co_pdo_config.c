@@ -37,9 +37,10 @@ static bool is_tpdo(const co_node_t *node, uint16_t i)
 
 /* CiA 301 7.3.5: identifiers no PDO may use. */
 /* One mapping entry (index:16 sub:8 bits:8). *bits gets its length, *obj
- * the mapped sub-entry (NULL for a dummy entry) and *e its entry. */
+ * the mapped sub-entry (NULL for a dummy entry; its descriptor in @p buf)
+ * and *e its entry. */
 static co_err_t check_entry(const co_node_t *node, bool tx, uint32_t v, uint8_t *bits,
-                            const co_od_entry_t **e, const co_od_sub_t **obj)
+                            const co_od_entry_t **e, const co_od_sub_t **obj, co_od_sub_t *buf)
 {
     uint16_t index = (uint16_t)(v >> 16U);
     uint8_t sub = (uint8_t)((v >> 8U) & 0xFFU);
@@ -55,8 +56,8 @@ static co_err_t check_entry(const co_node_t *node, bool tx, uint32_t v, uint8_t 
         }
         size = co_type_len((uint8_t)index);
     } else {
-        const co_od_sub_t *s;
-        co_err_t err = co_od_lookup(node, index, sub, e, &s);
+        const co_od_sub_t *s = buf;
+        co_err_t err = co_od_lookup(node, index, sub, e, buf);
         if (err == CO_ERR_NO_SUB) {
             return CO_ERR_NO_MAP;
         }
@@ -144,8 +145,9 @@ static co_err_t map_state(const co_node_t *node, uint16_t i, uint32_t count, co_
         uint8_t bits;
         const co_od_entry_t *e = NULL;
         const co_od_sub_t *s;
+        co_od_sub_t sd;
         co_err_t err = check_entry(node, tx, co_ram_u32(node, (uint16_t)(d->map + (4U * k))),
-                                   &bits, &e, &s);
+                                   &bits, &e, &s, &sd);
         if (err != CO_OK) {
             return err;
         }
@@ -193,6 +195,7 @@ static co_err_t check_write(const co_node_t *node, uint16_t i, bool is_map, uint
     if (is_map) {
         const co_od_entry_t *e;
         const co_od_sub_t *s;
+        co_od_sub_t sd;
         if (sub > d->map_max) {
             return CO_OK; /* not a mapping entry */
         }
@@ -212,7 +215,7 @@ static co_err_t check_write(const co_node_t *node, uint16_t i, bool is_map, uint
             return CO_ERR_NO_ACCESS; /* entries are fixed while the mapping is enabled */
         }
         v = co_get_u32(data);
-        return (v == 0U) ? CO_OK : check_entry(node, tx, v, &len, &e, &s);
+        return (v == 0U) ? CO_OK : check_entry(node, tx, v, &len, &e, &s, &sd);
     }
     if (sub == 1U) {
         /* 29-bit identifiers are not supported; the CAN-ID changes only while

@@ -54,8 +54,8 @@ static void entry_io(co_node_t *node, uint32_t v, uint16_t code, uint16_t pos, u
 {
     uint16_t index = (uint16_t)(v >> 16U);
     uint8_t bits = (uint8_t)(v & 0xFFU);
-    const co_od_entry_t *e = NULL;
-    const co_od_sub_t *s = NULL;
+    const co_od_entry_t *e = NULL; /* (an entry through the dictionary: its descriptor in s) */
+    co_od_sub_t s;
     uint8_t *ram = &node->ram[code & CO_PDO_OFF_MASK];
     uint8_t size = (uint8_t)(((code >> 12U) & 7U) + 1U); /* TPDO: the bytes it maps */
     bool sign = (code & CO_PDO_SIGNED) != 0U;
@@ -63,21 +63,22 @@ static void entry_io(co_node_t *node, uint32_t v, uint16_t code, uint16_t pos, u
 
     if ((code == CO_PDO_SLOW) && (index > 0x0007U) &&
         (co_od_lookup(node, index, (uint8_t)((v >> 8U) & 0xFFU), &e, &s) == CO_OK)) {
-        size = co_type_len(s->type);
-        sign = co_type_is_signed(s->type);
-    } else if ((code == CO_PDO_SLOW) || (code == CO_PDO_DUMMY)) {
-        size = 0U; /* a dummy entry, or an object that is not there */
+        size = co_type_len(s.type);
+        sign = co_type_is_signed(s.type);
     } else {
-        /* resolved */
+        e = NULL;
+        if ((code == CO_PDO_SLOW) || (code == CO_PDO_DUMMY)) {
+            size = 0U; /* a dummy entry, or an object that is not there */
+        }
     }
     if (size == 0U) {
         return; /* a dummy entry (an RPDO's gap), or an object that is not
                    there (a TPDO's zeros: buf is zero) */
     }
     if (tx) {
-        if (s != NULL) {
+        if (e != NULL) {
             co_od_chunk_t c = {tmp, 0U, 8U, 0U, 0U, false};
-            if (co_od_read_part(node, e, s, &c) != CO_OK) {
+            if (co_od_read_part(node, e, &s, &c) != CO_OK) {
                 (void)memset(tmp, 0, sizeof tmp);
             }
         } else if (CO_NATIVE_LE) {
@@ -95,8 +96,8 @@ static void entry_io(co_node_t *node, uint32_t v, uint16_t code, uint16_t pos, u
         (void)memset(tmp, ((buf[top >> 3U] & (1U << (top & 7U))) != 0U) ? 0xFF : 0x00, sizeof tmp);
     }
     bits_copy(tmp, 0U, buf, pos, bits);
-    if (s != NULL) {
-        (void)co_od_write_value(node, e, s, tmp, size);
+    if (e != NULL) {
+        (void)co_od_write_value(node, e, &s, tmp, size);
     } else if (CO_NATIVE_LE) {
         co_copy(ram, tmp, size);
     } else {

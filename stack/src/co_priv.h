@@ -459,12 +459,14 @@ CO_INLINE void *co_od_loc(const co_node_t *node, const co_od_entry_t *e, const c
     return &node->ram[(uint16_t)(e->base + s->off)];
 }
 
+/* @p index / @p sub: its entry in *@p e, its descriptor in *@p s (the
+ * caller's). */
 co_err_t co_od_lookup(const co_node_t *node, uint16_t index, uint8_t sub,
-                      const co_od_entry_t **e, const co_od_sub_t **s);
+                      const co_od_entry_t **e, co_od_sub_t *s);
 /* co_od_lookup, then the access check of an SDO client: readable or
  * (@p write) writable (0x06010001 / 0x06010002). */
 co_err_t co_od_lookup_for(const co_node_t *node, uint16_t index, uint8_t sub, bool write,
-                          const co_od_entry_t **e, const co_od_sub_t **s);
+                          const co_od_entry_t **e, co_od_sub_t *s);
 bool co_type_is_signed(uint8_t type);
 /* One chunk of a value being read: the caller sets buf, offset and cap;
  * co_od_read_part sets len, total (0 if a hook does not know it) and last. */

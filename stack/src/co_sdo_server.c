@@ -93,7 +93,6 @@ SDO_CALL static void sdo_reset(co_node_t *node)
 {
     node->sdo.state = (uint8_t)S_IDLE;
     node->sdo.entry = NULL;
-    node->sdo.desc = NULL;
 }
 
 /* The one abort path: the abort names the open transfer's object, or with
@@ -104,7 +103,7 @@ static void sdo_abort(co_node_t *node, uint16_t index, uint8_t sub, co_err_t err
     bool open = t->entry != NULL;
 
     reply(node, CO_SDO_B0(CO_SDO_CS_ABORT), open ? t->entry->index : index,
-          open ? t->desc->sub : sub, (uint32_t)err);
+          open ? t->desc.sub : sub, (uint32_t)err);
     sdo_reset(node);
 }
 
@@ -114,13 +113,12 @@ SDO_CALL static void start(co_node_t *node, uint8_t state)
     node->sdo.deadline = node->now + node->sdo.timeout_us;
 }
 
-/* The transfer state of @p s of @p e, @p size bytes (F_SIZE in @p flags:
- * indicated), nothing done yet. */
-static void open_xfer(co_sdo_srv_t *t, const co_od_entry_t *e, const co_od_sub_t *s,
-                      uint32_t size, uint8_t flags)
+/* The transfer state of t->desc (the initiate's lookup wrote it there:
+ * nothing is open when an initiate comes) of @p e, @p size bytes (F_SIZE in
+ * @p flags: indicated), nothing done yet. */
+static void open_xfer(co_sdo_srv_t *t, const co_od_entry_t *e, uint32_t size, uint8_t flags)
 {
     t->entry = e;
-    t->desc = s;
     t->size = size;
     t->flags = flags;
     t->offset = 0U;
@@ -161,16 +159,16 @@ static co_err_t write_chunk(co_node_t *node, const uint8_t *data, uint32_t len, 
     if (err != CO_OK) {
         return err;
     }
-    if (!co_od_is_streamed(t->desc)) {
+    if (!co_od_is_streamed(&t->desc)) {
         if (end > sizeof t->buf) {
             return CO_ERR_TYPE_MISMATCH;
         }
         co_copy(&t->buf[t->offset], data, len);
         if (last) {
-            err = co_od_write_value(node, t->entry, t->desc, t->buf, end);
+            err = co_od_write_value(node, t->entry, &t->desc, t->buf, end);
         }
     } else {
-        err = co_od_write_part(node, t->entry, t->desc, t->offset, data, len, t->size, last);
+        err = co_od_write_part(node, t->entry, &t->desc, t->offset, data, len, t->size, last);
     }
     t->offset = end;
     if (last) {
@@ -190,13 +188,12 @@ static void download_done(co_node_t *node, uint8_t cmd, uint16_t index, uint8_t 
 
     if ((CO_STORAGE != 0) && co_store_busy(node)) {
         const co_od_entry_t *e = t->entry;
-        const co_od_sub_t *s = t->desc;
-        if ((e == NULL) && (co_od_lookup(node, index, sub, &e, &s) != CO_OK)) {
+        /* (an expedited download: its descriptor where a transfer's is) */
+        if ((e == NULL) && (co_od_lookup(node, index, sub, &e, &t->desc) != CO_OK)) {
             e = NULL;
         }
-        if ((e != NULL) && co_store_is_command(e, s)) {
+        if ((e != NULL) && co_store_is_command(e, &t->desc)) {
             t->entry = e; /* (for an abort of the save: sdo_abort) */
-            t->desc = s;
             pack_answer(t->buf, cmd, index, sub, 0U);
             t->state = (uint8_t)S_STORE;
             return;
@@ -227,14 +224,14 @@ static co_err_t open_download(co_node_t *node, const co_od_entry_t *e, const co_
     } else {
         /* a string or DOMAIN that fits, or one a hook takes */
     }
-    open_xfer(&node->sdo, e, s, size_ind ? size : 0U, size_ind ? F_SIZE : 0U);
+    open_xfer(&node->sdo, e, size_ind ? size : 0U, size_ind ? F_SIZE : 0U);
     return CO_OK;
 }
 
 /* @p index / @p sub in the dictionary, readable or (@p write) writable:
  * the lookup and access check of every initiate. */
 CO_INLINE co_err_t find_for(const co_node_t *node, uint16_t index, uint8_t sub, bool write,
-                           const co_od_entry_t **e, const co_od_sub_t **s)
+                           const co_od_entry_t **e, co_od_sub_t *s)
 {
     return co_od_lookup_for(node, index, sub, write, e, s);
 }
@@ -242,7 +239,7 @@ CO_INLINE co_err_t find_for(const co_node_t *node, uint16_t index, uint8_t sub, 
 /* Checks common to every upload initiate; reads the first chunk into t->buf
  * (which also runs the read hook once). */
 static co_err_t stage_upload(co_node_t *node, uint16_t index, uint8_t sub, co_od_chunk_t *c,
-                             const co_od_entry_t **e, const co_od_sub_t **s)
+                             const co_od_entry_t **e, co_od_sub_t *s)
 {
     co_err_t err = find_for(node, index, sub, false, e, s);
 
@@ -251,17 +248,16 @@ static co_err_t stage_upload(co_node_t *node, uint16_t index, uint8_t sub, co_od
         c->buf = node->sdo.buf;
         c->offset = 0U;
         c->cap = SEG;
-        err = co_od_read_part(node, *e, *s, c);
+        err = co_od_read_part(node, *e, s, c);
     }
     return err;
 }
 
 /* The transfer state of an upload that goes on segmented or by block, its
  * first chunk staged in t->buf. */
-static void open_upload(co_sdo_srv_t *t, const co_od_entry_t *e, const co_od_sub_t *s,
-                        const co_od_chunk_t *c)
+static void open_upload(co_sdo_srv_t *t, const co_od_entry_t *e, const co_od_chunk_t *c)
 {
-    open_xfer(t, e, s, c->last ? c->len : c->total,
+    open_xfer(t, e, c->last ? c->len : c->total,
               (uint8_t)(F_STAGED | ((c->total != 0U) || c->last ? F_SIZE : 0U)));
     t->buf_len = (uint8_t)c->len;
 }
@@ -306,7 +302,7 @@ static co_err_t read_seg(co_node_t *node, uint32_t at, uint8_t *buf, uint32_t ca
         c.len = t->buf_len; /* the first chunk, read when the upload opened */
         co_copy(buf, t->buf, c.len);
     } else {
-        err = co_od_read_part(node, t->entry, t->desc, &c);
+        err = co_od_read_part(node, t->entry, &t->desc, &c);
     }
     *got = c.len;
     *last = c.last;
@@ -337,7 +333,7 @@ static co_err_t initiate_download(co_node_t *node, const uint8_t *d, uint16_t in
     bool expedited = !blk && ((d[0] & CO_SDO_EXPEDITED) != 0U);
     uint32_t size = co_get_u32(&d[4]);
     const co_od_entry_t *e;
-    const co_od_sub_t *s;
+    co_od_sub_t *s = &node->sdo.desc; /* (nothing is open: the lookup's descriptor goes there) */
     co_err_t err;
 
     if (expedited) {
@@ -357,7 +353,7 @@ static co_err_t initiate_download(co_node_t *node, const uint8_t *d, uint16_t in
     if (!expedited && expedited_only(node)) {
         return CO_ERR_CMD;
     }
-    err = find_for(node, index, sub, true, &e, &s);
+    err = find_for(node, index, sub, true, &e, s);
     if (err == CO_OK) {
         err = open_download(node, e, s, size_ind, size);
     }
@@ -435,7 +431,6 @@ static co_err_t initiate_upload(co_node_t *node, const uint8_t *d, uint16_t inde
     co_sdo_srv_t *t = &node->sdo;
     bool blk = (CO_SDO_BLOCK != 0) && block; /* a block upload initiate */
     const co_od_entry_t *e;
-    const co_od_sub_t *s;
     co_od_chunk_t c;
     co_err_t err;
 
@@ -445,11 +440,11 @@ static co_err_t initiate_upload(co_node_t *node, const uint8_t *d, uint16_t inde
     if (blk && ((d[4] == 0U) || (d[4] > 127U))) {
         return CO_ERR_BLKSIZE;
     }
-    err = stage_upload(node, index, sub, &c, &e, &s);
+    err = stage_upload(node, index, sub, &c, &e, &t->desc); /* (nothing is open) */
     if (err != CO_OK) {
         return err;
     }
-    open_upload(t, e, s, &c);
+    open_upload(t, e, &c);
     if (!blk || ((d[5] != 0U) && ((t->flags & F_SIZE) != 0U) && (t->size <= d[5]))) {
         /* (a block upload: the protocol switch to segmented/expedited) */
         return respond_upload(node, index, sub, c.last);

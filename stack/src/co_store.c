@@ -144,15 +144,19 @@ static uint16_t layout_sig(const co_dev_t *dev)
     crc = co_crc16(0xFFFFU, b, 8U);
     for (uint16_t i = 0U; i < dev->od_count; i++) {
         const co_od_entry_t *e = &dev->od[i];
-        for (uint8_t k = 0U; k < e->nsubs; k++) {
-            const co_od_sub_t *s = &e->subs[k];
-            if (((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) == 0U) && (s->off < dev->app_end)) {
-                co_put_u16(&b[0], e->index);
-                b[2] = s->sub;
-                b[3] = s->type;
-                co_put_u16(&b[4], co_od_off(e, s));
-                co_put_u16(&b[6], s->size);
-                crc = co_crc16(crc, b, 8U);
+        for (uint32_t k = 0U; k < e->nsubs; k++) {
+            for (uint32_t j = 0U; j < co_od_run_len(&e->subs[k]); j++) {
+                co_od_sub_t sd;
+                const co_od_sub_t *s = co_od_row_sub(&e->subs[k], j, &sd);
+                if (((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) == 0U) &&
+                    (s->off < dev->app_end)) {
+                    co_put_u16(&b[0], e->index);
+                    b[2] = s->sub;
+                    b[3] = s->type;
+                    co_put_u16(&b[4], co_od_off(e, s));
+                    co_put_u16(&b[6], s->size);
+                    crc = co_crc16(crc, b, 8U);
+                }
             }
         }
     }
@@ -502,9 +506,10 @@ static void store_reset(co_node_t *node, uint8_t kind)
      * co_od_restore zeroed it, or a const 0, odgen's choice for such a build.) */
     for (uint16_t index = 0x1010U; index <= 0x1011U; index++) {
         const co_od_entry_t *e = co_od_find(dev->od, dev->od_count, index);
-        for (uint8_t k = 0U; (e != NULL) && (k < e->nsubs); k++) {
-            const co_od_sub_t *s = &e->subs[k];
-            if (co_store_is_command(e, s) && ((s->flags & CO_SUB_ROM) == 0U)) {
+        for (uint32_t k = 1U; (e != NULL) && (k <= 0xFEU); k++) {
+            co_od_sub_t sd;
+            const co_od_sub_t *s = co_od_find_sub(e, (uint8_t)k, &sd);
+            if ((s != NULL) && co_store_is_command(e, s) && ((s->flags & CO_SUB_ROM) == 0U)) {
                 uint32_t v = (s->sub <= last_sub(node, index)) ? cap : 0U;
                 (void)memcpy(&node->ram[co_od_off(e, s)], (const uint8_t *)&v, 4U);
             }

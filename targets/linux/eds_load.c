@@ -948,7 +948,14 @@ static size_t align_of(const co_od_sub_t *s)
 static const co_od_sub_t *find_built(const eds_dev_t *d, uint16_t index, uint8_t sub)
 {
     const co_od_entry_t *e = co_od_find(d->entries, d->dev.od_count, index);
-    return (e != NULL) ? co_od_find_sub(e, sub) : NULL;
+
+    /* (the loader's rows are one sub-index each: no runs) */
+    for (uint8_t k = 0U; (e != NULL) && (k < e->nsubs); k++) {
+        if (e->subs[k].sub == sub) {
+            return &e->subs[k];
+        }
+    }
+    return NULL;
 }
 
 /* the PDOs the core runs: pairs numbered without gaps from 0 */

@@ -263,10 +263,11 @@ static uint32_t const_values(uint8_t *out, uint32_t cap)
 
     for (uint16_t i = 0U; i < dev->od_count; i++) {
         const co_od_entry_t *e = &dev->od[i];
-        for (uint8_t k = 0U; k < e->nsubs; k++) {
-            const co_od_sub_t *s = &e->subs[k];
+        for (uint32_t x = 0U; x < 256U; x++) {
+            co_od_sub_t sd;
+            const co_od_sub_t *s = co_od_find_sub(e, (uint8_t)x, &sd);
             uint32_t len = 0U;
-            if (!is_const(s) || ((s->flags & CO_SUB_HOOKIO) != 0U) || (s->size > 64U) ||
+            if ((s == NULL) || !is_const(s) || ((s->flags & CO_SUB_HOOKIO) != 0U) || (s->size > 64U) ||
                 ((at + s->size) > cap)) {
                 continue;
             }
@@ -293,7 +294,8 @@ static bool not_writable(uint16_t index, uint8_t sub)
 {
     const co_dev_t *dev = fz.n.node.dev;
     const co_od_entry_t *e = co_od_find(dev->od, dev->od_count, index);
-    const co_od_sub_t *s = (e != NULL) ? co_od_find_sub(e, sub) : NULL;
+    co_od_sub_t sub_buf;
+    const co_od_sub_t *s = (e != NULL) ? co_od_find_sub(e, sub, &sub_buf) : NULL;
 
     return (s != NULL) && (((s->flags & CO_SUB_W) == 0U) || ((s->flags & CO_SUB_CONST) != 0U));
 }

@@ -151,9 +151,18 @@ int main(int argc, char **argv)
         const co_od_entry_t *e = &dev->od[i];
         printf("  {\"index\": %u, \"code\": %u, \"hook\": %u, \"subs\": [\n", (unsigned)e->index,
                (unsigned)e->code, (unsigned)e->hook);
+        uint32_t n_subs = 0U;
+        uint32_t done = 0U;
         for (uint8_t k = 0U; k < e->nsubs; k++) {
-            const co_od_sub_t *s = &e->subs[k];
+            n_subs += co_od_run_len(&e->subs[k]);
+        }
+        /* every sub-index of every row (a row may be a run of them) */
+        for (uint8_t k = 0U; k < e->nsubs; k++) {
+          for (uint32_t j = 0U; j < co_od_run_len(&e->subs[k]); j++) {
+            co_od_sub_t sd;
+            const co_od_sub_t *s = co_od_row_sub(&e->subs[k], j, &sd);
             uint32_t len = 0U;
+            done++;
             void *p = co_od_value_ptr(node, e->index, s->sub);
             err = co_od_read(node, e->index, s->sub, buf, (uint32_t)sizeof buf, &len);
             printf("   {\"sub\": %u, \"type\": %u, \"flags\": %u, \"size\": %u, \"abort\": %lu, "
@@ -178,7 +187,8 @@ int main(int argc, char **argv)
                        dev->limits[s->limit].max);
             }
 #endif
-            printf("}%s\n", (k + 1U < e->nsubs) ? "," : "");
+            printf("}%s\n", (done < n_subs) ? "," : "");
+          }
         }
         printf("  ]}%s\n", (i + 1U < dev->od_count) ? "," : "");
     }

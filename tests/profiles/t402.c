@@ -106,7 +106,8 @@ int64_t t402_get(t402_t *f, uint16_t index, uint8_t sub)
     uint8_t b[8] = {0};
     uint32_t len = 0U;
     const co_od_entry_t *e = co_od_find(f->n.node.dev->od, f->n.node.dev->od_count, index);
-    const co_od_sub_t *s = (e != NULL) ? co_od_find_sub(e, sub) : NULL;
+    co_od_sub_t sub_buf;
+    const co_od_sub_t *s = (e != NULL) ? co_od_find_sub(e, sub, &sub_buf) : NULL;
     int64_t v;
 
     assert_non_null(s);

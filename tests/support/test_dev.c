@@ -79,9 +79,8 @@ static const co_od_sub_t s1001[] = {RAM(0, CO_UNSIGNED8, CO_SUB_RO | CO_SUB_MAP_
 static const co_od_sub_t s1002[] = {RAM(0, CO_UNSIGNED32, CO_SUB_RO, mfr_status)};
 static const co_od_sub_t s1003[] = {
     RAM(0, CO_UNSIGNED8, CO_SUB_RW, hist_n),
-#define H(i) CO_OD_SUB((i), (uint8_t)CO_UNSIGNED32, CO_SUB_RO, 4U, (uint16_t)(F(hist) + 4U * ((i) - 1U)), 0U)
-    H(1), H(2), H(3), H(4), H(5), H(6), H(7), H(8),
-#undef H
+    /* (one row for sub 1..8: a run, CO_OD_RUN) */
+    CO_OD_RUN(1, 8U, (uint8_t)CO_UNSIGNED32, CO_SUB_RO, 4U, F(hist), 0U),
 };
 static const co_od_sub_t s1005[] = {RAM(0, CO_UNSIGNED32, CO_SUB_RW, sync_cob)};
 static const co_od_sub_t s1006[] = {RAM(0, CO_UNSIGNED32, CO_SUB_RW, sync_period)};
@@ -116,9 +115,7 @@ static const co_od_sub_t s1014[] = {RAM(0, CO_UNSIGNED32, CO_SUB_RW | CO_SUB_NOD
 static const co_od_sub_t s1015[] = {RAM(0, CO_UNSIGNED16, CO_SUB_RW, emcy_inhibit)};
 static const co_od_sub_t s1016[] = {
     ROM(0, CO_UNSIGNED8, CO_SUB_RO | CO_SUB_CONST, n1016),
-#define C(i) CO_OD_SUB((i), (uint8_t)CO_UNSIGNED32, CO_SUB_RW, 4U, (uint16_t)(F(hb_cons) + 4U * ((i) - 1U)), 0U)
-    C(1), C(2), C(3), C(4),
-#undef C
+    CO_OD_RUN(1, 4U, (uint8_t)CO_UNSIGNED32, CO_SUB_RW, 4U, F(hb_cons), 0U),
 };
 static const co_od_sub_t s1017[] = {RAM(0, CO_UNSIGNED16, CO_SUB_RW, hb_prod)};
 static const co_od_sub_t s1018[] = {
@@ -169,8 +166,7 @@ static const co_od_sub_t s607A[] = {RAM(0, CO_INTEGER32, RW_MAP, target_pos)};
 static const co_od_sub_t s60FF[] = {RAM(0, CO_INTEGER32, RW_MAP, target_vel)};
 static const co_od_sub_t s6099[] = {
     ROM(0, CO_UNSIGNED8, CO_SUB_RO | CO_SUB_CONST, n6099),
-    CO_OD_SUB(1, (uint8_t)CO_UNSIGNED32, CO_SUB_RW | CO_SUB_LIMIT, 4U, F(homing_speed), 2U),
-    CO_OD_SUB(2, (uint8_t)CO_UNSIGNED32, CO_SUB_RW | CO_SUB_LIMIT, 4U, (uint16_t)(F(homing_speed) + 4U), 2U),
+    CO_OD_RUN(1, 2U, (uint8_t)CO_UNSIGNED32, CO_SUB_RW | CO_SUB_LIMIT, 4U, F(homing_speed), 2U),
 };
 
 #define E(idx, subs, code) \

@@ -109,6 +109,50 @@ static void find_every_entry_and_reject_gaps(void **state)
     assert_null(co_od_find(dev->od, 0, 0x1000));
 }
 
+/* A row that is a run (0x1003 sub 1..8, 0x6099 sub 1..2 with a limit in
+ * td_dev): each sub-index its own descriptor, value and limit; nothing
+ * past the run. */
+static void run_rows_describe_each_sub_index(void **state)
+{
+    const co_od_entry_t *e = co_od_find(td_dev.od, td_dev.od_count, 0x1003);
+    co_od_sub_t d;
+    uint8_t b[4] = {0x10, 0x20, 0x30, 0x40};
+    uint32_t v = 0U;
+    uint32_t len = 0U;
+    (void)state;
+    assert_non_null(e);
+    assert_int_equal(e->nsubs, 2); /* sub 0, and one row for 1..8 */
+    fx.n.ram.hist_n = 8U; /* (entries past the count read as no data: EMCY) */
+    for (uint8_t k = 1U; k <= 8U; k++) {
+        assert_ptr_equal(co_od_find_sub(e, k, &d), &d);
+        assert_int_equal(d.sub, k);
+        assert_int_equal(d.type, CO_UNSIGNED32);
+        assert_int_equal(d.flags, CO_SUB_RO); /* (no run bits) */
+        assert_int_equal(d.size, 4);
+        assert_int_equal(d.off, offsetof(td_ram_t, hist) + (4U * (k - 1U)));
+        assert_ptr_equal(co_od_value_ptr(NODE, 0x1003, k), &fx.n.ram.hist[k - 1U]);
+        fx.n.ram.hist[k - 1U] = 0x1000U + k;
+        assert_int_equal(co_od_read(NODE, 0x1003, k, &v, 4U, &len), CO_OK);
+        assert_int_equal(len, 4);
+        assert_int_equal(co_get_u32((const uint8_t *)&v), 0x1000U + k);
+    }
+    assert_null(co_od_find_sub(e, 9, &d));
+    assert_null(co_od_find_sub(e, 0xFF, &d));
+    assert_int_equal(co_od_read(NODE, 0x1003, 9, &v, 4U, &len), CO_ERR_NO_SUB);
+    /* 0x6099 sub 2: the run's limit 0..60000 (sub 1 written, sub 2 kept) */
+    co_put_u32(b, 60001U);
+    assert_int_equal(co_od_write(NODE, 0x6099, 2, b, 4U, true), CO_ERR_VALUE_HIGH);
+    co_put_u32(b, 60000U);
+    assert_int_equal(co_od_write(NODE, 0x6099, 2, b, 4U, true), CO_OK);
+    co_put_u32(b, 7U);
+    assert_int_equal(co_od_write(NODE, 0x6099, 1, b, 4U, true), CO_OK);
+    assert_int_equal(fx.n.ram.homing_speed[0], 7U);
+    assert_int_equal(fx.n.ram.homing_speed[1], 60000U);
+    /* the services bound the runs' lengths (co_od_array_len) */
+    assert_int_equal(fx.n.node.emcy.hist_depth, 8);
+    assert_int_equal(fx.n.node.errctl.n_hb_cons, 4);
+}
+
 static void type_sizes(void **state)
 {
     (void)state;
@@ -280,6 +324,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_setup(find_every_entry_and_reject_gaps, setup),
+        cmocka_unit_test_setup(run_rows_describe_each_sub_index, setup),
         cmocka_unit_test_setup(type_sizes, setup),
         cmocka_unit_test_setup(nodeid_relative_defaults, setup),
         cmocka_unit_test_setup(app_access_path, setup),

@@ -417,7 +417,8 @@ def generate(dev: Device, toml_name: str, warn=None, storage: bool = True) -> tu
                   ": the table of every object of these const values" if sh is not None
                   else "") + " */")
         c.append(f"static const co_od_sub_t s{o.index:04X}[] = {{")
-        for s in o.subs:
+        for run in rows(o.subs):
+            s = run[0]
             if s.hookio:
                 off = "0U"
             else:
@@ -427,19 +428,25 @@ def generate(dev: Device, toml_name: str, warn=None, storage: bool = True) -> tu
                 if sh is not None and not s.rom:
                     off = f"(uint16_t)({off} - F({sh[1]}))"
             lim = f"{s.limit_slot}U" if s.limit_slot >= 0 else "0U"
-            c.append(f"    CO_OD_SUB(0x{s.sub:02X}U, (uint8_t)CO_{s.type}, "
-                     f"{flags_expr(s.flags)}, "
-                     f"{s.size}U, {off}, {lim}), /* {comment(s.name)} */")
+            if len(run) == 1:
+                c.append(f"    CO_OD_SUB(0x{s.sub:02X}U, (uint8_t)CO_{s.type}, "
+                         f"{flags_expr(s.flags)}, "
+                         f"{s.size}U, {off}, {lim}), /* {comment(s.name)} */")
+            else:
+                c.append(f"    CO_OD_RUN(0x{s.sub:02X}U, {len(run)}U, (uint8_t)CO_{s.type}, "
+                         f"{flags_expr(s.flags)}, {s.size}U, {off}, {lim}), "
+                         f"/* {comment(s.name)} .. {comment(run[-1].name)} */")
         c.append("};")
     c += ["", "static const co_od_entry_t od[] = {"]
     for o in dev.objects:
         hook = f"{o.hook_slot + 1}U" if o.hook else "0U"
         sh = share.get(o.index)
+        nrows = len(rows(o.subs))
         if sh is None or sh[1] is None:
-            c.append(f"    CO_OD_ENTRY(0x{o.index:04X}U, {len(o.subs)}U, {hook}, "
+            c.append(f"    CO_OD_ENTRY(0x{o.index:04X}U, {nrows}U, {hook}, "
                      f"(uint8_t)CO_OBJ_{o.code}, s{(sh or (o.index,))[0]:04X}),")
         else:
-            c.append(f"    CO_OD_ENTRY_AT(0x{o.index:04X}U, {len(o.subs)}U, {hook}, "
+            c.append(f"    CO_OD_ENTRY_AT(0x{o.index:04X}U, {nrows}U, {hook}, "
                      f"(uint8_t)CO_OBJ_{o.code}, s{sh[0]:04X}, F({sh[1]})),")
     c += ["};", ""]
     conds = []
@@ -571,6 +578,27 @@ def fill_holes(block: list[Field], fill: list[Field]) -> list[Field]:
             off += 1
         off = (off + f.align - 1) // f.align * f.align + f.size
         out.append(f)
+    return out
+
+
+def rows(subs) -> list[list]:
+    """The rows of an object's table: runs of sub-entries of one row each
+    (co_od_sub_t with CO_OD_RUN): consecutive sub-indices of one fixed-size
+    type, access, size and limit whose values are consecutive elements of
+    one array field (RAM or ROM), up to 128 of them; any other sub-entry
+    is a row of its own."""
+    out: list[list] = []
+    for s in subs:
+        r = out[-1] if out else None
+        p = r[-1] if r else None
+        if p is not None and len(r) < 128 and s.sub == p.sub + 1 and s.type == p.type and \
+                s.fixed != 0 and s.size == s.fixed and s.size == p.size and \
+                s.flags == p.flags and s.limit_slot == p.limit_slot and s.rom == p.rom and \
+                not s.hookio and not p.hookio and s.field and s.field == p.field and \
+                p.elem >= 0 and s.elem == p.elem + 1:
+            r.append(s)
+        else:
+            out.append([s])
     return out
 
 

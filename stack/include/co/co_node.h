@@ -231,7 +231,7 @@ typedef struct co_store {
 
 typedef struct co_sdo_srv {
     const co_od_entry_t *entry;
-    const co_od_sub_t *desc;
+    co_od_sub_t desc;    /**< the sub-entry's descriptor (of entry) */
     uint32_t size;       /**< total size, 0 if unknown */
     uint32_t offset;     /**< bytes done (acknowledged) */
     uint32_t deadline;

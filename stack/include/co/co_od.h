@@ -50,6 +50,16 @@ typedef enum co_type {
 #define CO_SUB_HOOKIO  0x0040U /**< no stored value: the entry's hook reads/writes it */
 #define CO_SUB_NODEID  0x0080U /**< default is relative to the node-ID ($NODEID+x) */
 #define CO_SUB_LIMIT   0x0100U /**< 'limit' indexes the device's limit table */
+/** A row of a dictionary table may describe a run of sub-indices (uniform
+ *  ARRAY and RECORD elements: the same type, flags, size and limit, values
+ *  one after the other): the run's length - 1 in these bits of its flags,
+ *  its last sub-index in 'sub' (CO_OD_RUN). The run's k-th sub-index has
+ *  its value at off + k * size. (A row's place in its table is never above
+ *  its first sub-index, so a run's row never sits at the place of its
+ *  'sub': a row found there is one sub-index.) The descriptors the lookups
+ *  give (co_od_find_sub) are one sub-index each, without these bits. */
+#define CO_SUB_RUN_SHIFT 9U
+#define CO_SUB_FLAGS   0x01FFU /**< the CO_SUB_* flags of a row's flags */
 #define CO_SUB_MAP     (CO_SUB_MAP_T | CO_SUB_MAP_R)
 #define CO_SUB_RO      CO_SUB_R
 #define CO_SUB_WO      CO_SUB_W
@@ -61,10 +71,12 @@ typedef enum co_type {
 #define CO_OBJ_RECORD  0x09U
 #define CO_OBJ_DOMAIN  0x02U
 
+/** One sub-entry (a descriptor), or in a dictionary table one row: one
+ *  sub-entry, or a run of them (CO_SUB_RUN_SHIFT). */
 typedef struct co_od_sub {
-    uint8_t  sub;    /**< sub-index */
+    uint8_t  sub;    /**< sub-index (a run's last) */
     uint8_t  type;   /**< co_type_t */
-    uint16_t flags;  /**< CO_SUB_* */
+    uint16_t flags;  /**< CO_SUB_* (a row: and its run's length - 1) */
     uint16_t size;   /**< bytes; capacity for strings and DOMAINs */
     uint16_t off;    /**< offset into the RAM image, or the ROM image with CO_SUB_ROM */
 #if CO_LIMITS
@@ -81,6 +93,11 @@ typedef struct co_od_sub {
 #else
 #define CO_OD_SUB(sub, type, flags, size, off, limit) {(sub), (type), (flags), (size), (off)}
 #endif
+/** Initialiser of one row for the @p n (2..128) sub-indices sub..sub+n-1
+ *  of one type, flags, size and limit, with values at off, off + size, ... */
+#define CO_OD_RUN(sub, n, type, flags, size, off, limit) \
+    CO_OD_SUB((uint8_t)((sub) + (n) - 1U), (type), \
+              (uint16_t)((flags) | (((n) - 1U) << CO_SUB_RUN_SHIFT)), (size), (off), (limit))
 
 /** Where one run of the default image goes (co_dev_t.default_at). */
 typedef struct co_od_default {
@@ -124,10 +141,10 @@ typedef struct co_od_default {
  *  count from @ref base, where each object's values start (0 for a table
  *  of its own, whose offsets are the values' own). */
 typedef struct co_od_entry {
-    const co_od_sub_t *subs; /**< sorted by sub-index */
+    const co_od_sub_t *subs; /**< rows, sorted by sub-index */
     uint16_t index;
     uint16_t base;           /**< added to the RAM offset of every sub-entry */
-    uint8_t  nsubs;          /**< number of sub-entries in @ref subs */
+    uint8_t  nsubs;          /**< number of rows in @ref subs (a row may be a run) */
     uint8_t  hook;           /**< hook slot + 1, or 0 for no hook */
     uint8_t  code;           /**< CO_OBJ_* */
     uint8_t  svc;            /**< CO_OD_SVC_OF(index): the owning service's hook */
@@ -194,8 +211,20 @@ typedef struct co_od_hook {
 /** Find an entry by index (binary search). NULL if absent. */
 const co_od_entry_t *co_od_find(const co_od_entry_t *od, uint16_t count, uint16_t index);
 
-/** Find a sub-entry of @p e. NULL if absent. */
-const co_od_sub_t *co_od_find_sub(const co_od_entry_t *e, uint8_t sub);
+/** Find a sub-entry of @p e: its descriptor, written to @p buf (which
+ *  the result points to), or NULL if absent. */
+const co_od_sub_t *co_od_find_sub(const co_od_entry_t *e, uint8_t sub, co_od_sub_t *buf);
+
+/** Number of sub-indices row @p r of a table describes (1, or a run's). */
+static inline uint32_t co_od_run_len(const co_od_sub_t *r)
+{
+    return ((uint32_t)r->flags >> CO_SUB_RUN_SHIFT) + 1U;
+}
+
+/** The descriptor of the @p k-th sub-index (k < co_od_run_len(r)) of row
+ *  @p r (its sub-index r->sub + 1 - co_od_run_len(r) + k), written to
+ *  @p buf; returns @p buf. */
+const co_od_sub_t *co_od_row_sub(const co_od_sub_t *r, uint32_t k, co_od_sub_t *buf);
 
 /** Size in bytes of a fixed-size type, 0 for strings and DOMAIN. */
 uint8_t co_type_size(uint8_t type);

@@ -60,7 +60,9 @@ static inline const co_od_sub_t *row_sub(const co_od_sub_t *r, uint32_t k, co_od
     *buf = *r;
     buf->sub = (uint8_t)((r->sub + 1U + k) - co_od_run_len(r));
     buf->flags = (uint16_t)(r->flags & CO_SUB_FLAGS);
-    buf->off = (uint16_t)(r->off + (k * r->size));
+    if ((r->flags & CO_SUB_ROM) == 0U) {
+        buf->off = (uint16_t)(r->off + (k * r->size)); /* (ROM: one value for the run) */
+    }
     return buf;
 }
 
@@ -83,7 +85,9 @@ CO_NOINLINE static const co_od_sub_t *scan_sub(const co_od_entry_t *e, uint8_t s
             *buf = *r;
             buf->sub = sub;
             buf->flags &= CO_SUB_FLAGS;
-            buf->off = (uint16_t)(buf->off + ((n - 1U - d) * buf->size));
+            if ((buf->flags & CO_SUB_ROM) == 0U) {
+                buf->off = (uint16_t)(buf->off + ((n - 1U - d) * buf->size)); /* (ROM: one value) */
+            }
             return buf;
         }
         r++;

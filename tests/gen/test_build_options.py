@@ -107,7 +107,8 @@ def test_tpdo_rtr(tmp_path: Path) -> None:
 def test_store_commands_without_storage(tmp_path: Path) -> None:
     # a core without CO_STORAGE: the commands of 0x1010 / 0x1011 read 0
     # whatever is written, so they take no RAM: one writable const 0 all of
-    # them name, and the two objects share one table; with storage each has
+    # them name (one row: a run of one const value, CO_OD_RUN), and the two
+    # objects share one table; with storage each has
     # its RAM value (the capability the store service sets at every reset)
     seg = ROOT / "tests" / "perf" / "size-seg.toml"
     lean, full = tmp_path / "lean", tmp_path / "full"
@@ -116,8 +117,10 @@ def test_store_commands_without_storage(tmp_path: Path) -> None:
     assert run_odgen(seg, full, "--c", "--base", "d", "--build=CO_STORAGE=1").returncode == 0
     h, c = (lean / "d.h").read_text(), (lean / "d.c").read_text()
     assert "x1010_store_parameters" not in h and "x1011_restore" not in h
-    assert c.count("(uint16_t)(CO_SUB_R | CO_SUB_W | CO_SUB_ROM), 4U, R(store_command_none)") == 4
-    assert "CO_OD_ENTRY(0x1011U, 5U, 0U, (uint8_t)CO_OBJ_ARRAY, s1010)" in c
+    assert c.count("(uint16_t)(CO_SUB_R | CO_SUB_W | CO_SUB_ROM), 4U, R(store_command_none)") == 1
+    assert ("CO_OD_RUN(0x01U, 4U, (uint8_t)CO_UNSIGNED32, (uint16_t)(CO_SUB_R | CO_SUB_W | "
+            "CO_SUB_ROM), 4U, R(store_command_none), 0U)") in c
+    assert "CO_OD_ENTRY(0x1011U, 2U, 0U, (uint8_t)CO_OBJ_ARRAY, s1010)" in c
     h = (full / "d.h").read_text()
     assert "uint32_t x1010_store_parameters[4];" in h and "x1011_restore" in h
     assert "store_command_none" not in (full / "d.c").read_text()

@@ -153,6 +153,38 @@ static void run_rows_describe_each_sub_index(void **state)
     assert_int_equal(fx.n.node.errctl.n_hb_cons, 4);
 }
 
+/* A run of const values (CO_SUB_ROM): one value, at the row's offset, for
+ * every sub-index of the run (odgen: the identity's zeros, the store
+ * commands' 0). */
+static void rom_run_is_one_value(void **state)
+{
+    static const co_od_sub_t rows[] = {
+        CO_OD_SUB(0U, (uint8_t)CO_UNSIGNED8, CO_SUB_RO | CO_SUB_CONST | CO_SUB_ROM, 1U, 0U, 0U),
+        CO_OD_RUN(1U, 4U, (uint8_t)CO_UNSIGNED32, CO_SUB_RO | CO_SUB_ROM, 4U, 8U, 0U),
+        CO_OD_SUB(7U, (uint8_t)CO_UNSIGNED16, CO_SUB_RW, 2U, 2U, 0U),
+    };
+    static const co_od_entry_t e = CO_OD_ENTRY(0x3000U, 3U, 0U, (uint8_t)CO_OBJ_RECORD, rows);
+    co_od_sub_t d;
+    (void)state;
+    for (uint8_t k = 1U; k <= 4U; k++) {
+        assert_ptr_equal(co_od_find_sub(&e, k, &d), &d);
+        assert_int_equal(d.sub, k);
+        assert_int_equal(d.flags, CO_SUB_RO | CO_SUB_ROM);
+        assert_int_equal(d.size, 4);
+        assert_int_equal(d.off, 8);
+        assert_ptr_equal(co_od_row_sub(&rows[1], k - 1U, &d), &d);
+        assert_int_equal(d.sub, k);
+        assert_int_equal(d.off, 8);
+    }
+    assert_int_equal(co_od_run_len(&rows[1]), 4);
+    assert_null(co_od_find_sub(&e, 5U, &d));
+    assert_non_null(co_od_find_sub(&e, 7U, &d));
+    assert_int_equal(d.type, CO_UNSIGNED16);
+    assert_int_equal(d.off, 2);
+    assert_non_null(co_od_find_sub(&e, 0U, &d));
+    assert_int_equal(d.type, CO_UNSIGNED8);
+}
+
 static void type_sizes(void **state)
 {
     (void)state;
@@ -325,6 +357,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_setup(find_every_entry_and_reject_gaps, setup),
         cmocka_unit_test_setup(run_rows_describe_each_sub_index, setup),
+        cmocka_unit_test_setup(rom_run_is_one_value, setup),
         cmocka_unit_test_setup(type_sizes, setup),
         cmocka_unit_test_setup(nodeid_relative_defaults, setup),
         cmocka_unit_test_setup(app_access_path, setup),

@@ -585,8 +585,8 @@ def rows(subs) -> list[list]:
     """The rows of an object's table: runs of sub-entries of one row each
     (co_od_sub_t with CO_OD_RUN): consecutive sub-indices of one fixed-size
     type, access, size and limit whose values are consecutive elements of
-    one array field (RAM or ROM), up to 128 of them; any other sub-entry
-    is a row of its own."""
+    one array field of the RAM image, or one const value (one field of the
+    ROM image), up to 128 of them; any other sub-entry is a row of its own."""
     out: list[list] = []
     for s in subs:
         r = out[-1] if out else None
@@ -595,7 +595,8 @@ def rows(subs) -> list[list]:
                 s.fixed != 0 and s.size == s.fixed and s.size == p.size and \
                 s.flags == p.flags and s.limit_slot == p.limit_slot and s.rom == p.rom and \
                 not s.hookio and not p.hookio and s.field and s.field == p.field and \
-                p.elem >= 0 and s.elem == p.elem + 1:
+                ((not s.rom and p.elem >= 0 and s.elem == p.elem + 1) or
+                 (s.rom and s.elem == p.elem)):
             r.append(s)
         else:
             out.append([s])

@@ -52,9 +52,10 @@ typedef enum co_type {
 #define CO_SUB_LIMIT   0x0100U /**< 'limit' indexes the device's limit table */
 /** A row of a dictionary table may describe a run of sub-indices (uniform
  *  ARRAY and RECORD elements: the same type, flags, size and limit, values
- *  one after the other): the run's length - 1 in these bits of its flags,
- *  its last sub-index in 'sub' (CO_OD_RUN). The run's k-th sub-index has
- *  its value at off + k * size. (A row's place in its table is never above
+ *  one after the other in RAM, or one const value for all in ROM): the
+ *  run's length - 1 in these bits of its flags, its last sub-index in 'sub'
+ *  (CO_OD_RUN). The run's k-th sub-index has its value at off + k * size,
+ *  with CO_SUB_ROM at off (the same value). (A row's place in its table is never above
  *  its first sub-index, so a run's row never sits at the place of its
  *  'sub': a row found there is one sub-index.) The descriptors the lookups
  *  give (co_od_find_sub) are one sub-index each, without these bits. */
@@ -94,7 +95,8 @@ typedef struct co_od_sub {
 #define CO_OD_SUB(sub, type, flags, size, off, limit) {(sub), (type), (flags), (size), (off)}
 #endif
 /** Initialiser of one row for the @p n (2..128) sub-indices sub..sub+n-1
- *  of one type, flags, size and limit, with values at off, off + size, ... */
+ *  of one type, flags, size and limit, with values at off, off + size, ...
+ *  (with CO_SUB_ROM: one value at off) */
 #define CO_OD_RUN(sub, n, type, flags, size, off, limit) \
     CO_OD_SUB((uint8_t)((sub) + (n) - 1U), (type), \
               (uint16_t)((flags) | (((n) - 1U) << CO_SUB_RUN_SHIFT)), (size), (off), (limit))

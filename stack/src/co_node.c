@@ -635,9 +635,11 @@ co_result_t co_node_init(co_node_t *node, const co_node_config_t *cfg, uint32_t 
         ((cfg->dev->pdo == NULL) || (cfg->pdo == NULL))) {
         return CO_RESULT_BAD_CONFIG;
     }
-    id = (cfg->dev->set.lss.node_id == CO_LSS_ID_ONLY) ? CO_NODE_ID_UNCONFIGURED : cfg->node_id;
+    /* (an LSS slave: a build without LSS refuses it, CO_RESULT_DEV_INCOMPAT) */
+    id = ((CO_LSS != 0) && (cfg->dev->set.lss.node_id == CO_LSS_ID_ONLY)) ? CO_NODE_ID_UNCONFIGURED
+                                                                          : cfg->node_id;
     if (((id < 1U) || (id > 127U)) &&
-        ((id != CO_NODE_ID_UNCONFIGURED) || (cfg->dev->set.lss.slave == 0U))) {
+        ((CO_LSS == 0) || (id != CO_NODE_ID_UNCONFIGURED) || (cfg->dev->set.lss.slave == 0U))) {
         return CO_RESULT_BAD_NODE_ID;
     }
     (void)memset(node, 0, sizeof *node);

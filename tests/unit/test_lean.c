@@ -24,7 +24,7 @@ static tb_bus_t bus;
 static lean_test_node_t lean;
 #define BUS (&bus)
 
-static co_result_t start(const co_dev_t *dev)
+static co_result_t start_id(const co_dev_t *dev, uint8_t id)
 {
     co_node_config_t cfg;
     co_result_t err;
@@ -34,12 +34,17 @@ static co_result_t start(const co_dev_t *dev)
     lean_test_config(&lean, &cfg);
     cfg.dev = dev;
     cfg.hal = tb_hal(&bus, 0);
-    cfg.node_id = 1;
+    cfg.node_id = id;
     err = co_node_init(&lean.node, &cfg, bus.now);
     if (err == CO_RESULT_OK) {
         tb_attach(&bus, 0, &lean.node);
     }
     return err;
+}
+
+static co_result_t start(const co_dev_t *dev)
+{
+    return start_id(dev, 1U);
 }
 
 static uint32_t get_u32(uint16_t index, uint8_t sub)
@@ -208,6 +213,16 @@ static void refuses_what_is_left_out(void **state)
     /* a personality option */
     dev.set = (co_settings_t){.sdo.refused = CO_SDO_XFER_BLOCK};
     assert_int_equal(start(&dev), CO_RESULT_DEV_INCOMPAT);
+    tb_expect_none(BUS);
+    dev.set = (co_settings_t){0};
+    /* an LSS slave (LSS left out): refused with a node-ID, also one whose
+     * node-ID comes only through LSS; the unconfigured node-ID (0xFF) is no
+     * node-ID for a build without LSS */
+    dev.set = (co_settings_t){.lss = {.slave = 1U}};
+    assert_int_equal(start(&dev), CO_RESULT_DEV_INCOMPAT);
+    dev.set.lss.node_id = CO_LSS_ID_ONLY;
+    assert_int_equal(start(&dev), CO_RESULT_DEV_INCOMPAT);
+    assert_int_equal(start_id(&dev, CO_NODE_ID_UNCONFIGURED), CO_RESULT_BAD_NODE_ID);
     tb_expect_none(BUS);
     dev.set = (co_settings_t){0};
     /* value limits */

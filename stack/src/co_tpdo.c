@@ -200,21 +200,16 @@ CO_INLINE uint32_t timer_next(const co_node_t *node, const co_pdo_t *p, uint32_t
 }
 
 /* A due event-driven TPDO (CO_PDO_F_EVENT): sent with @p now unless the
- * inhibit time (@p inh us) holds it back; then the next deadline. */
-CO_INLINE uint32_t event_due(co_node_t *node, uint16_t i, uint32_t inh, uint32_t next,
-                             const uint8_t *now)
+ * inhibit time holds it back (its end is a deadline: timer_next); then the
+ * next deadline. */
+CO_INLINE uint32_t event_due(co_node_t *node, uint16_t i, uint32_t next, const uint8_t *now)
 {
     const co_pdo_t *p = &node->pdo.p[i];
-    uint32_t at = next;
 
-    if ((p->flags & CO_PDO_F_INHIBIT) != 0U) {
-        at = co_deadline_min(node->now, next, p->at + inh);
-    } else if (!send(node, i, now, true)) {
-        at = co_deadline_min(node->now, next, node->now + RETRY_US);
-    } else {
-        /* sent */
+    if (((p->flags & CO_PDO_F_INHIBIT) == 0U) && !send(node, i, now, true)) {
+        return co_deadline_min(node->now, next, node->now + RETRY_US);
     }
-    return at;
+    return next;
 }
 
 /* set.tpdo.change_mask: does the change from the data last sent to
@@ -280,7 +275,7 @@ CO_HOT uint32_t event_driven(co_node_t *node, uint16_t i, uint32_t next, bool de
         }
     }
     if ((p->flags & CO_PDO_F_EVENT) != 0U) {
-        next = event_due(node, i, inh, next, now);
+        next = event_due(node, i, next, now);
     }
     return timer_next(node, p, ev, inh, next);
 }

@@ -263,36 +263,38 @@ static void touch_owner(co_node_t *node, const co_svc_hook_t *h)
     }
 }
 
-void *co_od_ram_of(co_node_t *node, uint16_t index, uint8_t sub, uint8_t type)
+/* The RAM offset of the value of @p index / @p sub, of @p type (0: any),
+ * or -1 (absent, another type, not in RAM). */
+CO_NOINLINE static int32_t ram_off(const co_node_t *node, uint16_t index, uint8_t sub,
+                                   uint8_t type)
 {
     const co_od_entry_t *e;
     co_od_sub_t s;
 
     if ((co_od_lookup(node, index, sub, &e, &s) != CO_OK) || ((type != 0U) && (s.type != type)) ||
         ((s.flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) != 0U)) {
-        return NULL;
+        return -1;
     }
-    return &node->ram[co_od_off(e, &s)];
+    return (int32_t)(uint16_t)(e->base + s.off); /* (a RAM value) */
+}
+
+void *co_od_ram_of(co_node_t *node, uint16_t index, uint8_t sub, uint8_t type)
+{
+    int32_t off = ram_off(node, index, sub, type);
+
+    return (off < 0) ? NULL : &node->ram[off];
 }
 
 uint8_t co_od_array_len(const co_node_t *node, uint16_t index, uint8_t type, uint8_t max)
 {
-    const co_od_entry_t *e = co_od_find(node->dev->od, node->dev->od_count, index);
+    /* sub 1.. of that type, RAM values one after the other (from sub 1's) */
+    int32_t at = ram_off(node, index, 1U, type);
+    int32_t step = (int32_t)co_type_len(type);
     uint8_t n = 0U;
-    uint32_t first = 0U;
-    co_od_sub_t s;
 
-    /* sub 1.. of that type, RAM values one after the other */
-    while ((e != NULL) && (n < max) && (co_od_find_sub(e, (uint8_t)(n + 1U), &s) != NULL) &&
-           (s.type == type) && ((s.flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) == 0U)) {
-        if (n == 0U) {
-            first = s.off;
-        } else if (s.off != (first + (n * (uint32_t)s.size))) {
-            break;
-        } else {
-            /* the next one */
-        }
+    while ((at >= 0) && (n < max) && (ram_off(node, index, (uint8_t)(n + 1U), type) == at)) {
         n++;
+        at += step;
     }
     return n;
 }

@@ -317,6 +317,12 @@ static co_err_t read_seg(co_node_t *node, uint32_t at, uint8_t *buf, uint32_t ca
     return err;
 }
 
+/* A block size (segments per block) out of 1..127. */
+CO_INLINE bool bad_blksize(uint8_t n)
+{
+    return (uint8_t)(n - 1U) >= 127U;
+}
+
 /* ------------------------------------------------------------ initiate */
 
 /* A download initiate. Expedited: the value is in the request and written
@@ -437,7 +443,7 @@ static co_err_t initiate_upload(co_node_t *node, const uint8_t *d, uint16_t inde
     if (blk && ((d[0] & CO_SDO_BLK_SUB_MASK) != CO_SDO_BLK_INITIATE)) {
         return CO_ERR_CMD;
     }
-    if (blk && ((d[4] == 0U) || (d[4] > 127U))) {
+    if (blk && bad_blksize(d[4])) {
         return CO_ERR_BLKSIZE;
     }
     err = stage_upload(node, index, sub, &c, &e, &t->desc); /* (nothing is open) */
@@ -686,24 +692,20 @@ static co_err_t block_upload_ack(co_node_t *node, const uint8_t *d)
 {
     co_sdo_srv_t *t = &node->sdo;
     uint8_t ackseq = d[1];
-    uint8_t blksize = d[2];
-    bool all = (t->flags & F_LAST) != 0U;
-    uint32_t acked;
-    uint32_t tail = 0U; /* bytes in the last segment */
+    uint32_t acked = (uint32_t)ackseq * SEG;
+    uint32_t unused = 0U; /* bytes of the last segment without data */
+    bool all = ((t->flags & F_LAST) != 0U) && (ackseq == t->seqno);
     co_err_t err = CO_OK;
 
     if (ackseq > t->seqno) {
         return CO_ERR_SEQNO;
     }
-    if ((blksize == 0U) || (blksize > 127U)) {
+    if (bad_blksize(d[2])) {
         return CO_ERR_BLKSIZE;
     }
-    all = all && (ackseq == t->seqno);
     if (all) {
-        acked = t->size - t->offset;
-        tail = acked - ((uint32_t)(ackseq - 1U) * SEG);
-    } else {
-        acked = (uint32_t)ackseq * SEG;
+        unused = t->offset + acked - t->size;
+        acked -= unused;
     }
     if ((t->flags & F_CRC) == 0U) {
         /* no CRC */
@@ -715,19 +717,18 @@ static co_err_t block_upload_ack(co_node_t *node, const uint8_t *d)
     if (err != CO_OK) {
         return err;
     }
+    /* (F_STAGED stays: a read at offset 0, the staged chunk, comes only
+     * while nothing is acknowledged) */
     t->offset += acked;
-    if (t->offset > 0U) {
-        t->flags &= (uint8_t)~F_STAGED;
-    }
     if (all) {
         start(node, S_BLK_UL_END);
         reply(node,
               (uint8_t)(CO_SDO_B0(CO_SDO_SCS_BLOCK_UPLOAD) | CO_SDO_BLK_END |
-                        ((SEG - tail) << CO_SDO_BLK_N_SHIFT)),
+                        (unused << CO_SDO_BLK_N_SHIFT)),
               ((t->flags & F_CRC) != 0U) ? t->crc : 0U, 0U, 0U);
         return CO_OK;
     }
-    t->blksize = blksize;
+    t->blksize = d[2];
     return next_subblock(node);
 }
 
@@ -863,15 +864,6 @@ static void sdo_rx(co_node_t *node, uint16_t arg, const co_frame_t *f)
     }
 }
 
-#if CO_SDO_BLOCK
-/* A block upload sub-block that the TX path has not taken completely yet. */
-static bool upload_pending(const co_sdo_srv_t *t)
-{
-    return (t->state == (uint8_t)S_BLK_UL) && (t->seqno < t->blksize) &&
-           ((t->flags & F_LAST) == 0U);
-}
-#endif
-
 static uint32_t sdo_process(co_node_t *node, uint32_t next)
 {
     co_sdo_srv_t *t = &node->sdo;
@@ -898,9 +890,9 @@ static uint32_t sdo_process(co_node_t *node, uint32_t next)
         err = CO_ERR_TIMEOUT;
     } else {
 #if CO_SDO_BLOCK
-        if (upload_pending(t)) {
-            err = block_upload_send(node);
-            if (upload_pending(t)) {
+        if (t->state == (uint8_t)S_BLK_UL) {
+            err = block_upload_send(node); /* (nothing when the sub-block is out) */
+            if ((t->seqno < t->blksize) && ((t->flags & F_LAST) == 0U)) {
                 /* TX path still full: try again in a millisecond */
                 due = co_deadline_min(node->now, due, node->now + 1000U);
             }

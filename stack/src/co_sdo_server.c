@@ -61,6 +61,7 @@ enum {
 #define F_CRC    0x02U /* both sides use CRC (block) */
 #define F_STAGED 0x04U /* buf holds the first chunk of an upload */
 #define F_LAST   0x08U /* block upload: the last segment has been sent */
+#define F_DRY    0x10U /* block upload: segments read for the CRC, not sent */
 
 /* The eight bytes of an answer: command byte, index, sub-index, four data
  * bytes. */
@@ -628,7 +629,7 @@ static co_err_t block_upload_send(co_node_t *node)
         }
         f.data[0] = (uint8_t)((uint8_t)(t->seqno + 1U) | (last ? CO_SDO_BLK_LAST : 0U));
         co_copy(&f.data[1], &buf[at - from], SEG); /* zeros after the end */
-        if (!co_tx_now(node, &f)) {
+        if (((t->flags & F_DRY) == 0U) && !co_tx_now(node, &f)) {
             break; /* nothing held back: co_sdo_process sends it again */
         }
         if ((t->flags & F_CRC) != 0U) {
@@ -662,31 +663,6 @@ static co_err_t next_subblock(co_node_t *node)
     return block_upload_send(node);
 }
 
-static co_err_t crc_range(co_node_t *node, uint32_t from, uint32_t len)
-{
-    co_sdo_srv_t *t = &node->sdo;
-    uint8_t b[SEG];
-
-    while (len > 0U) {
-        uint32_t got = 0U;
-        bool last = false;
-        co_err_t err = read_seg(node, from, b, SEG, &got, &last);
-        if (err != CO_OK) {
-            return err;
-        }
-        if (got > len) {
-            got = len;
-        }
-        if (got == 0U) {
-            break;
-        }
-        t->crc = co_crc16(t->crc, b, got);
-        from += got;
-        len -= got;
-    }
-    return CO_OK;
-}
-
 /* (want[] checked the command) */
 static co_err_t block_upload_ack(co_node_t *node, const uint8_t *d)
 {
@@ -707,16 +683,18 @@ static co_err_t block_upload_ack(co_node_t *node, const uint8_t *d)
         unused = t->offset + acked - t->size;
         acked -= unused;
     }
-    if ((t->flags & F_CRC) == 0U) {
-        /* no CRC */
-    } else if (ackseq == t->seqno) {
-        t->crc = t->crc_sent; /* every segment sent is acknowledged */
-    } else {
-        err = crc_range(node, t->offset, acked); /* the rest goes again */
+    if ((ackseq < t->seqno) && ((t->flags & F_CRC) != 0U)) {
+        /* the rest goes again: the CRC of the acknowledged segments, read
+         * again as a sub-block of that many that is not transmitted */
+        t->blksize = ackseq;
+        t->flags |= F_DRY;
+        err = next_subblock(node);
+        t->flags &= (uint8_t)~F_DRY;
+        if (err != CO_OK) {
+            return err;
+        }
     }
-    if (err != CO_OK) {
-        return err;
-    }
+    t->crc = t->crc_sent; /* (without CRC both stay 0) */
     /* (F_STAGED stays: a read at offset 0, the staged chunk, comes only
      * while nothing is acknowledged) */
     t->offset += acked;
@@ -725,7 +703,7 @@ static co_err_t block_upload_ack(co_node_t *node, const uint8_t *d)
         reply(node,
               (uint8_t)(CO_SDO_B0(CO_SDO_SCS_BLOCK_UPLOAD) | CO_SDO_BLK_END |
                         (unused << CO_SDO_BLK_N_SHIFT)),
-              ((t->flags & F_CRC) != 0U) ? t->crc : 0U, 0U, 0U);
+              t->crc, 0U, 0U);
         return CO_OK;
     }
     t->blksize = d[2];

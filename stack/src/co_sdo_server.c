@@ -597,7 +597,7 @@ static co_err_t block_upload_send(co_node_t *node)
 {
     co_sdo_srv_t *t = &node->sdo;
     uint8_t buf[SDO_CHUNK * SEG];
-    uint32_t from = 0U; /* offset of buf[0] in the value */
+    uint32_t i = 0U;    /* the segment's first byte in buf */
     uint32_t have = 0U; /* bytes in buf */
     bool end = false;   /* buf reaches the end of the value */
     co_frame_t f;
@@ -609,7 +609,7 @@ static co_err_t block_upload_send(co_node_t *node)
         uint32_t got;
         bool last;
 
-        if (!end && ((at + SEG) > (from + have))) {
+        if (!end && ((i + SEG) > have)) {
             /* the segment is not in buf: the next chunk, up to the end of
              * the sub-block */
             uint32_t cap = (uint32_t)(t->blksize - t->seqno) * SEG;
@@ -617,26 +617,27 @@ static co_err_t block_upload_send(co_node_t *node)
             if (err != CO_OK) {
                 return err;
             }
-            from = at;
+            i = 0U;
         }
-        got = from + have - at;
+        got = have - i;
+        last = end && (got <= SEG);
         if (got > SEG) {
             got = SEG;
         }
-        last = end && ((at + got) >= (from + have));
         if (!last && (got < SEG)) {
             return CO_ERR_GENERAL; /* a hook produced a short chunk mid-stream */
         }
         f.data[0] = (uint8_t)((uint8_t)(t->seqno + 1U) | (last ? CO_SDO_BLK_LAST : 0U));
-        co_copy(&f.data[1], &buf[at - from], SEG); /* zeros after the end */
+        co_copy(&f.data[1], &buf[i], SEG); /* zeros after the end */
         if (((t->flags & F_DRY) == 0U) && !co_tx_now(node, &f)) {
             break; /* nothing held back: co_sdo_process sends it again */
         }
         if ((t->flags & F_CRC) != 0U) {
             /* the CRC as the segments go out (an acknowledge of all of them
              * takes it over, co_crc16 need not read them again) */
-            t->crc_sent = co_crc16(t->crc_sent, &f.data[1], got);
+            t->crc_sent = co_crc16(t->crc_sent, &buf[i], got);
         }
+        i += SEG;
         t->seqno++;
         /* the client's answer is due one timeout after the last segment */
         t->deadline = node->now + node->sdo.timeout_us;

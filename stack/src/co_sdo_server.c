@@ -571,9 +571,9 @@ static co_err_t block_download_end(co_node_t *node, const uint8_t *d)
 {
     co_sdo_srv_t *t = &node->sdo;
     uint32_t len = SEG - (((uint32_t)d[0] >> CO_SDO_BLK_N_SHIFT) & 7U);
-    co_err_t err = check_size(t, t->offset + len, true); /* (before the CRC) */
+    co_err_t err = CO_OK;
 
-    if ((err == CO_OK) && ((t->flags & F_CRC) != 0U) &&
+    if (((t->flags & F_CRC) != 0U) &&
         (co_crc16(t->crc, t->held, len) != co_get_u16(&d[1]))) {
         err = CO_ERR_CRC;
     }

@@ -683,6 +683,15 @@ static void crc_error_aborts_and_commits_nothing(void **state)
     tb_xfer(BUS, "601 81 78 56 34 12 00 00 00", "581 A2 01 7F 00 00 00 00 00");
     tb_xfer(BUS, "601 CD FA D0 00 00 00 00 00", "581 A1 00 00 00 00 00 00 00");
     assert_int_equal(RAMV.u32, 0x12345678UL);
+    /* 5 bytes for the announced 4: the CRC is checked first (a wrong one
+     * is the CRC error), a right one over the 5 bytes meets the size check */
+    tb_xfer(BUS, "601 C6 04 20 00 04 00 00 00", "581 A4 04 20 00 7F 00 00 00");
+    tb_xfer(BUS, "601 81 78 56 34 12 99 00 00", "581 A2 01 7F 00 00 00 00 00");
+    tb_xfer(BUS, "601 C9 FA D0 00 00 00 00 00", "581 80 04 20 00 04 00 04 05");
+    tb_xfer(BUS, "601 C6 04 20 00 04 00 00 00", "581 A4 04 20 00 7F 00 00 00");
+    tb_xfer(BUS, "601 81 78 56 34 12 99 00 00", "581 A2 01 7F 00 00 00 00 00");
+    tb_xfer(BUS, "601 C9 ED 23 00 00 00 00 00", "581 80 04 20 00 12 00 07 06");
+    assert_int_equal(RAMV.u32, 0x12345678UL);
 }
 
 /* ---------------------------------------------------------- 4: sequence errors */

@@ -393,7 +393,6 @@ static co_err_t initiate_download(co_node_t *node, const uint8_t *d, uint16_t in
             if ((d[0] & CO_SDO_BLK_CRC) != 0U) {
                 node->sdo.flags |= F_CRC;
             }
-            node->sdo.blksize = (uint8_t)SDO_BLKSIZE;
             st = (uint8_t)S_BLK_DL;
             cmd = (uint8_t)(CO_SDO_B0(CO_SDO_SCS_BLOCK_DOWNLOAD) | CO_SDO_BLK_CRC |
                             CO_SDO_BLK_INITIATE);
@@ -521,30 +520,24 @@ static co_err_t upload_segment(co_node_t *node)
 #if CO_SDO_BLOCK
 /* ------------------------------------------------------------ block download */
 
-/* The sub-block's acknowledge (the last good sequence number, the next
- * block size in bytes 1 and 2); the next sub-block counts from 0. */
-static void block_ack(co_node_t *node)
-{
-    co_sdo_srv_t *t = &node->sdo;
-
-    reply(node, (uint8_t)(CO_SDO_B0(CO_SDO_SCS_BLOCK_DOWNLOAD) | CO_SDO_BLK_ACK),
-          (uint16_t)(t->seqno | ((uint16_t)t->blksize << 8U)), 0U, 0U);
-    t->seqno = 0U;
-}
-
+/* A segment of a sub-block (the server asks for SDO_BLKSIZE, 127, the
+ * largest sequence number: only 0 is out of range). The last segment is
+ * held until the end request brings its length. At the end of the
+ * sub-block the last good sequence number is acknowledged (a lost or
+ * repeated segment is dropped: the client repeats from there) and the next
+ * sub-block counts from 0. */
 static co_err_t block_download_segment(co_node_t *node, const uint8_t *d)
 {
     co_sdo_srv_t *t = &node->sdo;
     uint8_t seq = (uint8_t)(d[0] & (uint8_t)~CO_SDO_BLK_LAST);
     bool last = (d[0] & CO_SDO_BLK_LAST) != 0U;
 
-    if ((seq == 0U) || (seq > t->blksize)) {
+    if (seq == 0U) {
         return CO_ERR_SEQNO;
     }
     start(node, S_BLK_DL);
     if (seq != (uint8_t)(t->seqno + 1U)) {
-        /* lost or repeated segment: dropped; at the end of the sub-block
-         * the last good one is acknowledged, the client repeats from there */
+        /* lost or repeated: dropped */
     } else if (last) {
         t->seqno = seq;
         co_copy(t->held, &d[1], SEG); /* its length comes with the end */
@@ -560,8 +553,10 @@ static co_err_t block_download_segment(co_node_t *node, const uint8_t *d)
             return err;
         }
     }
-    if (last || (seq == t->blksize)) {
-        block_ack(node);
+    if (last || (seq == SDO_BLKSIZE)) {
+        reply(node, (uint8_t)(CO_SDO_B0(CO_SDO_SCS_BLOCK_DOWNLOAD) | CO_SDO_BLK_ACK),
+              (uint16_t)(t->seqno | (SDO_BLKSIZE << 8U)), 0U, 0U);
+        t->seqno = 0U;
     }
     return CO_OK;
 }

@@ -717,24 +717,27 @@ static void idle_request(co_node_t *node, const uint8_t *d)
     uint8_t ccs = CO_SDO_CS(d[0]);
     co_err_t err = CO_ERR_CMD;
 #if CO_SDO_BLOCK
-    bool blocks = ((CO_SET(node, sdo.refused) & CO_SDO_XFER_BLOCK) == 0U) && !expedited_only(node);
-#endif
+    /* ccs 5 and 6 (7: none) are the initiates of 2 and 1 by block */
+    bool block = ccs >= CO_SDO_CCS_BLOCK_UPLOAD;
 
+    if (block && (((CO_SET(node, sdo.refused) & CO_SDO_XFER_BLOCK) != 0U) ||
+                  expedited_only(node))) {
+        /* block refused */
+    } else if ((ccs == CO_SDO_CCS_DOWNLOAD_INITIATE) || (ccs == CO_SDO_CCS_BLOCK_DOWNLOAD)) {
+        err = initiate_download(node, d, index, sub, block); /* (the most frequent first) */
+    } else if ((ccs == CO_SDO_CCS_UPLOAD_INITIATE) || (ccs == CO_SDO_CCS_BLOCK_UPLOAD)) {
+        err = initiate_upload(node, d, index, sub, block);
+#else
     if (ccs == CO_SDO_CCS_DOWNLOAD_INITIATE) {
         err = initiate_download(node, d, index, sub, false); /* (the most frequent first) */
     } else if (ccs == CO_SDO_CCS_UPLOAD_INITIATE) {
         err = initiate_upload(node, d, index, sub, false);
-#if CO_SDO_BLOCK
-    } else if (blocks && (ccs == CO_SDO_CCS_BLOCK_UPLOAD)) {
-        err = initiate_upload(node, d, index, sub, true);
-    } else if (blocks && (ccs == CO_SDO_CCS_BLOCK_DOWNLOAD)) {
-        err = initiate_download(node, d, index, sub, true);
 #endif
     } else if ((ccs == CO_SDO_CCS_DOWNLOAD_SEGMENT) || (ccs == CO_SDO_CCS_UPLOAD_SEGMENT)) {
         index = 0U; /* a segment without a transfer carries no index */
         sub = 0U;
     } else {
-        /* ccs 7, or block refused */
+        /* ccs 7 */
     }
     if (err != CO_OK) {
         sdo_abort(node, index, sub, err);

@@ -61,7 +61,6 @@ enum {
 #define F_CRC    0x02U /* both sides use CRC (block) */
 #define F_STAGED 0x04U /* buf holds the first chunk of an upload */
 #define F_LAST   0x08U /* block upload: the last segment has been sent */
-#define F_DRY    0x10U /* block upload: segments read for the CRC, not sent */
 
 /* The eight bytes of an answer: command byte, index, sub-index, four data
  * bytes. */
@@ -587,12 +586,13 @@ static co_err_t block_download_end(co_node_t *node, const uint8_t *d)
 /* Send segments of the current sub-block until it is complete or the TX
  * path is full (then co_sdo_process resumes). The value is read a chunk of
  * up to SDO_CHUNK segments at a time (a read hook runs once per chunk, not
- * per segment); what the TX path did not take is read again later. */
-static co_err_t block_upload_send(co_node_t *node)
+ * per segment); what the TX path did not take is read again later.
+ * Without @p send the segments are read for the CRC only. */
+static co_err_t block_upload_send(co_node_t *node, bool send)
 {
     co_sdo_srv_t *t = &node->sdo;
     uint8_t buf[SDO_CHUNK * SEG];
-    uint32_t i = 0U;    /* the segment's first byte in buf */
+    uint32_t from = 0U; /* offset of buf[0] in the value */
     uint32_t have = 0U; /* bytes in buf */
     bool end = false;   /* buf reaches the end of the value */
     co_frame_t f;
@@ -604,7 +604,7 @@ static co_err_t block_upload_send(co_node_t *node)
         uint32_t got;
         bool last;
 
-        if (!end && ((i + SEG) > have)) {
+        if (!end && ((at + SEG) > (from + have))) {
             /* the segment is not in buf: the next chunk, up to the end of
              * the sub-block */
             uint32_t cap = (uint32_t)(t->blksize - t->seqno) * SEG;
@@ -612,27 +612,26 @@ static co_err_t block_upload_send(co_node_t *node)
             if (err != CO_OK) {
                 return err;
             }
-            i = 0U;
+            from = at;
         }
-        got = have - i;
-        last = end && (got <= SEG);
+        got = from + have - at;
         if (got > SEG) {
             got = SEG;
         }
+        last = end && ((at + got) >= (from + have));
         if (!last && (got < SEG)) {
             return CO_ERR_GENERAL; /* a hook produced a short chunk mid-stream */
         }
         f.data[0] = (uint8_t)((uint8_t)(t->seqno + 1U) | (last ? CO_SDO_BLK_LAST : 0U));
-        co_copy(&f.data[1], &buf[i], SEG); /* zeros after the end */
-        if (((t->flags & F_DRY) == 0U) && !co_tx_now(node, &f)) {
+        co_copy(&f.data[1], &buf[at - from], SEG); /* zeros after the end */
+        if (send && !co_tx_now(node, &f)) {
             break; /* nothing held back: co_sdo_process sends it again */
         }
         if ((t->flags & F_CRC) != 0U) {
             /* the CRC as the segments go out (an acknowledge of all of them
              * takes it over, co_crc16 need not read them again) */
-            t->crc_sent = co_crc16(t->crc_sent, &buf[i], got);
+            t->crc_sent = co_crc16(t->crc_sent, &f.data[1], got);
         }
-        i += SEG;
         t->seqno++;
         /* the client's answer is due one timeout after the last segment */
         t->deadline = node->now + node->sdo.timeout_us;
@@ -647,8 +646,9 @@ static co_err_t block_upload_send(co_node_t *node)
     return CO_OK;
 }
 
-/* The next sub-block, from the last byte acknowledged. */
-static co_err_t next_subblock(co_node_t *node)
+/* The next sub-block, from the last byte acknowledged (@p send: as
+ * block_upload_send). */
+static co_err_t next_subblock(co_node_t *node, bool send)
 {
     co_sdo_srv_t *t = &node->sdo;
 
@@ -656,7 +656,7 @@ static co_err_t next_subblock(co_node_t *node)
     t->crc_sent = t->crc;
     t->flags &= (uint8_t)~F_LAST;
     start(node, S_BLK_UL);
-    return block_upload_send(node);
+    return block_upload_send(node, send);
 }
 
 /* (want[] checked the command) */
@@ -683,9 +683,7 @@ static co_err_t block_upload_ack(co_node_t *node, const uint8_t *d)
         /* the rest goes again: the CRC of the acknowledged segments, read
          * again as a sub-block of that many that is not transmitted */
         t->blksize = ackseq;
-        t->flags |= F_DRY;
-        err = next_subblock(node);
-        t->flags &= (uint8_t)~F_DRY;
+        err = next_subblock(node, false);
         if (err != CO_OK) {
             return err;
         }
@@ -703,7 +701,7 @@ static co_err_t block_upload_ack(co_node_t *node, const uint8_t *d)
         return CO_OK;
     }
     t->blksize = d[2];
-    return next_subblock(node);
+    return next_subblock(node, true);
 }
 
 #endif /* CO_SDO_BLOCK */
@@ -786,7 +784,7 @@ SDO_RARE static co_err_t transfer_request(co_node_t *node, const uint8_t *d)
         return block_download_end(node, d);
     }
     if (st == (uint8_t)S_BLK_UL_INI) {
-        return next_subblock(node);
+        return next_subblock(node, true);
     }
     if (st == (uint8_t)S_BLK_UL) {
         return block_upload_ack(node, d);
@@ -868,7 +866,7 @@ static uint32_t sdo_process(co_node_t *node, uint32_t next)
     } else {
 #if CO_SDO_BLOCK
         if (t->state == (uint8_t)S_BLK_UL) {
-            err = block_upload_send(node); /* (nothing when the sub-block is out) */
+            err = block_upload_send(node, true); /* (nothing when the sub-block is out) */
             if ((t->seqno < t->blksize) && ((t->flags & F_LAST) == 0U)) {
                 /* TX path still full: try again in a millisecond */
                 due = co_deadline_min(node->now, due, node->now + 1000U);

@@ -667,7 +667,6 @@ static co_err_t block_upload_ack(co_node_t *node, const uint8_t *d)
     uint32_t acked = (uint32_t)ackseq * SEG;
     uint32_t unused = 0U; /* bytes of the last segment without data */
     bool all = ((t->flags & F_LAST) != 0U) && (ackseq == t->seqno);
-    co_err_t err = CO_OK;
 
     if (ackseq > t->seqno) {
         return CO_ERR_SEQNO;
@@ -682,6 +681,7 @@ static co_err_t block_upload_ack(co_node_t *node, const uint8_t *d)
     if ((ackseq < t->seqno) && ((t->flags & F_CRC) != 0U)) {
         /* the rest goes again: the CRC of the acknowledged segments, read
          * again as a sub-block of that many that is not transmitted */
+        co_err_t err;
         t->blksize = ackseq;
         err = next_subblock(node, false);
         if (err != CO_OK) {

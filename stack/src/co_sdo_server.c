@@ -58,8 +58,9 @@ enum {
 
 /* flags */
 #define F_SIZE   0x01U /* size indicated */
-#define F_CRC    0x02U /* both sides use CRC (block) */
-#define F_STAGED 0x04U /* buf holds the first chunk of an upload */
+#define F_STAGED 0x02U /* buf holds the first chunk of an upload */
+#define F_CRC    CO_SDO_BLK_CRC /* both sides use CRC (block; the client's
+                                 * bit in a block initiate: taken as it is) */
 #define F_LAST   0x08U /* block upload: the last segment has been sent */
 
 /* The eight bytes of an answer: command byte, index, sub-index, four data
@@ -389,9 +390,7 @@ static co_err_t initiate_download(co_node_t *node, const uint8_t *d, uint16_t in
         uint32_t data = 0U;
 #if CO_SDO_BLOCK
         if (blk) {
-            if ((d[0] & CO_SDO_BLK_CRC) != 0U) {
-                node->sdo.flags |= F_CRC;
-            }
+            node->sdo.flags |= (uint8_t)(d[0] & F_CRC);
             st = (uint8_t)S_BLK_DL;
             cmd = (uint8_t)(CO_SDO_B0(CO_SDO_SCS_BLOCK_DOWNLOAD) | CO_SDO_BLK_CRC |
                             CO_SDO_BLK_INITIATE);
@@ -456,9 +455,7 @@ static co_err_t initiate_upload(co_node_t *node, const uint8_t *d, uint16_t inde
     }
 #if CO_SDO_BLOCK
     t->blksize = d[4];
-    if ((d[0] & CO_SDO_BLK_CRC) != 0U) {
-        t->flags |= F_CRC;
-    }
+    t->flags |= (uint8_t)(d[0] & F_CRC);
     start(node, S_BLK_UL_INI);
     reply(node,
           (uint8_t)(CO_SDO_B0(CO_SDO_SCS_BLOCK_UPLOAD) | CO_SDO_BLK_CRC |

@@ -777,18 +777,20 @@ SDO_RARE static co_err_t transfer_request(co_node_t *node, const uint8_t *d)
         return upload_segment(node);
     }
 #if CO_SDO_BLOCK
-    if (st == (uint8_t)S_BLK_DL_END) {
-        return block_download_end(node, d);
-    }
-    if (st == (uint8_t)S_BLK_UL_INI) {
-        return next_subblock(node, true);
+    if (st == (uint8_t)S_BLK_UL_END) {
+        sdo_reset(node); /* the client confirmed the end */
+        return CO_OK;
     }
     if (st == (uint8_t)S_BLK_UL) {
         return block_upload_ack(node, d);
     }
-    sdo_reset(node); /* S_BLK_UL_END: the client confirmed the end */
-#endif
+    if (st == (uint8_t)S_BLK_UL_INI) {
+        return next_subblock(node, true);
+    }
+    return block_download_end(node, d); /* S_BLK_DL_END */
+#else
     return CO_OK;
+#endif
 }
 
 static void sdo_rx(co_node_t *node, uint16_t arg, const co_frame_t *f)

@@ -146,7 +146,7 @@ static co_err_t map_state(const co_node_t *node, uint16_t i, uint32_t count, co_
         const co_od_entry_t *e = NULL;
         const co_od_sub_t *s;
         co_od_sub_t sd;
-        co_err_t err = check_entry(node, tx, co_ram_u32(node, (uint16_t)(d->map + (4U * k))),
+        co_err_t err = check_entry(node, tx, co_pdo_entry(co_pdo_map(node, d), k),
                                    &bits, &e, &s, &sd);
         if (err != CO_OK) {
             return err;
@@ -172,7 +172,7 @@ static co_err_t map_state(const co_node_t *node, uint16_t i, uint32_t count, co_
 /* PDO i's state from its mapping as the dictionary holds it. */
 static void remap(co_node_t *node, uint16_t i)
 {
-    (void)map_state(node, i, co_ram_u8(node, node->dev->pdo[i].count), &node->pdo.p[i]);
+    (void)map_state(node, i, co_pdo_count(node, i), &node->pdo.p[i]);
 }
 
 /* A write of sub @p sub of PDO i's mapping (@p is_map) or communication
@@ -211,7 +211,7 @@ static co_err_t check_write(const co_node_t *node, uint16_t i, bool is_map, uint
             co_pdo_t tmp = {0};
             return map_state(node, i, v, &tmp);
         }
-        if (co_ram_u8(node, d->count) != 0U) {
+        if (co_pdo_count(node, i) != 0U) {
             return CO_ERR_NO_ACCESS; /* entries are fixed while the mapping is enabled */
         }
         v = co_get_u32(data);
@@ -237,8 +237,8 @@ static co_err_t check_write(const co_node_t *node, uint16_t i, bool is_map, uint
         return CO_ERR_VALUE; /* SYNC start value */
     }
     /* inhibit time and SYNC start value change only while invalid */
-    return (valid && (v != ((sub == 3U) ? (uint32_t)co_ram_u16(node, d->inhibit)
-                                        : (uint32_t)co_ram_u8(node, d->start))))
+    return (valid && (v != ((sub == 3U) ? (uint32_t)co_pdo_u16(node, i, d->inhibit)
+                                        : (uint32_t)*co_pdo_at(node, i, d->start))))
                ? CO_ERR_VALUE
                : CO_OK;
 }

@@ -10,20 +10,20 @@
 #include "co_priv.h"
 
 #if !CO_FAST
-static CO_NOINLINE uint32_t time_us(const co_node_t *node, uint16_t off, uint32_t unit)
+static CO_NOINLINE uint32_t time_us(const co_node_t *node, uint16_t i, uint8_t rel, uint32_t unit)
 {
-    return (off == CO_PDO_NONE) ? 0U : co_dict_us(co_ram_u16(node, off), unit);
+    return (rel == 0U) ? 0U : co_dict_us(co_pdo_u16(node, i, rel), unit);
 }
 
 uint32_t co_pdo_event_us(const co_node_t *node, uint16_t i)
 {
-    return time_us(node, node->dev->pdo[i].event,
+    return time_us(node, i, node->dev->pdo[i].event,
                    (CO_SET(node, pdo.event_timer_unit) == CO_PDO_TIMER_100US) ? 100UL : 1000UL);
 }
 
 uint32_t co_pdo_inhibit_us(const co_node_t *node, uint16_t i)
 {
-    return time_us(node, node->dev->pdo[i].inhibit, 100UL);
+    return time_us(node, i, node->dev->pdo[i].inhibit, 100UL);
 }
 #endif
 
@@ -111,9 +111,9 @@ static void entry_io(co_node_t *node, uint32_t v, uint16_t code, uint16_t pos, u
  * bytes (0..8) cover. */
 void co_pdo_io(co_node_t *node, uint16_t i, uint8_t *buf, uint8_t dlc)
 {
-    const co_pdo_desc_t *d = &node->dev->pdo[i];
     const co_pdo_t *p = &node->pdo.p[i];
-    uint32_t count = co_ram_u8(node, d->count);
+    const uint8_t *map = co_pdo_map(node, &node->dev->pdo[i]);
+    uint32_t count = co_pdo_count(node, i);
     bool tx = dlc == CO_PDO_SAMPLE;
     uint32_t avail = tx ? 64U : (dlc * 8U);
     uint32_t pos = 0U;
@@ -122,7 +122,7 @@ void co_pdo_io(co_node_t *node, uint16_t i, uint8_t *buf, uint8_t dlc)
         (void)memset(buf, 0, 8U);
     }
     for (uint32_t k = 0U; k < count; k++) {
-        uint32_t v = co_ram_u32(node, (uint16_t)(d->map + (4U * k)));
+        uint32_t v = co_pdo_entry(map, k);
         uint32_t end = pos + (v & 0xFFU);
         if (end > avail) {
             break;

@@ -657,14 +657,46 @@ CO_INLINE uint16_t co_pdo_code(const co_pdo_t *p, uint8_t k)
 #define CO_PDO_COB_INVALID 0x80000000UL
 #define CO_PDO_COB_NO_RTR  0x40000000UL
 
+/* PDO i's parameters in the RAM image (co_pdo_desc_t): the optional ones
+ * by their distance from the COB-ID, the mapping entries before their
+ * number, the transmission type after it. */
+CO_INLINE const uint8_t *co_pdo_at(const co_node_t *node, uint16_t i, uint32_t rel)
+{
+    return &node->ram[node->dev->pdo[i].cob + rel];
+}
+
+CO_INLINE uint16_t co_pdo_u16(const co_node_t *node, uint16_t i, uint32_t rel)
+{
+    uint16_t v;
+    (void)memcpy(&v, co_pdo_at(node, i, rel), sizeof v);
+    return v;
+}
+
 CO_INLINE uint32_t co_pdo_cob(const co_node_t *node, uint16_t i)
 {
     return co_ram_u32(node, node->dev->pdo[i].cob);
 }
 
+CO_INLINE const uint8_t *co_pdo_map(const co_node_t *node, const co_pdo_desc_t *d)
+{
+    return &node->ram[d->count - (4U * d->map_max)];
+}
+
+CO_INLINE uint32_t co_pdo_entry(const uint8_t *map, uint32_t k)
+{
+    uint32_t v;
+    (void)memcpy(&v, &map[4U * k], sizeof v);
+    return v;
+}
+
+CO_INLINE uint8_t co_pdo_count(const co_node_t *node, uint16_t i)
+{
+    return co_ram_u8(node, node->dev->pdo[i].count);
+}
+
 CO_INLINE uint8_t co_pdo_type(const co_node_t *node, uint16_t i)
 {
-    return co_ram_u8(node, node->dev->pdo[i].type);
+    return node->ram[node->dev->pdo[i].count + 1U];
 }
 
 /* The PDOs the receive table covers: the RPDOs, and with CO_PDO_RTR the
@@ -801,7 +833,7 @@ CO_INLINE void co_pdo_sample_direct(const co_node_t *node, uint16_t i, uint8_t *
     uint8_t *at = buf;
 #if CO_PDO_FAST_MAX > 0
     const co_pdo_t *p = &node->pdo.p[i];
-    uint32_t count = co_ram_u8(node, node->dev->pdo[i].count);
+    uint32_t count = co_pdo_count(node, i);
 
     /* (a PDO with more entries is not direct: only the compiler needs to know) */
     count = (count <= CO_PDO_FAST_MAX) ? count : 0U;
@@ -818,16 +850,16 @@ CO_INLINE void co_pdo_sample_direct(const co_node_t *node, uint16_t i, uint8_t *
 
 CO_INLINE void co_pdo_store_direct(co_node_t *node, uint16_t i, const uint8_t *data, uint8_t dlc)
 {
-    const co_pdo_desc_t *d = &node->dev->pdo[i];
     const co_pdo_t *p = &node->pdo.p[i];
-    uint8_t count = co_ram_u8(node, d->count);
+    const uint8_t *map = co_pdo_map(node, &node->dev->pdo[i]);
+    uint8_t count = co_pdo_count(node, i);
     uint8_t avail = (dlc > 8U) ? 8U : dlc;
     uint8_t at = 0U;
 
     /* (a PDO with more entries is not direct: only the compiler needs to know) */
     count = (count <= CO_PDO_FAST_MAX) ? count : 0U;
     for (uint8_t k = 0U; k < count; k++) {
-        uint8_t n = (uint8_t)((co_ram_u32(node, (uint16_t)(d->map + (4U * k))) & 0xFFU) >> 3U);
+        uint8_t n = (uint8_t)((co_pdo_entry(map, k) & 0xFFU) >> 3U);
         uint16_t code = co_pdo_code(p, k);
         if ((uint8_t)(at + n) > avail) {
             break;
@@ -844,16 +876,16 @@ CO_INLINE void co_pdo_store_direct(co_node_t *node, uint16_t i, const uint8_t *d
 #if CO_FAST
 CO_INLINE uint32_t co_pdo_event_us(const co_node_t *node, uint16_t i)
 {
-    uint16_t off = node->dev->pdo[i].event;
+    uint32_t rel = node->dev->pdo[i].event;
     uint32_t unit = (CO_SET(node, pdo.event_timer_unit) == CO_PDO_TIMER_100US) ? 100UL : 1000UL;
 
-    return (off == CO_PDO_NONE) ? 0U : co_dict_us(co_ram_u16(node, off), unit);
+    return (rel == 0U) ? 0U : co_dict_us(co_pdo_u16(node, i, rel), unit);
 }
 CO_INLINE uint32_t co_pdo_inhibit_us(const co_node_t *node, uint16_t i)
 {
-    uint16_t off = node->dev->pdo[i].inhibit;
+    uint32_t rel = node->dev->pdo[i].inhibit;
 
-    return (off == CO_PDO_NONE) ? 0U : co_dict_us(co_ram_u16(node, off), 100UL);
+    return (rel == 0U) ? 0U : co_dict_us(co_pdo_u16(node, i, rel), 100UL);
 }
 #else
 uint32_t co_pdo_event_us(const co_node_t *node, uint16_t i);

@@ -86,8 +86,8 @@ static void send_sync(co_node_t *node, uint16_t i)
 static bool cyclic_due(co_node_t *node, uint16_t i, uint8_t type, uint8_t counter)
 {
     co_pdo_t *p = &node->pdo.p[i];
-    uint16_t off = node->dev->pdo[i].start;
-    uint8_t start = (off != CO_PDO_NONE) ? co_ram_u8(node, off) : 0U;
+    const co_pdo_desc_t *d = &node->dev->pdo[i];
+    uint8_t start = (d->start != 0U) ? *co_pdo_at(node, i, d->start) : 0U;
 
     if ((start != 0U) && ((p->flags & CO_PDO_F_STARTED) == 0U) &&
         (node->sync.overflow != NULL) && (*node->sync.overflow > 1U)) {

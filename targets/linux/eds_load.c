@@ -945,6 +945,50 @@ static size_t align_of(const co_od_sub_t *s)
     return ((len == 2U) || (len == 4U) || (len == 8U)) ? len : 1U;
 }
 
+/* The mapping object of a PDO communication object (0x1400+n: 0x1600+n,
+ * 0x1800+n: 0x1A00+n), NULL if it is none or has none. */
+static const bobj_t *pdo_mapping_of(const ctx_t *c, const bobj_t *o)
+{
+    bobj_t key;
+
+    if (((o->index < 0x1400U) || (o->index > 0x15FFU)) &&
+        ((o->index < 0x1800U) || (o->index > 0x19FFU))) {
+        return NULL;
+    }
+    key.index = (uint16_t)(o->index + 0x200U);
+    return (const bobj_t *)bsearch(&key, c->obj, c->nobj, sizeof *c->obj, cmp_obj);
+}
+
+/* The mapping entries of mapping object @p m the core can run (sub 1..,
+ * consecutive UNSIGNED32, at most 8, after a sub 0 UNSIGNED8). */
+static size_t pdo_entries(const ctx_t *c, const bobj_t *m)
+{
+    const bsub_t *b = &c->sub[m->first];
+    size_t n = 0U;
+
+    if ((m->n == 0U) || (b[0].s.sub != 0U) || (b[0].s.type != (uint8_t)CO_UNSIGNED8)) {
+        return 0U;
+    }
+    while ((n < 8U) && (n + 1U < m->n) && (b[n + 1U].s.sub == (uint8_t)(n + 1U)) &&
+           (b[n + 1U].s.type == (uint8_t)CO_UNSIGNED32)) {
+        n++;
+    }
+    return n;
+}
+
+/* Sub-entry @p b at the next offset its alignment allows from *off. */
+static void place(ctx_t *c, bsub_t *b, size_t *off, uint8_t *placed, size_t *nlim, size_t *nid)
+{
+    size_t al = align_of(&b->s);
+
+    *off = (*off + al - 1U) / al * al;
+    b->s.off = (uint16_t)((*off <= 0xFFFFU) ? *off : 0U);
+    *off += b->s.size;
+    placed[b - c->sub] = 1U;
+    *nlim += (size_t)b->has_limit;
+    *nid += (size_t)((b->s.flags & CO_SUB_NODEID) != 0U);
+}
+
 static const co_od_sub_t *find_built(const eds_dev_t *d, uint16_t index, uint8_t sub)
 {
     const co_od_entry_t *e = co_od_find(d->entries, d->dev.od_count, index);
@@ -956,6 +1000,13 @@ static const co_od_sub_t *find_built(const eds_dev_t *d, uint16_t index, uint8_t
         }
     }
     return NULL;
+}
+
+/* Where @p s is from the COB-ID @p cob (co_pdo_desc_t): 1..255, 0 when
+ * there is no @p s, above 255 when it is out of reach. */
+static uint32_t pdo_rel(const co_od_sub_t *cob, const co_od_sub_t *s)
+{
+    return (s == NULL) ? 0U : (s->off > cob->off) ? (uint32_t)(s->off - cob->off) : 0x100U;
 }
 
 /* the PDOs the core runs: pairs numbered without gaps from 0 */
@@ -991,15 +1042,19 @@ static size_t pdo_scan(const eds_dev_t *d, uint16_t comm_base, uint16_t map_base
         if (maps == 0U) {
             break;
         }
+        /* (laid out as co_pdo_desc_t wants: build) */
+        if ((me->subs[1].off != (uint16_t)(cnt->off - (4U * maps))) ||
+            (type->off != (uint16_t)(cnt->off + 1U)) || (pdo_rel(cob, start) > 0xFFU) ||
+            (pdo_rel(cob, inh) > 0xFFU) || (pdo_rel(cob, ev) > 0xFFU)) {
+            break;
+        }
         if (out != NULL) {
             out[n].cob = cob->off;
-            out[n].type = type->off;
-            out[n].inhibit = (inh != NULL) ? inh->off : CO_PDO_NONE;
-            out[n].event = (ev != NULL) ? ev->off : CO_PDO_NONE;
-            out[n].start = (start != NULL) ? start->off : CO_PDO_NONE;
             out[n].count = cnt->off;
-            out[n].map = me->subs[1].off;
             out[n].map_max = maps;
+            out[n].start = (uint8_t)pdo_rel(cob, start);
+            out[n].inhibit = (uint8_t)pdo_rel(cob, inh);
+            out[n].event = (uint8_t)pdo_rel(cob, ev);
         }
         n++;
     }
@@ -1016,6 +1071,7 @@ static eds_dev_t *build(ctx_t *c, const char *name, const char *text)
     size_t nruns;
     size_t nr;
     size_t nt;
+    uint8_t *placed;
 
     if (d == NULL) {
         (void)fail(c, NULL, NULL, "out of memory");
@@ -1029,30 +1085,48 @@ static eds_dev_t *build(ctx_t *c, const char *name, const char *text)
             return NULL;
         }
     }
-    /* RAM image: communication, application, not stored */
+    placed = (uint8_t *)calloc((c->nsub != 0U) ? c->nsub : 1U, 1U);
+    if (placed == NULL) {
+        (void)fail(c, NULL, NULL, "out of memory");
+        eds_free(d);
+        return NULL;
+    }
+    /* RAM image: communication, application, not stored; a PDO's mapping
+     * entries, their number and its transmission type one after the other
+     * where its communication object is (co_pdo_desc_t) */
     for (unsigned r = 0U; r < 3U; r++) {
         for (size_t i = 0U; i < c->nobj; i++) {
-            if (region_of(c->obj[i].index) != r) {
+            const bobj_t *o = &c->obj[i];
+            const bobj_t *m = pdo_mapping_of(c, o);
+            size_t n = (m != NULL) ? pdo_entries(c, m) : 0U;
+            if (region_of(o->index) != r) {
                 continue;
             }
-            for (size_t k = 0U; k < c->obj[i].n; k++) {
-                bsub_t *b = &c->sub[c->obj[i].first + k];
-                size_t al = align_of(&b->s);
-                off = (off + al - 1U) / al * al;
-                b->s.off = (uint16_t)off;
-                off += b->s.size;
-                if (off > 0xFFF8U) {
-                    (void)fail(c, c->obj[i].sec, NULL,
-                               "the values need more than 65535 bytes of RAM");
-                    eds_free(d);
-                    return NULL;
+            for (size_t k = 0U; (n != 0U) && (k < o->n); k++) {
+                bsub_t *type = &c->sub[o->first + k];
+                if ((type->s.sub == 2U) && (type->s.type == (uint8_t)CO_UNSIGNED8)) {
+                    for (size_t e = 1U; e <= n; e++) {
+                        place(c, &c->sub[m->first + e], &off, placed, &nlim, &nid);
+                    }
+                    place(c, &c->sub[m->first], &off, placed, &nlim, &nid);
+                    place(c, type, &off, placed, &nlim, &nid);
                 }
-                nlim += (size_t)b->has_limit;
-                nid += (size_t)((b->s.flags & CO_SUB_NODEID) != 0U);
+            }
+            for (size_t k = 0U; k < o->n; k++) {
+                if (placed[o->first + k] == 0U) {
+                    place(c, &c->sub[o->first + k], &off, placed, &nlim, &nid);
+                }
+            }
+            if (off > 0xFFF8U) {
+                (void)fail(c, o->sec, NULL, "the values need more than 65535 bytes of RAM");
+                free(placed);
+                eds_free(d);
+                return NULL;
             }
         }
         ends[r] = off;
     }
+    free(placed);
     off = (off + 7U) / 8U * 8U;
     /* the default runs: the image in pieces of at most CO_OD_DEF_SIZE, then
      * each $NODEID value as a run of its own (its bytes after the image) */

@@ -467,15 +467,33 @@ def generate(dev: Device, toml_name: str, warn=None, storage: bool = True) -> tu
     if n_pdo:
         c += ["/* Where each PDO's parameters live (RPDOs, then TPDOs). */",
               "static const co_pdo_desc_t pdo[] = {"]
+        at = offsets(ram)
+        checks = []
         for comm, mapping in pdos[0] + pdos[1]:
             cs = {x.sub: x for x in comm.subs}
             ms = {x.sub: x for x in mapping.subs}
+            n_map = len(mapping.subs) - 1
 
-            def at(sub, s_map=cs):
-                return off_expr(s_map[sub]) if sub in s_map else "CO_PDO_NONE"
-            c.append(f"    {{{at(1)}, {at(2)}, {at(3)}, {at(5)}, {at(6)}, {at(0, ms)}, "
-                     f"{at(1, ms)}, {len(mapping.subs) - 1}U}}, /* 0x{comm.index:04X} */")
-        c += ["};", ""]
+            def off(x):
+                return at[x.field] + max(x.elem, 0) * x.size
+            # where co_pdo_desc_t has the core look: the entries right before
+            # their number, the transmission type right after it, the optional
+            # parameters at most 255 bytes after the COB-ID (pdo_blocks lays
+            # them out so)
+            rel = {k: off(cs[k]) - off(cs[1]) for k in (6, 3, 5) if k in cs}
+            if off(ms[1]) + 4 * n_map != off(ms[0]) or off(cs[2]) != off(ms[0]) + 1 or \
+                    any(not 0 < r <= 255 for r in rel.values()):
+                raise DescError(f"object 0x{comm.index:04X}: the parameters of a PDO must be "
+                                "stored with the communication parameters, of no other object")
+            checks += [f"({off_expr(ms[1])} + {4 * n_map}U == {off_expr(ms[0])})",
+                       f"({off_expr(cs[2])} == {off_expr(ms[0])} + 1U)"] + \
+                [f"({off_expr(cs[k])} == {off_expr(cs[1])} + {r}U)" for k, r in rel.items()]
+            c.append(f"    {{{off_expr(cs[1])}, {off_expr(ms[0])}, {n_map}U, "
+                     f"{rel.get(6, 0)}U, {rel.get(3, 0)}U, {rel.get(5, 0)}U}}, "
+                     f"/* 0x{comm.index:04X} */")
+        c += ["};", "",
+              "/* each PDO's parameters where co_pdo_desc_t says */",
+              f"typedef char {cn}_pdo_at[(" + " &&\n    ".join(checks) + ") ? 1 : -1];", ""]
 
     masks = mask_table(dev, len(pdos[1]))
     if masks:
@@ -558,13 +576,17 @@ def pdo_blocks(dev: Device, fields: list[Field], pdos) -> list[list[Field]]:
         if not block or any(owners[n] - objs for n in names) or \
                 any(f.region != "comm" for f in block):
             continue
-        entries = [f for f in block if f.subs[0].index == mapping.index and f.dims]
-        count = [f for f in block if f.subs[0].index == mapping.index and not f.dims]
-        big = [f for f in block if f not in entries + count and f.align >= 4]
-        rest = [f for f in block if f not in entries + count + big]
-        big.sort(key=lambda f: (-f.align, f.subs[0].index, f.subs[0].sub))
+        entries = [f for f in block if f.subs[0].index == mapping.index and f.subs[0].sub != 0]
+        count = [f for f in block if f.subs[0].index == mapping.index and f.subs[0].sub == 0]
+        # (the parameters the core reads first, in co_pdo_desc_t's order; any
+        # other sub-entry after them)
+        other = [f for f in block if f not in entries + count and
+                 (f.subs[0].index != comm.index or f.subs[0].sub not in PDO_COMM_TYPES)]
+        big = [f for f in block if f not in entries + count + other and f.align >= 4]
+        rest = [f for f in block if f not in entries + count + big + other]
         rest.sort(key=lambda f: (f.align, f.subs[0].index, f.subs[0].sub))
-        blocks.append(big + entries + count + rest)
+        other.sort(key=lambda f: (-f.align, f.subs[0].index, f.subs[0].sub))
+        blocks.append(big + entries + count + rest + other)
     return blocks
 
 

@@ -11,20 +11,19 @@
 
 #include "co/co_config.h"
 
-#define CO_PDO_NONE 0xFFFFU /**< co_pdo_desc_t: this sub-entry does not exist */
-
-/** Where the parameters of one PDO live: offsets into the RAM image of the
- *  native values of the communication record (0x1400+n / 0x1800+n) and the
- *  mapping record (0x1600+n / 0x1A00+n). RPDOs first, then TPDOs. */
+/** Where the parameters of one PDO live in the RAM image (native values):
+ *  the number of its mapping entries (mapping record sub0, UNSIGNED8) with
+ *  the entries (sub1..map_max, UNSIGNED32 each) right before it and the
+ *  transmission type (communication record sub2, UNSIGNED8) right after it;
+ *  the COB-ID (sub1, UNSIGNED32), and the optional parameters by their
+ *  distance after the COB-ID. RPDOs first, then TPDOs. */
 typedef struct co_pdo_desc {
-    uint16_t cob;     /**< sub1 COB-ID, UNSIGNED32 */
-    uint16_t type;    /**< sub2 transmission type, UNSIGNED8 */
-    uint16_t inhibit; /**< sub3 inhibit time, UNSIGNED16 (CO_PDO_NONE: absent) */
-    uint16_t event;   /**< sub5 event timer, UNSIGNED16 (CO_PDO_NONE: absent) */
-    uint16_t start;   /**< sub6 SYNC start value, UNSIGNED8 (CO_PDO_NONE: absent) */
-    uint16_t count;   /**< mapping sub0, UNSIGNED8 */
-    uint16_t map;     /**< mapping sub1; sub2.. follow as consecutive UNSIGNED32 */
+    uint16_t cob;     /**< sub1 COB-ID */
+    uint16_t count;   /**< mapping sub0 */
     uint8_t map_max;  /**< mapping entries the record has (1..8) */
+    uint8_t start;    /**< sub6 SYNC start value, UNSIGNED8: from cob (0: none) */
+    uint8_t inhibit;  /**< sub3 inhibit time, UNSIGNED16: from cob (0: none) */
+    uint8_t event;    /**< sub5 event timer, UNSIGNED16: from cob (0: none) */
 } co_pdo_desc_t;
 
 /** Runtime state of one PDO (private to the core). */

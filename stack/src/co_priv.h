@@ -662,7 +662,7 @@ CO_INLINE uint16_t co_pdo_code(const co_pdo_t *p, uint8_t k)
  * number, the transmission type after it. */
 CO_INLINE const uint8_t *co_pdo_at(const co_node_t *node, uint16_t i, uint32_t rel)
 {
-    return &node->ram[node->dev->pdo[i].cob + rel];
+    return &(&node->ram[node->dev->pdo[i].cob])[rel];
 }
 
 CO_INLINE uint16_t co_pdo_u16(const co_node_t *node, uint16_t i, uint32_t rel)
@@ -696,7 +696,7 @@ CO_INLINE uint8_t co_pdo_count(const co_node_t *node, uint16_t i)
 
 CO_INLINE uint8_t co_pdo_type(const co_node_t *node, uint16_t i)
 {
-    return node->ram[node->dev->pdo[i].count + 1U];
+    return (&node->ram[node->dev->pdo[i].count])[1];
 }
 
 /* The PDOs the receive table covers: the RPDOs, and with CO_PDO_RTR the

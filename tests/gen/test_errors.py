@@ -351,6 +351,19 @@ def test_pdo_table_is_generated(tmp_path):
     assert ".n_rpdo = 0U," in c and ".n_tpdo = 1U," in c
 
 
+def test_pdo_parameters_apart_are_refused(tmp_path):
+    """The core finds a PDO's parameters by one layout (co_pdo_desc_t: the
+    mapping entries, their number and the transmission type one after the
+    other); a PDO whose values cannot be laid out so (here its transmission
+    type is not stored with the rest) is refused, naming it."""
+    comm = tpdo_comm().replace('default = 255 }', 'default = 255, storage = "none" }')
+    assert 'storage = "none"' in comm
+    fails_with(tmp_path, comm + tpdo_map(0x10010008), "0x1800",
+               "stored with the communication parameters")
+    src, r = generate(tmp_path, tpdo_comm() + tpdo_map(0x10010008))
+    assert r.returncode == 0, r.stderr
+
+
 def mask_obj(index: int, hook: bool = False, subs: str | None = None) -> str:
     body = subs or ('array = 2\nelement = { type = "UNSIGNED32", access = "rw", '
                     'default = 0xFFFFFFFF }')

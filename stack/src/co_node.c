@@ -112,7 +112,7 @@ void co_tx(co_node_t *node, uint32_t id, const uint8_t *data, uint8_t len)
 co_err_t co_check_cob(uint32_t cur, uint32_t v, uint32_t rule)
 {
     uint32_t use_bits = rule & CO_COB_USE;
-    uint32_t reserved = ((rule & CO_COB_RSV30) != 0U) ? 0x40000000UL : 0U;
+    uint32_t reserved = ((rule & CO_COB_RSV30) != 0U) ? 0x40000000U : 0U;
     bool always = (rule & CO_COB_ALWAYS) != 0U;
     /* in use: a bit of use_bits set, or (!CO_COB_WHEN_SET) the one bit clear */
     uint32_t flip = ((rule & CO_COB_WHEN_SET) != 0U) ? 0U : use_bits;

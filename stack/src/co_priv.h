@@ -524,10 +524,10 @@ uint8_t co_od_array_len(const co_node_t *node, uint16_t index, uint8_t type, uin
 co_err_t co_check_cob(uint32_t cur, uint32_t v, uint32_t rule);
 /* co_check_cob's @p rule: the object's use bits (bits 31 and 30 of its
  * COB-ID) and the flags below */
-#define CO_COB_USE      0xC0000000UL
-#define CO_COB_WHEN_SET 0x01UL /* in use while a use bit is set (else: while clear) */
-#define CO_COB_ALWAYS   0x02UL /* the CAN-ID counts as in use whatever the bits say */
-#define CO_COB_RSV30    0x04UL /* bit 30 is reserved: must be 0 */
+#define CO_COB_USE      0xC0000000U
+#define CO_COB_WHEN_SET 0x01U /* in use while a use bit is set (else: while clear) */
+#define CO_COB_ALWAYS   0x02U /* the CAN-ID counts as in use whatever the bits say */
+#define CO_COB_RSV30    0x04U /* bit 30 is reserved: must be 0 */
 
 /* True while the synchronous window (0x1007) after the last SYNC is open. */
 static inline bool co_sync_window(const co_node_t *node)

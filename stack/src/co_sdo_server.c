@@ -551,7 +551,7 @@ static co_err_t block_download_segment(co_node_t *node, const uint8_t *d)
     }
     if (last || (seq == SDO_BLKSIZE)) {
         reply(node, (uint8_t)(CO_SDO_B0(CO_SDO_SCS_BLOCK_DOWNLOAD) | CO_SDO_BLK_ACK),
-              (uint16_t)(t->seqno | (SDO_BLKSIZE << 8U)), 0U, 0U);
+              (uint16_t)(t->seqno | ((uint16_t)SDO_BLKSIZE << 8U)), 0U, 0U);
         t->seqno = 0U;
     }
     return CO_OK;

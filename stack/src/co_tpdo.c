@@ -173,7 +173,7 @@ CO_INLINE void event_timers(co_node_t *node, co_pdo_t *p, uint32_t ev, uint32_t 
     /* (the time since the transmission, not the end as a point in time: the
      * end of an inhibit time of 0 would otherwise look in the future again
      * 2^31 us later) */
-    if (((p->flags & CO_PDO_F_INHIBIT) != 0U) && ((uint32_t)(node->now - p->at) >= inh)) {
+    if (((p->flags & CO_PDO_F_INHIBIT) != 0U) && ((node->now - p->at) >= inh)) {
         p->flags &= (uint16_t)~CO_PDO_F_INHIBIT;
     }
 }
@@ -186,8 +186,9 @@ CO_INLINE void event_timers(co_node_t *node, co_pdo_t *p, uint32_t ev, uint32_t 
  * when it ends, not when the next event looks at it (by then, 2^31 us
  * later, its end would look like a time ahead). */
 CO_INLINE uint32_t timer_next(const co_node_t *node, const co_pdo_t *p, uint32_t ev,
-                              uint32_t inh, uint32_t next)
+                              uint32_t inh, uint32_t next_in)
 {
+    uint32_t next = next_in;
     uint32_t end = p->at + ev;
 
     if (((p->flags & CO_PDO_F_INHIBIT) != 0U) && (inh != 0U)) {
@@ -245,8 +246,9 @@ static CO_NOINLINE bool masked_change(const co_node_t *node, uint16_t i, const u
  * request or the event timer (which runs from the start of Operational,
  * when nothing has been sent), sampled when it goes out. Returns the next
  * deadline. */
-CO_HOT uint32_t event_driven(co_node_t *node, uint16_t i, uint32_t next, bool detect)
+CO_HOT uint32_t event_driven(co_node_t *node, uint16_t i, uint32_t next_in, bool detect)
 {
+    uint32_t next = next_in;
     co_pdo_t *p = &node->pdo.p[i];
     uint32_t ev = co_pdo_event_us(node, i);
     uint32_t inh = co_pdo_inhibit_us(node, i);
@@ -303,8 +305,9 @@ CO_HOT void at_sync(co_node_t *node, uint16_t i, uint8_t type, uint8_t counter)
 /* At co_node_process: RTR answers and synchronous transmissions held back,
  * event-driven TPDOs with (@p detect) or without change detection
  * (CO_TPDO_CHANGE_IGNORED). Returns the next deadline. */
-CO_HOT uint32_t at_process(co_node_t *node, uint16_t i, uint8_t type, uint32_t next, bool detect)
+CO_HOT uint32_t at_process(co_node_t *node, uint16_t i, uint8_t type, uint32_t next_in, bool detect)
 {
+    uint32_t next = next_in;
     co_pdo_t *p = &node->pdo.p[i];
 
 #if CO_PDO_RTR
@@ -355,8 +358,9 @@ CO_HOT uint32_t rpdo_deadline(co_node_t *node, uint16_t i, uint32_t next)
 /* One pass over the usable TPDOs in Operational: at a SYNC (@p sync, the
  * SYNC's @p counter) or at co_node_process (the timers and events, and the
  * RPDOs' deadlines; returns the next deadline). */
-CO_HOT uint32_t tpdo_pass(co_node_t *node, uint32_t next, bool sync, uint8_t counter)
+CO_HOT uint32_t tpdo_pass(co_node_t *node, uint32_t next_in, bool sync, uint8_t counter)
 {
+    uint32_t next = next_in;
     uint32_t n = (uint32_t)node->dev->n_rpdo + node->dev->n_tpdo;
     bool detect = CO_SET(node, tpdo.change_detection) != CO_TPDO_CHANGE_IGNORED;
 

@@ -54,16 +54,25 @@ CO_HOT const co_od_entry_t *find(const co_od_entry_t *od, uint32_t count, uint16
     return (e->index == index) ? e : NULL;
 }
 
-/* The descriptor of sub-index r->sub + k of row @p r. */
-static inline const co_od_sub_t *row_sub(const co_od_sub_t *r, uint32_t k, co_od_sub_t *buf)
+/* The descriptor of element @p k of row @p r, sub-index @p sub (one body
+ * for row_sub and scan_sub). */
+static inline const co_od_sub_t *run_elem(const co_od_sub_t *r, uint8_t sub, uint32_t k,
+                                          co_od_sub_t *buf)
 {
     *buf = *r;
-    buf->sub = (uint8_t)((r->sub + 1U + k) - co_od_run_len(r));
-    buf->flags = (uint16_t)(r->flags & CO_SUB_FLAGS);
-    if ((r->flags & CO_SUB_ROM) == 0U) {
-        buf->off = (uint16_t)(r->off + (k * r->size)); /* (ROM: one value for the run) */
+    buf->sub = sub;
+    buf->flags &= CO_SUB_FLAGS;
+    if ((buf->flags & CO_SUB_ROM) == 0U) {
+        buf->off = (uint16_t)(buf->off + (k * buf->size)); /* (ROM: one value for the run) */
     }
     return buf;
+}
+
+/* The descriptor of element @p k of row @p r (of a run, the sub-index
+ * k places after its first). */
+static inline const co_od_sub_t *row_sub(const co_od_sub_t *r, uint32_t k, co_od_sub_t *buf)
+{
+    return run_elem(r, (uint8_t)((r->sub + 1U + k) - co_od_run_len(r)), k, buf);
 }
 
 const co_od_sub_t *co_od_row_sub(const co_od_sub_t *r, uint32_t k, co_od_sub_t *buf)
@@ -82,13 +91,7 @@ CO_NOINLINE static const co_od_sub_t *scan_sub(const co_od_entry_t *e, uint8_t s
         uint32_t d = (uint8_t)(r->sub - sub);
         uint32_t n = co_od_run_len(r);
         if (d < n) {
-            *buf = *r;
-            buf->sub = sub;
-            buf->flags &= CO_SUB_FLAGS;
-            if ((buf->flags & CO_SUB_ROM) == 0U) {
-                buf->off = (uint16_t)(buf->off + ((n - 1U - d) * buf->size)); /* (ROM: one value) */
-            }
-            return buf;
+            return run_elem(r, sub, n - 1U - d, buf);
         }
         r++;
     }

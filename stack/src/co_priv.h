@@ -727,6 +727,14 @@ CO_INLINE bool co_pdo_usable(const co_node_t *node, uint16_t i)
            ((node->pdo.p[i].flags & CO_PDO_F_MAP_OK) != 0U);
 }
 
+/* An event-driven transmission of usable TPDO i, due at the next pass of
+ * the PDO service (co_tpdo_request; an RPDO with set.pdo.tpdo_after_rpdo). */
+CO_INLINE void co_tpdo_raise(co_node_t *node, uint16_t i)
+{
+    node->pdo.p[i].flags |= CO_PDO_F_EVENT;
+    co_svc_touch(node, CO_ROW_PDO);
+}
+
 /* @p n bytes of a value between the RAM image (native) and the wire, for
  * the sizes a direct entry has (1..8): the usual ones without a call. */
 CO_INLINE void co_pdo_to_wire(uint8_t *dst, const uint8_t *src, uint8_t n)

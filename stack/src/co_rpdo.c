@@ -64,13 +64,12 @@ static void apply(co_node_t *node, uint16_t i, const uint8_t *data, uint8_t dlc)
         node->cb->rpdo(node->cb->ctx, node, i);
     }
     if ((CO_SET(node, pdo.tpdo_after_rpdo) != 0U) && (i < node->dev->n_tpdo)) {
-        /* TPDO i of type 255 is requested (co_tpdo_request: this module
-         * calls none of co_tpdo.c, whose pass over the PDOs checks the
-         * RPDOs' deadlines), with the data the RPDO has just changed */
+        /* TPDO i of type 255 is requested, with the data the RPDO has just
+         * changed (co_tpdo_raise: this module calls none of co_tpdo.c,
+         * whose pass over the PDOs checks the RPDOs' deadlines) */
         uint16_t t = (uint16_t)(node->dev->n_rpdo + i);
         if ((co_pdo_type(node, t) == 255U) && co_pdo_usable(node, t)) {
-            node->pdo.p[t].flags |= CO_PDO_F_EVENT;
-            co_svc_touch(node, CO_ROW_PDO);
+            co_tpdo_raise(node, t);
         }
     }
 }

@@ -409,7 +409,6 @@ co_err_t co_tpdo_request(co_node_t *node, uint16_t n)
     if (!co_pdo_usable(node, i)) {
         return CO_ERR_STORE_STATE;
     }
-    node->pdo.p[i].flags |= CO_PDO_F_EVENT;
-    co_svc_touch(node, CO_ROW_PDO);
+    co_tpdo_raise(node, i);
     return CO_OK;
 }

@@ -74,8 +74,9 @@ static co_err_t check_entry(const co_node_t *node, bool tx, uint32_t v, uint8_t 
     if ((n == 0U) || (n > (size * 8U))) {
         return CO_ERR_PARAM_INCOMPAT;
     }
-    if (((n & 7U) != 0U) && (CO_SET(node, pdo.granularity) == CO_PDO_MAP_BYTES)) {
-        return CO_ERR_NO_MAP; /* granularity 8: whole bytes only */
+    if (((n & 7U) != 0U) &&
+        ((CO_PDO_BITWISE == 0) || (CO_SET(node, pdo.granularity) == CO_PDO_MAP_BYTES))) {
+        return CO_ERR_NO_MAP; /* granularity 8 (or a build without bit mapping): whole bytes */
     }
     return CO_OK;
 }
@@ -103,7 +104,7 @@ static uint16_t direct_code(const co_node_t *node, const co_od_entry_t *e, const
     uint32_t code = off | ((n - 1U) << 12U);
 
     if ((e->hook != 0U) || ((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) != 0U) ||
-        (s->size != size) || (off >= CO_PDO_OFF_END) || (((pos | bits) & 7U) != 0U) ||
+        (s->size != size) || (off >= CO_PDO_OFF_END) || (CO_PDO_BITWISE && (((pos | bits) & 7U) != 0U)) ||
         (tx ? (((svc & CO_SVC_READ) != 0U) || (!CO_NATIVE_LE && (n != size)))
             : ((svc != 0U) || ((s->flags & CO_SUB_LIMIT) != 0U) ||
                (s->type == (uint8_t)CO_BOOLEAN)))) {
@@ -154,7 +155,8 @@ static co_err_t map_state(const co_node_t *node, uint16_t i, uint32_t count, co_
 #if CO_PDO_FAST_MAX > 0
         if (k < CO_PDO_FAST_MAX) {
             p->plain[k] = (s != NULL) ? direct_code(node, e, s, tx, bits, total) : CO_PDO_DUMMY;
-            direct = direct && (p->plain[k] != CO_PDO_SLOW) && ((bits & 7U) == 0U);
+            direct = direct && (p->plain[k] != CO_PDO_SLOW) &&
+                     (!CO_PDO_BITWISE || ((bits & 7U) == 0U));
         }
 #endif
         total += bits;

@@ -28,10 +28,11 @@ uint32_t co_pdo_inhibit_us(const co_node_t *node, uint16_t i)
 #endif
 
 /* @p n bits at bit @p spos of @p src to bit @p dpos of @p dst (little-endian
- * bit strings); whole bytes at byte boundaries at once. */
+ * bit strings); whole bytes at byte boundaries at once (without
+ * CO_PDO_BITWISE every mapping is in whole bytes: only that). */
 static void bits_copy(uint8_t *dst, uint16_t dpos, const uint8_t *src, uint16_t spos, uint8_t n)
 {
-    if (((dpos | spos | n) & 7U) == 0U) {
+    if (!CO_PDO_BITWISE || (((dpos | spos | n) & 7U) == 0U)) {
         co_copy(&dst[dpos >> 3U], &src[spos >> 3U], (size_t)n >> 3U);
         return;
     }

@@ -104,6 +104,26 @@ def test_tpdo_rtr(tmp_path: Path) -> None:
     assert run_odgen(LEAN, out, "--c", "--build=CO_PDO_RTR=0").returncode == 0
 
 
+def test_pdo_bitwise(tmp_path: Path) -> None:
+    # a default mapping entry that is not a whole number of bytes (an object
+    # is mapped whole: only a BOOLEAN dummy of 1 bit can be one) needs
+    # CO_PDO_BITWISE; the lean-test device's entries (32 bits) do not
+    text = LEAN.read_text(encoding="utf-8").replace(
+        "defaults = [0x21000020]", "defaults = [0x00010001]").replace(
+        'author = "canopen-stack"', 'author = "canopen-stack"\ndummy_usage = [1]')
+    assert "0x00010001" in text and "dummy_usage" in text
+    bits = tmp_path / "bits.toml"
+    bits.write_text(text, encoding="utf-8")
+    out = tmp_path / "out"
+    out.mkdir()
+    r = run_odgen(bits, out, "--c", "--build=CO_PDO_BITWISE=0")
+    assert r.returncode == 1
+    assert "a mapping length not a multiple of 8 (0x1600) needs CO_PDO_BITWISE=1" in r.stderr
+    assert not list(out.iterdir())  # nothing written
+    assert run_odgen(bits, out, "--c", "--build=").returncode == 0
+    assert run_odgen(LEAN, out, "--c", "--build=CO_PDO_BITWISE=0").returncode == 0
+
+
 def test_store_commands_without_storage(tmp_path: Path) -> None:
     # a core without CO_STORAGE: the commands of 0x1010 / 0x1011 read 0
     # whatever is written, so they take no RAM: one writable const 0 all of

@@ -1,12 +1,14 @@
 /*
  * The core built with the minimal slave's options and also without block SDO,
- * node guarding and TPDO remote requests (CO_SDO_BLOCK=0, CO_NODE_GUARDING=0,
- * CO_PDO_RTR=0) on the lean-test device: block requests answer 0x05040001
- * like an unknown command, a guarding RTR gets no answer, a TPDO's RTR gets
- * none and types 252/253 answer 0x06090030 (and the generated node's PDO
- * receive table has room for the RPDOs only), the expedited and segmented SDO,
- * the heartbeat and the synchronous TPDO keep working, and a device with
- * 0x100C/0x100D is refused.
+ * node guarding, TPDO remote requests and bit-granular PDO mapping
+ * (CO_SDO_BLOCK=0, CO_NODE_GUARDING=0, CO_PDO_RTR=0, CO_PDO_BITWISE=0) on the
+ * lean-test device: block requests answer 0x05040001 like an unknown command,
+ * a guarding RTR gets no answer, a TPDO's RTR gets none and types 252/253
+ * answer 0x06090030 (and the generated node's PDO receive table has room for
+ * the RPDOs only), a mapping entry of a length that is not whole bytes
+ * answers 0x06040041, the expedited and segmented SDO, the heartbeat, the
+ * synchronous TPDO and mappings of some of an object's bytes keep working,
+ * and a device with 0x100C/0x100D is refused.
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -20,8 +22,8 @@
 #include "test_bus.h"
 #include "test_dev.h"
 
-#if CO_SDO_BLOCK || CO_NODE_GUARDING || CO_PDO_RTR
-#error "test_bare is built against a core without block SDO, node guarding and TPDO RTRs"
+#if CO_SDO_BLOCK || CO_NODE_GUARDING || CO_PDO_RTR || CO_PDO_BITWISE
+#error "test_bare is built against a core without block SDO, guarding, TPDO RTRs, bit mapping"
 #endif
 
 static tb_bus_t bus;
@@ -88,6 +90,40 @@ static void tpdo_rtr_left_out(void **state)
     tb_expect_none(BUS);
 }
 
+static void pdo_bitwise_left_out(void **state)
+{
+    uint8_t v[4] = {0x44, 0x33, 0x22, 0x11};
+
+    (void)state;
+    assert_int_equal(co_od_write(&lean.node, 0x2200, 0, v, 4, true), CO_OK);
+    /* TPDO1 invalid, its mapping disabled */
+    tb_xfer(BUS, "601 23 00 18 01 81 01 00 80", "581 60 00 18 01 00 00 00 00");
+    tb_xfer(BUS, "601 2F 00 1A 00 00 00 00 00", "581 60 00 1A 00 00 00 00 00");
+    /* 12 bits of 0x2200: refused as by a device that maps whole bytes, the
+     * entry keeps its value */
+    tb_xfer(BUS, "601 23 00 1A 01 0C 00 00 22", "581 80 00 1A 01 41 00 04 06");
+    tb_xfer(BUS, "601 40 00 1A 01 00 00 00 00", "581 43 00 1A 01 20 00 00 22");
+    /* 16 of its 32 bits: the low two bytes */
+    tb_xfer(BUS, "601 23 00 1A 01 10 00 00 22", "581 60 00 1A 01 00 00 00 00");
+    tb_xfer(BUS, "601 2F 00 1A 00 01 00 00 00", "581 60 00 1A 00 00 00 00 00");
+    tb_xfer(BUS, "601 23 00 18 01 81 01 00 00", "581 60 00 18 01 00 00 00 00");
+    /* RPDO1 the same way: 16 bits of 0x2100 */
+    tb_xfer(BUS, "601 23 00 14 01 01 02 00 80", "581 60 00 14 01 00 00 00 00");
+    tb_xfer(BUS, "601 2F 00 16 00 00 00 00 00", "581 60 00 16 00 00 00 00 00");
+    tb_xfer(BUS, "601 23 00 16 01 0C 00 00 21", "581 80 00 16 01 41 00 04 06");
+    tb_xfer(BUS, "601 23 00 16 01 10 00 00 21", "581 60 00 16 01 00 00 00 00");
+    tb_xfer(BUS, "601 2F 00 16 00 01 00 00 00", "581 60 00 16 00 00 00 00 00");
+    tb_xfer(BUS, "601 23 00 14 01 01 02 00 00", "581 60 00 14 01 00 00 00 00");
+    tb_send(BUS, "000 01 01");
+    tb_send(BUS, "080");
+    tb_expect(BUS, "181 44 33");
+    tb_xfer(BUS, "601 23 00 21 00 11 22 33 44", "581 60 00 21 00 00 00 00 00");
+    tb_send(BUS, "201 AA BB");
+    tb_expect_none(BUS);
+    /* the low bytes written, extended to the value's size */
+    tb_xfer(BUS, "601 40 00 21 00 00 00 00 00", "581 43 00 21 00 AA BB 00 00");
+}
+
 static void guarding_device_refused(void **state)
 {
     td_node_t td;
@@ -112,6 +148,7 @@ int main(void)
         cmocka_unit_test_setup(block_sdo_left_out, setup),
         cmocka_unit_test_setup(guarding_left_out, setup),
         cmocka_unit_test_setup(tpdo_rtr_left_out, setup),
+        cmocka_unit_test_setup(pdo_bitwise_left_out, setup),
         cmocka_unit_test_setup(guarding_device_refused, setup),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -116,6 +116,13 @@ def check(dev: Device, build: dict[str, int]) -> None:
                for s in o.subs if s.sub == 2 and s.default in (252, 253)]
         if rtr:
             need("CO_PDO_RTR", "TPDO transmission type 252/253 (" + ", ".join(rtr) + ")")
+    if not cfg.get("CO_PDO_BITWISE", 1):
+        bits = sorted({f"0x{o.index:04X}" for o in dev.objects
+                       if (0x1600 <= o.index <= 0x17FF) or (0x1A00 <= o.index <= 0x1BFF)
+                       for s in o.subs if s.sub >= 1 and isinstance(s.default, int)
+                       and (s.default & 7) != 0})
+        if bits:
+            need("CO_PDO_BITWISE", "a mapping length not a multiple of 8 (" + ", ".join(bits) + ")")
     if not cfg.get("CO_LSS", 1) and "LSS" in dev.options:
         need("CO_LSS", "LSS ([device] lss)")
     if missing:

@@ -70,6 +70,16 @@
 #define CO_PDO_RTR 1
 #endif
 
+#ifndef CO_PDO_BITWISE
+/** Bit-granular PDO mapping (CiA 301: an entry maps any number of bits).
+ *  Left out: every mapping length is a multiple of 8 (an entry of another
+ *  length answers 0x06040041, as a device with set.pdo.granularity bytes
+ *  does), the bit copy is not built, and the generator refuses a device
+ *  whose default mapping has such an entry (CANopenNode v4 maps whole bytes
+ *  by default: CO_CONFIG_PDO_BITWISE_MAPPING is not in its CO_CONFIG_PDO). */
+#define CO_PDO_BITWISE 1
+#endif
+
 /* ---- services a device may not need (1: in, 0: left out) */
 
 #ifndef CO_SDO_BLOCK

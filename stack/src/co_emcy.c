@@ -211,34 +211,12 @@ static uint32_t emcy_process(co_node_t *node, uint32_t next)
 
 /* (its objects: co_binds[], co_services.c) */
 
-/* A reset node has no active errors; the communication starts over with an
- * empty queue and no inhibit time running. */
-static void emcy_reset(co_node_t *node, uint8_t kind)
-{
-    if (kind == (uint8_t)CO_RESET_NODE) {
-        node->emcy.n_active = 0U;
-#if CO_STORAGE
-        node->emcy.store_report = 0U;
-#endif
-    } else if (kind == CO_SVC_START) {
-        node->emcy.n_q = 0U;
-        node->emcy.q_head = 0U;
-        node->emcy.next = node->now;
-        (void)update_errreg(node);
-    } else {
-        /* reset communication keeps the active errors */
-    }
-}
-
 /* Leaving Initialising, after the boot-up frame. */
-static void emcy_nmt(co_node_t *node, uint8_t from)
+static void emcy_booted(co_node_t *node)
 {
     static const uint16_t ended[4] = {CO_EMCY_HB_GUARD, CO_EMCY_PDO_SHORT, CO_EMCY_PDO_LONG,
                                       CO_EMCY_RPDO_TIMEOUT};
 
-    if (from != (uint8_t)CO_NMT_INITIALISING) {
-        return;
-    }
     if ((CO_SET(node, nmt.boot_emcy) != 0U) && (node->emcy.cob != NULL) &&
         ((*node->emcy.cob & 0x80000000UL) == 0U)) {
         uint8_t d[8] = {0};
@@ -264,6 +242,27 @@ static void emcy_nmt(co_node_t *node, uint8_t from)
         co_emcy_raise(node, CO_EMCY_STORE_DAMAGED, 0U, NULL);
     }
 #endif
+}
+
+/* A reset node has no active errors; the communication starts over with an
+ * empty queue and no inhibit time running. */
+static void emcy_event(co_node_t *node, uint8_t kind)
+{
+    if (kind == (uint8_t)CO_RESET_NODE) {
+        node->emcy.n_active = 0U;
+#if CO_STORAGE
+        node->emcy.store_report = 0U;
+#endif
+    } else if (kind == CO_SVC_START) {
+        node->emcy.n_q = 0U;
+        node->emcy.q_head = 0U;
+        node->emcy.next = node->now;
+        (void)update_errreg(node);
+    } else if (kind == CO_SVC_BOOTED) {
+        emcy_booted(node);
+    } else {
+        /* reset communication keeps the active errors */
+    }
 }
 
 /* 0x1003: entries beyond the number of recorded errors hold no data; only
@@ -300,5 +299,5 @@ co_err_t co_emcy_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
 }
 
 const co_service_t co_svc_emcy = {
-    emcy_reset, NULL, NULL, emcy_process, emcy_nmt,
+    emcy_event, NULL, emcy_process,
 };

@@ -237,23 +237,27 @@ void co_node_hb_mute(co_node_t *node, bool muted, uint32_t now_us)
 
 /* (its objects: co_binds[], co_services.c) */
 
-static void errctl_reset(co_node_t *node, uint8_t kind)
-{
-    if (kind == CO_SVC_START) {
-        hb_reset(node);
-    }
-}
-
-static void errctl_rx_slots(co_node_t *node, uint8_t svc)
+static void errctl_rx_slots(co_node_t *node)
 {
 #if CO_NODE_GUARDING
-    co_rx_add(node, (uint16_t)(0x700U + node->node_id), svc);
+    co_rx_add(node, (uint16_t)(0x700U + node->node_id), CO_ROW_ERRCTL);
 #endif
     for (uint32_t k = 0U; k < node->errctl.n_hb_cons; k++) {
         uint8_t id = (uint8_t)((node->errctl.hb_cons[k] >> 16U) & 0x7FU);
         if ((node->errctl.hbc_state[k] != (uint8_t)HBC_UNUSED) && (id != node->node_id)) {
-            co_rx_add(node, (uint16_t)(0x700U + id), svc);
+            co_rx_add(node, (uint16_t)(0x700U + id), CO_ROW_ERRCTL);
         }
+    }
+}
+
+static void errctl_event(co_node_t *node, uint8_t ev)
+{
+    if (ev == CO_SVC_START) {
+        hb_reset(node);
+    } else if (ev == CO_SVC_SLOTS) {
+        errctl_rx_slots(node);
+    } else {
+        /* nothing to do */
     }
 }
 
@@ -380,5 +384,5 @@ co_err_t co_hb_prod_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
 }
 
 const co_service_t co_svc_errctl = {
-    errctl_reset, errctl_rx_slots, errctl_rx, errctl_process, NULL,
+    errctl_event, errctl_rx, errctl_process,
 };

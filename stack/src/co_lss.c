@@ -267,6 +267,12 @@ static void lss_reset(co_node_t *node, uint8_t kind)
         lss_bind(node);
         return;
     }
+    if (kind == CO_SVC_SLOTS) {
+        if (co_lss_enabled(node)) {
+            co_rx_add(node, LSS_RX, 0U); /* (its row: the first) */
+        }
+        return;
+    }
     if (kind != CO_SVC_START) {
         return;
     }
@@ -496,14 +502,7 @@ static uint32_t lss_process(co_node_t *node, uint32_t next_in)
     return next;
 }
 
-static void lss_rx_slots(co_node_t *node, uint8_t svc)
-{
-    if (co_lss_enabled(node)) {
-        co_rx_add(node, LSS_RX, svc);
-    }
-}
-
 /* The first row of co_services[]: it alone runs while unconfigured. */
-const co_service_t co_svc_lss = {lss_reset, lss_rx_slots, lss_rx, lss_process, NULL};
+const co_service_t co_svc_lss = {lss_reset, lss_rx, lss_process};
 
 #endif /* CO_LSS */

@@ -5,9 +5,11 @@
  */
 #include "co_priv.h"
 
-static void nmt_rx_slots(co_node_t *node, uint8_t svc)
+static void nmt_event(co_node_t *node, uint8_t ev)
 {
-    co_rx_add(node, 0x000U, svc);
+    if (ev == CO_SVC_SLOTS) {
+        co_rx_add(node, 0x000U, CO_ROW_NMT);
+    }
 }
 
 static void nmt_rx(co_node_t *node, uint16_t arg, const co_frame_t *f)
@@ -67,13 +69,13 @@ co_err_t co_errbeh_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
 }
 
 const co_service_t co_svc_nmt = {
-    NULL, nmt_rx_slots, nmt_rx, NULL, NULL,
+    nmt_event, nmt_rx, NULL,
 };
 
 #else /* !CO_ERROR_BEHAVIOUR: co_node_init refuses a device with 0x1029 */
 
 const co_service_t co_svc_nmt = {
-    NULL, nmt_rx_slots, nmt_rx, NULL, NULL,
+    nmt_event, nmt_rx, NULL,
 };
 
 #endif

@@ -152,23 +152,16 @@ static uint8_t services_running(const co_node_t *node)
     return co_node_unconfigured(node) ? CO_SVC_UNCONFIGURED_ROWS : co_n_services;
 }
 
-/* The services' entries of one kind in table order, with @p arg: reset
- * (the reset kind) and nmt (the state left) of all of them, rx_slots (its
- * row) of the running ones. */
-#define WALK_RESET 0U
-#define WALK_SLOTS 1U
-#define WALK_NMT   2U
-static void services_walk(co_node_t *node, uint8_t entry, uint8_t arg)
+/* Event @p ev (CO_SVC_*) to the services in table order: to all of them,
+ * CO_SVC_SLOTS to the running ones. */
+static void services_walk(co_node_t *node, uint8_t ev)
 {
-    uint32_t rows = (entry == WALK_SLOTS) ? services_running(node) : co_n_services;
+    uint32_t rows = (ev == CO_SVC_SLOTS) ? services_running(node) : co_n_services;
 
     for (uint32_t k = 0U; k < rows; k++) {
-        const co_service_t *svc = co_services[k];
-        void (*fn)(co_node_t *, uint8_t) = (entry == WALK_RESET)   ? svc->reset
-                                           : (entry == WALK_SLOTS) ? svc->rx_slots
-                                                                   : svc->nmt;
+        void (*fn)(co_node_t *, uint8_t) = co_services[k]->event;
         if (fn != NULL) {
-            fn(node, (entry == WALK_SLOTS) ? (uint8_t)k : arg);
+            fn(node, ev);
         }
     }
 }
@@ -182,14 +175,14 @@ void co_rx_invalidate(co_node_t *node)
     (void)memset(node->rx_at, (int)CO_RX_AT_MANY, sizeof node->rx_at);
 }
 
-/* Every service adds its slots, in table order; then the port hears of the
+/* Every running service adds its slots, in table order; then the port hears of the
  * new set (its hardware filters). */
 void co_rx_rebuild(co_node_t *node)
 {
     node->rx_dirty = 0U;
     node->n_rx = 0U;
     (void)memset(node->rx_at, (int)CO_RX_AT_NONE, sizeof node->rx_at);
-    services_walk(node, WALK_SLOTS, 0U);
+    services_walk(node, CO_SVC_SLOTS);
     if (CO_CB(node, rx_set) != NULL) {
         node->cb->rx_set(node->cb->ctx, node);
     }
@@ -445,7 +438,7 @@ void co_node_set_state(co_node_t *node, co_nmt_state_t st)
     }
     node->nmt = (uint8_t)st;
     co_svc_touch_all(node);
-    services_walk(node, WALK_NMT, from);
+    services_walk(node, (from == (uint8_t)CO_NMT_INITIALISING) ? CO_SVC_BOOTED : CO_SVC_NMT);
     if (CO_CB(node, nmt_state) != NULL) {
         node->cb->nmt_state(node->cb->ctx, node, st);
     }
@@ -453,7 +446,7 @@ void co_node_set_state(co_node_t *node, co_nmt_state_t st)
 
 static void services_reset(co_node_t *node, uint8_t kind)
 {
-    services_walk(node, WALK_RESET, kind);
+    services_walk(node, kind);
 }
 
 /* Initialising: the communication services start from their reset values,
@@ -589,7 +582,7 @@ static co_result_t bind_services(co_node_t *node)
         (void)memcpy(at, &v, sizeof v);
     }
 #if CO_LSS
-    co_services[0]->reset(node, CO_SVC_BIND); /* (its row: the first) */
+    co_services[0]->event(node, CO_SVC_BIND); /* (its row: the first) */
 #endif
 #if !CO_PERSONALITY
     {

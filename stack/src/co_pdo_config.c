@@ -278,12 +278,12 @@ static void pdo_written(co_node_t *node, uint16_t i, bool is_map, uint8_t sub)
  * (a reset: co_node.c's boot, the only change from that state), the PDOs
  * also lose their error states and take their mappings anew from the
  * dictionary (no reset entry of their own: the PDOs do nothing before). */
-static void pdo_nmt(co_node_t *node, uint8_t from)
+static void pdo_nmt(co_node_t *node, bool booted)
 {
     uint32_t n = (uint32_t)node->dev->n_rpdo + node->dev->n_tpdo;
 
     for (uint32_t i = 0U; i < n; i++) {
-        if (from == (uint8_t)CO_NMT_INITIALISING) {
+        if (booted) {
             node->pdo.p[i].flags = 0U;
             remap(node, (uint16_t)i);
         }
@@ -294,9 +294,9 @@ static void pdo_nmt(co_node_t *node, uint8_t from)
     }
 }
 
-static void pdo_rx_slots(co_node_t *node, uint8_t svc)
+static void pdo_rx_slots(co_node_t *node)
 {
-    (void)svc; /* (PDO frames go to the PDO service directly: co_node_rx) */
+    /* (PDO frames go to the PDO service directly: co_node_rx) */
     for (uint32_t i = 0U; i < co_pdo_n_rx(node); i++) {
         uint16_t id = co_pdo_rx_cob(node, (uint16_t)i);
         if (id != CO_PDO_RX_NONE) {
@@ -339,12 +339,23 @@ co_err_t co_pdo_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
     return CO_OK;
 }
 
+static void pdo_event(co_node_t *node, uint8_t ev)
+{
+    if (ev == CO_SVC_SLOTS) {
+        pdo_rx_slots(node);
+    } else if (ev >= CO_SVC_NMT) {
+        pdo_nmt(node, ev == CO_SVC_BOOTED);
+    } else {
+        /* nothing to do */
+    }
+}
+
 const co_service_t co_svc_pdo = {
-    NULL, pdo_rx_slots,
+    pdo_event,
 #if CO_PDO_RTR
     pdo_rx,
 #else
     co_rpdo_rx, /* only RPDOs receive */
 #endif
-    co_tpdo_process, pdo_nmt,
+    co_tpdo_process,
 };

@@ -229,7 +229,7 @@ void co_tx_frame(co_node_t *node, const co_frame_t *f);
 /* A data frame of @p len (0..8) bytes from @p data, zeros past them. */
 void co_tx(co_node_t *node, uint32_t id, const uint8_t *data, uint8_t len);
 /* The receive table is out of date (a COB-ID changed): the node rebuilds it
- * from the services' rx_slots before it looks up the next frame. */
+ * from the services' CO_SVC_SLOTS events before it looks up the next frame. */
 void co_rx_invalidate(co_node_t *node);
 void co_rx_rebuild(co_node_t *node);
 /* Rebuild a stale receive table now (the node's entry points, the SDO
@@ -241,7 +241,8 @@ static inline void co_rx_settle(co_node_t *node)
         co_rx_rebuild(node);
     }
 }
-/* From a service's rx_slots: frames on @p cob go to service @p svc's rx. */
+/* From a service's CO_SVC_SLOTS event: frames on @p cob go to the rx of
+ * the service of row @p svc. */
 void co_rx_add(co_node_t *node, uint16_t cob, uint8_t svc);
 /* co_node_t.rx: the service's row above the COB-ID */
 #define CO_RX_ROW_SHIFT 11U
@@ -378,30 +379,34 @@ typedef struct co_bind {
 extern const co_bind_t co_binds[];
 extern const uint8_t co_n_binds;
 
-/* Reset kinds a service sees (co_service_t.reset): CO_RESET_NODE and
- * CO_RESET_COMMUNICATION while the values are restored (before the
- * application's nmt_reset callback), then CO_SVC_START before the boot-up
- * frame: the service's state starts over. CO_SVC_BIND: co_node_init, before
- * anything else, to the LSS service alone (its stored configuration: an
- * LSS-stored node-ID replaces the configured one). */
-#define CO_SVC_START 0U
-#define CO_SVC_BIND  3U
+/* What the node tells a service (co_service_t.event), in table order to
+ * every service: CO_RESET_NODE and CO_RESET_COMMUNICATION while the values
+ * are restored (before the application's nmt_reset callback), then
+ * CO_SVC_START before the boot-up frame: the service's state starts over.
+ * CO_SVC_BIND: co_node_init, before anything else, to the LSS service alone
+ * (its stored configuration: an LSS-stored node-ID replaces the configured
+ * one). CO_SVC_SLOTS: the receive table is rebuilt (to the running services
+ * only): co_rx_add(node, cob, its row CO_ROW_*) for each COB-ID it receives.
+ * CO_SVC_NMT: the NMT state changed to node->nmt; CO_SVC_BOOTED: the same,
+ * from Initialising (after the boot-up frame). A service ignores the others. */
+#define CO_SVC_START  0U
+#define CO_SVC_BIND   3U
+#define CO_SVC_SLOTS  4U
+#define CO_SVC_NMT    5U
+#define CO_SVC_BOOTED 6U
 
 /* One service: the same entry points for all, any may be NULL. The node
  * walks co_services[] in its order for each (docs/core.md). */
 typedef struct co_service {
     /* (co_node_init finds the objects a service uses: co_binds[]) */
-    void (*reset)(co_node_t *node, uint8_t kind);
-    /* Add the receive-table slots (co_rx_add with @p svc, its own index). */
-    void (*rx_slots)(co_node_t *node, uint8_t svc);
+    /* Resets, receive slots, NMT state changes: @p ev is a CO_SVC_* above. */
+    void (*event)(co_node_t *node, uint8_t ev);
     /* A frame for it: @p arg is 0 (a service tells its COB-IDs apart by the
      * frame's identifier); for the
      * PDO service, the PDO whose COB-ID it is (the node's PDO table). */
     void (*rx)(co_node_t *node, uint16_t arg, const co_frame_t *f);
     /* Timers: returns the earlier of @p next and its own deadline. */
     uint32_t (*process)(co_node_t *node, uint32_t next);
-    /* The NMT state changed from @p from to node->nmt. */
-    void (*nmt)(co_node_t *node, uint8_t from);
 } co_service_t;
 
 /* The rows of co_services[] (co_services.c places each service at its row). */

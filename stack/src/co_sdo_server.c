@@ -882,27 +882,20 @@ static uint32_t sdo_process(co_node_t *node, uint32_t next)
 
 /* ------------------------------------------------------------ service */
 
-static void sdo_reset_kind(co_node_t *node, uint8_t kind)
+/* The server starts over at a reset and in Stopped (no SDO there: an open
+ * transfer ends silently). */
+static void sdo_event(co_node_t *node, uint8_t ev)
 {
-    if (kind == CO_SVC_START) {
+    if (ev == CO_SVC_SLOTS) {
+        co_rx_add(node, (uint16_t)(0x600U + node->node_id), CO_ROW_SDO);
+    } else if ((ev == CO_SVC_START) ||
+               ((ev >= CO_SVC_NMT) && (node->nmt == (uint8_t)CO_NMT_STOPPED))) {
         sdo_reset(node);
-    }
-}
-
-static void sdo_rx_slots(co_node_t *node, uint8_t svc)
-{
-    co_rx_add(node, (uint16_t)(0x600U + node->node_id), svc);
-}
-
-/* No SDO in Stopped: an open transfer ends silently. */
-static void sdo_nmt(co_node_t *node, uint8_t from)
-{
-    (void)from;
-    if (node->nmt == (uint8_t)CO_NMT_STOPPED) {
-        sdo_reset(node);
+    } else {
+        /* nothing to do */
     }
 }
 
 const co_service_t co_svc_sdo = {
-    sdo_reset_kind, sdo_rx_slots, sdo_rx, sdo_process, sdo_nmt,
+    sdo_event, sdo_rx, sdo_process,
 };

@@ -482,7 +482,7 @@ static void store_reset(co_node_t *node, uint8_t kind)
     uint32_t cap = has_nv(node) ? 1U : 0U; /* bit 0: on command */
 #endif
 
-    if (kind == CO_SVC_START) {
+    if ((kind != (uint8_t)CO_RESET_NODE) && (kind != (uint8_t)CO_RESET_COMMUNICATION)) {
         return; /* values are restored by the resets of a kind only */
     }
     co_od_restore(node, end);
@@ -541,8 +541,8 @@ co_err_t co_store_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
 
 const co_service_t co_svc_store = {
 #if CO_STORAGE
-    store_reset, NULL, NULL, store_process, NULL,
+    store_reset, NULL, store_process,
 #else
-    store_reset, NULL, NULL, NULL, NULL,
+    store_reset, NULL, NULL,
 #endif
 };

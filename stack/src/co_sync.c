@@ -126,17 +126,15 @@ bool co_sync_window_open(const co_node_t *node)
 /* (its objects: co_binds[], co_services.c; without the producer a device
  * with a 0x1006 is refused) */
 
-static void sync_reset_kind(co_node_t *node, uint8_t kind)
+static void sync_event(co_node_t *node, uint8_t ev)
 {
-    if (kind == CO_SVC_START) {
+    if (ev == CO_SVC_START) {
         sync_reset(node);
-    }
-}
-
-static void sync_rx_slots(co_node_t *node, uint8_t svc)
-{
-    if ((node->sync.cob != NULL) && ((*node->sync.cob & COB_SYNC_GEN) == 0U)) {
-        co_rx_add(node, (uint16_t)(*node->sync.cob & 0x7FFU), svc);
+    } else if ((ev == CO_SVC_SLOTS) && (node->sync.cob != NULL) &&
+               ((*node->sync.cob & COB_SYNC_GEN) == 0U)) {
+        co_rx_add(node, (uint16_t)(*node->sync.cob & 0x7FFU), CO_ROW_SYNC);
+    } else {
+        /* nothing to do */
     }
 }
 
@@ -187,11 +185,10 @@ co_err_t co_sync_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
 }
 
 const co_service_t co_svc_sync = {
-    sync_reset_kind, sync_rx_slots, sync_rx_frame,
+    sync_event, sync_rx_frame,
 #if CO_SYNC_PRODUCER
     sync_process,
 #else
     NULL, /* the consumer has no timer */
 #endif
-    NULL,
 };

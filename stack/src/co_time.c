@@ -50,12 +50,12 @@ co_err_t co_time_send(co_node_t *node, uint32_t ms, uint16_t days)
 
 /* (its object: co_binds[], co_services.c) */
 
-static void time_rx_slots(co_node_t *node, uint8_t svc)
+static void time_event(co_node_t *node, uint8_t ev)
 {
     const uint32_t *cob = node->time.cob;
 
-    if ((cob != NULL) && ((*cob & COB_TIME_CONS) != 0U)) {
-        co_rx_add(node, (uint16_t)(*cob & 0x7FFU), svc);
+    if ((ev == CO_SVC_SLOTS) && (cob != NULL) && ((*cob & COB_TIME_CONS) != 0U)) {
+        co_rx_add(node, (uint16_t)(*cob & 0x7FFU), CO_ROW_TIME);
     }
 }
 
@@ -77,7 +77,7 @@ co_err_t co_time_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
 }
 
 const co_service_t co_svc_time = {
-    NULL, time_rx_slots, time_rx, NULL, NULL,
+    time_event, time_rx, NULL,
 };
 
 #else /* !CO_TIME */

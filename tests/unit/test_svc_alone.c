@@ -102,7 +102,7 @@ static co_err_t rec_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
     return CO_OK;
 }
 
-static const co_service_t rec_svc = {NULL, NULL, NULL, NULL, NULL};
+static const co_service_t rec_svc = {NULL, NULL, NULL};
 
 const co_service_t *const co_services[] = {&rec_svc, &co_svc_store};
 const uint8_t co_n_services = 2U;

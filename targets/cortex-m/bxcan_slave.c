@@ -36,7 +36,7 @@
 
 static co_bxcan_t can;
 static co_rxq_t rxq;
-static co_frame_t rx_store[16];
+static co_rxq_frame_t rx_store[16];
 static co_bxcan_flash_t flash;
 static co_bxcan_port_t port = {&can, &flash};
 static bxcan_slave_node_t slave;

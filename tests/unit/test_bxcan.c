@@ -197,7 +197,7 @@ static bool m_deliver(model_t *m, const char *text)
 typedef struct fx {
     model_t m;
     co_bxcan_t c;
-    co_frame_t store[8];
+    co_rxq_frame_t store[8];
     co_rxq_t q;
 } fx_t;
 

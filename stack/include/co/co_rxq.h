@@ -6,6 +6,8 @@
  * CO_RXQ_BARRIER() as a full memory barrier.
  *
  * The caller provides the frame storage; its length must be a power of two.
+ * The queue keeps 11-bit frames only, the ones co_node_rx acts on, each in
+ * 10 bytes (co_rxq_frame_t) instead of the 16 of a co_frame_t.
  */
 #ifndef CO_RXQ_H
 #define CO_RXQ_H
@@ -23,8 +25,15 @@
 #endif
 #endif
 
+/** A frame as the queue keeps it: identifier, RTR flag and length in one
+ *  16-bit word (11-bit frames only), then the data bytes. */
+typedef struct co_rxq_frame {
+    uint16_t id_dlc; /**< CAN-ID << 5 | RTR << 4 | length (0..15) */
+    uint8_t data[8];
+} co_rxq_frame_t;
+
 typedef struct co_rxq {
-    co_frame_t *buf;
+    co_rxq_frame_t *buf;
     uint16_t mask;            /**< length - 1 */
     volatile uint16_t head;   /**< written by the producer */
     volatile uint16_t tail;   /**< written by the consumer */
@@ -32,12 +41,13 @@ typedef struct co_rxq {
 } co_rxq_t;
 
 /** @p len must be a power of two, 2..32768. Returns false otherwise. */
-bool co_rxq_init(co_rxq_t *q, co_frame_t *storage, uint16_t len);
+bool co_rxq_init(co_rxq_t *q, co_rxq_frame_t *storage, uint16_t len);
 
 /** The queue co_rxq_init makes, as the initialiser of a static co_rxq_t
  *  (no code at start-up): @p len must be a power of two, 2..32768. */
 #define CO_RXQ_INIT(storage, len) {(storage), (uint16_t)((len) - 1U), 0U, 0U, 0U}
-/** Producer (ISR): false (and a count in 'dropped') when the queue is full. */
+/** Producer (ISR): false (and a count in 'dropped') when the queue is full.
+ *  A 29-bit frame is not kept (co_node_rx ignores them): true. */
 bool co_rxq_push(co_rxq_t *q, const co_frame_t *f);
 /** Consumer (main loop): false when the queue is empty. */
 bool co_rxq_pop(co_rxq_t *q, co_frame_t *f);

@@ -77,24 +77,26 @@ static void entry_io(co_node_t *node, uint32_t v, uint16_t code, uint16_t pos, u
                    there (a TPDO's zeros: buf is zero) */
     }
     if (tx) {
+        const uint8_t *src = tmp;
         if (e != NULL) {
             co_od_chunk_t c = {tmp, 0U, 8U, 0U, 0U, false};
             if (co_od_read_part(node, e, &s, &c) != CO_OK) {
                 (void)memset(tmp, 0, sizeof tmp);
             }
         } else if (CO_NATIVE_LE) {
-            /* the low bytes (on a big-endian CPU the entry maps the whole value) */
-            co_copy(tmp, ram, size);
+            src = ram; /* the low bytes (on a big-endian CPU the entry maps the whole value) */
         } else {
             co_to_wire(tmp, ram, size);
         }
-        bits_copy(buf, pos, tmp, 0U, bits);
+        bits_copy(buf, pos, src, 0U, bits);
         return;
     }
     /* the low bits, extended to the value's size by the sign for signed types */
     if (sign) {
         uint16_t top = (uint16_t)(pos + bits - 1U);
-        (void)memset(tmp, ((buf[top >> 3U] & (1U << (top & 7U))) != 0U) ? 0xFF : 0x00, sizeof tmp);
+        if ((buf[top >> 3U] & (1U << (top & 7U))) != 0U) {
+            (void)memset(tmp, 0xFF, sizeof tmp);
+        }
     }
     bits_copy(tmp, 0U, buf, pos, bits);
     if (e != NULL) {

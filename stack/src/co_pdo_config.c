@@ -127,17 +127,17 @@ static uint16_t direct_code(const co_node_t *node, const co_od_entry_t *e, const
 #endif
 
 /* Validate the first @p count entries of PDO i's mapping as the dictionary
- * holds them; they become the state @p p: enabled and valid
- * (CO_PDO_F_MAP_OK, len), the first CO_PDO_FAST_MAX entries resolved
- * (p->plain). */
+ * holds them; they become the state @p p: the bytes they cover (len; 0
+ * while the mapping is disabled or invalid), the first CO_PDO_FAST_MAX
+ * entries resolved (p->plain). */
 static co_err_t map_state(const co_node_t *node, uint16_t i, uint32_t count, co_pdo_t *p)
 {
     const co_pdo_desc_t *d = &node->dev->pdo[i];
     bool tx = is_tpdo(node, i);
     uint32_t total = 0U;
-    bool direct = count <= CO_PDO_FAST_MAX;
+    bool direct = (count != 0U) && (count <= CO_PDO_FAST_MAX);
 
-    p->flags &= (uint16_t)~(CO_PDO_F_MAP_OK | CO_PDO_F_DIRECT);
+    p->flags &= (uint16_t)~CO_PDO_F_DIRECT;
     p->len = 0U;
     if (count > d->map_max) {
         return CO_ERR_MAP_LEN;
@@ -164,10 +164,8 @@ static co_err_t map_state(const co_node_t *node, uint16_t i, uint32_t count, co_
     if (total > 64U) {
         return CO_ERR_MAP_LEN;
     }
-    if (count != 0U) {
-        p->flags |= (uint16_t)(CO_PDO_F_MAP_OK | ((CO_FAST && direct) ? CO_PDO_F_DIRECT : 0U));
-        p->len = (uint8_t)((total + 7U) / 8U);
-    }
+    p->flags |= (uint16_t)((CO_FAST && direct) ? CO_PDO_F_DIRECT : 0U);
+    p->len = (uint8_t)((total + 7U) / 8U); /* (0 for no entries: disabled) */
     return CO_OK;
 }
 
@@ -250,7 +248,7 @@ static void restart(co_node_t *node, uint16_t i)
 {
     co_pdo_t *p = &node->pdo.p[i];
 
-    p->flags &= (uint16_t)(CO_PDO_F_MAP_OK | CO_PDO_F_DIRECT | CO_PDO_F_TIMEOUT | CO_PDO_F_SHORT |
+    p->flags &= (uint16_t)(CO_PDO_F_DIRECT | CO_PDO_F_TIMEOUT | CO_PDO_F_SHORT |
                            CO_PDO_F_LONG);
     p->count = 0U;
 }

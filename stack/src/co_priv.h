@@ -616,7 +616,7 @@ static inline void co_nmt_error(co_node_t *node, uint8_t sub)
 #endif
 
 /* ---- PDO (co_pdo_config.c, co_rpdo.c, co_tpdo.c) */
-#define CO_PDO_F_MAP_OK    0x0001U /* mapping enabled and valid; len is set */
+/* (0x0001 unused; a PDO's mapping is enabled and valid while its len is not 0) */
 #define CO_PDO_F_EVENT     0x0002U /* TPDO: transmission requested / due */
 #define CO_PDO_F_SENT      0x0004U /* TPDO: data[] holds what was sent last */
 #define CO_PDO_F_TIMER     0x0008U /* timer armed (TPDO event timer, RPDO deadline) */
@@ -725,11 +725,11 @@ CO_INLINE uint16_t co_pdo_rx_cob(const co_node_t *node, uint16_t i)
     return (uint16_t)(cob & 0x7FFU);
 }
 
-/* Valid COB-ID and an enabled, valid mapping. */
+/* Valid COB-ID and an enabled, valid mapping (len: the bytes it covers). */
 CO_INLINE bool co_pdo_usable(const co_node_t *node, uint16_t i)
 {
     return ((co_pdo_cob(node, i) & CO_PDO_COB_INVALID) == 0U) &&
-           ((node->pdo.p[i].flags & CO_PDO_F_MAP_OK) != 0U);
+           (node->pdo.p[i].len != 0U);
 }
 
 /* An event-driven transmission of usable TPDO i, due at the next pass of

@@ -97,7 +97,7 @@ void co_rpdo_rx(co_node_t *node, uint16_t i, const co_frame_t *f)
     co_pdo_t *p = &node->pdo.p[i];
 
     if ((node->nmt != (uint8_t)CO_NMT_OPERATIONAL) || co_frame_is_rtr(f) ||
-        ((p->flags & CO_PDO_F_MAP_OK) == 0U)) {
+        (p->len == 0U)) {
         return;
     }
     /* the usual case, the expected length and no error to end, costs one test */

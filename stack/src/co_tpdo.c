@@ -150,7 +150,7 @@ static bool answer_rtr(co_node_t *node, uint16_t i)
 void co_tpdo_rtr(co_node_t *node, uint16_t i)
 {
     if ((node->nmt != (uint8_t)CO_NMT_OPERATIONAL) ||
-        ((node->pdo.p[i].flags & CO_PDO_F_MAP_OK) == 0U)) {
+        (node->pdo.p[i].len == 0U)) {
         return;
     }
     /* answered at once; only when the TX path is full does co_tpdo_process retry */

@@ -467,47 +467,47 @@ static co_err_t initiate_upload(co_node_t *node, const uint8_t *d, uint16_t inde
 
 /* ------------------------------------------------------------ segmented */
 
-/* (want[] checked the command, transfer_request the toggle bit) */
-static co_err_t download_segment(co_node_t *node, const uint8_t *d)
-{
-    co_sdo_srv_t *t = &node->sdo;
-    uint8_t cmd = (uint8_t)(CO_SDO_B0(CO_SDO_SCS_DOWNLOAD_SEGMENT) | t->toggle);
-    bool last = (d[0] & CO_SDO_LAST_SEG) != 0U;
-    co_err_t err =
-        write_chunk(node, &d[1], SEG - (((uint32_t)d[0] >> CO_SDO_SEG_N_SHIFT) & 7U), last);
-
-    if (err == CO_OK) {
-        t->toggle ^= CO_SDO_TOGGLE;
-        if (last) {
-            download_done(node, cmd, 0U, 0U, true);
-        } else {
-            start(node, S_DL_SEG);
-            reply(node, cmd, 0U, 0U, 0U);
-        }
-    }
-    return err;
-}
-
-static co_err_t upload_segment(co_node_t *node)
+/* A segment of a segmented download (@p up false: its data written) or
+ * upload (the next bytes read); want[] checked the command, this checks
+ * the toggle bit. The answer carries the toggle bit; the
+ * last segment ends the transfer. */
+static co_err_t segment(co_node_t *node, const uint8_t *d, bool up)
 {
     co_sdo_srv_t *t = &node->sdo;
     co_frame_t f;
-    uint32_t got = 0U;
-    bool last = false;
-    co_err_t err = read_seg(node, t->offset, &f.data[1], SEG, &got, &last);
+    uint32_t n;
+    bool last;
+    co_err_t err;
+    uint8_t cmd;
 
+    if ((d[0] & CO_SDO_TOGGLE) != t->toggle) {
+        return CO_ERR_TOGGLE;
+    }
+    if (up) {
+        err = read_seg(node, t->offset, &f.data[1], SEG, &n, &last);
+        t->offset += n;
+        t->flags &= (uint8_t)~F_STAGED;
+        cmd = (uint8_t)(CO_SDO_B0(CO_SDO_SCS_UPLOAD_SEGMENT) | ((SEG - n) << CO_SDO_SEG_N_SHIFT) |
+                        (last ? CO_SDO_LAST_SEG : 0U));
+    } else {
+        last = (d[0] & CO_SDO_LAST_SEG) != 0U;
+        err = write_chunk(node, &d[1], SEG - (((uint32_t)d[0] >> CO_SDO_SEG_N_SHIFT) & 7U), last);
+        (void)memset(&f.data[1], 0, SEG);
+        cmd = CO_SDO_B0(CO_SDO_SCS_DOWNLOAD_SEGMENT);
+    }
     if (err != CO_OK) {
         return err;
     }
-    t->flags &= (uint8_t)~F_STAGED;
-    t->offset += got;
-    f.data[0] = (uint8_t)(CO_SDO_B0(CO_SDO_SCS_UPLOAD_SEGMENT) | t->toggle |
-                          ((SEG - got) << CO_SDO_SEG_N_SHIFT) | (last ? CO_SDO_LAST_SEG : 0U));
+    f.data[0] = (uint8_t)(cmd | t->toggle);
     t->toggle ^= CO_SDO_TOGGLE;
+    if (last && !up) {
+        download_done(node, f.data[0], 0U, 0U, true);
+        return CO_OK;
+    }
     if (last) {
         sdo_reset(node);
     } else {
-        start(node, S_UL_SEG);
+        start(node, t->state);
     }
     send8(node, &f);
     return CO_OK;
@@ -767,14 +767,8 @@ SDO_RARE static co_err_t transfer_request(co_node_t *node, const uint8_t *d)
     if ((d[0] & want[st - 1U][0]) != want[st - 1U][1]) {
         return CO_ERR_CMD;
     }
-    if ((st <= (uint8_t)S_UL_SEG) && ((d[0] & CO_SDO_TOGGLE) != t->toggle)) {
-        return CO_ERR_TOGGLE; /* a segment: its toggle bit */
-    }
-    if (st == (uint8_t)S_DL_SEG) {
-        return download_segment(node, d);
-    }
-    if (st == (uint8_t)S_UL_SEG) {
-        return upload_segment(node);
+    if (st <= (uint8_t)S_UL_SEG) {
+        return segment(node, d, st == (uint8_t)S_UL_SEG);
     }
 #if CO_SDO_BLOCK
     if (st == (uint8_t)S_BLK_UL_END) {

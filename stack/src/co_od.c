@@ -341,17 +341,15 @@ co_err_t co_od_read_part(co_node_t *node, const co_od_entry_t *e, const co_od_su
     const uint8_t *v;
     uint8_t fixed = co_type_len(s->type);
     uint32_t offset = c->offset;
+    uint32_t cap = c->len;
     uint32_t size;
     uint32_t n;
 
     if ((s->flags & CO_SUB_HOOKIO) != 0U) {
-        /* the hook produces the chunk */
-        co_od_io_t io = {NULL, NULL, NULL, NULL, offset, c->buf, c->cap, 0U, false};
-        co_err_t err = app_io(node, e, s, false, &io);
-        if (err == CO_OK) {
-            c->len = (io.len > c->cap) ? c->cap : io.len;
-            c->total = io.total;
-            c->last = io.last;
+        /* the hook produces the chunk (never more than asked for) */
+        co_err_t err = app_io(node, e, s, false, c);
+        if (c->len > cap) {
+            c->len = cap;
         }
         return err;
     }
@@ -370,8 +368,8 @@ co_err_t co_od_read_part(co_node_t *node, const co_od_entry_t *e, const co_od_su
     v = (const uint8_t *)co_od_loc(node, e, s);
     size = (CO_FAST && (fixed != 0U)) ? s->size : data_size(v, s);
     n = (offset < size) ? (size - offset) : 0U;
-    if (n > c->cap) {
-        n = c->cap;
+    if (n > cap) {
+        n = cap;
     }
     if ((fixed != 0U) && (offset == 0U) && (n == fixed) && (CO_FAST || !CO_NATIVE_LE)) {
         co_to_wire(c->buf, v, fixed); /* the whole value (a build for size: the copy below) */
@@ -641,7 +639,7 @@ co_err_t co_od_read(co_node_t *node, uint16_t index, uint8_t sub, void *buf, uin
     const co_od_entry_t *e;
     co_od_sub_t sd;
     const co_od_sub_t *s = &sd;
-    co_od_chunk_t c = {(uint8_t *)buf, 0U, cap, 0U, 0U, false};
+    co_od_chunk_t c = {NULL, NULL, NULL, NULL, 0U, (uint8_t *)buf, cap, 0U, false};
     co_err_t err = co_od_lookup(node, index, sub, &e, &sd);
 
     if (err != CO_OK) {

@@ -79,7 +79,7 @@ static void entry_io(co_node_t *node, uint32_t v, uint16_t code, uint16_t pos, u
     if (tx) {
         const uint8_t *src = tmp;
         if (e != NULL) {
-            co_od_chunk_t c = {tmp, 0U, 8U, 0U, 0U, false};
+            co_od_chunk_t c = {NULL, NULL, NULL, NULL, 0U, tmp, 8U, 0U, false};
             if (co_od_read_part(node, e, &s, &c) != CO_OK) {
                 (void)memset(tmp, 0, sizeof tmp);
             }

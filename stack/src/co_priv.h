@@ -473,16 +473,11 @@ co_err_t co_od_lookup(const co_node_t *node, uint16_t index, uint8_t sub,
 co_err_t co_od_lookup_for(const co_node_t *node, uint16_t index, uint8_t sub, bool write,
                           const co_od_entry_t **e, co_od_sub_t *s);
 bool co_type_is_signed(uint8_t type);
-/* One chunk of a value being read: the caller sets buf, offset and cap;
- * co_od_read_part sets len, total (0 if a hook does not know it) and last. */
-typedef struct co_od_chunk {
-    uint8_t *buf;
-    uint32_t offset;
-    uint32_t cap;
-    uint32_t len;
-    uint32_t total;
-    bool last;
-} co_od_chunk_t;
+/* One chunk of a value being read, as a read hook sees it (a value without
+ * storage: the hook reads it into the same structure): the caller sets
+ * offset, buf, len (the capacity), total 0 and last false; co_od_read_part
+ * sets len, total (0 if a hook does not know it) and last. */
+typedef co_od_io_t co_od_chunk_t;
 /* Read a chunk; at offset 0 the read hook runs first. */
 co_err_t co_od_read_part(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
                          co_od_chunk_t *c);

@@ -246,9 +246,11 @@ static co_err_t stage_upload(co_node_t *node, uint16_t index, uint8_t sub, co_od
 
     if (err == CO_OK) {
         (void)memset(node->sdo.buf, 0, sizeof node->sdo.buf); /* (zeros past the value) */
-        c->buf = node->sdo.buf;
         c->offset = 0U;
-        c->cap = SEG;
+        c->buf = node->sdo.buf;
+        c->len = SEG;
+        c->total = 0U;
+        c->last = false;
         err = co_od_read_part(node, *e, s, c);
     }
     return err;
@@ -296,8 +298,14 @@ static co_err_t read_seg(co_node_t *node, uint32_t at, uint8_t *buf, uint32_t ca
                          bool *last)
 {
     co_sdo_srv_t *t = &node->sdo;
-    co_od_chunk_t c = {buf, at, cap, 0U, 0U, false};
+    co_od_chunk_t c; /* (node, entry, desc, value: co_od_read_part's) */
     co_err_t err = CO_OK;
+
+    c.offset = at;
+    c.buf = buf;
+    c.len = cap;
+    c.total = 0U;
+    c.last = false;
 
     if ((at == 0U) && ((t->flags & F_STAGED) != 0U)) {
         c.len = t->buf_len; /* the first chunk, read when the upload opened */

@@ -554,7 +554,13 @@ co_err_t co_od_download(co_node_t *node, uint16_t index, uint8_t sub, const uint
     fixed = co_type_len(s->type);
     if (fixed == 0U) {
         /* longer than the object: 0x06070012, size indicated or not */
-        return co_od_write_part(node, e, s, 0U, data, (size != 0U) ? size : 4U, size, true);
+        co_od_chunk_t c; /* (node, entry, desc, value: app_io's) */
+        c.offset = 0U;
+        c.buf = (uint8_t *)(uintptr_t)data;
+        c.len = (size != 0U) ? size : 4U;
+        c.total = size;
+        c.last = true;
+        return co_od_write_part(node, e, s, &c);
     }
     if (size == 0U) {
         size = (fixed < 4U) ? fixed : 4U; /* size not indicated: what the object needs */
@@ -563,14 +569,15 @@ co_err_t co_od_download(co_node_t *node, uint16_t index, uint8_t sub, const uint
 }
 
 co_err_t co_od_write_part(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
-                          uint32_t offset, const uint8_t *data, uint32_t len, uint32_t total,
-                          bool last)
+                          co_od_chunk_t *c)
 {
+    uint32_t offset = c->offset;
+    uint32_t len = c->len;
+    const uint8_t *data = c->buf;
+    bool last = c->last;
+
     if ((s->flags & CO_SUB_HOOKIO) != 0U) {
-        /* the hook takes every chunk */
-        co_od_io_t io = {NULL, NULL, NULL, NULL, offset, (uint8_t *)(uintptr_t)data, len, total,
-                         last};
-        return app_io(node, e, s, true, &io);
+        return app_io(node, e, s, true, c); /* the hook takes every chunk */
     }
     if ((s->flags & CO_SUB_ROM) != 0U) {
         return CO_ERR_NO_ACCESS;
@@ -671,7 +678,13 @@ co_err_t co_od_write(co_node_t *node, uint16_t index, uint8_t sub, const void *d
     }
     if (err == CO_OK) {
         if (co_od_is_streamed(s) && ((s->flags & CO_SUB_HOOKIO) != 0U)) {
-            err = co_od_write_part(node, e, s, 0U, (const uint8_t *)data, len, len, true);
+            co_od_chunk_t c; /* (node, entry, desc, value: app_io's) */
+            c.offset = 0U;
+            c.buf = (uint8_t *)(uintptr_t)data;
+            c.len = len;
+            c.total = len;
+            c.last = true;
+            err = co_od_write_part(node, e, s, &c);
         } else {
             err = co_od_write_value(node, e, s, (const uint8_t *)data, len);
         }

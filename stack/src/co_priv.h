@@ -490,10 +490,10 @@ co_err_t co_od_write_value(co_node_t *node, const co_od_entry_t *e, const co_od_
  * object's own size when it is smaller). */
 co_err_t co_od_download(co_node_t *node, uint16_t index, uint8_t sub, const uint8_t *data,
                         uint32_t size);
-/* Write one chunk of a streamed value (strings, DOMAIN). */
+/* Write one chunk of a streamed value (strings, DOMAIN), as a write hook
+ * sees it: the caller sets offset, buf, len, total and last of @p c. */
 co_err_t co_od_write_part(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
-                          uint32_t offset, const uint8_t *data, uint32_t len, uint32_t total,
-                          bool last);
+                          co_od_chunk_t *c);
 /* Restore [0, to) of the RAM image to defaults and apply $NODEID. */
 void co_od_restore(co_node_t *node, uint16_t to);
 

@@ -169,7 +169,13 @@ static co_err_t write_chunk(co_node_t *node, const uint8_t *data, uint32_t len, 
             err = co_od_write_value(node, t->entry, &t->desc, t->buf, end);
         }
     } else {
-        err = co_od_write_part(node, t->entry, &t->desc, t->offset, data, len, t->size, last);
+        co_od_chunk_t c; /* (node, entry, desc, value: the hook's) */
+        c.offset = t->offset;
+        c.buf = (uint8_t *)(uintptr_t)data;
+        c.len = len;
+        c.total = t->size;
+        c.last = last;
+        err = co_od_write_part(node, t->entry, &t->desc, &c);
     }
     t->offset = end;
     if (last) {

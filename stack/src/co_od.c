@@ -554,12 +554,8 @@ co_err_t co_od_download(co_node_t *node, uint16_t index, uint8_t sub, const uint
     fixed = co_type_len(s->type);
     if (fixed == 0U) {
         /* longer than the object: 0x06070012, size indicated or not */
-        co_od_chunk_t c; /* (node, entry, desc, value: app_io's) */
-        c.offset = 0U;
-        c.buf = (uint8_t *)(uintptr_t)data;
-        c.len = (size != 0U) ? size : 4U;
-        c.total = size;
-        c.last = true;
+        co_od_chunk_t c = {NULL, NULL, NULL, NULL, 0U, (uint8_t *)(uintptr_t)data,
+                           (size != 0U) ? size : 4U, size, true};
         return co_od_write_part(node, e, s, &c);
     }
     if (size == 0U) {
@@ -678,12 +674,8 @@ co_err_t co_od_write(co_node_t *node, uint16_t index, uint8_t sub, const void *d
     }
     if (err == CO_OK) {
         if (co_od_is_streamed(s) && ((s->flags & CO_SUB_HOOKIO) != 0U)) {
-            co_od_chunk_t c; /* (node, entry, desc, value: app_io's) */
-            c.offset = 0U;
-            c.buf = (uint8_t *)(uintptr_t)data;
-            c.len = len;
-            c.total = len;
-            c.last = true;
+            co_od_chunk_t c = {NULL, NULL, NULL, NULL, 0U, (uint8_t *)(uintptr_t)data, len, len,
+                               true};
             err = co_od_write_part(node, e, s, &c);
         } else {
             err = co_od_write_value(node, e, s, (const uint8_t *)data, len);

@@ -169,12 +169,8 @@ static co_err_t write_chunk(co_node_t *node, const uint8_t *data, uint32_t len, 
             err = co_od_write_value(node, t->entry, &t->desc, t->buf, end);
         }
     } else {
-        co_od_chunk_t c; /* (node, entry, desc, value: the hook's) */
-        c.offset = t->offset;
-        c.buf = (uint8_t *)(uintptr_t)data;
-        c.len = len;
-        c.total = t->size;
-        c.last = last;
+        co_od_chunk_t c = {NULL, NULL, NULL, NULL, t->offset, (uint8_t *)(uintptr_t)data,
+                           len, t->size, last};
         err = co_od_write_part(node, t->entry, &t->desc, &c);
     }
     t->offset = end;
@@ -244,7 +240,7 @@ CO_INLINE co_err_t find_for(const co_node_t *node, uint16_t index, uint8_t sub, 
 }
 
 /* Checks common to every upload initiate; reads the first chunk into t->buf
- * (which also runs the read hook once). */
+ * with @p c (which also runs the read hook once). */
 static co_err_t stage_upload(co_node_t *node, uint16_t index, uint8_t sub, co_od_chunk_t *c,
                              const co_od_entry_t **e, co_od_sub_t *s)
 {
@@ -252,11 +248,6 @@ static co_err_t stage_upload(co_node_t *node, uint16_t index, uint8_t sub, co_od
 
     if (err == CO_OK) {
         (void)memset(node->sdo.buf, 0, sizeof node->sdo.buf); /* (zeros past the value) */
-        c->offset = 0U;
-        c->buf = node->sdo.buf;
-        c->len = SEG;
-        c->total = 0U;
-        c->last = false;
         err = co_od_read_part(node, *e, s, c);
     }
     return err;
@@ -304,14 +295,8 @@ static co_err_t read_seg(co_node_t *node, uint32_t at, uint8_t *buf, uint32_t ca
                          bool *last)
 {
     co_sdo_srv_t *t = &node->sdo;
-    co_od_chunk_t c; /* (node, entry, desc, value: co_od_read_part's) */
+    co_od_chunk_t c = {NULL, NULL, NULL, NULL, at, buf, cap, 0U, false};
     co_err_t err = CO_OK;
-
-    c.offset = at;
-    c.buf = buf;
-    c.len = cap;
-    c.total = 0U;
-    c.last = false;
 
     if ((at == 0U) && ((t->flags & F_STAGED) != 0U)) {
         c.len = t->buf_len; /* the first chunk, read when the upload opened */
@@ -449,7 +434,7 @@ static co_err_t initiate_upload(co_node_t *node, const uint8_t *d, uint16_t inde
     co_sdo_srv_t *t = &node->sdo;
     bool blk = (CO_SDO_BLOCK != 0) && block; /* a block upload initiate */
     const co_od_entry_t *e;
-    co_od_chunk_t c;
+    co_od_chunk_t c = {NULL, NULL, NULL, NULL, 0U, t->buf, SEG, 0U, false};
     co_err_t err;
 
     if (blk && ((d[0] & CO_SDO_BLK_SUB_MASK) != CO_SDO_BLK_INITIATE)) {

@@ -181,18 +181,19 @@ typedef struct co_node_callbacks {
 
 /** Everything co_node_init needs. */
 typedef struct co_node_config {
+    /* (dev .. cb: the first fields of co_node_t, copied at once) */
     const co_dev_t *dev;
     co_hal_t hal;
-    /** 1..127; on an LSS slave (set.lss.slave) also 0xFF (CO_NODE_ID_UNCONFIGURED): the node
-     *  starts unconfigured. An LSS slave uses the node-ID its LSS
-     *  configuration store holds instead, when the HAL's NV has one. */
-    uint8_t node_id;
     void *ram;                     /**< dev->ram_size bytes, suitably aligned */
     co_od_hook_t *hooks;           /**< dev->n_hooks slots (may be all NULL) */
     /** The application's callbacks, NULL for none. The node keeps the
      *  pointer: they must stay where they are while the node runs (a const
      *  table in flash, or the caller's own copy). */
     const co_node_callbacks_t *cb;
+    /** 1..127; on an LSS slave (set.lss.slave) also 0xFF (CO_NODE_ID_UNCONFIGURED): the node
+     *  starts unconfigured. An LSS slave uses the node-ID its LSS
+     *  configuration store holds instead, when the HAL's NV has one. */
+    uint8_t node_id;
     uint32_t sdo_timeout_us;       /**< 0: 1 s */
     co_pdo_t *pdo;                 /**< dev->n_rpdo + dev->n_tpdo elements */
 } co_node_config_t;

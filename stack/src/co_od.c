@@ -131,15 +131,17 @@ const co_od_sub_t *co_od_find_sub(const co_od_entry_t *e, uint8_t sub, co_od_sub
     return fill(find_sub(e, sub, buf), buf);
 }
 
-/* Indexed by type 0x00..0x1B; 0 for variable-length types. */
+/* Indexed by type 0x00..0x1F (0x1C..0x1F: no type); 0 for variable-length
+ * types. */
 const uint8_t co_type_sizes[CO_TYPE_SIZES] = {
     0, 1, 1, 2, 4, 1, 2, 4, 4, 0, 0, 0, 6, 6, 0, 0,
-    3, 8, 5, 6, 7, 8, 3, 0, 5, 6, 7, 8
+    3, 8, 5, 6, 7, 8, 3, 0, 5, 6, 7, 8, 0, 0, 0, 0
 };
 
 uint8_t co_type_size(uint8_t type)
 {
-    return co_type_len(type);
+    /* (any byte: the core's own co_type_len takes the dictionary's types) */
+    return (type <= (uint8_t)CO_UNSIGNED64) ? co_type_len(type) : 0U;
 }
 
 

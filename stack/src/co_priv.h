@@ -436,13 +436,16 @@ extern const co_service_t co_svc_lss;
 #endif
 
 /* ---- object dictionary internals (co_od.c) */
-#define CO_TYPE_SIZES 0x1CU
+/* co_type_sizes[] has an entry for every value of the type's low five
+ * bits (the types are 0x01..0x1B: co_type_t), so a size is one load
+ * without a range check. */
+#define CO_TYPE_SIZES 0x20U
 extern const uint8_t co_type_sizes[CO_TYPE_SIZES];
 
 /* Size in bytes of a fixed-size type, 0 for strings and DOMAIN. */
 static inline uint8_t co_type_len(uint8_t type)
 {
-    return (type < CO_TYPE_SIZES) ? co_type_sizes[type] : 0U;
+    return co_type_sizes[type & (CO_TYPE_SIZES - 1U)];
 }
 
 /* Strings and DOMAINs: values of variable length, read and written in parts. */

@@ -198,6 +198,8 @@ static void type_sizes(void **state)
     assert_int_equal(co_type_size(CO_VISIBLE_STRING), 0);
     assert_int_equal(co_type_size(CO_DOMAIN), 0);
     assert_int_equal(co_type_size(0xEE), 0);
+    assert_int_equal(co_type_size(0x21), 0); /* (not BOOLEAN's size: no type) */
+    assert_int_equal(co_type_size(0x1C), 0);
 }
 
 static void nodeid_relative_defaults(void **state)

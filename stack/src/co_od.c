@@ -465,7 +465,10 @@ void co_od_commit(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
                 /* (a value gathered in place is its own data) */
                 co_copy(v, data, len);
             }
-            if ((fixed == 0U) && (len < s->size)) {
+            if (len < s->size) {
+                /* a string or DOMAIN shorter than its capacity (a number
+                 * comes whole: len is its type's size, which is its size,
+                 * as odgen and the EDS loader lay it out) */
                 (void)memset(&v[len], 0, s->size - len);
             }
         }

@@ -615,16 +615,6 @@ static co_result_t bind_services(co_node_t *node)
     return CO_RESULT_OK;
 }
 
-/* co_node_init copies dev .. cb of the configuration at once: they are the
- * first fields of both, in the same places (the build fails otherwise). */
-#define HEAD_SAME(f) (offsetof(co_node_config_t, f) == offsetof(co_node_t, f))
-typedef char co_node_head_check[(HEAD_SAME(dev) && HEAD_SAME(hal) && HEAD_SAME(ram) &&
-                                 HEAD_SAME(hooks) && HEAD_SAME(cb) &&
-                                 (offsetof(co_node_config_t, node_id) ==
-                                  (offsetof(co_node_t, cb) + sizeof(void *))))
-                                    ? 1
-                                    : -1];
-
 co_result_t co_node_init(co_node_t *node, const co_node_config_t *cfg, uint32_t now_us)
 {
     co_result_t r;
@@ -646,7 +636,8 @@ co_result_t co_node_init(co_node_t *node, const co_node_config_t *cfg, uint32_t 
         return CO_RESULT_BAD_NODE_ID;
     }
     (void)memset(node, 0, sizeof *node);
-    /* dev, hal, ram, hooks, cb: the same fields at the head of both */
+    /* dev, hal, ram, hooks, cb: the first fields of both, in the same
+     * places (test_services: test_config_head) */
     (void)memcpy(node, cfg, offsetof(co_node_config_t, node_id));
     if (node->hooks != NULL) {
         (void)memset(node->hooks, 0, (size_t)cfg->dev->n_hooks * sizeof node->hooks[0]);

@@ -107,6 +107,20 @@ static void test_process_order(void **state)
 }
 
 /* the NMT command names and the node's time */
+/* co_node_init copies the head of the configuration (dev .. cb) into the
+ * node at once: the same fields in the same places in both. */
+static void test_config_head(void **state)
+{
+    (void)state;
+    assert_int_equal(offsetof(co_node_config_t, dev), offsetof(co_node_t, dev));
+    assert_int_equal(offsetof(co_node_config_t, hal), offsetof(co_node_t, hal));
+    assert_int_equal(offsetof(co_node_config_t, ram), offsetof(co_node_t, ram));
+    assert_int_equal(offsetof(co_node_config_t, hooks), offsetof(co_node_t, hooks));
+    assert_int_equal(offsetof(co_node_config_t, cb), offsetof(co_node_t, cb));
+    assert_int_equal(offsetof(co_node_config_t, node_id),
+                     offsetof(co_node_t, cb) + sizeof(((co_node_t *)0)->cb));
+}
+
 static void test_public_names(void **state)
 {
     (void)state;
@@ -133,6 +147,7 @@ int main(void)
         cmocka_unit_test_setup(test_table_order, setup),
         cmocka_unit_test_setup(test_process_order, setup),
         cmocka_unit_test_setup(test_public_names, setup),
+        cmocka_unit_test(test_config_head),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -10,20 +10,15 @@
 #include "co_priv.h"
 
 #if !CO_FAST
-static CO_NOINLINE uint32_t time_us(const co_node_t *node, uint16_t i, uint8_t rel, uint32_t unit)
+uint32_t co_pdo_time_us(const co_node_t *node, uint16_t i, bool inhibit)
 {
+    const co_pdo_desc_t *d = &node->dev->pdo[i];
+    uint8_t rel = inhibit ? d->inhibit : d->event;
+    uint32_t unit = (inhibit || (CO_SET(node, pdo.event_timer_unit) == CO_PDO_TIMER_100US))
+                        ? 100UL
+                        : 1000UL;
+
     return (rel == 0U) ? 0U : co_dict_us(co_pdo_u16(node, i, rel), unit);
-}
-
-uint32_t co_pdo_event_us(const co_node_t *node, uint16_t i)
-{
-    return time_us(node, i, node->dev->pdo[i].event,
-                   (CO_SET(node, pdo.event_timer_unit) == CO_PDO_TIMER_100US) ? 100UL : 1000UL);
-}
-
-uint32_t co_pdo_inhibit_us(const co_node_t *node, uint16_t i)
-{
-    return time_us(node, i, node->dev->pdo[i].inhibit, 100UL);
 }
 #endif
 

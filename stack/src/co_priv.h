@@ -883,7 +883,8 @@ CO_INLINE void co_pdo_store_direct(co_node_t *node, uint16_t i, const uint8_t *d
 }
 
 /* Event timer of PDO i in us (0: off), inhibit time of TPDO i in us (0:
- * none): in a build for size one copy each (co_pdo_map.c). */
+ * none): in a build for size one function for both (co_pdo_map.c,
+ * co_pdo_time_us: @p inhibit selects). */
 #if CO_FAST
 CO_INLINE uint32_t co_pdo_event_us(const co_node_t *node, uint16_t i)
 {
@@ -899,8 +900,15 @@ CO_INLINE uint32_t co_pdo_inhibit_us(const co_node_t *node, uint16_t i)
     return (rel == 0U) ? 0U : co_dict_us(co_pdo_u16(node, i, rel), 100UL);
 }
 #else
-uint32_t co_pdo_event_us(const co_node_t *node, uint16_t i);
-uint32_t co_pdo_inhibit_us(const co_node_t *node, uint16_t i);
+uint32_t co_pdo_time_us(const co_node_t *node, uint16_t i, bool inhibit);
+CO_INLINE uint32_t co_pdo_event_us(const co_node_t *node, uint16_t i)
+{
+    return co_pdo_time_us(node, i, false);
+}
+CO_INLINE uint32_t co_pdo_inhibit_us(const co_node_t *node, uint16_t i)
+{
+    return co_pdo_time_us(node, i, true);
+}
 #endif
 /* The mapped objects of PDO i (co_pdo_map.c, one entry point for both
  * directions), the resolved entries directly, the others through the

@@ -88,12 +88,12 @@ static uint16_t find_digital(const co401_t *m, uint16_t given, uint16_t base, ui
         if (e != NULL) {
             uint8_t n = 0U;
             co_od_sub_t sub_buf;
-            const co_od_sub_t *first = co_od_find_sub(e, m->cfg.first_sub, &sub_buf);
+            const co_od_sub_t *first = co_od_find_sub(dev, e, m->cfg.first_sub, &sub_buf);
             uint8_t sz = (first != NULL) ? co_type_size(first->type) : 0U;
             if ((sz != 1U) && (sz != 2U) && (sz != 4U)) {
                 return 0U;
             }
-            while ((co_od_find_sub(e, (uint8_t)(m->cfg.first_sub + n), &sub_buf) != NULL) &&
+            while ((co_od_find_sub(dev, e, (uint8_t)(m->cfg.first_sub + n), &sub_buf) != NULL) &&
                    ((uint32_t)(n + 1U) * sz <= CO401_DIO_BYTES)) {
                 n++;
             }
@@ -119,7 +119,7 @@ static uint8_t count_subs(const co401_t *m, uint16_t index)
     co_od_sub_t sub_buf;
 
     while ((e != NULL) && (n < CO401_AIO_MAX) &&
-           (co_od_find_sub(e, (uint8_t)(n + 1U), &sub_buf) != NULL)) {
+           (co_od_find_sub(dev, e, (uint8_t)(n + 1U), &sub_buf) != NULL)) {
         n++;
     }
     return n;

@@ -124,7 +124,7 @@ static void bind_objects(co402_axis_t *ax)
         uint16_t index = axis_index(ax, obj_refs[i].index);
         const co_od_entry_t *e = co_od_find(dev->od, dev->od_count, index);
         co_od_sub_t sub_buf;
-        const co_od_sub_t *s = (e != NULL) ? co_od_find_sub(e, obj_refs[i].sub, &sub_buf) : NULL;
+        const co_od_sub_t *s = (e != NULL) ? co_od_find_sub(dev, e, obj_refs[i].sub, &sub_buf) : NULL;
         ax->obj[i] = NULL;
         ax->obj_type[i] = 0U;
         if ((s == NULL) || (co_pobj_int_size(s->type) == 0U) || ((s->flags & CO_SUB_HOOKIO) != 0U)) {

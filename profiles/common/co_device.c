@@ -177,7 +177,7 @@ co_err_t co_device_set(co_device_run_t *run, uint16_t index, uint8_t sub, int64_
     }
     dev = run->node->dev;
     e = co_od_find(dev->od, dev->od_count, index);
-    d = (e != NULL) ? co_od_find_sub(e, sub, &sub_buf) : NULL;
+    d = (e != NULL) ? co_od_find_sub(dev, e, sub, &sub_buf) : NULL;
     if (d == NULL) {
         return (e == NULL) ? CO_ERR_NO_OBJECT : CO_ERR_NO_SUB;
     }

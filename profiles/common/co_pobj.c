@@ -28,7 +28,7 @@ void co_pobj_bind(co_pobj_t *o, co_node_t *node, uint16_t index, uint8_t sub)
     const co_dev_t *dev = node->dev;
     const co_od_entry_t *e = co_od_find(dev->od, dev->od_count, index);
     co_od_sub_t sub_buf;
-    const co_od_sub_t *s = (e != NULL) ? co_od_find_sub(e, sub, &sub_buf) : NULL;
+    const co_od_sub_t *s = (e != NULL) ? co_od_find_sub(dev, e, sub, &sub_buf) : NULL;
 
     o->p = NULL;
     o->type = 0U;

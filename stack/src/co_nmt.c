@@ -37,7 +37,7 @@ void co_nmt_error(co_node_t *node, uint8_t sub)
 {
     const co_od_entry_t *e = co_od_find(node->dev->od, node->dev->od_count, 0x1029U);
     co_od_sub_t sd;
-    const co_od_sub_t *s = ((e != NULL) && (sub != 0U)) ? co_od_find_sub(e, sub, &sd) : NULL;
+    const co_od_sub_t *s = ((e != NULL) && (sub != 0U)) ? co_od_find_sub(node->dev, e, sub, &sd) : NULL;
     const uint8_t *v = NULL;
 
     if ((s != NULL) && (s->type == (uint8_t)CO_UNSIGNED8)) {

@@ -80,12 +80,13 @@ const co_od_sub_t *co_od_row_sub(const co_od_sub_t *r, uint32_t k, co_od_sub_t *
     return row_sub(r, k, buf);
 }
 
-/* The descriptor of @p sub of @p e, from the row that holds it (of a run,
- * the one @p d before its last: its element n - 1 - d), in @p buf. */
-CO_NOINLINE static const co_od_sub_t *scan_sub(const co_od_entry_t *e, uint8_t sub,
-                                               co_od_sub_t *buf)
+/* The descriptor of @p sub of @p e, an entry of @p dev, from the row that
+ * holds it (of a run, the one @p d before its last: its element n - 1 - d),
+ * in @p buf. */
+CO_NOINLINE static const co_od_sub_t *scan_sub(const co_dev_t *dev, const co_od_entry_t *e,
+                                               uint8_t sub, co_od_sub_t *buf)
 {
-    const co_od_sub_t *r = e->subs;
+    const co_od_sub_t *r = co_od_rows(dev, e);
 
     for (uint32_t i = e->nsubs; i > 0U; i--) {
         uint32_t d = (uint8_t)(r->sub - sub);
@@ -98,15 +99,17 @@ CO_NOINLINE static const co_od_sub_t *scan_sub(const co_od_entry_t *e, uint8_t s
     return NULL;
 }
 
-/* The descriptor of @p sub of @p e (scan_sub); a build for speed first
- * looks at the row in its dense slot (arrays and most records are dense;
- * a run's row is never there: co_od.h) and gives it itself, no copy. */
-CO_HOT const co_od_sub_t *find_sub(const co_od_entry_t *e, uint8_t sub, co_od_sub_t *buf)
+/* The descriptor of @p sub of @p e, an entry of @p dev (scan_sub); a build
+ * for speed first looks at the row in its dense slot (arrays and most
+ * records are dense; a run's row is never there: co_od.h) and gives it
+ * itself, no copy. */
+CO_HOT const co_od_sub_t *find_sub(const co_dev_t *dev, const co_od_entry_t *e, uint8_t sub,
+                                   co_od_sub_t *buf)
 {
-    if (CO_FAST && (sub < e->nsubs) && (e->subs[sub].sub == sub)) {
-        return &e->subs[sub];
+    if (CO_FAST && (sub < e->nsubs) && (co_od_rows(dev, e)[sub].sub == sub)) {
+        return &co_od_rows(dev, e)[sub];
     }
-    return scan_sub(e, sub, buf);
+    return scan_sub(dev, e, sub, buf);
 }
 
 const co_od_entry_t *co_od_find(const co_od_entry_t *od, uint16_t count, uint16_t index)
@@ -126,9 +129,10 @@ static inline const co_od_sub_t *fill(const co_od_sub_t *s, co_od_sub_t *buf)
     return (s != NULL) ? buf : NULL;
 }
 
-const co_od_sub_t *co_od_find_sub(const co_od_entry_t *e, uint8_t sub, co_od_sub_t *buf)
+const co_od_sub_t *co_od_find_sub(const co_dev_t *dev, const co_od_entry_t *e, uint8_t sub,
+                                  co_od_sub_t *buf)
 {
-    return fill(find_sub(e, sub, buf), buf);
+    return fill(find_sub(dev, e, sub, buf), buf);
 }
 
 /* Indexed by type 0x00..0x1F (0x1C..0x1F: no type); 0 for variable-length
@@ -158,12 +162,14 @@ bool co_type_is_signed(uint8_t type)
 CO_HOT co_err_t lookup(const co_node_t *node, uint16_t index, uint8_t sub,
                        const co_od_entry_t **e, const co_od_sub_t **s, co_od_sub_t *buf)
 {
-    *e = find(node->dev->od, node->dev->od_count, index);
+    const co_dev_t *dev = node->dev;
+
+    *e = find(dev->od, dev->od_count, index);
     if (*e == NULL) {
         return (CO_SET(node, sdo.unknown_object) == CO_SDO_ABORT_NO_ACCESS) ? CO_ERR_NO_ACCESS
                                                                          : CO_ERR_NO_OBJECT;
     }
-    *s = find_sub(*e, sub, buf);
+    *s = find_sub(dev, *e, sub, buf);
     return (*s == NULL) ? CO_ERR_NO_SUB : CO_OK;
 }
 

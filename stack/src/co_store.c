@@ -144,10 +144,11 @@ static uint16_t layout_sig(const co_dev_t *dev)
     crc = co_crc16(0xFFFFU, b, 8U);
     for (uint16_t i = 0U; i < dev->od_count; i++) {
         const co_od_entry_t *e = &dev->od[i];
+        const co_od_sub_t *r = co_od_rows(dev, e);
         for (uint32_t k = 0U; k < e->nsubs; k++) {
-            for (uint32_t j = 0U; j < co_od_run_len(&e->subs[k]); j++) {
+            for (uint32_t j = 0U; j < co_od_run_len(&r[k]); j++) {
                 co_od_sub_t sd;
-                const co_od_sub_t *s = co_od_row_sub(&e->subs[k], j, &sd);
+                const co_od_sub_t *s = co_od_row_sub(&r[k], j, &sd);
                 if (((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) == 0U) &&
                     (s->off < dev->app_end)) {
                     co_put_u16(&b[0], e->index);
@@ -508,7 +509,7 @@ static void store_reset(co_node_t *node, uint8_t kind)
         const co_od_entry_t *e = co_od_find(dev->od, dev->od_count, index);
         for (uint32_t k = 1U; (e != NULL) && (k <= 0xFEU); k++) {
             co_od_sub_t sd;
-            const co_od_sub_t *s = co_od_find_sub(e, (uint8_t)k, &sd);
+            const co_od_sub_t *s = co_od_find_sub(dev, e, (uint8_t)k, &sd);
             if ((s != NULL) && co_store_is_command(e, s) && ((s->flags & CO_SUB_ROM) == 0U)) {
                 uint32_t v = (s->sub <= last_sub(node, index)) ? cap : 0U;
                 (void)memcpy(&node->ram[co_od_off(e, s)], (const uint8_t *)&v, 4U);

@@ -995,8 +995,8 @@ static const co_od_sub_t *find_built(const eds_dev_t *d, uint16_t index, uint8_t
 
     /* (the loader's rows are one sub-index each: no runs) */
     for (uint8_t k = 0U; (e != NULL) && (k < e->nsubs); k++) {
-        if (e->subs[k].sub == sub) {
-            return &e->subs[k];
+        if (d->subs[e->rows + k].sub == sub) {
+            return &d->subs[e->rows + k];
         }
     }
     return NULL;
@@ -1024,6 +1024,7 @@ static size_t pdo_scan(const eds_dev_t *d, uint16_t comm_base, uint16_t map_base
         const co_od_sub_t *cnt = find_built(d, (uint16_t)(map_base + k), 0U);
         const co_od_entry_t *me = co_od_find(d->entries, d->dev.od_count,
                                              (uint16_t)(map_base + k));
+        const co_od_sub_t *ms = (me != NULL) ? &d->subs[me->rows] : NULL;
         uint8_t maps = 0U;
 
         if ((me == NULL) || (cob == NULL) || (cob->type != (uint8_t)CO_UNSIGNED32) || (type == NULL) ||
@@ -1035,15 +1036,15 @@ static size_t pdo_scan(const eds_dev_t *d, uint16_t comm_base, uint16_t map_base
             break;
         }
         while ((maps < 8U) && ((size_t)maps + 1U < me->nsubs) &&
-               (me->subs[maps + 1U].sub == (uint8_t)(maps + 1U)) &&
-               (me->subs[maps + 1U].type == (uint8_t)CO_UNSIGNED32)) {
+               (ms[maps + 1U].sub == (uint8_t)(maps + 1U)) &&
+               (ms[maps + 1U].type == (uint8_t)CO_UNSIGNED32)) {
             maps++;
         }
         if (maps == 0U) {
             break;
         }
         /* (laid out as co_pdo_desc_t wants: build) */
-        if ((me->subs[1].off != (uint16_t)(cnt->off - (4U * maps))) ||
+        if ((ms[1].off != (uint16_t)(cnt->off - (4U * maps))) ||
             (type->off != (uint16_t)(cnt->off + 1U)) || (pdo_rel(cob, start) > 0xFFU) ||
             (pdo_rel(cob, inh) > 0xFFU) || (pdo_rel(cob, ev) > 0xFFU)) {
             break;
@@ -1084,6 +1085,12 @@ static eds_dev_t *build(ctx_t *c, const char *name, const char *text)
             eds_free(d);
             return NULL;
         }
+    }
+    if (c->nsub > 0xFFFFU) {
+        /* (co_od_entry_t.rows: a row number of 16 bits) */
+        (void)fail(c, NULL, NULL, "more than 65535 sub-entries");
+        eds_free(d);
+        return NULL;
     }
     placed = (uint8_t *)calloc((c->nsub != 0U) ? c->nsub : 1U, 1U);
     if (placed == NULL) {
@@ -1155,7 +1162,7 @@ static eds_dev_t *build(ctx_t *c, const char *name, const char *text)
             d->entries[i].hook = 0U;
             d->entries[i].code = o->code;
             d->entries[i].svc = (uint8_t)CO_OD_SVC_OF(o->index);
-            d->entries[i].subs = &d->subs[ns];
+            d->entries[i].rows = (uint16_t)ns;
             for (size_t k = 0U; k < o->n; k++) {
                 bsub_t *b = &c->sub[o->first + k];
                 if (b->has_limit) {
@@ -1203,6 +1210,7 @@ static eds_dev_t *build(ctx_t *c, const char *name, const char *text)
     }
     d->dev.name = d->name;
     d->dev.od = d->entries;
+    d->dev.rows = d->subs;
     d->dev.od_count = (uint16_t)c->nobj;
     d->dev.ram_size = (uint16_t)off;
     d->dev.comm_end = (uint16_t)ends[0];

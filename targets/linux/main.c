@@ -321,7 +321,7 @@ static void ctl_get(dnode_t *d, const ctl_cmd_t *cmd, char *reply, size_t cap)
     const co_dev_t *dev = d->node.dev;
     const co_od_entry_t *e = co_od_find(dev->od, dev->od_count, cmd->index);
     co_od_sub_t sub_buf;
-    const co_od_sub_t *sd = (e != NULL) ? co_od_find_sub(e, cmd->sub, &sub_buf) : NULL;
+    const co_od_sub_t *sd = (e != NULL) ? co_od_find_sub(dev, e, cmd->sub, &sub_buf) : NULL;
     uint8_t b[64];
     uint32_t len = 0U;
     co_err_t err = co_od_read(&d->node, cmd->index, cmd->sub, b, sizeof b, &len);

@@ -265,7 +265,7 @@ static uint32_t const_values(uint8_t *out, uint32_t cap)
         const co_od_entry_t *e = &dev->od[i];
         for (uint32_t x = 0U; x < 256U; x++) {
             co_od_sub_t sd;
-            const co_od_sub_t *s = co_od_find_sub(e, (uint8_t)x, &sd);
+            const co_od_sub_t *s = co_od_find_sub(dev, e, (uint8_t)x, &sd);
             uint32_t len = 0U;
             if ((s == NULL) || !is_const(s) || ((s->flags & CO_SUB_HOOKIO) != 0U) || (s->size > 64U) ||
                 ((at + s->size) > cap)) {
@@ -295,7 +295,7 @@ static bool not_writable(uint16_t index, uint8_t sub)
     const co_dev_t *dev = fz.n.node.dev;
     const co_od_entry_t *e = co_od_find(dev->od, dev->od_count, index);
     co_od_sub_t sub_buf;
-    const co_od_sub_t *s = (e != NULL) ? co_od_find_sub(e, sub, &sub_buf) : NULL;
+    const co_od_sub_t *s = (e != NULL) ? co_od_find_sub(dev, e, sub, &sub_buf) : NULL;
 
     return (s != NULL) && (((s->flags & CO_SUB_W) == 0U) || ((s->flags & CO_SUB_CONST) != 0U));
 }

@@ -149,18 +149,19 @@ int main(int argc, char **argv)
     printf(" \"entries\": [\n");
     for (uint16_t i = 0U; i < dev->od_count; i++) {
         const co_od_entry_t *e = &dev->od[i];
+        const co_od_sub_t *r = co_od_rows(dev, e);
         printf("  {\"index\": %u, \"code\": %u, \"hook\": %u, \"subs\": [\n", (unsigned)e->index,
                (unsigned)e->code, (unsigned)e->hook);
         uint32_t n_subs = 0U;
         uint32_t done = 0U;
         for (uint8_t k = 0U; k < e->nsubs; k++) {
-            n_subs += co_od_run_len(&e->subs[k]);
+            n_subs += co_od_run_len(&r[k]);
         }
         /* every sub-index of every row (a row may be a run of them) */
         for (uint8_t k = 0U; k < e->nsubs; k++) {
-          for (uint32_t j = 0U; j < co_od_run_len(&e->subs[k]); j++) {
+          for (uint32_t j = 0U; j < co_od_run_len(&r[k]); j++) {
             co_od_sub_t sd;
-            const co_od_sub_t *s = co_od_row_sub(&e->subs[k], j, &sd);
+            const co_od_sub_t *s = co_od_row_sub(&r[k], j, &sd);
             uint32_t len = 0U;
             done++;
             void *p = co_od_value_ptr(node, e->index, s->sub);

@@ -168,7 +168,7 @@ int64_t sr_get(seedrun_t *s, uint16_t index, uint8_t sub)
     const co_dev_t *dev = s->node->dev;
     const co_od_entry_t *e = co_od_find(dev->od, dev->od_count, index);
     co_od_sub_t sub_buf;
-    const co_od_sub_t *d = (e != NULL) ? co_od_find_sub(e, sub, &sub_buf) : NULL;
+    const co_od_sub_t *d = (e != NULL) ? co_od_find_sub(dev, e, sub, &sub_buf) : NULL;
 
     assert_non_null(d);
     assert_int_equal(co_od_read(s->node, index, sub, b, sizeof b, &len), CO_OK);

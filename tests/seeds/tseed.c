@@ -95,7 +95,7 @@ int64_t tseed_get(tseed_t *f, unsigned k, uint16_t index, uint8_t sub)
     uint32_t len = 0U;
     const co_od_entry_t *e = co_od_find(node->dev->od, node->dev->od_count, index);
     co_od_sub_t sub_buf;
-    const co_od_sub_t *s = (e != NULL) ? co_od_find_sub(e, sub, &sub_buf) : NULL;
+    const co_od_sub_t *s = (e != NULL) ? co_od_find_sub(node->dev, e, sub, &sub_buf) : NULL;
 
     assert_non_null(s);
     assert_int_equal(co_od_read(node, index, sub, b, sizeof b, &len), CO_OK);

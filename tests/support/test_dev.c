@@ -74,106 +74,158 @@ static const co_od_limit_t limits[] = {
     CO_OD_SUB((sub), (uint8_t)(type), (uint16_t)((flags) | CO_SUB_ROM), RZ(field), RF(field), 0U)
 #define RW_MAP (CO_SUB_RW | CO_SUB_MAP)
 
-static const co_od_sub_t s1000[] = {ROM(0, CO_UNSIGNED32, CO_SUB_RO, x1000)};
-static const co_od_sub_t s1001[] = {RAM(0, CO_UNSIGNED8, CO_SUB_RO | CO_SUB_MAP_T, errreg)};
-static const co_od_sub_t s1002[] = {RAM(0, CO_UNSIGNED32, CO_SUB_RO, mfr_status)};
-static const co_od_sub_t s1003[] = {
+/* The rows of every object, one object after the other (co_dev_t.rows):
+ * object 0xXXXX has NsXXXX of them from row TsXXXX on. */
+enum td_rows {
+    Ts1000 = 0, Ns1000 = 1,
+    Ts1001 = Ts1000 + Ns1000, Ns1001 = 1,
+    Ts1002 = Ts1001 + Ns1001, Ns1002 = 1,
+    Ts1003 = Ts1002 + Ns1002, Ns1003 = 2,
+    Ts1005 = Ts1003 + Ns1003, Ns1005 = 1,
+    Ts1006 = Ts1005 + Ns1005, Ns1006 = 1,
+    Ts1007 = Ts1006 + Ns1006, Ns1007 = 1,
+    Ts1012 = Ts1007 + Ns1007, Ns1012 = 1,
+    Ts1019 = Ts1012 + Ns1012, Ns1019 = 1,
+    Ts1029 = Ts1019 + Ns1019, Ns1029 = 4,
+    Ts1008 = Ts1029 + Ns1029, Ns1008 = 1,
+    Ts1009 = Ts1008 + Ns1008, Ns1009 = 1,
+    Ts100A = Ts1009 + Ns1009, Ns100A = 1,
+    Ts100B = Ts100A + Ns100A, Ns100B = 1,
+    Ts100C = Ts100B + Ns100B, Ns100C = 1,
+    Ts100D = Ts100C + Ns100C, Ns100D = 1,
+    Ts1010 = Ts100D + Ns100D, Ns1010 = 4,
+    Ts1011 = Ts1010 + Ns1010, Ns1011 = 7,
+    Ts1014 = Ts1011 + Ns1011, Ns1014 = 1,
+    Ts1015 = Ts1014 + Ns1014, Ns1015 = 1,
+    Ts1016 = Ts1015 + Ns1015, Ns1016 = 2,
+    Ts1017 = Ts1016 + Ns1016, Ns1017 = 1,
+    Ts1018 = Ts1017 + Ns1017, Ns1018 = 5,
+    Ts2000 = Ts1018 + Ns1018, Ns2000 = 1,
+    Ts2001 = Ts2000 + Ns2000, Ns2001 = 1,
+    Ts2002 = Ts2001 + Ns2001, Ns2002 = 1,
+    Ts2003 = Ts2002 + Ns2002, Ns2003 = 1,
+    Ts2004 = Ts2003 + Ns2003, Ns2004 = 1,
+    Ts2005 = Ts2004 + Ns2004, Ns2005 = 1,
+    Ts2006 = Ts2005 + Ns2005, Ns2006 = 1,
+    Ts2007 = Ts2006 + Ns2006, Ns2007 = 1,
+    Ts2008 = Ts2007 + Ns2007, Ns2008 = 1,
+    Ts2009 = Ts2008 + Ns2008, Ns2009 = 1,
+    Ts200A = Ts2009 + Ns2009, Ns200A = 1,
+    Ts200B = Ts200A + Ns200A, Ns200B = 1,
+    Ts200C = Ts200B + Ns200B, Ns200C = 1,
+    Ts200D = Ts200C + Ns200C, Ns200D = 1,
+    Ts200E = Ts200D + Ns200D, Ns200E = 1,
+    Ts200F = Ts200E + Ns200E, Ns200F = 1,
+    Ts2010 = Ts200F + Ns200F, Ns2010 = 1,
+    Ts2011 = Ts2010 + Ns2010, Ns2011 = 1,
+    Ts2012 = Ts2011 + Ns2011, Ns2012 = 1,
+    Ts2013 = Ts2012 + Ns2012, Ns2013 = 1,
+    Ts2014 = Ts2013 + Ns2013, Ns2014 = 1,
+    Ts2020 = Ts2014 + Ns2014, Ns2020 = 1,
+    Ts2021 = Ts2020 + Ns2020, Ns2021 = 1,
+    Ts2022 = Ts2021 + Ns2021, Ns2022 = 1,
+    Ts2023 = Ts2022 + Ns2022, Ns2023 = 1,
+    Ts2100 = Ts2023 + Ns2023, Ns2100 = 1,
+    Ts2200 = Ts2100 + Ns2100, Ns2200 = 1,
+    Ts2201 = Ts2200 + Ns2200, Ns2201 = 1,
+    Ts2300 = Ts2201 + Ns2201, Ns2300 = 2,
+    Ts6040 = Ts2300 + Ns2300, Ns6040 = 1,
+    Ts6060 = Ts6040 + Ns6040, Ns6060 = 1,
+    Ts607A = Ts6060 + Ns6060, Ns607A = 1,
+    Ts60FF = Ts607A + Ns607A, Ns60FF = 1,
+    Ts6099 = Ts60FF + Ns60FF, Ns6099 = 2,
+    TD_N_ROWS = Ts6099 + Ns6099
+};
+
+static const co_od_sub_t rows[] = {
+    /* 0x1000 */ ROM(0, CO_UNSIGNED32, CO_SUB_RO, x1000),
+    /* 0x1001 */ RAM(0, CO_UNSIGNED8, CO_SUB_RO | CO_SUB_MAP_T, errreg),
+    /* 0x1002 */ RAM(0, CO_UNSIGNED32, CO_SUB_RO, mfr_status),
+    /* 0x1003 */
     RAM(0, CO_UNSIGNED8, CO_SUB_RW, hist_n),
     /* (one row for sub 1..8: a run, CO_OD_RUN) */
     CO_OD_RUN(1, 8U, (uint8_t)CO_UNSIGNED32, CO_SUB_RO, 4U, F(hist), 0U),
-};
-static const co_od_sub_t s1005[] = {RAM(0, CO_UNSIGNED32, CO_SUB_RW, sync_cob)};
-static const co_od_sub_t s1006[] = {RAM(0, CO_UNSIGNED32, CO_SUB_RW, sync_period)};
-static const co_od_sub_t s1007[] = {RAM(0, CO_UNSIGNED32, CO_SUB_RW, sync_window)};
-static const co_od_sub_t s1012[] = {RAM(0, CO_UNSIGNED32, CO_SUB_RW, time_cob)};
-static const co_od_sub_t s1019[] = {RAM(0, CO_UNSIGNED8, CO_SUB_RW, sync_overflow)};
-static const co_od_sub_t s1029[] = {
+    /* 0x1005 */ RAM(0, CO_UNSIGNED32, CO_SUB_RW, sync_cob),
+    /* 0x1006 */ RAM(0, CO_UNSIGNED32, CO_SUB_RW, sync_period),
+    /* 0x1007 */ RAM(0, CO_UNSIGNED32, CO_SUB_RW, sync_window),
+    /* 0x1012 */ RAM(0, CO_UNSIGNED32, CO_SUB_RW, time_cob),
+    /* 0x1019 */ RAM(0, CO_UNSIGNED8, CO_SUB_RW, sync_overflow),
+    /* 0x1029 */
     ROM(0, CO_UNSIGNED8, CO_SUB_RO | CO_SUB_CONST, n1029),
 #define B(i) CO_OD_SUB((i), (uint8_t)CO_UNSIGNED8, CO_SUB_RW, 1U, (uint16_t)(F(err_beh) + (i) - 1U), 0U)
     B(1), B(2), B(3),
 #undef B
-};
-static const co_od_sub_t s1008[] = {ROM(0, CO_VISIBLE_STRING, CO_SUB_RO | CO_SUB_CONST, x1008)};
-static const co_od_sub_t s1009[] = {ROM(0, CO_VISIBLE_STRING, CO_SUB_RO | CO_SUB_CONST, x1009)};
-static const co_od_sub_t s100A[] = {ROM(0, CO_VISIBLE_STRING, CO_SUB_RO | CO_SUB_CONST, x100A)};
-static const co_od_sub_t s100B[] = {RAM(0, CO_UNSIGNED32, CO_SUB_RO | CO_SUB_NODEID, node_id)};
-static const co_od_sub_t s100C[] = {RAM(0, CO_UNSIGNED16, CO_SUB_RW, guard_time)};
-static const co_od_sub_t s100D[] = {RAM(0, CO_UNSIGNED8, CO_SUB_RW, life_factor)};
-static const co_od_sub_t s1010[] = {
+    /* 0x1008 */ ROM(0, CO_VISIBLE_STRING, CO_SUB_RO | CO_SUB_CONST, x1008),
+    /* 0x1009 */ ROM(0, CO_VISIBLE_STRING, CO_SUB_RO | CO_SUB_CONST, x1009),
+    /* 0x100A */ ROM(0, CO_VISIBLE_STRING, CO_SUB_RO | CO_SUB_CONST, x100A),
+    /* 0x100B */ RAM(0, CO_UNSIGNED32, CO_SUB_RO | CO_SUB_NODEID, node_id),
+    /* 0x100C */ RAM(0, CO_UNSIGNED16, CO_SUB_RW, guard_time),
+    /* 0x100D */ RAM(0, CO_UNSIGNED8, CO_SUB_RW, life_factor),
+    /* 0x1010 */
     ROM(0, CO_UNSIGNED8, CO_SUB_RO | CO_SUB_CONST, n1010),
     CO_OD_SUB(1, (uint8_t)CO_UNSIGNED32, CO_SUB_RW, 4U, F(store), 0U),
     CO_OD_SUB(2, (uint8_t)CO_UNSIGNED32, CO_SUB_RW, 4U, (uint16_t)(F(store) + 4U), 0U),
     CO_OD_SUB(3, (uint8_t)CO_UNSIGNED32, CO_SUB_RW, 4U, (uint16_t)(F(store) + 8U), 0U),
-};
-static const co_od_sub_t s1011[] = {
+    /* 0x1011 */
     ROM(0, CO_UNSIGNED8, CO_SUB_RO | CO_SUB_CONST, n1011),
 #define R(i) CO_OD_SUB((i), (uint8_t)CO_UNSIGNED32, CO_SUB_RW, 4U, (uint16_t)(F(restore) + 4U * ((i) - 1U)), 0U)
     R(1), R(2), R(3), R(4), R(5), R(6),
 #undef R
-};
-static const co_od_sub_t s1014[] = {RAM(0, CO_UNSIGNED32, CO_SUB_RW | CO_SUB_NODEID, emcy_cob)};
-static const co_od_sub_t s1015[] = {RAM(0, CO_UNSIGNED16, CO_SUB_RW, emcy_inhibit)};
-static const co_od_sub_t s1016[] = {
+    /* 0x1014 */ RAM(0, CO_UNSIGNED32, CO_SUB_RW | CO_SUB_NODEID, emcy_cob),
+    /* 0x1015 */ RAM(0, CO_UNSIGNED16, CO_SUB_RW, emcy_inhibit),
+    /* 0x1016 */
     ROM(0, CO_UNSIGNED8, CO_SUB_RO | CO_SUB_CONST, n1016),
     CO_OD_RUN(1, 4U, (uint8_t)CO_UNSIGNED32, CO_SUB_RW, 4U, F(hb_cons), 0U),
-};
-static const co_od_sub_t s1017[] = {RAM(0, CO_UNSIGNED16, CO_SUB_RW, hb_prod)};
-static const co_od_sub_t s1018[] = {
+    /* 0x1017 */ RAM(0, CO_UNSIGNED16, CO_SUB_RW, hb_prod),
+    /* 0x1018 */
     ROM(0, CO_UNSIGNED8, CO_SUB_RO | CO_SUB_CONST, n1018),
 #define I(i) CO_OD_SUB((i), (uint8_t)CO_UNSIGNED32, CO_SUB_RO | CO_SUB_ROM, 4U, (uint16_t)(RF(x1018) + 4U * ((i) - 1U)), 0U)
     I(1), I(2), I(3), I(4),
 #undef I
-};
-static const co_od_sub_t s2000[] = {RAM(0, CO_UNSIGNED8, RW_MAP, u8)};
-static const co_od_sub_t s2001[] = {RAM(0, CO_INTEGER8, RW_MAP, i8)};
-static const co_od_sub_t s2002[] = {RAM(0, CO_UNSIGNED16, RW_MAP, u16)};
-static const co_od_sub_t s2003[] = {RAM(0, CO_INTEGER16, RW_MAP, i16)};
-static const co_od_sub_t s2004[] = {RAM(0, CO_UNSIGNED32, RW_MAP, u32)};
-static const co_od_sub_t s2005[] = {RAM(0, CO_INTEGER32, RW_MAP, i32)};
-static const co_od_sub_t s2006[] = {RAM(0, CO_UNSIGNED64, RW_MAP, u64)};
-static const co_od_sub_t s2007[] = {RAM(0, CO_INTEGER64, RW_MAP, i64)};
-static const co_od_sub_t s2008[] = {RAM(0, CO_REAL32, RW_MAP, r32)};
-static const co_od_sub_t s2009[] = {RAM(0, CO_REAL64, RW_MAP, r64)};
-static const co_od_sub_t s200A[] = {RAM(0, CO_BOOLEAN, RW_MAP, b)};
-static const co_od_sub_t s200B[] = {RAM(0, CO_UNSIGNED24, RW_MAP, u24)};
-static const co_od_sub_t s200C[] = {RAM(0, CO_INTEGER24, RW_MAP, i24)};
-static const co_od_sub_t s200D[] = {RAM(0, CO_UNSIGNED40, RW_MAP, u40)};
-static const co_od_sub_t s200E[] = {RAM(0, CO_INTEGER48, RW_MAP, i48)};
-static const co_od_sub_t s200F[] = {RAM(0, CO_UNSIGNED56, RW_MAP, u56)};
-static const co_od_sub_t s2010[] = {RAM(0, CO_TIME_OF_DAY, CO_SUB_RW, tod)};
-static const co_od_sub_t s2011[] = {RAM(0, CO_TIME_DIFFERENCE, CO_SUB_RW, tdiff)};
-static const co_od_sub_t s2012[] = {RAM(0, CO_VISIBLE_STRING, CO_SUB_RW, vstr)};
-static const co_od_sub_t s2013[] = {RAM(0, CO_OCTET_STRING, CO_SUB_RW, ostr)};
-static const co_od_sub_t s2014[] = {RAM(0, CO_UNICODE_STRING, CO_SUB_RW, ustr)};
-static const co_od_sub_t s2020[] = {
-    CO_OD_SUB(0, (uint8_t)CO_UNSIGNED16, CO_SUB_RW | CO_SUB_LIMIT, Z(lim_u16), F(lim_u16), 0U)};
-static const co_od_sub_t s2021[] = {
-    CO_OD_SUB(0, (uint8_t)CO_INTEGER16, CO_SUB_RW | CO_SUB_LIMIT, Z(lim_i16), F(lim_i16), 1U)};
-static const co_od_sub_t s2022[] = {RAM(0, CO_UNSIGNED32, CO_SUB_WO, wo_u32)};
-static const co_od_sub_t s2023[] = {ROM(0, CO_UNSIGNED32, CO_SUB_RO | CO_SUB_CONST, x2023)};
-static const co_od_sub_t s2100[] = {RAM(0, CO_UNSIGNED32, CO_SUB_RW, hooked)};
-static const co_od_sub_t s2200[] = {
-    CO_OD_SUB(0, (uint8_t)CO_DOMAIN, CO_SUB_RW | CO_SUB_HOOKIO, 0U, 0U, 0U)};
-static const co_od_sub_t s2201[] = {
-    CO_OD_SUB(0, (uint8_t)CO_UNSIGNED32, CO_SUB_RW | CO_SUB_HOOKIO, 4U, 0U, 0U)};
-static const co_od_sub_t s2300[] = {
+    /* 0x2000 */ RAM(0, CO_UNSIGNED8, RW_MAP, u8),
+    /* 0x2001 */ RAM(0, CO_INTEGER8, RW_MAP, i8),
+    /* 0x2002 */ RAM(0, CO_UNSIGNED16, RW_MAP, u16),
+    /* 0x2003 */ RAM(0, CO_INTEGER16, RW_MAP, i16),
+    /* 0x2004 */ RAM(0, CO_UNSIGNED32, RW_MAP, u32),
+    /* 0x2005 */ RAM(0, CO_INTEGER32, RW_MAP, i32),
+    /* 0x2006 */ RAM(0, CO_UNSIGNED64, RW_MAP, u64),
+    /* 0x2007 */ RAM(0, CO_INTEGER64, RW_MAP, i64),
+    /* 0x2008 */ RAM(0, CO_REAL32, RW_MAP, r32),
+    /* 0x2009 */ RAM(0, CO_REAL64, RW_MAP, r64),
+    /* 0x200A */ RAM(0, CO_BOOLEAN, RW_MAP, b),
+    /* 0x200B */ RAM(0, CO_UNSIGNED24, RW_MAP, u24),
+    /* 0x200C */ RAM(0, CO_INTEGER24, RW_MAP, i24),
+    /* 0x200D */ RAM(0, CO_UNSIGNED40, RW_MAP, u40),
+    /* 0x200E */ RAM(0, CO_INTEGER48, RW_MAP, i48),
+    /* 0x200F */ RAM(0, CO_UNSIGNED56, RW_MAP, u56),
+    /* 0x2010 */ RAM(0, CO_TIME_OF_DAY, CO_SUB_RW, tod),
+    /* 0x2011 */ RAM(0, CO_TIME_DIFFERENCE, CO_SUB_RW, tdiff),
+    /* 0x2012 */ RAM(0, CO_VISIBLE_STRING, CO_SUB_RW, vstr),
+    /* 0x2013 */ RAM(0, CO_OCTET_STRING, CO_SUB_RW, ostr),
+    /* 0x2014 */ RAM(0, CO_UNICODE_STRING, CO_SUB_RW, ustr),
+    /* 0x2020 */ CO_OD_SUB(0, (uint8_t)CO_UNSIGNED16, CO_SUB_RW | CO_SUB_LIMIT, Z(lim_u16), F(lim_u16), 0U),
+    /* 0x2021 */ CO_OD_SUB(0, (uint8_t)CO_INTEGER16, CO_SUB_RW | CO_SUB_LIMIT, Z(lim_i16), F(lim_i16), 1U),
+    /* 0x2022 */ RAM(0, CO_UNSIGNED32, CO_SUB_WO, wo_u32),
+    /* 0x2023 */ ROM(0, CO_UNSIGNED32, CO_SUB_RO | CO_SUB_CONST, x2023),
+    /* 0x2100 */ RAM(0, CO_UNSIGNED32, CO_SUB_RW, hooked),
+    /* 0x2200 */ CO_OD_SUB(0, (uint8_t)CO_DOMAIN, CO_SUB_RW | CO_SUB_HOOKIO, 0U, 0U, 0U),
+    /* 0x2201 */ CO_OD_SUB(0, (uint8_t)CO_UNSIGNED32, CO_SUB_RW | CO_SUB_HOOKIO, 4U, 0U, 0U),
+    /* 0x2300 */
     RAM(0, CO_UNSIGNED32, CO_SUB_RW, rec0),
     RAM(1, CO_UNSIGNED16, CO_SUB_RW, rec1),
-};
-static const co_od_sub_t s6040[] = {RAM(0, CO_UNSIGNED16, RW_MAP, cw)};
-static const co_od_sub_t s6060[] = {RAM(0, CO_INTEGER8, RW_MAP, mode)};
-static const co_od_sub_t s607A[] = {RAM(0, CO_INTEGER32, RW_MAP, target_pos)};
-static const co_od_sub_t s60FF[] = {RAM(0, CO_INTEGER32, RW_MAP, target_vel)};
-static const co_od_sub_t s6099[] = {
+    /* 0x6040 */ RAM(0, CO_UNSIGNED16, RW_MAP, cw),
+    /* 0x6060 */ RAM(0, CO_INTEGER8, RW_MAP, mode),
+    /* 0x607A */ RAM(0, CO_INTEGER32, RW_MAP, target_pos),
+    /* 0x60FF */ RAM(0, CO_INTEGER32, RW_MAP, target_vel),
+    /* 0x6099 */
     ROM(0, CO_UNSIGNED8, CO_SUB_RO | CO_SUB_CONST, n6099),
     CO_OD_RUN(1, 2U, (uint8_t)CO_UNSIGNED32, CO_SUB_RW | CO_SUB_LIMIT, 4U, F(homing_speed), 2U),
 };
+typedef char td_rows_n[(sizeof rows / sizeof rows[0] == TD_N_ROWS) ? 1 : -1];
 
-#define E(idx, subs, code) \
-    CO_OD_ENTRY((idx), (uint8_t)(sizeof(subs) / sizeof((subs)[0])), 0U, (code), (subs))
+#define E(idx, subs, code) CO_OD_ENTRY((idx), (uint8_t)N##subs, 0U, (code), (uint16_t)T##subs)
 #define EH(idx, subs, code, slot) \
-    CO_OD_ENTRY((idx), (uint8_t)(sizeof(subs) / sizeof((subs)[0])), (uint8_t)((slot) + 1U), \
-                (code), (subs))
+    CO_OD_ENTRY((idx), (uint8_t)N##subs, (uint8_t)((slot) + 1U), (code), (uint16_t)T##subs)
 
 static const co_od_entry_t od[] = {
     E(0x1000, s1000, CO_OBJ_VAR),    E(0x1001, s1001, CO_OBJ_VAR),
@@ -225,6 +277,7 @@ static const co_od_default_t default_at[] = {
 const co_dev_t td_dev = {
     .name = "test-device",
     .od = od,
+    .rows = rows,
     .od_count = (uint16_t)(sizeof od / sizeof od[0]),
     .ram_size = (uint16_t)sizeof(td_ram_t),
     .comm_end = F(u8),

@@ -244,7 +244,7 @@ static void objects_left_out(void **state)
                         "text's bytes\n");
     assert_int_equal(eds_device(d)->od_count, 2);
     assert_int_equal(eds_device(d)->od[1].index, 0x2002);
-    assert_int_equal(eds_device(d)->od[1].subs[0].size, 3);
+    assert_int_equal(co_od_rows(eds_device(d), &eds_device(d)->od[1])[0].size, 3);
     eds_free(d);
 }
 

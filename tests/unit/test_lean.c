@@ -74,7 +74,8 @@ static void storage_left_out(void **state)
         static const uint8_t save[4] = {0x73U, 0x61U, 0x76U, 0x65U};
         const co_od_entry_t *st = co_od_find(lean_test_dev.od, lean_test_dev.od_count, 0x1010U);
         assert_non_null(st);
-        assert_int_equal(st->subs[1].flags & (CO_SUB_ROM | CO_SUB_W), CO_SUB_ROM | CO_SUB_W);
+        assert_int_equal(co_od_rows(&lean_test_dev, st)[1].flags & (CO_SUB_ROM | CO_SUB_W),
+                         CO_SUB_ROM | CO_SUB_W);
         assert_null(co_od_value_ptr(&lean.node, 0x1011U, 2U));
         assert_int_equal(co_od_write(&lean.node, 0x1010U, 1U, save, 4U, true), CO_ERR_STORE);
         assert_int_equal(co_od_write(&lean.node, 0x1010U, 0U, save, 1U, true), CO_ERR_READ_ONLY);
@@ -167,9 +168,9 @@ static void shared_sub_tables(void **state)
     assert_non_null(tm);
     assert_non_null(st);
     assert_non_null(rs);
-    assert_ptr_equal(r->subs, t->subs);
-    assert_ptr_equal(rm->subs, tm->subs);
-    assert_ptr_equal(st->subs, rs->subs);
+    assert_int_equal(r->rows, t->rows);
+    assert_int_equal(rm->rows, tm->rows);
+    assert_int_equal(st->rows, rs->rows);
     assert_int_equal(r->base, offsetof(lean_test_ram_t, x1400_cob_id_used_by_rpdo));
     assert_int_equal(t->base, offsetof(lean_test_ram_t, x1800_cob_id_used_by_tpdo));
     assert_int_equal(rm->base, offsetof(lean_test_ram_t, x1600_rpdo1_mapping_parameter));
@@ -237,12 +238,22 @@ static void refuses_what_is_left_out(void **state)
     dev.nodeid_index = 0U;
     /* error behaviour 0x1029 (the description's entries plus one) */
     {
-        static const co_od_sub_t s1029[] = {
-            CO_OD_SUB(1U, (uint8_t)CO_UNSIGNED8, CO_SUB_RW, 1U, 0U, 0U)};
+        /* (its row after the description's rows) */
+        static co_od_sub_t rows[256];
         static co_od_entry_t od[64];
         uint16_t n = 0U;
+        uint16_t n_rows = 0U;
         bool added = false;
         assert_true(lean_test_dev.od_count < 64U);
+        for (uint16_t i = 0U; i < lean_test_dev.od_count; i++) {
+            const co_od_entry_t *e = &lean_test_dev.od[i];
+            if ((uint16_t)(e->rows + e->nsubs) > n_rows) {
+                n_rows = (uint16_t)(e->rows + e->nsubs);
+            }
+        }
+        assert_true(n_rows < 256U);
+        memcpy(rows, lean_test_dev.rows, n_rows * sizeof rows[0]);
+        rows[n_rows] = (co_od_sub_t)CO_OD_SUB(1U, (uint8_t)CO_UNSIGNED8, CO_SUB_RW, 1U, 0U, 0U);
         for (uint16_t i = 0U; i < lean_test_dev.od_count; i++) {
             if (!added && (lean_test_dev.od[i].index > 0x1029U)) {
                 od[n] = lean_test_dev.od[i];
@@ -250,7 +261,7 @@ static void refuses_what_is_left_out(void **state)
                 od[n].nsubs = 1U;
                 od[n].hook = 0U;
                 od[n].code = (uint8_t)CO_OBJ_ARRAY;
-                od[n].subs = s1029;
+                od[n].rows = n_rows;
                 n++;
                 added = true;
             }
@@ -258,10 +269,12 @@ static void refuses_what_is_left_out(void **state)
         }
         assert_true(added);
         dev.od = od;
+        dev.rows = rows;
         dev.od_count = n;
         assert_int_equal(start(&dev), CO_RESULT_DEV_INCOMPAT);
         tb_expect_none(BUS);
         dev.od = lean_test_dev.od;
+        dev.rows = lean_test_dev.rows;
         dev.od_count = lean_test_dev.od_count;
     }
     assert_int_equal(start(&dev), CO_OK);

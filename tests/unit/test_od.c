@@ -124,7 +124,7 @@ static void run_rows_describe_each_sub_index(void **state)
     assert_int_equal(e->nsubs, 2); /* sub 0, and one row for 1..8 */
     fx.n.ram.hist_n = 8U; /* (entries past the count read as no data: EMCY) */
     for (uint8_t k = 1U; k <= 8U; k++) {
-        assert_ptr_equal(co_od_find_sub(e, k, &d), &d);
+        assert_ptr_equal(co_od_find_sub(&td_dev, e, k, &d), &d);
         assert_int_equal(d.sub, k);
         assert_int_equal(d.type, CO_UNSIGNED32);
         assert_int_equal(d.flags, CO_SUB_RO); /* (no run bits) */
@@ -136,8 +136,8 @@ static void run_rows_describe_each_sub_index(void **state)
         assert_int_equal(len, 4);
         assert_int_equal(co_get_u32((const uint8_t *)&v), 0x1000U + k);
     }
-    assert_null(co_od_find_sub(e, 9, &d));
-    assert_null(co_od_find_sub(e, 0xFF, &d));
+    assert_null(co_od_find_sub(&td_dev, e, 9, &d));
+    assert_null(co_od_find_sub(&td_dev, e, 0xFF, &d));
     assert_int_equal(co_od_read(NODE, 0x1003, 9, &v, 4U, &len), CO_ERR_NO_SUB);
     /* 0x6099 sub 2: the run's limit 0..60000 (sub 1 written, sub 2 kept) */
     co_put_u32(b, 60001U);
@@ -163,11 +163,12 @@ static void rom_run_is_one_value(void **state)
         CO_OD_RUN(1U, 4U, (uint8_t)CO_UNSIGNED32, CO_SUB_RO | CO_SUB_ROM, 4U, 8U, 0U),
         CO_OD_SUB(7U, (uint8_t)CO_UNSIGNED16, CO_SUB_RW, 2U, 2U, 0U),
     };
-    static const co_od_entry_t e = CO_OD_ENTRY(0x3000U, 3U, 0U, (uint8_t)CO_OBJ_RECORD, rows);
+    static const co_od_entry_t e = CO_OD_ENTRY(0x3000U, 3U, 0U, (uint8_t)CO_OBJ_RECORD, 0U);
+    static const co_dev_t dev = {.od = &e, .rows = rows, .od_count = 1U};
     co_od_sub_t d;
     (void)state;
     for (uint8_t k = 1U; k <= 4U; k++) {
-        assert_ptr_equal(co_od_find_sub(&e, k, &d), &d);
+        assert_ptr_equal(co_od_find_sub(&dev, &e, k, &d), &d);
         assert_int_equal(d.sub, k);
         assert_int_equal(d.flags, CO_SUB_RO | CO_SUB_ROM);
         assert_int_equal(d.size, 4);
@@ -177,11 +178,11 @@ static void rom_run_is_one_value(void **state)
         assert_int_equal(d.off, 8);
     }
     assert_int_equal(co_od_run_len(&rows[1]), 4);
-    assert_null(co_od_find_sub(&e, 5U, &d));
-    assert_non_null(co_od_find_sub(&e, 7U, &d));
+    assert_null(co_od_find_sub(&dev, &e, 5U, &d));
+    assert_non_null(co_od_find_sub(&dev, &e, 7U, &d));
     assert_int_equal(d.type, CO_UNSIGNED16);
     assert_int_equal(d.off, 2);
-    assert_non_null(co_od_find_sub(&e, 0U, &d));
+    assert_non_null(co_od_find_sub(&dev, &e, 0U, &d));
     assert_int_equal(d.type, CO_UNSIGNED8);
 }
 

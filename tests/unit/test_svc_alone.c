@@ -28,16 +28,17 @@ typedef struct ram {
     uint8_t save_n;   /* 0x1010 sub0 */
 } ram_t;
 
-static const co_od_sub_t s1010[] = {
+/* the rows of 0x1005 (0), 0x1010 (1, 2) and 0x3000 (3) */
+static const co_od_sub_t rows[] = {
+    {0, CO_UNSIGNED32, CO_SUB_RW, 4, offsetof(ram_t, v1005), 0},
     {0, CO_UNSIGNED8, CO_SUB_R | CO_SUB_CONST | CO_SUB_ROM, 1, 0, 0},
     {1, CO_UNSIGNED32, CO_SUB_RW, 4, offsetof(ram_t, save), 0},
+    {0, CO_UNSIGNED32, CO_SUB_RW, 4, offsetof(ram_t, v3000), 0},
 };
-static const co_od_sub_t s1005[] = {{0, CO_UNSIGNED32, CO_SUB_RW, 4, offsetof(ram_t, v1005), 0}};
-static const co_od_sub_t s3000[] = {{0, CO_UNSIGNED32, CO_SUB_RW, 4, offsetof(ram_t, v3000), 0}};
 static const co_od_entry_t od[] = {
-    CO_OD_ENTRY(0x1005, 1, 1, CO_OBJ_VAR, s1005),
-    CO_OD_ENTRY(0x1010, 2, 0, CO_OBJ_ARRAY, s1010),
-    CO_OD_ENTRY(0x3000, 1, 0, CO_OBJ_VAR, s3000),
+    CO_OD_ENTRY(0x1005, 1, 1, CO_OBJ_VAR, 0),
+    CO_OD_ENTRY(0x1010, 2, 0, CO_OBJ_ARRAY, 1),
+    CO_OD_ENTRY(0x3000, 1, 0, CO_OBJ_VAR, 3),
 };
 static const uint8_t rom[1] = {1};
 static const ram_t defaults = {0x11U, 0x22U, {0U}, 0U};
@@ -45,6 +46,7 @@ static const co_od_default_t default_at[1] = {{0U, (uint16_t)sizeof(ram_t)}};
 static const co_dev_t dev = {
     .name = "alone",
     .od = od,
+    .rows = rows,
     .od_count = 3,
     .ram_size = sizeof(ram_t),
     .comm_end = 0,

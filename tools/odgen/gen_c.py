@@ -407,18 +407,25 @@ def generate(dev: Device, toml_name: str, warn=None, storage: bool = True) -> tu
     if rom:
         c.append(f"#define R(field) ((uint16_t)offsetof({cn}_rom_t, field))")
     c.append("")
+    # the rows of every table, one after the other, in one array
+    # (co_dev_t.rows); an entry names its first row (co_od_entry_t.rows)
+    c += ["/* The rows of the objects' tables, one table after the other (co_dev_t.rows). */",
+          "static const co_od_sub_t rows[] = {"]
+    first_row: dict[int, int] = {}
+    n_rows = 0
     for o in dev.objects:
         sh = share.get(o.index)
         if sh is not None and sh[0] != o.index:
             continue    # the table of the first PDO of its shape
-        c.append(f"/* 0x{o.index:04X} {comment(o.name)} ({o.code})" +
+        first_row[o.index] = n_rows
+        c.append(f"    /* {n_rows}: 0x{o.index:04X} {comment(o.name)} ({o.code})" +
                  (f", its RAM offsets from F({sh[1]}): the table of every PDO of this shape"
                   if sh is not None and sh[1] is not None else
                   ": the table of every object of these const values" if sh is not None
                   else "") + " */")
-        c.append(f"static const co_od_sub_t s{o.index:04X}[] = {{")
         for run in rows(o.subs):
             s = run[0]
+            n_rows += 1
             if s.hookio:
                 off = "0U"
             else:
@@ -436,18 +443,22 @@ def generate(dev: Device, toml_name: str, warn=None, storage: bool = True) -> tu
                 c.append(f"    CO_OD_RUN(0x{s.sub:02X}U, {len(run)}U, (uint8_t)CO_{s.type}, "
                          f"{flags_expr(s.flags)}, {s.size}U, {off}, {lim}), "
                          f"/* {comment(s.name)} .. {comment(run[-1].name)} */")
-        c.append("};")
-    c += ["", "static const co_od_entry_t od[] = {"]
+    if n_rows > 0xFFFF:
+        raise DescError(f"{n_rows} rows of sub-entries: the core's tables hold at most 65535")
+    c += ["};",
+          f"typedef char {cn}_rows_n[(sizeof rows / sizeof rows[0] == {n_rows}U) ? 1 : -1];",
+          "", "static const co_od_entry_t od[] = {"]
     for o in dev.objects:
         hook = f"{o.hook_slot + 1}U" if o.hook else "0U"
         sh = share.get(o.index)
         nrows = len(rows(o.subs))
+        at = first_row[(sh or (o.index,))[0]]
         if sh is None or sh[1] is None:
             c.append(f"    CO_OD_ENTRY(0x{o.index:04X}U, {nrows}U, {hook}, "
-                     f"(uint8_t)CO_OBJ_{o.code}, s{(sh or (o.index,))[0]:04X}),")
+                     f"(uint8_t)CO_OBJ_{o.code}, {at}U),")
         else:
             c.append(f"    CO_OD_ENTRY_AT(0x{o.index:04X}U, {nrows}U, {hook}, "
-                     f"(uint8_t)CO_OBJ_{o.code}, s{sh[0]:04X}, F({sh[1]})),")
+                     f"(uint8_t)CO_OBJ_{o.code}, {at}U, F({sh[1]})),")
     c += ["};", ""]
     conds = []
     for o, lead in same:
@@ -512,6 +523,7 @@ def generate(dev: Device, toml_name: str, warn=None, storage: bool = True) -> tu
     c += [f"const co_dev_t {cn}_dev = {{",
           f'    .name = "{dev.name}",',
           "    .od = od,",
+          "    .rows = rows,",
           "    .od_count = (uint16_t)(sizeof od / sizeof od[0]),",
           f"    .ram_size = (uint16_t)sizeof({cn}_ram_t),",
           f"    .comm_end = {first(('app', 'none'))},",

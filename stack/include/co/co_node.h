@@ -70,7 +70,8 @@ typedef enum co_hb_event {
  */
 typedef struct co_dev {
     const char *name;
-    const co_od_entry_t *od;
+    const co_od_entry_t *od;    /**< od_count entries, sorted by index */
+    const co_od_sub_t *rows;    /**< the entries' rows (co_od_entry_t.rows) */
     uint16_t od_count;
     uint16_t ram_size;          /**< bytes of the per-node RAM image */
     uint16_t comm_end;          /**< [0, comm_end): communication parameters */
@@ -120,6 +121,12 @@ typedef struct co_dev {
      *  fields above keep short offsets where a build leaves it unread. */
     co_settings_t set;
 } co_dev_t;
+
+/** The first of the rows of @p e, an entry of @p dev. */
+static inline const co_od_sub_t *co_od_rows(const co_dev_t *dev, const co_od_entry_t *e)
+{
+    return &dev->rows[e->rows];
+}
 
 struct co_node;
 

@@ -27,6 +27,7 @@
 #include "co/co_err.h"
 
 struct co_node;
+struct co_dev;
 
 /** CiA 301 data types (the values are the type indices 0x0001..0x001B). */
 typedef enum co_type {
@@ -138,26 +139,28 @@ typedef struct co_od_default {
 /** Number of slots of the core's service-hook table. */
 #define CO_SVC_N_HOOKS (7U + (unsigned)(CO_TIME) + (unsigned)(CO_ERROR_BEHAVIOUR))
 
-/** One object (12 bytes on a 32-bit CPU). Objects of the same shape (the
- *  PDOs' parameters) share one table of sub-entries: the RAM offsets in it
- *  count from @ref base, where each object's values start (0 for a table
- *  of its own, whose offsets are the values' own). */
+/** One object (10 bytes). Its rows are @ref nsubs rows of the device's one
+ *  table of rows (co_dev_t.rows) from row @ref rows on (co_od_rows).
+ *  Objects of the same shape (the PDOs' parameters) share their rows: the
+ *  RAM offsets in them count from @ref base, where each object's values
+ *  start (0 for rows of its own, whose offsets are the values' own). */
 typedef struct co_od_entry {
-    const co_od_sub_t *subs; /**< rows, sorted by sub-index */
     uint16_t index;
+    uint16_t rows;           /**< its first row in co_dev_t.rows */
     uint16_t base;           /**< added to the RAM offset of every sub-entry */
-    uint8_t  nsubs;          /**< number of rows in @ref subs (a row may be a run) */
+    uint8_t  nsubs;          /**< number of its rows (a row may be a run) */
     uint8_t  hook;           /**< hook slot + 1, or 0 for no hook */
     uint8_t  code;           /**< CO_OBJ_* */
     uint8_t  svc;            /**< CO_OD_SVC_OF(index): the owning service's hook */
 } co_od_entry_t;
 
 /** Initialisers of one co_od_entry_t (the generated dictionaries use them):
- *  a table of its own, and a shared one whose RAM offsets count from @p base. */
-#define CO_OD_ENTRY(index, nsubs, hook, code, subs) \
-    {(subs), (index), 0U, (nsubs), (hook), (code), (uint8_t)CO_OD_SVC_OF(index)}
-#define CO_OD_ENTRY_AT(index, nsubs, hook, code, subs, base) \
-    {(subs), (index), (base), (nsubs), (hook), (code), (uint8_t)CO_OD_SVC_OF(index)}
+ *  rows of its own from row @p rows of co_dev_t.rows, and shared ones whose
+ *  RAM offsets count from @p base. */
+#define CO_OD_ENTRY(index, nsubs, hook, code, rows) \
+    {(index), (rows), 0U, (nsubs), (hook), (code), (uint8_t)CO_OD_SVC_OF(index)}
+#define CO_OD_ENTRY_AT(index, nsubs, hook, code, rows, base) \
+    {(index), (rows), (base), (nsubs), (hook), (code), (uint8_t)CO_OD_SVC_OF(index)}
 
 /** Offset of the value of @p s (an entry of @p e) in the RAM image, or in
  *  the ROM image with CO_SUB_ROM. */
@@ -213,9 +216,10 @@ typedef struct co_od_hook {
 /** Find an entry by index (binary search). NULL if absent. */
 const co_od_entry_t *co_od_find(const co_od_entry_t *od, uint16_t count, uint16_t index);
 
-/** Find a sub-entry of @p e: its descriptor, written to @p buf (which
- *  the result points to), or NULL if absent. */
-const co_od_sub_t *co_od_find_sub(const co_od_entry_t *e, uint8_t sub, co_od_sub_t *buf);
+/** Find a sub-entry of @p e (an entry of @p dev): its descriptor, written
+ *  to @p buf (which the result points to), or NULL if absent. */
+const co_od_sub_t *co_od_find_sub(const struct co_dev *dev, const co_od_entry_t *e, uint8_t sub,
+                                  co_od_sub_t *buf);
 
 /** Number of sub-indices row @p r of a table describes (1, or a run's). */
 static inline uint32_t co_od_run_len(const co_od_sub_t *r)

@@ -609,39 +609,47 @@ co_err_t co_od_write_part(co_node_t *node, const co_od_entry_t *e, const co_od_s
     }
 }
 
-/* Restore [0, to) of the RAM image: zeros, then the default runs that
- * start inside it; a $NODEID run gets the node-ID (a PDO or EMCY COB-ID the
- * COB-ID base, which differs from it only with LSS) added to its value, a
- * native integer of 1, 2 or 4 bytes. */
+/* Restore [0, to) of the RAM image: zeros, then the default runs (co_od.h)
+ * that start inside it; a $NODEID run gets the node-ID (a PDO or EMCY
+ * COB-ID the COB-ID base, which differs from it only with LSS) added to its
+ * value. The runs come as wire bytes: a CPU that is not known to be
+ * little-endian turns its numbers of 2, 4 and 8 bytes to its own order. */
 void co_od_restore(co_node_t *node, uint16_t to)
 {
     const co_dev_t *dev = node->dev;
-    const uint8_t *def = (const uint8_t *)dev->defaults;
+    const uint8_t *d = dev->defaults;
     uint32_t at = 0U;
 
     (void)memset(node->ram, 0, to);
-    for (uint16_t i = 0U; i < dev->n_defaults; i++) {
-        const co_od_default_t *d = &dev->default_at[i];
-        uint32_t n = d->size & CO_OD_DEF_SIZE;
-        if (d->off < to) {
-            uint8_t *p = &node->ram[d->off];
-            co_copy(p, &def[at], n);
-            if ((d->size & CO_OD_DEF_NODEID) != 0U) {
-                uint8_t id = ((CO_LSS != 0) && ((d->size & CO_OD_DEF_COB) != 0U))
-                                 ? node->cob_base
-                                 : node->node_id;
-                /* added byte by byte from the least significant one, as
-                 * the value's own width wraps it */
-                uint32_t sum = id;
-                for (uint32_t k = 0U; k < n; k++) {
-                    uint8_t *b = CO_NATIVE_LE ? &p[k] : &p[n - 1U - k];
-                    sum += *b;
-                    *b = (uint8_t)sum;
-                    sum >>= 8U;
-                }
+    for (uint32_t i = dev->n_defaults; i > 0U; i--) {
+        uint32_t h = d[1];
+        uint32_t w = (h & CO_OD_DEF_W) >> 4U;
+        uint32_t n = ((h & CO_OD_DEF_N) + 1U) << w;
+        uint8_t *p;
+        at += d[0];
+        if (at >= to) {
+            break; /* (the runs are in the order of their places) */
+        }
+        p = &node->ram[at];
+        co_copy(p, &d[2], n);
+        if ((h & CO_OD_DEF_NODEID) != 0U) {
+            /* added byte by byte from the least significant one, as the
+             * value's own width wraps it */
+            uint32_t sum = ((CO_LSS != 0) && ((h & CO_OD_DEF_COB) != 0U)) ? node->cob_base
+                                                                            : node->node_id;
+            for (uint32_t k = 0U; k < n; k++) {
+                sum += p[k];
+                p[k] = (uint8_t)sum;
+                sum >>= 8U;
+            }
+        }
+        if (!CO_NATIVE_LE && (w != 0U)) {
+            for (uint32_t k = 0U; k < n; k += (1U << w)) {
+                co_from_wire(&p[k], &p[k], (uint8_t)(1U << w));
             }
         }
         at += n;
+        d = &d[2U + n];
     }
 }
 

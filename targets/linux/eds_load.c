@@ -70,7 +70,6 @@ struct eds_dev {
     co_od_entry_t *entries;
     co_od_sub_t *subs;
     uint8_t *defaults;
-    co_od_default_t *default_at;
     co_od_limit_t *limits;
     co_pdo_desc_t *pdo;
     char *warnings;
@@ -922,6 +921,71 @@ static int add_object(ctx_t *c, const sec_t *os, unsigned index)
     return 0;
 }
 
+/* A value of the default image (co_dev_t.defaults), of object @ref index. */
+typedef struct def_val {
+    const bsub_t *b;
+    uint16_t index;
+} def_val_t;
+
+static int cmp_def(const void *a, const void *b)
+{
+    return (int)((const def_val_t *)a)->b->s.off - (int)((const def_val_t *)b)->b->s.off;
+}
+
+/* 1 if any of the @p n bytes at @p p is not zero */
+static int any_set(const uint8_t *p, size_t n)
+{
+    for (size_t k = 0U; k < n; k++) {
+        if (p[k] != 0U) {
+            return 1;
+        }
+    }
+    return 0;
+}
+
+/* Append to the default runs @p out (*len bytes, *nd runs, the last ending
+ * at *end in the image) the @p n bytes of @p val (native numbers of 1 << w
+ * bytes) at @p pos: runs of at most 16 values as wire bytes (co_od.h). */
+static void def_run(uint8_t *out, size_t *len, size_t *nd, size_t *end, size_t pos,
+                    const uint8_t *val, size_t n, uint32_t w, uint8_t marks)
+{
+    size_t unit = (size_t)1U << w;
+
+    while ((pos - *end) > 255U) {
+        out[(*len)++] = 255U; /* a zero byte after 255 */
+        out[(*len)++] = CO_OD_DEF_RUN(1U, 0U);
+        out[(*len)++] = 0U;
+        *end += 256U;
+        (*nd)++;
+    }
+    for (size_t k = 0U; k < n; k += 16U * unit) {
+        size_t m = ((n - k) < (16U * unit)) ? (n - k) : (16U * unit);
+        out[(*len)++] = (uint8_t)((pos + k) - *end);
+        out[(*len)++] = (uint8_t)(CO_OD_DEF_RUN(m / unit, w) | marks);
+        for (size_t j = k; j < (k + m); j += unit) {
+            uint64_t v = 0U;
+            if (unit == 2U) {
+                uint16_t x;
+                (void)memcpy(&x, &val[j], 2U);
+                v = x;
+            } else if (unit == 4U) {
+                uint32_t x;
+                (void)memcpy(&x, &val[j], 4U);
+                v = x;
+            } else if (unit == 8U) {
+                (void)memcpy(&v, &val[j], 8U);
+            } else {
+                v = val[j];
+            }
+            for (size_t b = 0U; b < unit; b++) {
+                out[(*len)++] = (uint8_t)(v >> (8U * b)); /* wire order */
+            }
+        }
+        *end = pos + k + m;
+        (*nd)++;
+    }
+}
+
 static int cmp_obj(const void *a, const void *b)
 {
     return (int)((const bobj_t *)a)->index - (int)((const bobj_t *)b)->index;
@@ -1069,7 +1133,7 @@ static eds_dev_t *build(ctx_t *c, const char *name, const char *text)
     size_t ends[3] = {0U, 0U, 0U};
     size_t nlim = 0U;
     size_t nid = 0U;
-    size_t nruns;
+    def_val_t *dv = NULL;
     size_t nr;
     size_t nt;
     uint8_t *placed;
@@ -1135,26 +1199,28 @@ static eds_dev_t *build(ctx_t *c, const char *name, const char *text)
     }
     free(placed);
     off = (off + 7U) / 8U * 8U;
-    /* the default runs: the image in pieces of at most CO_OD_DEF_SIZE, then
-     * each $NODEID value as a run of its own (its bytes after the image) */
-    nruns = ((off + CO_OD_DEF_SIZE - 1U) / CO_OD_DEF_SIZE) + 2U + nid;
+    /* the default runs (co_od.h): at most the image's bytes, two header
+     * bytes per value and per 16 bytes of one, three per 256 bytes of gap */
     d->text = strdup(text);
     d->name = strdup(name);
-    d->defaults = (uint8_t *)calloc(1U, off + (4U * nid) + 8U);
-    d->default_at = (co_od_default_t *)calloc(nruns + 1U, sizeof *d->default_at);
+    d->defaults = (uint8_t *)calloc(1U, off + (2U * c->nsub) + (off / 8U) + (3U * (off / 256U)) + 16U);
+    dv = (def_val_t *)calloc((c->nsub != 0U) ? c->nsub : 1U, sizeof *dv);
     d->entries = (co_od_entry_t *)calloc((c->nobj != 0U) ? c->nobj : 1U, sizeof *d->entries);
     d->subs = (co_od_sub_t *)calloc((c->nsub != 0U) ? c->nsub : 1U, sizeof *d->subs);
     d->limits = (co_od_limit_t *)calloc((nlim != 0U) ? nlim : 1U, sizeof *d->limits);
-    if ((d->text == NULL) || (d->name == NULL) || (d->defaults == NULL) ||
-        (d->default_at == NULL) || (d->entries == NULL) ||
-        (d->subs == NULL) || (d->limits == NULL)) {
+    if ((d->text == NULL) || (d->name == NULL) || (d->defaults == NULL) || (dv == NULL) ||
+        (d->entries == NULL) || (d->subs == NULL) || (d->limits == NULL)) {
         (void)fail(c, NULL, NULL, "out of memory");
+        free(dv);
         eds_free(d);
         return NULL;
     }
     nlim = 0U;
     {
         size_t ns = 0U;
+        size_t len = 0U;
+        size_t nd = 0U;
+        size_t end = 0U;
         for (size_t i = 0U; i < c->nobj; i++) {
             const bobj_t *o = &c->obj[i];
             d->entries[i].index = o->index;
@@ -1170,43 +1236,38 @@ static eds_dev_t *build(ctx_t *c, const char *name, const char *text)
                     b->s.limit = (uint16_t)nlim;
                     d->limits[nlim++] = b->lim;
                 }
-                (void)memcpy(&d->defaults[b->s.off], b->val, b->s.size);
+                dv[ns].b = b;
+                dv[ns].index = o->index;
                 d->subs[ns++] = b->s;
             }
         }
-    }
-    {
-        size_t nd = 0U;
-        size_t at = off;
-        size_t pos = 0U;
-        while (pos < off) {
-            /* (no run across comm_end or app_end) */
-            size_t end = (pos < ends[0]) ? ends[0] : (pos < ends[1]) ? ends[1] : off;
-            size_t n = ((end - pos) < CO_OD_DEF_SIZE) ? (end - pos) : CO_OD_DEF_SIZE;
-            d->default_at[nd].off = (uint16_t)pos;
-            d->default_at[nd].size = (uint16_t)n;
-            nd++;
-            pos += n;
-        }
-        for (size_t i = 0U; i < c->nobj; i++) {
-            const bobj_t *o = &c->obj[i];
-            for (size_t k = 0U; k < o->n; k++) {
-                const bsub_t *b = &c->sub[o->first + k];
-                if ((b->s.flags & CO_SUB_NODEID) != 0U) {
-                    bool pdo = ((o->index >= 0x1400U) && (o->index <= 0x15FFU)) ||
-                               ((o->index >= 0x1800U) && (o->index <= 0x19FFU));
-                    bool cob = (pdo && (b->s.sub == 1U)) || (o->index == 0x1014U);
-                    (void)memcpy(&d->defaults[at], b->val, b->s.size);
-                    at += b->s.size;
-                    d->default_at[nd].off = b->s.off;
-                    d->default_at[nd].size = (uint16_t)(b->s.size | CO_OD_DEF_NODEID |
-                                                        (cob ? CO_OD_DEF_COB : 0U));
-                    nd++;
+        /* the default runs: the values that are not zero and the $NODEID
+         * ones, in the order of their places */
+        qsort(dv, ns, sizeof *dv, cmp_def);
+        for (size_t i = 0U; i < ns; i++) {
+            const bsub_t *b = dv[i].b;
+            bool pdo = ((dv[i].index >= 0x1400U) && (dv[i].index <= 0x15FFU)) ||
+                       ((dv[i].index >= 0x1800U) && (dv[i].index <= 0x19FFU));
+            bool cob = (pdo && (b->s.sub == 1U)) || (dv[i].index == 0x1014U);
+            uint8_t marks = ((b->s.flags & CO_SUB_NODEID) == 0U) ? 0U
+                            : (uint8_t)(CO_OD_DEF_NODEID | (cob ? CO_OD_DEF_COB : 0U));
+            size_t n = b->s.size;
+            uint32_t w = 0U;
+            if ((co_type_size(b->s.type) == n) && ((n == 2U) || (n == 4U) || (n == 8U))) {
+                w = (n == 2U) ? 1U : (n == 4U) ? 2U : 3U; /* a native number */
+            } else if (marks == 0U) {
+                while ((n > 0U) && (b->val[n - 1U] == 0U)) {
+                    n--; /* (bytes: without the zeros at the end) */
                 }
+            } else {
+                /* one byte */
+            }
+            if ((b->val != NULL) && ((marks != 0U) || (any_set(b->val, n) != 0))) {
+                def_run(d->defaults, &len, &nd, &end, b->s.off, b->val, n, w, marks);
             }
         }
-        d->dev.default_at = d->default_at;
         d->dev.n_defaults = (uint16_t)nd;
+        free(dv);
     }
     d->dev.name = d->name;
     d->dev.od = d->entries;
@@ -1352,7 +1413,6 @@ void eds_free(eds_dev_t *d)
     free(d->text);
     free(d->name);
     free(d->defaults);
-    free(d->default_at);
     free(d->entries);
     free(d->subs);
     free(d->limits);

@@ -192,6 +192,7 @@ def test_store_commands_have_no_default(tmp_path):
     r = run_odgen(src, tmp_path)
     assert r.returncode == 0, r.stderr
     c = (tmp_path / "store.c").read_text()
-    defaults = c[c.index("typedef struct store_defaults"):c.index("} store_defaults_t;")]
+    defaults = c[c.index("static const uint8_t defaults[]"):]
+    defaults = defaults[:defaults.index("};")]
     assert "x1017_producer_heartbeat_time" in defaults
     assert "x1010" not in defaults

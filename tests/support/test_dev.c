@@ -37,28 +37,6 @@ static const td_rom_t rom = {
     .n1011 = 6U,
 };
 
-/* The whole image as the first default runs, then the $NODEID values, each a
- * run the node-ID is added to (the EMCY COB-ID: the COB-ID base). */
-typedef struct td_defaults {
-    td_ram_t img;
-    uint32_t node_id;
-    uint32_t emcy_cob;
-} td_defaults_t;
-
-static const td_defaults_t defaults = {.img = {
-    .sync_cob = 0x80UL,
-    .time_cob = 0x80000100UL,
-    .node_id = 0U,
-    .emcy_cob = 0x80UL,
-    .err_beh = {0U, 1U, 1U},
-    .u16 = 0x1234U,
-    .u32 = 0xDEADBEEFUL,
-    .vstr = "hello",
-    .lim_u16 = 100U,
-    .rec0 = 0x11223344UL,
-    .rec1 = 7U,
-}, .node_id = 0U, .emcy_cob = 0x80UL};
-
 static const co_od_limit_t limits[] = {
     {10, 1000},
     {-100, 100},
@@ -260,19 +238,38 @@ static const co_od_entry_t od[] = {
     E(0x6099, s6099, CO_OBJ_ARRAY),  E(0x60FF, s60FF, CO_OBJ_VAR),
 };
 
-typedef char td_defaults_runs[((sizeof(td_ram_t) <= CO_OD_DEF_SIZE) &&
-                               (offsetof(td_defaults_t, node_id) == sizeof(td_ram_t)) &&
-                               (offsetof(td_defaults_t, emcy_cob) == sizeof(td_ram_t) + 4U))
-                                  ? 1
-                                  : -1];
-/* (a run never crosses comm_end or app_end: the image is three) */
-static const co_od_default_t default_at[] = {
-    {0U, F(u8)},
-    {F(u8), (uint16_t)(F(errreg) - F(u8))},
-    {F(errreg), (uint16_t)(sizeof(td_ram_t) - F(errreg))},
-    {F(node_id), (uint16_t)(4U | CO_OD_DEF_NODEID)},
-    {F(emcy_cob), (uint16_t)(4U | CO_OD_DEF_NODEID | CO_OD_DEF_COB)},
+/* Defaults (co_od.h, CO_OD_DEF_RUN): the values that are not zero and the
+ * $NODEID ones (0x100B, the EMCY COB-ID: its COB-ID base), in the order of
+ * their places, as wire bytes. D(at, end, n, w): a run's two bytes, of n
+ * values of 1 << w bytes at @p at, the run before it ending at @p end. */
+#define D(at, end, n, w) (uint8_t)((at) - (end)), CO_OD_DEF_RUN((n), (w))
+#define DN(at, end, marks) (uint8_t)((at) - (end)), (uint8_t)(CO_OD_DEF_RUN(1U, 2U) | (marks))
+#define END(field) (F(field) + Z(field))
+#define LE16(v) (uint8_t)(v), (uint8_t)((v) >> 8)
+#define LE32(v) (uint8_t)(v), (uint8_t)((v) >> 8), (uint8_t)((v) >> 16), (uint8_t)((v) >> 24)
+static const uint8_t defaults[] = {
+    /* communication parameters */
+    D(F(sync_cob), 0U, 1U, 2U), LE32(0x80UL),
+    D(F(time_cob), END(sync_cob), 1U, 2U), LE32(0x80000100UL),
+    D(F(err_beh), END(time_cob), 3U, 0U), 0U, 1U, 1U,
+    DN(F(node_id), END(err_beh), CO_OD_DEF_NODEID), LE32(0UL),
+    DN(F(emcy_cob), END(node_id), CO_OD_DEF_NODEID | CO_OD_DEF_COB), LE32(0x80UL),
+    /* application values */
+    D(F(u16), END(emcy_cob), 1U, 1U), LE16(0x1234U),
+    D(F(u32), END(u16), 1U, 2U), LE32(0xDEADBEEFUL),
+    D(F(vstr), END(u32), 5U, 0U), 'h', 'e', 'l', 'l', 'o',
+    D(F(lim_u16), F(vstr) + 5U, 1U, 1U), LE16(100U),
+    D(F(rec0), END(lim_u16), 1U, 2U), LE32(0x11223344UL),
+    D(F(rec1), END(rec0), 1U, 1U), LE16(7U),
 };
+/* (each run after the one before it, less than 256 bytes after it) */
+typedef char td_default_gaps[((F(time_cob) >= END(sync_cob)) && (F(u16) >= END(emcy_cob)) &&
+                              (F(u16) - END(emcy_cob) <= 255U) &&
+                              (F(vstr) - END(u32) <= 255U) && (F(rec0) > F(lim_u16)) &&
+                              (F(lim_u16) - (F(vstr) + 5U) <= 255U) &&
+                              (F(rec0) - END(lim_u16) <= 255U) && (F(rec1) == END(rec0)))
+                                 ? 1
+                                 : -1];
 
 const co_dev_t td_dev = {
     .name = "test-device",
@@ -282,15 +279,14 @@ const co_dev_t td_dev = {
     .ram_size = (uint16_t)sizeof(td_ram_t),
     .comm_end = F(u8),
     .app_end = F(errreg),
-    .defaults = &defaults,
+    .defaults = defaults,
     .rom = (const uint8_t *)&rom,
     .limits = limits,
     .n_hooks = TD_N_HOOKS,
     .boot_emcy_data = NULL,
     .stage = F(stage),
     .stage_size = (uint16_t)sizeof(((td_ram_t *)0)->stage),
-    .default_at = default_at,
-    .n_defaults = (uint16_t)(sizeof default_at / sizeof default_at[0]),
+    .n_defaults = 11U,
 };
 
 void td_start_cb(td_node_t *n, tb_bus_t *bus, uint8_t idx, uint8_t id, const co_dev_t *dev,

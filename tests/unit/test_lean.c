@@ -120,7 +120,7 @@ static void services_kept(void **state)
 
 /* The generated dictionary of a build without value limits: sub-entries
  * without a limit index (8 bytes each) and sparse defaults (only the values
- * that are not zero, co_dev_t.default_at); a reset communication restores
+ * that are not zero, co_dev_t.defaults); a reset communication restores
  * values of both kinds and the $NODEID-relative ones. */
 static void compact_dictionary(void **state)
 {
@@ -130,7 +130,7 @@ static void compact_dictionary(void **state)
     for (uint16_t i = 0U; i < lean_test_dev.od_count; i++) {
         subs = (uint16_t)(subs + lean_test_dev.od[i].nsubs);
     }
-    assert_non_null(lean_test_dev.default_at);
+    assert_non_null(lean_test_dev.defaults);
     assert_true((lean_test_dev.n_defaults > 0U) && (lean_test_dev.n_defaults < subs / 2U));
     assert_int_equal(start(&lean_test_dev), CO_RESULT_OK);
     tb_expect(BUS, "701 00");

@@ -41,8 +41,9 @@ static const co_od_entry_t od[] = {
     CO_OD_ENTRY(0x3000, 1, 0, CO_OBJ_VAR, 3),
 };
 static const uint8_t rom[1] = {1};
-static const ram_t defaults = {0x11U, 0x22U, {0U}, 0U};
-static const co_od_default_t default_at[1] = {{0U, (uint16_t)sizeof(ram_t)}};
+/* (co_od.h) v1005 = 0x11, v3000 = 0x22: two values of 4 bytes at 0 */
+static const uint8_t defaults[] = {0U, CO_OD_DEF_RUN(2U, 2U), 0x11U, 0U, 0U, 0U, 0x22U, 0U, 0U, 0U};
+typedef char alone_defaults_at[(offsetof(ram_t, v3000) == 4U) ? 1 : -1];
 static const co_dev_t dev = {
     .name = "alone",
     .od = od,
@@ -51,10 +52,9 @@ static const co_dev_t dev = {
     .ram_size = sizeof(ram_t),
     .comm_end = 0,
     .app_end = sizeof(ram_t),
-    .defaults = &defaults,
+    .defaults = defaults,
     .rom = rom,
     .n_hooks = 1,
-    .default_at = default_at,
     .n_defaults = 1,
 };
 

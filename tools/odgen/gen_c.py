@@ -316,87 +316,39 @@ def generate(dev: Device, toml_name: str, warn=None, storage: bool = True) -> tu
             v = field_init(f)
             c.append(f"    .{f.name} = {v if v is not None else ('{0}' if f.dims else '0U')},")
         c += ["};", ""]
-    # sparse defaults: only the values that are not zero, largest alignment
-    # first so that they follow each other without padding, and where each
-    # goes in the RAM image (co_dev_t.default_at); the core zeroes the rest.
-    # A $NODEID value is a run of its own, marked for the core to add the
-    # node-ID (or, for a PDO or EMCY COB-ID, the COB-ID base of LSS) to it:
-    # the core never walks the dictionary to find them.
-    nodeid = [s for f in ram for s in f.subs
-              if (s.flags & F_NODEID) and not s.rom and not s.hookio and s.fixed in (1, 2, 4)]
-    nodeid_fields = {s.field for s in nodeid if s.elem < 0}
-    items = []   # (member name, declaration, value, align, field or None, nodeid sub or None)
-    for f in ram:
-        if f.subs and f.name not in nodeid_fields and not all(store_command(s) for s in f.subs):
-            v = field_init(f)
-            if v is not None:
-                items.append((f.name, f.decl(), v, f.align, f, None))
-    for s in nodeid:
-        ctype, dims, align = scalar_ctype(s)
-        name = f"id{s.index:04X}_{s.sub:02X}"
-        items.append((name, f"{ctype} {name}", c_value(s) or "0U", align, None, s))
-    items.sort(key=lambda it: -it[3])
-    n_default_at = 0
+    # sparse defaults (co_dev_t.defaults, co_od.h): runs of the values that
+    # are not zero and of the $NODEID ones, in the order of their places in
+    # the RAM image, as wire bytes; the core zeroes the rest. A $NODEID value
+    # is a run of its own, marked for the core to add the node-ID (or, for a
+    # PDO or EMCY COB-ID, the COB-ID base of LSS) to it: the core never walks
+    # the dictionary to find them.
     c += [f"#define F(field) ((uint16_t)offsetof({cn}_ram_t, field))", ""]
-    if items:
-        c += ["/* Defaults of the RAM image that are not zero and the $NODEID ones (they",
-              " * hold the offset; the core adds the node-ID when it restores them), one",
-              " * after the other without padding, and where each goes. */",
-              f"typedef struct {cn}_defaults {{"]
-        c += [f"    {decl};" for _, decl, _, _, _, _ in items]
-        c += [f"}} {cn}_defaults_t;", f"static const {cn}_defaults_t defaults = {{"]
-        c += [f"    .{name} = {v}," for name, _, v, _, _, _ in items]
-        c += ["};"]
-        last = items[-1][0]
-        size = " + ".join(f"sizeof defaults.{it[0]}" for it in items)
-        c += [f"typedef char {cn}_defaults_packed[(offsetof({cn}_defaults_t, {last}) + "
-              f"sizeof defaults.{last} == {size}) ? 1 : -1];",
-              "static const co_od_default_t default_at[] = {"]
-        # values next to each other in the RAM image (declared one after the
-        # other in one region, the second of no larger alignment: no padding
-        # between them on any ABI) go in one run, one default_at entry, of at
-        # most CO_OD_DEF_SIZE bytes
-        order = [f.name for region, _ in REGIONS for f in ram if f.region == region]
-        runs = []
-        for it in items:
-            f = it[4]
-            prev = runs[-1][-1][4] if runs else None
-            if f is not None and prev is not None and \
-                    order.index(f.name) == order.index(prev.name) + 1 and \
-                    f.align <= prev.align and f.region == prev.region and \
-                    sum(x[4].size for x in runs[-1]) + f.size <= DEF_SIZE_MAX:
-                runs[-1].append(it)
-            else:
-                runs.append([it])
+    runs = default_runs(ram)
+    n_default_at = len(runs)
+    if runs:
+        c += ["/* Defaults of the RAM image (co_od.h, CO_OD_DEF_RUN): the values that are",
+              " * not zero and the $NODEID ones (the core adds the node-ID to them), in",
+              " * the order of their places, as wire bytes. */",
+              "static const uint8_t defaults[] = {"]
+        checks, end, n_bytes = [], "0U", 0
         for r in runs:
-            f, s = r[0][4], r[0][5]
-            if s is not None:
-                kind = "CO_OD_DEF_NODEID" + (" | CO_OD_DEF_COB" if is_pdo_emcy_cob(s) else "")
-                c.append(f"    {{{off_expr(s)}, (uint16_t)(sizeof defaults.{r[0][0]} | {kind})}},")
-                n_default_at += 1
-                continue
-            if f.size > DEF_SIZE_MAX:
-                # one value longer than a run: in pieces
-                for at in range(0, f.size, DEF_SIZE_MAX):
-                    n = min(DEF_SIZE_MAX, f.size - at)
-                    c.append(f"    {{(uint16_t)(F({f.name}) + {at}U), {n}U}},")
-                    n_default_at += 1
-                continue
-            size = " + ".join(f"sizeof defaults.{it[0]}" for it in r)
-            c.append(f"    {{F({f.name}), (uint16_t)({size})}},")
-            n_default_at += 1
-        c += ["};"]
-        merged = [r for r in runs if len(r) > 1]
-        if merged:
-            c += ["/* each run is one stretch of the RAM image */",
-                  f"typedef char {cn}_default_runs[(" + " && ".join(
-                      f"(F({r[-1][0]}) + sizeof defaults.{r[-1][0]} == F({r[0][0]}) + " +
-                      " + ".join(f"sizeof defaults.{it[0]}" for it in r) + ")" for r in merged) +
-                  ") ? 1 : -1];"]
-        c += [""]
-    else:
-        c += ["/* Every value of the RAM image defaults to 0. */",
-              "static const co_od_default_t default_at[1] = {{0U, 0U}};", ""]
+            head = f"CO_OD_DEF_RUN({r.n}U, {r.w}U)"
+            if r.flags:
+                head = f"(uint8_t)({head} | {' | '.join(r.flags)})"
+            gap = f"(uint8_t)({r.at} - ({end}))" if r.at is not None else "255U"
+            c.append(f"    {gap}, {head}, {', '.join(f'0x{x:02X}U' for x in r.data)},"
+                     f" /* {comment(r.what)} */")
+            if r.at is not None:
+                checks.append(f"((int){r.at} <= 255)" if end == "0U" else
+                              f"((int){r.at} - (int)({end}) >= 0) && "
+                              f"((int){r.at} - (int)({end}) <= 255)")
+                checks += [f"({x} == {y})" for x, y in r.joins]
+                end = f"{r.at} + {len(r.data)}U"
+            else:
+                end = f"{end} + 256U"   # (a zero byte after a gap of 255)
+            n_bytes += 2 + len(r.data)
+        c += ["};", f"typedef char {cn}_default_runs[((sizeof defaults == {n_bytes}U) &&\n    " +
+              " &&\n    ".join(checks) + ") ? 1 : -1];", ""]
     if dev.limits:
         c.append("static const co_od_limit_t limits[] = {")
         for lo, hi in dev.limits:
@@ -528,7 +480,7 @@ def generate(dev: Device, toml_name: str, warn=None, storage: bool = True) -> tu
           f"    .ram_size = (uint16_t)sizeof({cn}_ram_t),",
           f"    .comm_end = {first(('app', 'none'))},",
           f"    .app_end = {first(('none',))},",
-          f"    .defaults = {'&defaults' if items else 'NULL'},",
+          f"    .defaults = {'defaults' if runs else 'NULL'},",
           f"    .rom = {'(const uint8_t *)&rom' if rom else 'NULL'},",
           f"    .limits = {'limits' if dev.limits else 'NULL'},",
           f"    .n_hooks = {up}_N_HOOKS,",
@@ -542,7 +494,6 @@ def generate(dev: Device, toml_name: str, warn=None, storage: bool = True) -> tu
           f"    .nodeid_index = 0x{(dev.nodeid_object or 0):04X}U,",
           f"    .stage = {'F(sdo_stage)' if stage else '0U'},",
           f"    .stage_size = {stage}U,",
-          "    .default_at = default_at,",
           f"    .n_defaults = {n_default_at}U,",
           "};", "",
           f"void {cn}_config({cn}_node_t *n, co_node_config_t *cfg)",
@@ -718,7 +669,90 @@ def mask_table(dev: Device, n_tpdo: int) -> list:
     return out
 
 
-DEF_SIZE_MAX = 0x3FFF   # CO_OD_DEF_SIZE: the bytes of one default run
+@dataclass
+class DefRun:
+    at: str | None                # offset of its first value (C); None: a zero byte after 255
+    w: int                        # log2 of the size of its values
+    data: bytes                   # wire bytes
+    flags: list[str]
+    what: str
+    n: int = 1                    # number of values
+    joins: list = field(default_factory=list)   # (C, C): offsets the merge relies on
+
+
+def default_bytes(s: Sub) -> bytes:
+    """The default of a RAM value as wire bytes (b"" for none)."""
+    v = s.default
+    if v is None:
+        return b""
+    if s.kind == "real":
+        return struct.pack("<f" if s.fixed == 4 else "<d", v)
+    if s.kind in ("int", "uint", "bool", "time"):
+        return wire(s, v)
+    return encoded_default(s)[:s.size]
+
+
+def default_runs(ram: list[Field]) -> list[DefRun]:
+    """The default runs of the RAM image @p ram (co_od.h, CO_OD_DEF_RUN): each
+    value that is not zero and each $NODEID value (a run of its own), in the
+    order of their places; values of one size next to each other in one
+    region (at most one byte of zeros between values of one byte) make one
+    run of at most 16 values; gaps above 255 bytes get a zero byte in between."""
+    at = offsets(ram)
+    vals = []   # (offset, region, w, bytes, nodeid flags or None, C offset, what)
+    seen = set()
+    for f in ram:
+        if not f.subs or f.region == "rom" or all(store_command(s) for s in f.subs):
+            continue
+        for s in f.subs:
+            if s.rom or s.hookio:
+                continue
+            off = at[f.name] + max(s.elem, 0) * s.size
+            if off in seen:
+                continue    # (one value several sub-entries read)
+            seen.add(off)
+            data = default_bytes(s)
+            num = s.kind in ("int", "uint", "bool", "real") and s.fixed in (2, 4, 8)
+            w = {2: 1, 4: 2, 8: 3}[s.fixed] if num else 0
+            what = f"0x{s.index:04X}:{s.sub:02X} {s.name}"
+            if (s.flags & F_NODEID) and s.fixed in (1, 2, 4):
+                flags = ["CO_OD_DEF_NODEID"] + (["CO_OD_DEF_COB"] if is_pdo_emcy_cob(s) else [])
+                vals.append((off, f.region, w, data.ljust(s.fixed, b"\0"), flags,
+                             off_expr(s), what + " ($NODEID)"))
+                continue
+            if not any(data):
+                continue
+            if w == 0:
+                data = data.rstrip(b"\0")
+            vals.append((off, f.region, w, data, None, off_expr(s), what))
+    vals.sort(key=lambda v: v[0])
+    runs: list[DefRun] = []
+    end = 0     # where the last run ends (the generator's layout; the source checks it)
+    prev = None
+    for off, region, w, data, flags, cexpr, what in vals:
+        unit = 1 << w
+        if prev is not None and flags is None and prev[4] is None and prev[1] == region and \
+                prev[2] == w and off - end in ((0, 1) if w == 0 else (0,)) and \
+                (len(runs[-1].data) + off - end + len(data)) >> w <= 16:
+            r = runs[-1]
+            r.data += bytes(off - end) + data
+            r.n = len(r.data) >> w
+            r.what += ", " + what
+            r.joins.append((cexpr, f"{r.at} + {len(r.data) - len(data)}U"))
+            end = off + len(data)
+            prev = (off, region, w, data, flags)
+            continue
+        while off - end > 255:
+            runs.append(DefRun(None, 0, b"\0", [], "(gap)"))
+            end += 256
+        for k in range(0, len(data), 16 * unit):
+            part = data[k:k + 16 * unit]
+            c_at = cexpr if k == 0 else f"(uint16_t)({cexpr} + {k}U)"
+            runs.append(DefRun(c_at, w, part, flags or [], what, len(part) >> w))
+        end = off + len(data)
+        prev = (off, region, w, data, flags)
+    return runs
+
 
 
 def is_pdo_emcy_cob(s) -> bool:

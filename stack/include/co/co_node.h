@@ -77,11 +77,9 @@ typedef struct co_dev {
     uint16_t comm_end;          /**< [0, comm_end): communication parameters */
     uint16_t app_end;           /**< [comm_end, app_end): stored application values;
                                      [app_end, ram_size): not stored */
-    const void *defaults;       /**< the values of the default runs
-                                     (default_at), one after the other */
+    const uint8_t *defaults;    /**< n_defaults default runs (co_od.h: CO_OD_DEF_RUN) */
     const uint8_t *rom;         /**< const values (CO_SUB_ROM) */
     const co_od_limit_t *limits;
-    uint8_t n_hooks;            /**< hook slots the node's hook table must have */
     const uint8_t *boot_emcy_data; /**< 5 bytes, with set.nmt.boot_emcy */
     const co_pdo_desc_t *pdo;   /**< n_rpdo RPDOs, then n_tpdo TPDOs */
     uint16_t n_rpdo;
@@ -109,14 +107,12 @@ typedef struct co_dev {
      *  are then written in place as they arrive). */
     uint16_t stage;
     uint16_t stage_size;
-    /** Defaults: where each run of @ref defaults goes, n_defaults of them,
-     *  in the order they follow each other there without padding (runs of at
-     *  most CO_OD_DEF_SIZE bytes, none across comm_end or app_end); the rest of the image defaults to 0. The
-     *  generator lists only the values that are not zero and each
-     *  $NODEID-relative value as a run of its own (CO_OD_DEF_NODEID); a
-     *  dense image is runs over the whole image followed by those. */
-    const co_od_default_t *default_at;
+    /** Default runs in @ref defaults: the generator lists the values that
+     *  are not zero and each $NODEID-relative value (a run of its own, marked
+     *  CO_OD_DEF_NODEID), in the order of their places, none across
+     *  comm_end or app_end. */
     uint16_t n_defaults;
+    uint8_t n_hooks;            /**< hook slots the node's hook table must have */
     /** The personality (co_settings.h); all zero: CiA 301. Last, so that the
      *  fields above keep short offsets where a build leaves it unread. */
     co_settings_t set;

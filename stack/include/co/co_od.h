@@ -102,19 +102,25 @@ typedef struct co_od_sub {
     CO_OD_SUB((uint8_t)((sub) + (n) - 1U), (type), \
               (uint16_t)((flags) | (((n) - 1U) << CO_SUB_RUN_SHIFT)), (size), (off), (limit))
 
-/** Where one run of the default image goes (co_dev_t.default_at). */
-typedef struct co_od_default {
-    uint16_t off;  /**< offset into the RAM image */
-    uint16_t size; /**< bytes (CO_OD_DEF_SIZE), and the CO_OD_DEF_* marks */
-} co_od_default_t;
-
-#define CO_OD_DEF_SIZE   0x3FFFU /**< co_od_default_t.size: the run's bytes */
+/* Defaults (co_dev_t.defaults, co_dev_t.n_defaults runs): the values of
+ * the RAM image that are not zero and the $NODEID-relative ones, as runs in
+ * the order of their places in the image (the rest of the image is zero).
+ * A run is two bytes, then its values as wire bytes (little-endian):
+ *   [0] its gap: the bytes of zeros between the end of the run before it
+ *       (the start of the image) and its place (a gap above 255: a run of
+ *       a zero byte in between);
+ *   [1] CO_OD_DEF_RUN(n, w): n values (1..16) of 1 << w bytes each (w 0..3:
+ *       numbers of 2, 4 and 8 bytes are native integers in the image), and
+ *       the marks CO_OD_DEF_NODEID / CO_OD_DEF_COB. */
+#define CO_OD_DEF_RUN(n, w) ((uint8_t)((((uint32_t)(w)) << 4U) | ((uint32_t)(n) - 1U)))
+#define CO_OD_DEF_N      0x0FU /**< header byte 1: the run's number of values - 1 */
+#define CO_OD_DEF_W      0x30U /**< header byte 1: log2 of the size of its values */
 /** The run is one $NODEID-relative value of 1, 2 or 4 bytes (CO_SUB_NODEID):
  *  the node-ID is added to it when it is restored. */
-#define CO_OD_DEF_NODEID 0x8000U
+#define CO_OD_DEF_NODEID 0x80U
 /** With CO_OD_DEF_NODEID: a PDO or EMCY COB-ID, whose base is the node's
  *  COB-ID base (it differs from the node-ID only with LSS). */
-#define CO_OD_DEF_COB    0x4000U
+#define CO_OD_DEF_COB    0x40U
 
 /** The core service that owns the object at @p index (co_od_entry_t.svc):
  *  its hook's slot + 1 in the core's const service-hook table (co_svc_hooks,

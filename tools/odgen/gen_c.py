@@ -257,7 +257,7 @@ def generate(dev: Device, toml_name: str, warn=None, storage: bool = True) -> tu
 
     # ---------------- header
     h = [banner, f"#ifndef CODEV_{up}_H", f"#define CODEV_{up}_H", "",
-         "#include <stdint.h>", "", '#include "co/co_node.h"', "",
+         "#include <stdint.h>", "#include <string.h>", "", '#include "co/co_node.h"', "",
          f"/** RAM image of one {dev.name} node ({ram_size} bytes on a host with natural",
          " *  alignment): 16/32/64-bit values are native integers, other types wire bytes. */",
          f"typedef struct {cn}_ram {{"]
@@ -294,8 +294,16 @@ def generate(dev: Device, toml_name: str, warn=None, storage: bool = True) -> tu
           f"    co_pdo_t pdo[{max(n_pdo_h, 1)}U];",
           f"}} {cn}_node_t;", "",
           "/** Zero @p cfg and point it at the device, the RAM image and the hook table",
-          " *  of @p n; the caller sets hal, node_id and callbacks, then co_node_init(). */",
-          f"void {cn}_config({cn}_node_t *n, co_node_config_t *cfg);", "",
+          " *  of @p n; the caller sets hal, node_id and callbacks, then co_node_init()",
+          " *  (inline: one caller, no call). */",
+          f"static inline void {cn}_config({cn}_node_t *n, co_node_config_t *cfg)",
+          "{",
+          "    (void)memset(cfg, 0, sizeof *cfg);",
+          f"    cfg->dev = &{cn}_dev;",
+          "    cfg->ram = &n->ram;",
+          f"    cfg->hooks = {'n->hooks' if n_hooks else 'NULL'}; /* {n_hooks} hook slots */",
+          "    cfg->pdo = n->pdo;",
+          "}", "",
           f"#endif /* CODEV_{up}_H */", ""]
 
     # ---------------- source
@@ -495,15 +503,7 @@ def generate(dev: Device, toml_name: str, warn=None, storage: bool = True) -> tu
           f"    .stage = {'F(sdo_stage)' if stage else '0U'},",
           f"    .stage_size = {stage}U,",
           f"    .n_defaults = {n_default_at}U,",
-          "};", "",
-          f"void {cn}_config({cn}_node_t *n, co_node_config_t *cfg)",
-          "{",
-          "    (void)memset(cfg, 0, sizeof *cfg);",
-          f"    cfg->dev = &{cn}_dev;",
-          "    cfg->ram = &n->ram;",
-          f"    cfg->hooks = {'n->hooks' if n_hooks else 'NULL'}; /* {n_hooks} hook slots */",
-          "    cfg->pdo = n->pdo;",
-          "}", ""]
+          "};", ""]
     return "\n".join(h), "\n".join(c)
 
 

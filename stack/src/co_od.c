@@ -247,11 +247,11 @@ static uint32_t data_size(const uint8_t *v, const co_od_sub_t *s)
 
 /* ------------------------------------------------------ service hooks */
 
-/* The hook of the service that owns @p e (its slot, co_od_entry_t.svc, is
- * set with the table: CO_OD_SVC_OF), or NULL. */
+/* The hook of the service that owns @p e (its slot, co_od_svc, is set with
+ * the table: CO_OD_SVC_OF), or NULL. */
 static inline const co_svc_hook_t *svc_hook(const co_od_entry_t *e)
 {
-    return (e->svc != 0U) ? &co_svc_hooks[e->svc - 1U] : NULL;
+    return (co_od_svc(e) != 0U) ? &co_svc_hooks[co_od_svc(e) - 1U] : NULL;
 }
 
 /* Before a stored value is read: the owning service's read hook. */
@@ -314,10 +314,11 @@ uint8_t co_od_array_len(const co_node_t *node, uint16_t index, uint8_t type, uin
 
 static inline co_od_hook_t *hook_of(const co_node_t *node, const co_od_entry_t *e)
 {
-    if ((e->hook == 0U) || (node->hooks == NULL) || (e->hook > node->dev->n_hooks)) {
+    /* (a hooked entry's base is its slot) */
+    if (!co_od_hooked(e) || (node->hooks == NULL) || (e->base >= node->dev->n_hooks)) {
         return NULL;
     }
-    return &node->hooks[e->hook - 1U];
+    return &node->hooks[e->base];
 }
 
 /* The entry's application hook, read or (@p write) write, on @p io (the
@@ -365,7 +366,7 @@ co_err_t co_od_read_part(co_node_t *node, const co_od_entry_t *e, const co_od_su
         /* before a stored value is read: the owning service's hook, then
          * the application's (either may refresh it or veto) */
         co_err_t err = svc_read(node, e, s);
-        if ((err == CO_OK) && (e->hook != 0U)) {
+        if ((err == CO_OK) && co_od_hooked(e)) {
             co_od_io_t io = {NULL, NULL, NULL, NULL, 0U, NULL, 0U, 0U, false};
             err = app_io(node, e, s, false, &io);
         }
@@ -512,7 +513,7 @@ CO_HOT co_err_t write_value(co_node_t *node, const co_od_entry_t *e, const co_od
             return err;
         }
     }
-    if (!CO_FAST || (e->hook != 0U) || ((s->flags & CO_SUB_HOOKIO) != 0U)) {
+    if (!CO_FAST || co_od_hooked(e) || ((s->flags & CO_SUB_HOOKIO) != 0U)) {
         /* (a build for size asks app_io without looking first: no hook,
          * nothing to do) */
         /* the application's hook with the whole value (none for a value

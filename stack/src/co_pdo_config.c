@@ -103,7 +103,7 @@ static uint16_t direct_code(const co_node_t *node, const co_od_entry_t *e, const
     uint32_t n = tx ? ((uint32_t)bits >> 3U) : size; /* TPDO: bytes mapped, RPDO: value size */
     uint32_t code = off | ((n - 1U) << 12U);
 
-    if ((e->hook != 0U) || ((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) != 0U) ||
+    if (co_od_hooked(e) || ((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) != 0U) ||
         (s->size != size) || (off >= CO_PDO_OFF_END) || (CO_PDO_BITWISE && (((pos | bits) & 7U) != 0U)) ||
         (tx ? (((svc & CO_SVC_READ) != 0U) || (!CO_NATIVE_LE && (n != size)))
             : ((svc != 0U) || ((s->flags & CO_SUB_LIMIT) != 0U) ||

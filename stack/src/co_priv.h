@@ -503,7 +503,7 @@ void co_od_restore(co_node_t *node, uint16_t to);
 /* The CO_SVC_* operations the service owning @p e hooks (0: none). */
 static inline uint8_t co_od_svc_ops(const co_od_entry_t *e)
 {
-    return (e->svc != 0U) ? co_svc_hooks[e->svc - 1U].ops : 0U;
+    return (co_od_svc(e) != 0U) ? co_svc_hooks[co_od_svc(e) - 1U].ops : 0U;
 }
 /* Store a checked value of @p s from wire bytes (the engine's commit). */
 void co_od_commit(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,

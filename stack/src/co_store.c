@@ -150,7 +150,7 @@ static uint16_t layout_sig(const co_dev_t *dev)
                 co_od_sub_t sd;
                 const co_od_sub_t *s = co_od_row_sub(&r[k], j, &sd);
                 if (((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) == 0U) &&
-                    (s->off < dev->app_end)) {
+                    (co_od_off(e, s) < dev->app_end)) {
                     co_put_u16(&b[0], e->index);
                     b[2] = s->sub;
                     b[3] = s->type;

@@ -1225,9 +1225,7 @@ static eds_dev_t *build(ctx_t *c, const char *name, const char *text)
             const bobj_t *o = &c->obj[i];
             d->entries[i].index = o->index;
             d->entries[i].nsubs = (uint8_t)o->n;
-            d->entries[i].hook = 0U;
-            d->entries[i].code = o->code;
-            d->entries[i].svc = (uint8_t)CO_OD_SVC_OF(o->index);
+            d->entries[i].tag = CO_OD_TAG(o->index, o->code, false);
             d->entries[i].rows = (uint16_t)ns;
             for (size_t k = 0U; k < o->n; k++) {
                 bsub_t *b = &c->sub[o->first + k];

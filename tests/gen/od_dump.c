@@ -151,7 +151,7 @@ int main(int argc, char **argv)
         const co_od_entry_t *e = &dev->od[i];
         const co_od_sub_t *r = co_od_rows(dev, e);
         printf("  {\"index\": %u, \"code\": %u, \"hook\": %u, \"subs\": [\n", (unsigned)e->index,
-               (unsigned)e->code, (unsigned)e->hook);
+               (unsigned)co_od_code(e), co_od_hooked(e) ? (unsigned)e->base + 1U : 0U);
         uint32_t n_subs = 0U;
         uint32_t done = 0U;
         for (uint8_t k = 0U; k < e->nsubs; k++) {

@@ -185,7 +185,8 @@ static const co_od_sub_t rows[] = {
     /* 0x2021 */ CO_OD_SUB(0, (uint8_t)CO_INTEGER16, CO_SUB_RW | CO_SUB_LIMIT, Z(lim_i16), F(lim_i16), 1U),
     /* 0x2022 */ RAM(0, CO_UNSIGNED32, CO_SUB_WO, wo_u32),
     /* 0x2023 */ ROM(0, CO_UNSIGNED32, CO_SUB_RO | CO_SUB_CONST, x2023),
-    /* 0x2100 */ RAM(0, CO_UNSIGNED32, CO_SUB_RW, hooked),
+    /* 0x2100 (hooked: its RAM offsets count from its base, its hook slot) */
+    CO_OD_SUB(0, (uint8_t)CO_UNSIGNED32, CO_SUB_RW, Z(hooked), (uint16_t)(F(hooked) - TD_HOOK_2100), 0U),
     /* 0x2200 */ CO_OD_SUB(0, (uint8_t)CO_DOMAIN, CO_SUB_RW | CO_SUB_HOOKIO, 0U, 0U, 0U),
     /* 0x2201 */ CO_OD_SUB(0, (uint8_t)CO_UNSIGNED32, CO_SUB_RW | CO_SUB_HOOKIO, 4U, 0U, 0U),
     /* 0x2300 */

@@ -175,8 +175,8 @@ static void shared_sub_tables(void **state)
     assert_int_equal(t->base, offsetof(lean_test_ram_t, x1800_cob_id_used_by_tpdo));
     assert_int_equal(rm->base, offsetof(lean_test_ram_t, x1600_rpdo1_mapping_parameter));
     assert_int_equal(tm->base, offsetof(lean_test_ram_t, x1A00_tpdo1_mapping_parameter));
-    assert_int_equal(r->code, CO_OBJ_RECORD);
-    assert_int_equal(st->code, CO_OBJ_ARRAY);
+    assert_int_equal(co_od_code(r), CO_OBJ_RECORD);
+    assert_int_equal(co_od_code(st), CO_OBJ_ARRAY);
     assert_int_equal(start(&lean_test_dev), CO_RESULT_OK);
     tb_expect(BUS, "701 00");
     /* each PDO's own defaults ($NODEID + 0x200 / 0x180) */
@@ -259,8 +259,8 @@ static void refuses_what_is_left_out(void **state)
                 od[n] = lean_test_dev.od[i];
                 od[n].index = 0x1029U;
                 od[n].nsubs = 1U;
-                od[n].hook = 0U;
-                od[n].code = (uint8_t)CO_OBJ_ARRAY;
+                od[n].base = 0U;
+                od[n].tag = CO_OD_TAG(0x1029U, CO_OBJ_ARRAY, false);
                 od[n].rows = n_rows;
                 n++;
                 added = true;

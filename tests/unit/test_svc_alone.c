@@ -237,9 +237,9 @@ static void test_owner_slots(void **state)
         assert_true(owner[k].slot <= CO_SVC_N_HOOKS);
     }
     /* the table's entries carry it */
-    assert_int_equal(od[0].svc, 3U);
-    assert_int_equal(od[1].svc, 6U);
-    assert_int_equal(od[2].svc, 0U);
+    assert_int_equal(co_od_svc(&od[0]), 3U);
+    assert_int_equal(co_od_svc(&od[1]), 6U);
+    assert_int_equal(co_od_svc(&od[2]), 0U);
 }
 
 /* two plug-ins on one object: the second bind is refused, the first hook stays */

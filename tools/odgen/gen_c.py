@@ -394,6 +394,8 @@ def generate(dev: Device, toml_name: str, warn=None, storage: bool = True) -> tu
                     f"(uint16_t)({m}({s.field}) + {s.elem * s.size}U)"
                 if sh is not None and not s.rom:
                     off = f"(uint16_t)({off} - F({sh[1]}))"
+                elif o.hook and not s.rom:
+                    off = f"(uint16_t)({off} - {o.hook_slot}U)"   # (from its base, its slot)
             lim = f"{s.limit_slot}U" if s.limit_slot >= 0 else "0U"
             if len(run) == 1:
                 c.append(f"    CO_OD_SUB(0x{s.sub:02X}U, (uint8_t)CO_{s.type}, "
@@ -417,7 +419,7 @@ def generate(dev: Device, toml_name: str, warn=None, storage: bool = True) -> tu
             c.append(f"    CO_OD_ENTRY(0x{o.index:04X}U, {nrows}U, {hook}, "
                      f"(uint8_t)CO_OBJ_{o.code}, {at}U),")
         else:
-            c.append(f"    CO_OD_ENTRY_AT(0x{o.index:04X}U, {nrows}U, {hook}, "
+            c.append(f"    CO_OD_ENTRY_AT(0x{o.index:04X}U, {nrows}U, "
                      f"(uint8_t)CO_OBJ_{o.code}, {at}U, F({sh[1]})),")
     c += ["};", ""]
     conds = []
@@ -615,6 +617,8 @@ def shared_tables(dev: Device, ram: list[Field]):
     first: dict = {}
     for o in dev.objects:
         names = {s.field for s in o.subs if s.field and not s.rom and not s.hookio}
+        if o.hook:
+            continue    # (a hooked object's base is its hook slot: rows of its own)
         if not names and not all(s.rom for s in o.subs):
             continue
         if any(owners[n] != {o.index} or n not in by_name for n in names):

@@ -145,28 +145,62 @@ typedef struct co_od_sub {
 /** Number of slots of the core's service-hook table. */
 #define CO_SVC_N_HOOKS (7U + (unsigned)(CO_TIME) + (unsigned)(CO_ERROR_BEHAVIOUR))
 
-/** One object (10 bytes). Its rows are @ref nsubs rows of the device's one
+/** One object (8 bytes). Its rows are @ref nsubs rows of the device's one
  *  table of rows (co_dev_t.rows) from row @ref rows on (co_od_rows).
  *  Objects of the same shape (the PDOs' parameters) share their rows: the
  *  RAM offsets in them count from @ref base, where each object's values
- *  start (0 for rows of its own, whose offsets are the values' own). */
+ *  start (0 for rows of its own, whose offsets are the values' own). An
+ *  object with a hook slot (CO_OD_TAG_HOOK) has rows of its own and its
+ *  slot as its base: their RAM offsets count from it. */
 typedef struct co_od_entry {
     uint16_t index;
     uint16_t rows;           /**< its first row in co_dev_t.rows */
     uint16_t base;           /**< added to the RAM offset of every sub-entry */
     uint8_t  nsubs;          /**< number of its rows (a row may be a run) */
-    uint8_t  hook;           /**< hook slot + 1, or 0 for no hook */
-    uint8_t  code;           /**< CO_OBJ_* */
-    uint8_t  svc;            /**< CO_OD_SVC_OF(index): the owning service's hook */
+    uint8_t  tag;            /**< CO_OD_TAG_*: owning service, object code, hook */
 } co_od_entry_t;
 
+/* co_od_entry_t.tag */
+#define CO_OD_TAG_HOOK 0x01U /**< a hook slot, base (the rows are its own) */
+#define CO_OD_TAG_CODE 0x06U /**< the object code (CO_OD_CODE_BITS) */
+#define CO_OD_TAG_SVC_SHIFT 4U /**< the top bits: CO_OD_SVC_OF(index), the owning service's hook */
+/** The bits of object code @p code (CO_OBJ_*) in a tag. */
+#define CO_OD_CODE_BITS(code) \
+    ((((code) == CO_OBJ_VAR) ? 0U : ((code) == CO_OBJ_ARRAY) ? 1U \
+      : ((code) == CO_OBJ_RECORD) ? 2U : 3U) << 1U)
+/** The tag of object @p index, of code @p code (CO_OBJ_*), @p hooked or not. */
+#define CO_OD_TAG(index, code, hooked) \
+    ((uint8_t)((CO_OD_SVC_OF(index) << CO_OD_TAG_SVC_SHIFT) | CO_OD_CODE_BITS(code) | \
+               ((hooked) ? CO_OD_TAG_HOOK : 0U)))
+
 /** Initialisers of one co_od_entry_t (the generated dictionaries use them):
- *  rows of its own from row @p rows of co_dev_t.rows, and shared ones whose
- *  RAM offsets count from @p base. */
+ *  rows of its own from row @p rows of co_dev_t.rows, with hook slot
+ *  @p hook - 1 (0: none; its rows' RAM offsets then count from the slot),
+ *  and shared ones whose RAM offsets count from @p base (no hook). */
 #define CO_OD_ENTRY(index, nsubs, hook, code, rows) \
-    {(index), (rows), 0U, (nsubs), (hook), (code), (uint8_t)CO_OD_SVC_OF(index)}
-#define CO_OD_ENTRY_AT(index, nsubs, hook, code, rows, base) \
-    {(index), (rows), (base), (nsubs), (hook), (code), (uint8_t)CO_OD_SVC_OF(index)}
+    {(index), (rows), (uint16_t)(((hook) != 0U) ? ((hook) - 1U) : 0U), (nsubs), \
+     CO_OD_TAG((index), (code), ((hook) != 0U))}
+#define CO_OD_ENTRY_AT(index, nsubs, code, rows, base) \
+    {(index), (rows), (base), (nsubs), CO_OD_TAG((index), (code), false)}
+
+/** The owning service's hook slot + 1 of @p e (CO_OD_SVC_OF), 0: none. */
+static inline uint32_t co_od_svc(const co_od_entry_t *e)
+{
+    return (uint32_t)e->tag >> CO_OD_TAG_SVC_SHIFT;
+}
+
+/** Whether @p e has a hook slot (its base). */
+static inline bool co_od_hooked(const co_od_entry_t *e)
+{
+    return (e->tag & CO_OD_TAG_HOOK) != 0U;
+}
+
+/** The object code of @p e (CO_OBJ_*). */
+static inline uint8_t co_od_code(const co_od_entry_t *e)
+{
+    uint32_t b = ((uint32_t)e->tag & CO_OD_TAG_CODE) >> 1U;
+    return (b == 3U) ? (uint8_t)CO_OBJ_DOMAIN : (uint8_t)(CO_OBJ_VAR + b); /* (VAR, ARRAY, RECORD) */
+}
 
 /** Offset of the value of @p s (an entry of @p e) in the RAM image, or in
  *  the ROM image with CO_SUB_ROM. */

@@ -13,7 +13,7 @@ int dev_eds_open(dev_eds_t *e, const char *path, char *err, size_t errcap)
     }
     {
         const co_dev_t *dev = eds_device(e->eds);
-        e->entry.name = dev->name;
+        e->entry.name = eds_name(e->eds);
         e->entry.summary = eds_summary(e->eds);
         e->entry.dev = dev;
         e->entry.eds = (const unsigned char *)eds_text(e->eds);

@@ -1267,7 +1267,6 @@ static eds_dev_t *build(ctx_t *c, const char *name, const char *text)
         d->dev.n_defaults = (uint16_t)nd;
         free(dv);
     }
-    d->dev.name = d->name;
     d->dev.od = d->entries;
     d->dev.rows = d->subs;
     d->dev.od_count = (uint16_t)c->nobj;
@@ -1396,6 +1395,11 @@ const char *eds_text(const eds_dev_t *d)
 const char *eds_warnings(const eds_dev_t *d)
 {
     return (d->warnings != NULL) ? d->warnings : "";
+}
+
+const char *eds_name(const eds_dev_t *d)
+{
+    return d->name;
 }
 
 const char *eds_summary(const eds_dev_t *d)

@@ -52,6 +52,9 @@ const char *eds_warnings(const eds_dev_t *d);
 /** A one-line summary: product name and counts of objects and PDOs. */
 const char *eds_summary(const eds_dev_t *d);
 
+/** The device's name: the name of the file it was loaded from. */
+const char *eds_name(const eds_dev_t *d);
+
 void eds_free(eds_dev_t *d);
 
 #endif /* EDS_LOAD_H */

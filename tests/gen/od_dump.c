@@ -123,7 +123,7 @@ int main(int argc, char **argv)
     }
     printf("{\"name\": \"%s\", \"node_id\": %lu, \"ram_size\": %u, \"comm_end\": %u, "
            "\"app_end\": %u, \"n_hooks\": %u,\n",
-           dev->name, id, (unsigned)dev->ram_size, (unsigned)dev->comm_end,
+           XSTR(CODEV_NAME), id, (unsigned)dev->ram_size, (unsigned)dev->comm_end,
            (unsigned)dev->app_end, (unsigned)dev->n_hooks);
     /* (a core without guarding refuses a device with 0x100C / 0x100D) */
 #if CO_NODE_GUARDING

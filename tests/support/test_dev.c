@@ -273,7 +273,6 @@ typedef char td_default_gaps[((F(time_cob) >= END(sync_cob)) && (F(u16) >= END(e
                                  : -1];
 
 const co_dev_t td_dev = {
-    .name = "test-device",
     .od = od,
     .rows = rows,
     .od_count = (uint16_t)(sizeof od / sizeof od[0]),

@@ -45,7 +45,6 @@ static const uint8_t rom[1] = {1};
 static const uint8_t defaults[] = {0U, CO_OD_DEF_RUN(2U, 2U), 0x11U, 0U, 0U, 0U, 0x22U, 0U, 0U, 0U};
 typedef char alone_defaults_at[(offsetof(ram_t, v3000) == 4U) ? 1 : -1];
 static const co_dev_t dev = {
-    .name = "alone",
     .od = od,
     .rows = rows,
     .od_count = 3,

@@ -483,7 +483,6 @@ def generate(dev: Device, toml_name: str, warn=None, storage: bool = True) -> tu
         return f"(uint16_t)sizeof({cn}_ram_t)"
 
     c += [f"const co_dev_t {cn}_dev = {{",
-          f'    .name = "{dev.name}",',
           "    .od = od,",
           "    .rows = rows,",
           "    .od_count = (uint16_t)(sizeof od / sizeof od[0]),",

@@ -69,7 +69,6 @@ typedef enum co_hb_event {
  * device's description file. Shared by all nodes of that type.
  */
 typedef struct co_dev {
-    const char *name;
     const co_od_entry_t *od;    /**< od_count entries, sorted by index */
     const co_od_sub_t *rows;    /**< the entries' rows (co_od_entry_t.rows) */
     uint16_t od_count;

@@ -274,38 +274,33 @@ static void touch_owner(co_node_t *node, const co_svc_hook_t *h)
     }
 }
 
-/* The RAM offset of the value of @p index / @p sub, of @p type (0: any),
- * or -1 (absent, another type, not in RAM). */
-CO_NOINLINE static int32_t ram_off(const co_node_t *node, uint16_t index, uint8_t sub,
-                                   uint8_t type)
+/* Where the RAM value of @p index / @p sub, of @p type (0: any), is, or NULL
+ * (absent, another type, not in RAM). */
+void *co_od_ram_of(co_node_t *node, uint16_t index, uint8_t sub, uint8_t type)
 {
     const co_od_entry_t *e;
     co_od_sub_t s;
 
     if ((co_od_lookup(node, index, sub, &e, &s) != CO_OK) || ((type != 0U) && (s.type != type)) ||
         ((s.flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) != 0U)) {
-        return -1;
+        return NULL;
     }
-    return (int32_t)(uint16_t)(e->base + s.off); /* (a RAM value) */
+    return &node->ram[(uint16_t)(e->base + s.off)]; /* (a RAM value) */
 }
 
-void *co_od_ram_of(co_node_t *node, uint16_t index, uint8_t sub, uint8_t type)
-{
-    int32_t off = ram_off(node, index, sub, type);
-
-    return (off < 0) ? NULL : &node->ram[off];
-}
-
-uint8_t co_od_array_len(const co_node_t *node, uint16_t index, uint8_t type, uint8_t max)
+uint8_t co_od_array_len(co_node_t *node, uint16_t index, uint8_t type, uint8_t max)
 {
     /* sub 1.. of that type, RAM values one after the other (from sub 1's) */
-    int32_t at = ram_off(node, index, 1U, type);
-    int32_t step = (int32_t)co_type_len(type);
+    const uint8_t *next = NULL;
     uint8_t n = 0U;
 
-    while ((at >= 0) && (n < max) && (ram_off(node, index, (uint8_t)(n + 1U), type) == at)) {
+    while (n < max) {
+        const uint8_t *at = (const uint8_t *)co_od_ram_of(node, index, (uint8_t)(n + 1U), type);
+        if ((at == NULL) || ((n != 0U) && (at != next))) {
+            break;
+        }
+        next = &at[co_type_len(type)];
         n++;
-        at += step;
     }
     return n;
 }

@@ -514,7 +514,7 @@ void co_od_commit(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
 void *co_od_ram_of(co_node_t *node, uint16_t index, uint8_t sub, uint8_t type);
 /* Number of consecutive sub-entries 1..n (at most @p max) of an array whose
  * values of @p type are stored back to back, 0 if there are none. */
-uint8_t co_od_array_len(const co_node_t *node, uint16_t index, uint8_t type, uint8_t max);
+uint8_t co_od_array_len(co_node_t *node, uint16_t index, uint8_t type, uint8_t max);
 
 /* A COB-ID write (CiA 301 7.5.2) of @p v over @p cur: 29-bit identifiers
  * are not supported, bits 11..28 are 0 (and bit 30 with CO_COB_RSV30), and

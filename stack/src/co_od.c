@@ -310,10 +310,12 @@ uint8_t co_od_array_len(co_node_t *node, uint16_t index, uint8_t type, uint8_t m
 static inline co_od_hook_t *hook_of(const co_node_t *node, const co_od_entry_t *e)
 {
     /* (a hooked entry's base is its slot) */
-    if (!co_od_hooked(e) || (node->hooks == NULL) || (e->base >= node->dev->n_hooks)) {
+    uint32_t slot = co_od_hooked(e) ? e->base : 0xFFFFU;
+
+    if ((node->hooks == NULL) || (slot >= node->dev->n_hooks)) {
         return NULL;
     }
-    return &node->hooks[e->base];
+    return &node->hooks[slot];
 }
 
 /* The entry's application hook, read or (@p write) write, on @p io (the

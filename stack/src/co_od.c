@@ -88,6 +88,18 @@ CO_NOINLINE static const co_od_sub_t *scan_sub(const co_dev_t *dev, const co_od_
 {
     const co_od_sub_t *r = co_od_rows(dev, e);
 
+    if ((sub == 0U) && ((e->tag & CO_OD_TAG_SUB0) != 0U)) {
+        /* the highest sub-index: the last row's, in the ROM image */
+        buf->sub = 0U;
+        buf->type = (uint8_t)CO_UNSIGNED8;
+        buf->flags = CO_SUB_R | CO_SUB_CONST | CO_SUB_ROM;
+        buf->size = 1U;
+        buf->off = (uint16_t)((const uint8_t *)&r[e->nsubs - 1U].sub - dev->rom);
+#if CO_LIMITS
+        buf->limit = 0U;
+#endif
+        return buf;
+    }
     for (uint32_t i = e->nsubs; i > 0U; i--) {
         uint32_t d = (uint8_t)(r->sub - sub);
         uint32_t n = co_od_run_len(r);

@@ -149,19 +149,23 @@ int main(int argc, char **argv)
     printf(" \"entries\": [\n");
     for (uint16_t i = 0U; i < dev->od_count; i++) {
         const co_od_entry_t *e = &dev->od[i];
-        const co_od_sub_t *r = co_od_rows(dev, e);
         printf("  {\"index\": %u, \"code\": %u, \"hook\": %u, \"subs\": [\n", (unsigned)e->index,
                (unsigned)co_od_code(e), co_od_hooked(e) ? (unsigned)e->base + 1U : 0U);
         uint32_t n_subs = 0U;
         uint32_t done = 0U;
-        for (uint8_t k = 0U; k < e->nsubs; k++) {
-            n_subs += co_od_run_len(&r[k]);
-        }
-        /* every sub-index of every row (a row may be a run of them) */
-        for (uint8_t k = 0U; k < e->nsubs; k++) {
-          for (uint32_t j = 0U; j < co_od_run_len(&r[k]); j++) {
+        for (uint32_t k = 0U; k < 256U; k++) {
             co_od_sub_t sd;
-            const co_od_sub_t *s = co_od_row_sub(&r[k], j, &sd);
+            n_subs += (co_od_find_sub(dev, e, (uint8_t)k, &sd) != NULL) ? 1U : 0U;
+        }
+        /* every sub-index the entry has (its rows, a row may be a run of
+         * them, and an implicit sub-index 0) */
+        for (uint32_t k = 0U; k < 256U; k++) {
+          {
+            co_od_sub_t sd;
+            const co_od_sub_t *s = co_od_find_sub(dev, e, (uint8_t)k, &sd);
+            if (s == NULL) {
+                continue;
+            }
             uint32_t len = 0U;
             done++;
             void *p = co_od_value_ptr(node, e->index, s->sub);

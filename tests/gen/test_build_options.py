@@ -141,7 +141,8 @@ def test_store_commands_without_storage(tmp_path: Path) -> None:
     assert c.count("(uint16_t)(CO_SUB_R | CO_SUB_W | CO_SUB_ROM), 4U, R(store_command_none)") == 1
     assert ("CO_OD_RUN(0x01U, 4U, (uint8_t)CO_UNSIGNED32, (uint16_t)(CO_SUB_R | CO_SUB_W | "
             "CO_SUB_ROM), 4U, R(store_command_none), 0U)") in c
-    at = {i: re.search(rf"CO_OD_ENTRY\(0x{i}U, 2U, 0U, \(uint8_t\)CO_OBJ_ARRAY, (\d+)U\)", c)
+    # (one row: sub-index 0, the number of entries, is implicit, CO_OD_TAG_SUB0)
+    at = {i: re.search(rf"CO_OD_ENTRY_TAG\(0x{i}U, 1U, (\d+)U, 0U, .*CO_OD_TAG_SUB0", c)
           for i in ("1010", "1011")}
     assert at["1010"] and at["1011"] and at["1010"].group(1) == at["1011"].group(1)
     h = (full / "d.h").read_text()

@@ -74,8 +74,9 @@ static void storage_left_out(void **state)
         static const uint8_t save[4] = {0x73U, 0x61U, 0x76U, 0x65U};
         const co_od_entry_t *st = co_od_find(lean_test_dev.od, lean_test_dev.od_count, 0x1010U);
         assert_non_null(st);
-        assert_int_equal(co_od_rows(&lean_test_dev, st)[1].flags & (CO_SUB_ROM | CO_SUB_W),
-                         CO_SUB_ROM | CO_SUB_W);
+        co_od_sub_t d;
+        assert_non_null(co_od_find_sub(&lean_test_dev, st, 1U, &d));
+        assert_int_equal(d.flags & (CO_SUB_ROM | CO_SUB_W), CO_SUB_ROM | CO_SUB_W);
         assert_null(co_od_value_ptr(&lean.node, 0x1011U, 2U));
         assert_int_equal(co_od_write(&lean.node, 0x1010U, 1U, save, 4U, true), CO_ERR_STORE);
         assert_int_equal(co_od_write(&lean.node, 0x1010U, 0U, save, 1U, true), CO_ERR_READ_ONLY);

@@ -14,7 +14,7 @@ import struct
 from dataclasses import dataclass, field
 
 import personality
-from model import F_NODEID, F_W, FLAG_NAMES, DescError, Device, Sub, encoded_default
+from model import F_CONST, F_NODEID, F_R, F_ROM, F_W, FLAG_NAMES, DescError, Device, Sub, encoded_default
 
 REGIONS = (("comm", "communication parameters (stored)"),
            ("app", "application values (stored)"),
@@ -230,7 +230,7 @@ def generate(dev: Device, toml_name: str, warn=None, storage: bool = True) -> tu
     # the const values only the tables of sharing PDOs name are left out: a
     # shared table names the first PDO's
     rom_used = {s.field for o in dev.objects
-                if share.get(o.index, (o.index,))[0] == o.index for s in o.subs if s.rom}
+                if share.get(o.index, (o.index,))[0] == o.index for s in table_subs(o) if s.rom}
     rom = [f for f in sort_region(fields, "rom") if f.name in rom_used]
     if not ram:
         ram = [Field(name="unused", ctype="uint8_t", dims=[], align=1, size=1, region="none")]
@@ -314,23 +314,69 @@ def generate(dev: Device, toml_name: str, warn=None, storage: bool = True) -> tu
         c += ["/* REAL32/REAL64 values are IEEE 754 float/double. */",
               f"typedef char {cn}_real_sizes[((sizeof(float) == 4U) && (sizeof(double) == 8U)) ? 1 : -1];"]
     c.append("")
-    if rom:
-        c += ["/* Const values (CO_SUB_ROM). */", f"typedef struct {cn}_rom {{"]
-        for f in rom:
-            s0 = f.subs[0]
-            c.append(f"    {f.decl()}; /* 0x{s0.index:04X}:{s0.sub:02X} {comment(s0.name)} */")
-        c += [f"}} {cn}_rom_t;", "", f"static const {cn}_rom_t rom = {{"]
-        for f in rom:
-            v = field_init(f)
-            c.append(f"    .{f.name} = {v if v is not None else ('{0}' if f.dims else '0U')},")
-        c += ["};", ""]
+    # the rows of every table, one after the other (co_dev_t.rows), in the
+    # ROM image after the const values (an implicit sub-index 0 reads the
+    # last row's sub-index there: CO_OD_TAG_SUB0); an entry names its first
+    # row (co_od_entry_t.rows)
+    first_row: dict[int, int] = {}
+    rl: list[str] = []
+    n_rows = 0
+    for o in dev.objects:
+        sh = share.get(o.index)
+        if sh is not None and sh[0] != o.index:
+            continue    # the table of the first PDO of its shape
+        first_row[o.index] = n_rows
+        rl.append(f"        /* {n_rows}: 0x{o.index:04X} {comment(o.name)} ({o.code})" +
+                  (f", its RAM offsets from F({sh[1]}): the table of every PDO of this shape"
+                   if sh is not None and sh[1] is not None else
+                   ": the table of every object of these const values" if sh is not None
+                   else "") + (", sub-index 0 implicit" if implicit0(o) else "") + " */")
+        for run in rows(table_subs(o)):
+            s = run[0]
+            n_rows += 1
+            if s.hookio:
+                off = "0U"
+            else:
+                m = "R" if s.rom else "F"
+                off = f"{m}({s.field})" if s.elem <= 0 else \
+                    f"(uint16_t)({m}({s.field}) + {s.elem * s.size}U)"
+                if sh is not None and not s.rom:
+                    off = f"(uint16_t)({off} - F({sh[1]}))"
+                elif o.hook and not s.rom:
+                    off = f"(uint16_t)({off} - {o.hook_slot}U)"   # (from its base, its slot)
+            lim = f"{s.limit_slot}U" if s.limit_slot >= 0 else "0U"
+            if len(run) == 1:
+                rl.append(f"        CO_OD_SUB(0x{s.sub:02X}U, (uint8_t)CO_{s.type}, "
+                          f"{flags_expr(s.flags)}, "
+                          f"{s.size}U, {off}, {lim}), /* {comment(s.name)} */")
+            else:
+                rl.append(f"        CO_OD_RUN(0x{s.sub:02X}U, {len(run)}U, (uint8_t)CO_{s.type}, "
+                          f"{flags_expr(s.flags)}, {s.size}U, {off}, {lim}), "
+                          f"/* {comment(s.name)} .. {comment(run[-1].name)} */")
+    if n_rows > 0xFFFF:
+        raise DescError(f"{n_rows} rows of sub-entries: the core's tables hold at most 65535")
+    if layout(rom) + 8 * n_rows > 0xFFFF:
+        raise DescError(f"ROM image is {layout(rom) + 8 * n_rows} bytes with the rows; at most 65535")
+    c += [f"#define F(field) ((uint16_t)offsetof({cn}_ram_t, field))", "",
+          "/* Const values (CO_SUB_ROM), then the rows of the objects' tables. */",
+          f"typedef struct {cn}_rom {{"]
+    for f in rom:
+        s0 = f.subs[0]
+        c.append(f"    {f.decl()}; /* 0x{s0.index:04X}:{s0.sub:02X} {comment(s0.name)} */")
+    c += [f"    co_od_sub_t rows[{n_rows}U]; /* co_dev_t.rows */",
+          f"}} {cn}_rom_t;", "",
+          f"#define R(field) ((uint16_t)offsetof({cn}_rom_t, field))", "",
+          f"static const {cn}_rom_t rom = {{"]
+    for f in rom:
+        v = field_init(f)
+        c.append(f"    .{f.name} = {v if v is not None else ('{0}' if f.dims else '0U')},")
+    c += ["    .rows = {", *rl, "    },", "};", ""]
     # sparse defaults (co_dev_t.defaults, co_od.h): runs of the values that
     # are not zero and of the $NODEID ones, in the order of their places in
     # the RAM image, as wire bytes; the core zeroes the rest. A $NODEID value
     # is a run of its own, marked for the core to add the node-ID (or, for a
     # PDO or EMCY COB-ID, the COB-ID base of LSS) to it: the core never walks
     # the dictionary to find them.
-    c += [f"#define F(field) ((uint16_t)offsetof({cn}_ram_t, field))", ""]
     runs = default_runs(ram)
     n_default_at = len(runs)
     if runs:
@@ -364,58 +410,20 @@ def generate(dev: Device, toml_name: str, warn=None, storage: bool = True) -> tu
         c += ["};", ""]
     if dev.boot_emcy_data is not None:
         c += [f"static const uint8_t boot_emcy[5] = {c_bytes(bytes(dev.boot_emcy_data))};", ""]
-    if rom:
-        c.append(f"#define R(field) ((uint16_t)offsetof({cn}_rom_t, field))")
-    c.append("")
-    # the rows of every table, one after the other, in one array
-    # (co_dev_t.rows); an entry names its first row (co_od_entry_t.rows)
-    c += ["/* The rows of the objects' tables, one table after the other (co_dev_t.rows). */",
-          "static const co_od_sub_t rows[] = {"]
-    first_row: dict[int, int] = {}
-    n_rows = 0
-    for o in dev.objects:
-        sh = share.get(o.index)
-        if sh is not None and sh[0] != o.index:
-            continue    # the table of the first PDO of its shape
-        first_row[o.index] = n_rows
-        c.append(f"    /* {n_rows}: 0x{o.index:04X} {comment(o.name)} ({o.code})" +
-                 (f", its RAM offsets from F({sh[1]}): the table of every PDO of this shape"
-                  if sh is not None and sh[1] is not None else
-                  ": the table of every object of these const values" if sh is not None
-                  else "") + " */")
-        for run in rows(o.subs):
-            s = run[0]
-            n_rows += 1
-            if s.hookio:
-                off = "0U"
-            else:
-                m = "R" if s.rom else "F"
-                off = f"{m}({s.field})" if s.elem <= 0 else \
-                    f"(uint16_t)({m}({s.field}) + {s.elem * s.size}U)"
-                if sh is not None and not s.rom:
-                    off = f"(uint16_t)({off} - F({sh[1]}))"
-                elif o.hook and not s.rom:
-                    off = f"(uint16_t)({off} - {o.hook_slot}U)"   # (from its base, its slot)
-            lim = f"{s.limit_slot}U" if s.limit_slot >= 0 else "0U"
-            if len(run) == 1:
-                c.append(f"    CO_OD_SUB(0x{s.sub:02X}U, (uint8_t)CO_{s.type}, "
-                         f"{flags_expr(s.flags)}, "
-                         f"{s.size}U, {off}, {lim}), /* {comment(s.name)} */")
-            else:
-                c.append(f"    CO_OD_RUN(0x{s.sub:02X}U, {len(run)}U, (uint8_t)CO_{s.type}, "
-                         f"{flags_expr(s.flags)}, {s.size}U, {off}, {lim}), "
-                         f"/* {comment(s.name)} .. {comment(run[-1].name)} */")
-    if n_rows > 0xFFFF:
-        raise DescError(f"{n_rows} rows of sub-entries: the core's tables hold at most 65535")
-    c += ["};",
-          f"typedef char {cn}_rows_n[(sizeof rows / sizeof rows[0] == {n_rows}U) ? 1 : -1];",
-          "", "static const co_od_entry_t od[] = {"]
+    c += [""]
+    c += ["static const co_od_entry_t od[] = {"]
     for o in dev.objects:
         hook = f"{o.hook_slot + 1}U" if o.hook else "0U"
         sh = share.get(o.index)
-        nrows = len(rows(o.subs))
+        nrows = len(rows(table_subs(o)))
         at = first_row[(sh or (o.index,))[0]]
-        if sh is None or sh[1] is None:
+        if implicit0(o):
+            base = f"{o.hook_slot}U" if o.hook else \
+                (f"F({sh[1]})" if sh is not None and sh[1] is not None else "0U")
+            c.append(f"    CO_OD_ENTRY_TAG(0x{o.index:04X}U, {nrows}U, {at}U, {base}, "
+                     f"(uint8_t)(CO_OD_TAG(0x{o.index:04X}U, CO_OBJ_{o.code}, "
+                     f"{'true' if o.hook else 'false'}) | CO_OD_TAG_SUB0)),")
+        elif sh is None or sh[1] is None:
             c.append(f"    CO_OD_ENTRY(0x{o.index:04X}U, {nrows}U, {hook}, "
                      f"(uint8_t)CO_OBJ_{o.code}, {at}U),")
         else:
@@ -484,13 +492,13 @@ def generate(dev: Device, toml_name: str, warn=None, storage: bool = True) -> tu
 
     c += [f"const co_dev_t {cn}_dev = {{",
           "    .od = od,",
-          "    .rows = rows,",
+          "    .rows = rom.rows,",
           "    .od_count = (uint16_t)(sizeof od / sizeof od[0]),",
           f"    .ram_size = (uint16_t)sizeof({cn}_ram_t),",
           f"    .comm_end = {first(('app', 'none'))},",
           f"    .app_end = {first(('none',))},",
           f"    .defaults = {'defaults' if runs else 'NULL'},",
-          f"    .rom = {'(const uint8_t *)&rom' if rom else 'NULL'},",
+          "    .rom = (const uint8_t *)&rom,",
           f"    .limits = {'limits' if dev.limits else 'NULL'},",
           f"    .n_hooks = {up}_N_HOOKS,",
           *personality.settings_c(dev.options),
@@ -670,6 +678,21 @@ def mask_table(dev: Device, n_tpdo: int) -> list:
                             "of two UNSIGNED32)")
         out.append(s1)
     return out
+
+
+def implicit0(o) -> bool:
+    """Sub-index 0 of @p o is the highest of its sub-indices, a const
+    UNSIGNED8 nothing else describes: no row, the core reads the last row's
+    sub-index (CO_OD_TAG_SUB0)."""
+    s0 = o.subs[0] if o.subs else None
+    return s0 is not None and len(o.subs) > 1 and s0.sub == 0 and s0.rom and \
+        s0.type == "UNSIGNED8" and s0.flags == (F_R | F_CONST | F_ROM) and \
+        not s0.hookio and s0.limit_slot < 0 and s0.default == max(s.sub for s in o.subs)
+
+
+def table_subs(o) -> list:
+    """The sub-entries of @p o its table's rows describe."""
+    return o.subs[1:] if implicit0(o) else o.subs
 
 
 @dataclass

@@ -163,6 +163,11 @@ typedef struct co_od_entry {
 /* co_od_entry_t.tag */
 #define CO_OD_TAG_HOOK 0x01U /**< a hook slot, base (the rows are its own) */
 #define CO_OD_TAG_CODE 0x06U /**< the object code (CO_OD_CODE_BITS) */
+/** Sub-index 0 is not a row: a const UNSIGNED8, readable, whose value is
+ *  the highest sub-index of the rows (the last row's 'sub', a byte of the
+ *  device's ROM image, which holds the rows: a RECORD's "highest sub-index
+ *  supported", an ARRAY's number of entries). */
+#define CO_OD_TAG_SUB0 0x08U
 #define CO_OD_TAG_SVC_SHIFT 4U /**< the top bits: CO_OD_SVC_OF(index), the owning service's hook */
 /** The bits of object code @p code (CO_OBJ_*) in a tag. */
 #define CO_OD_CODE_BITS(code) \
@@ -182,6 +187,8 @@ typedef struct co_od_entry {
      CO_OD_TAG((index), (code), ((hook) != 0U))}
 #define CO_OD_ENTRY_AT(index, nsubs, code, rows, base) \
     {(index), (rows), (base), (nsubs), CO_OD_TAG((index), (code), false)}
+/** An entry with its tag as it is (CO_OD_TAG, and CO_OD_TAG_SUB0). */
+#define CO_OD_ENTRY_TAG(index, nsubs, rows, base, tag) {(index), (rows), (base), (nsubs), (tag)}
 
 /** The owning service's hook slot + 1 of @p e (CO_OD_SVC_OF), 0: none. */
 static inline uint32_t co_od_svc(const co_od_entry_t *e)

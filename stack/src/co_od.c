@@ -94,7 +94,8 @@ CO_NOINLINE static const co_od_sub_t *scan_sub(const co_dev_t *dev, const co_od_
         buf->type = (uint8_t)CO_UNSIGNED8;
         buf->flags = CO_SUB_R | CO_SUB_CONST | CO_SUB_ROM;
         buf->size = 1U;
-        buf->off = (uint16_t)((const uint8_t *)&r[e->nsubs - 1U].sub - dev->rom);
+        ptrdiff_t at = &r[e->nsubs - 1U].sub - dev->rom;
+        buf->off = (uint16_t)at;
 #if CO_LIMITS
         buf->limit = 0U;
 #endif
@@ -288,7 +289,7 @@ static void touch_owner(co_node_t *node, const co_svc_hook_t *h)
 
 /* Where the RAM value of @p index / @p sub, of @p type (0: any), is, or NULL
  * (absent, another type, not in RAM). */
-void *co_od_ram_of(co_node_t *node, uint16_t index, uint8_t sub, uint8_t type)
+uint8_t *co_od_ram_of(co_node_t *node, uint16_t index, uint8_t sub, uint8_t type)
 {
     const co_od_entry_t *e;
     co_od_sub_t s;
@@ -307,7 +308,7 @@ uint8_t co_od_array_len(co_node_t *node, uint16_t index, uint8_t type, uint8_t m
     uint8_t n = 0U;
 
     while (n < max) {
-        const uint8_t *at = (const uint8_t *)co_od_ram_of(node, index, (uint8_t)(n + 1U), type);
+        const uint8_t *at = co_od_ram_of(node, index, (uint8_t)(n + 1U), type);
         if ((at == NULL) || ((n != 0U) && (at != next))) {
             break;
         }

@@ -511,7 +511,7 @@ void co_od_commit(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
 
 /* Where a core object lives in the RAM image: the value of @p index sub
  * @p sub if it has type @p type (0: any) and a stored RAM value, else NULL. */
-void *co_od_ram_of(co_node_t *node, uint16_t index, uint8_t sub, uint8_t type);
+uint8_t *co_od_ram_of(co_node_t *node, uint16_t index, uint8_t sub, uint8_t type);
 /* Number of consecutive sub-entries 1..n (at most @p max) of an array whose
  * values of @p type are stored back to back, 0 if there are none. */
 uint8_t co_od_array_len(co_node_t *node, uint16_t index, uint8_t type, uint8_t max);

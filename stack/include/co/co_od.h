@@ -122,7 +122,7 @@ typedef struct co_od_sub {
  *  COB-ID base (it differs from the node-ID only with LSS). */
 #define CO_OD_DEF_COB    0x40U
 
-/** The core service that owns the object at @p index (co_od_entry_t.svc):
+/** The core service that owns the object at @p index (co_od_svc, co_od_entry_t.tag):
  *  its hook's slot + 1 in the core's const service-hook table (co_svc_hooks,
  *  co_services.c), 0 for an object no service of this build owns. A constant
  *  expression: the generated tables carry it, nothing registers at run time.

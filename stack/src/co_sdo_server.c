@@ -259,7 +259,7 @@ static void open_upload(co_sdo_srv_t *t, const co_od_entry_t *e, const co_od_chu
 {
     open_xfer(t, e, c->last ? c->len : c->total,
               (uint8_t)(F_STAGED | ((c->total != 0U) || c->last ? F_SIZE : 0U)));
-    t->buf_len = (uint8_t)c->len;
+    t->buf[SEG] = (uint8_t)c->len; /* (at most SEG bytes staged) */
 }
 
 /* The server offers expedited transfers only (segmented upload refused:
@@ -299,7 +299,7 @@ static co_err_t read_seg(co_node_t *node, uint32_t at, uint8_t *buf, uint32_t ca
     co_err_t err = CO_OK;
 
     if ((at == 0U) && ((t->flags & F_STAGED) != 0U)) {
-        c.len = t->buf_len; /* the first chunk, read when the upload opened */
+        c.len = t->buf[SEG]; /* the first chunk, read when the upload opened */
         co_copy(buf, t->buf, c.len);
     } else {
         err = co_od_read_part(node, t->entry, &t->desc, &c);
@@ -632,7 +632,7 @@ static co_err_t block_upload_send(co_node_t *node, bool send)
         /* the client's answer is due one timeout after the last segment */
         t->deadline = node->now + node->sdo.timeout_us;
         if (last) {
-            /* The end is known now: keep it as the size (t->buf_len still
+            /* The end is known now: keep it as the size (t->buf still
              * holds the staged first chunk, which a retransmission from
              * offset 0 needs). */
             t->size = at + got;

@@ -1044,6 +1044,25 @@ static void upload_reads_chunks(void **state)
     tb_expect_none(BUS);
 }
 
+/* A segmented upload of a value a hook produces a few bytes at a time:
+ * each segment carries what one read gave, the first the chunk staged at
+ * the initiate (its length kept beside it in the staging buffer). */
+static void segmented_upload_short_chunks(void **state)
+{
+    for (uint32_t i = 0U; i < 10U; i++) {
+        DOM.data[i] = (uint8_t)(0x30U + i);
+    }
+    DOM.len = 10U;
+    DOM.max_read = 3U;
+    tb_xfer(BUS, "601 40 00 22 00 00 00 00 00", "581 41 00 22 00 0A 00 00 00");
+    tb_xfer(BUS, "601 60 00 00 00 00 00 00 00", "581 08 30 31 32 00 00 00 00");
+    tb_xfer(BUS, "601 70 00 00 00 00 00 00 00", "581 18 33 34 35 00 00 00 00");
+    tb_xfer(BUS, "601 60 00 00 00 00 00 00 00", "581 08 36 37 38 00 00 00 00");
+    tb_xfer(BUS, "601 70 00 00 00 00 00 00 00", "581 1D 39 00 00 00 00 00 00");
+    tb_expect_none(BUS);
+    assert_int_equal(DOM.reads, 4U); /* the first segment read no more */
+}
+
 /* ---------------------------------------------------------- 9: options */
 
 static void options_disable_block_transfers(void **state)
@@ -1133,6 +1152,7 @@ int main(void)
         cmocka_unit_test_setup(upload_tx_full_loses_nothing, setup),
         cmocka_unit_test_setup(upload_tx_full_mid_sub_block, setup),
         cmocka_unit_test_setup(upload_reads_chunks, setup),
+        cmocka_unit_test_setup(segmented_upload_short_chunks, setup),
         cmocka_unit_test_setup(options_disable_block_transfers, setup),
         cmocka_unit_test_setup(client_abort_and_wrong_commands, setup),
     };

@@ -249,8 +249,9 @@ typedef struct co_sdo_srv {
     uint8_t state;
     uint8_t toggle;
     uint8_t flags;
-    uint8_t buf_len;     /**< upload: bytes of the staged first chunk */
-    uint8_t buf[8];      /**< fixed-size values gathered before commit; staged first chunk */
+    /** A value of fixed size gathered before its commit; an upload's first
+     *  chunk, staged (at most 7 bytes, its length in buf[7]). */
+    uint8_t buf[8];
 } co_sdo_srv_t;
 
 /** Error control (co_hb.c): heartbeat producer and consumers, node and life guarding. */

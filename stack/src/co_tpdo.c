@@ -106,6 +106,7 @@ static bool cyclic_due(co_node_t *node, uint16_t i, uint8_t type, uint8_t counte
     return true;
 }
 
+#if CO_TPDO_CHANGE
 /* The sampled data differ from the last sent (a loop: the C library's
  * memcmp costs more flash). */
 static bool changed(const uint8_t *now, const uint8_t *sent)
@@ -128,6 +129,14 @@ static bool acyclic_due(co_node_t *node, uint16_t i)
     return ((p->flags & (CO_PDO_F_EVENT | CO_PDO_F_SENT)) != CO_PDO_F_SENT) ||
            changed(now, p->data);
 }
+#else
+/* Acyclic (0) without change detection: due at the SYNC after a request,
+ * and at the first SYNC in Operational (nothing sent yet). */
+static bool acyclic_due(co_node_t *node, uint16_t i)
+{
+    return (node->pdo.p[i].flags & (CO_PDO_F_EVENT | CO_PDO_F_SENT)) != CO_PDO_F_SENT;
+}
+#endif
 
 #if CO_PDO_RTR
 /* Answer a remote request: type 252 with the data sampled at the last SYNC,
@@ -213,6 +222,7 @@ CO_INLINE uint32_t event_due(co_node_t *node, uint16_t i, uint32_t next, const u
     return next;
 }
 
+#if CO_TPDO_CHANGE
 /* set.tpdo.change_mask: does the change from the data last sent to
  * @p now touch a bit of TPDO i's change mask (co_dev_t.tpdo_mask)? True
  * when no mask applies to its transmission type. */
@@ -281,6 +291,31 @@ CO_HOT uint32_t event_driven(co_node_t *node, uint16_t i, uint32_t next_in, bool
     }
     return timer_next(node, p, ev, inh, next);
 }
+#else
+/* Event-driven (254/255) without change detection (CO_TPDO_CHANGE=0): once
+ * on entering Operational (nothing sent yet), then on a request or at the
+ * event timer, no sooner than the inhibit time allows; sampled when it goes
+ * out (@p detect: unused). Returns the next deadline. */
+CO_HOT uint32_t event_driven(co_node_t *node, uint16_t i, uint32_t next_in, bool detect)
+{
+    uint32_t next = next_in;
+    co_pdo_t *p = &node->pdo.p[i];
+    uint32_t ev = co_pdo_event_us(node, i);
+    uint32_t inh = co_pdo_inhibit_us(node, i);
+    uint8_t now[8];
+
+    (void)detect;
+    event_timers(node, p, ev, inh);
+    if ((p->flags & CO_PDO_F_SENT) == 0U) {
+        p->flags |= CO_PDO_F_EVENT;
+    }
+    if ((p->flags & (CO_PDO_F_EVENT | CO_PDO_F_INHIBIT)) == CO_PDO_F_EVENT) {
+        build(node, i, now);
+        next = event_due(node, i, next, now);
+    }
+    return timer_next(node, p, ev, inh, next);
+}
+#endif
 
 /* At a SYNC: the synchronous TPDOs (RTR-only 253 and event-driven types
  * do not follow SYNC). */
@@ -329,7 +364,7 @@ CO_HOT uint32_t at_process(co_node_t *node, uint16_t i, uint8_t type, uint32_t n
     }
     if (type >= 254U) {
         /* change detection compares the data at every co_node_process */
-        node->pdo.poll = detect ? 1U : node->pdo.poll;
+        node->pdo.poll = (CO_TPDO_CHANGE && detect) ? 1U : node->pdo.poll;
         next = event_driven(node, i, next, detect);
     }
     return next;
@@ -364,7 +399,7 @@ CO_HOT uint32_t tpdo_pass(co_node_t *node, uint32_t next_in, bool sync, uint8_t 
     uint32_t n = (uint32_t)node->dev->n_rpdo + node->dev->n_tpdo;
     bool detect = CO_SET(node, tpdo.change_detection) != CO_TPDO_CHANGE_IGNORED;
 
-    if (!sync) {
+    if (CO_TPDO_CHANGE && !sync) {
         node->pdo.poll = 0U;
     }
     if (node->nmt != (uint8_t)CO_NMT_OPERATIONAL) {

@@ -14,7 +14,8 @@ GENERIC = ROOT / "devices" / "generic-301.toml"       # 0x100C/0x100D, 0x1012, 0
 MINIMAL = ROOT / "targets" / "cortex-m" / "minimal-slave.toml"
 LEAN = ROOT / "tests" / "unit" / "devices" / "lean-test.toml"
 KOLLMORGEN = ROOT / "devices" / "kollmorgen-s300-s700.toml"  # SDO expedited only
-FAULHABER = ROOT / "devices" / "faulhaber-mc.toml"  # 0x1029
+FAULHABER = ROOT / "devices" / "faulhaber-mc.toml"  # 0x1029, [tpdo] change_detection = false
+PDO_TEST = ROOT / "tests" / "unit" / "devices" / "pdo-test.toml"  # tpdo_mask
 
 
 @pytest.mark.parametrize("option, needle", [
@@ -123,6 +124,24 @@ def test_pdo_bitwise(tmp_path: Path) -> None:
     assert not list(out.iterdir())  # nothing written
     assert run_odgen(bits, out, "--c", "--build=").returncode == 0
     assert run_odgen(LEAN, out, "--c", "--build=CO_PDO_BITWISE=0").returncode == 0
+
+
+def test_tpdo_change(tmp_path: Path) -> None:
+    # the change masks (options TPDO_MASK_254/255 with [device] tpdo_mask)
+    # and change detection switched off ([tpdo] change_detection = false)
+    # are settings of the change detection, which CO_TPDO_CHANGE=0 leaves
+    # out; the lean-test device has none of them
+    r = run_odgen(PDO_TEST, tmp_path, "--c", "--build=CO_TPDO_CHANGE=0")
+    assert r.returncode == 1
+    assert ("TPDO change detection settings (TPDO_MASK_254, TPDO_MASK_255, tpdo_mask 0x2030) "
+            "needs CO_TPDO_CHANGE=1 (this build: CO_TPDO_CHANGE=0)") in r.stderr
+    assert not list(tmp_path.iterdir())  # nothing written
+    r = run_odgen(FAULHABER, tmp_path, "--c", "--build=CO_TPDO_CHANGE=0")
+    assert r.returncode == 1
+    assert "TPDO change detection settings (TPDO_NO_CHANGE_DETECT) needs CO_TPDO_CHANGE=1" in r.stderr
+    assert run_odgen(PDO_TEST, tmp_path, "--c", "--build=").returncode == 0
+    assert run_odgen(FAULHABER, tmp_path, "--c", "--build=").returncode == 0
+    assert run_odgen(LEAN, tmp_path, "--c", "--build=CO_TPDO_CHANGE=0").returncode == 0
 
 
 def test_store_commands_without_storage(tmp_path: Path) -> None:

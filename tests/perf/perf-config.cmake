@@ -7,7 +7,10 @@
 #        CO_OPT_SDO_NO_BLOCK, which a device without block transfer has), no
 #        TPDO remote requests (CANopenNode v4 has none), no bit-granular PDO
 #        mapping (CANopenNode v4's default CO_CONFIG_PDO leaves out
-#        CO_CONFIG_PDO_BITWISE_MAPPING: whole bytes only);
+#        CO_CONFIG_PDO_BITWISE_MAPPING: whole bytes only), no TPDO change
+#        detection (CANopenNode v4's CO_TPDO_process compares no data: a
+#        TPDO goes out on the application's request, its event timer and
+#        once when it becomes valid in Operational);
 #   BLK: SEG with SDO block transfer.
 set(CO_PERF_COMMON_CONFIG
   CO_NODE_GUARDING=0
@@ -19,6 +22,7 @@ set(CO_PERF_COMMON_CONFIG
   CO_LIMITS=0
   CO_HB_CONSUMERS_MAX=8U
   CO_PDO_RTR=0
-  CO_PDO_BITWISE=0)
+  CO_PDO_BITWISE=0
+  CO_TPDO_CHANGE=0)
 set(CO_PERF_SEG_CONFIG ${CO_PERF_COMMON_CONFIG} CO_SDO_BLOCK=0 CO_PERSONALITY=0)
 set(CO_PERF_BLK_CONFIG ${CO_PERF_COMMON_CONFIG} CO_SDO_BLOCK=1 CO_PERSONALITY=0)

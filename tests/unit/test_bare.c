@@ -1,14 +1,17 @@
 /*
  * The core built with the minimal slave's options and also without block SDO,
  * node guarding, TPDO remote requests and bit-granular PDO mapping
- * (CO_SDO_BLOCK=0, CO_NODE_GUARDING=0, CO_PDO_RTR=0, CO_PDO_BITWISE=0) on the
- * lean-test device: block requests answer 0x05040001 like an unknown command,
- * a guarding RTR gets no answer, a TPDO's RTR gets none and types 252/253
- * answer 0x06090030 (and the generated node's PDO receive table has room for
- * the RPDOs only), a mapping entry of a length that is not whole bytes
- * answers 0x06040041, the expedited and segmented SDO, the heartbeat, the
- * synchronous TPDO and mappings of some of an object's bytes keep working,
- * and a device with 0x100C/0x100D is refused.
+ * and TPDO change detection (CO_SDO_BLOCK=0, CO_NODE_GUARDING=0,
+ * CO_PDO_RTR=0, CO_PDO_BITWISE=0, CO_TPDO_CHANGE=0) on the lean-test device:
+ * block requests answer 0x05040001 like an unknown command, a guarding RTR
+ * gets no answer, a TPDO's RTR gets none and types 252/253 answer 0x06090030
+ * (and the generated node's PDO receive table has room for the RPDOs only), a
+ * mapping entry of a length that is not whole bytes answers 0x06040041, an
+ * event-driven or acyclic TPDO does not go out when its data change (only
+ * once on entering Operational, on a request and at its event timer), the
+ * expedited and segmented SDO, the heartbeat, the synchronous TPDO and
+ * mappings of some of an object's bytes keep working, and a device with
+ * 0x100C/0x100D is refused.
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -22,8 +25,8 @@
 #include "test_bus.h"
 #include "test_dev.h"
 
-#if CO_SDO_BLOCK || CO_NODE_GUARDING || CO_PDO_RTR || CO_PDO_BITWISE
-#error "test_bare is built against a core without block SDO, guarding, TPDO RTRs, bit mapping"
+#if CO_SDO_BLOCK || CO_NODE_GUARDING || CO_PDO_RTR || CO_PDO_BITWISE || CO_TPDO_CHANGE
+#error "test_bare: a core without block SDO, guarding, TPDO RTRs, bit mapping, change detection"
 #endif
 
 static tb_bus_t bus;
@@ -124,6 +127,74 @@ static void pdo_bitwise_left_out(void **state)
     tb_xfer(BUS, "601 40 00 21 00 00 00 00 00", "581 43 00 21 00 AA BB 00 00");
 }
 
+/* TPDO1 event-driven (254) with an event timer of 100 ms: sent once on
+ * entering Operational, then on a request and at the event timer, which
+ * every transmission restarts; a change of its data sends nothing. */
+static void tpdo_event_no_change(void **state)
+{
+    uint8_t v[4] = {0x44, 0x33, 0x22, 0x11};
+
+    (void)state;
+    assert_int_equal(co_od_write(&lean.node, 0x2200, 0, v, 4, true), CO_OK);
+    tb_xfer(BUS, "601 2F 00 18 02 FE 00 00 00", "581 60 00 18 02 00 00 00 00");
+    tb_xfer(BUS, "601 2B 00 18 05 64 00 00 00", "581 60 00 18 05 00 00 00 00");
+    tb_expect_none(BUS);
+    tb_send(BUS, "000 01 01");
+    tb_expect(BUS, "181 44 33 22 11");
+    tb_expect_none(BUS);
+    /* a change: nothing */
+    v[0] = 0x55;
+    assert_int_equal(co_od_write(&lean.node, 0x2200, 0, v, 4, true), CO_OK);
+    tb_advance(BUS, 40000);
+    tb_expect_none(BUS);
+    /* a request: sent with the data of now */
+    assert_int_equal(co_tpdo_request(&lean.node, 0), CO_OK);
+    tb_advance(BUS, 1000);
+    tb_expect(BUS, "181 55 33 22 11");
+    /* the event timer runs from there: 100 ms later, the data of then */
+    v[1] = 0x66;
+    assert_int_equal(co_od_write(&lean.node, 0x2200, 0, v, 4, true), CO_OK);
+    tb_advance(BUS, 98000);
+    tb_expect_none(BUS);
+    tb_advance(BUS, 2000);
+    tb_expect(BUS, "181 55 66 22 11");
+    tb_expect_none(BUS);
+    tb_advance(BUS, 100000);
+    tb_expect(BUS, "181 55 66 22 11");
+    tb_expect_none(BUS);
+}
+
+/* TPDO1 acyclic synchronous (0): at the first SYNC in Operational, then at
+ * the SYNC after a request only, not after a change of its data. */
+static void tpdo_acyclic_no_change(void **state)
+{
+    uint8_t v[4] = {0x44, 0x33, 0x22, 0x11};
+
+    (void)state;
+    assert_int_equal(co_od_write(&lean.node, 0x2200, 0, v, 4, true), CO_OK);
+    tb_xfer(BUS, "601 2F 00 18 02 00 00 00 00", "581 60 00 18 02 00 00 00 00");
+    tb_send(BUS, "000 01 01");
+    tb_expect_none(BUS);
+    tb_send(BUS, "080");
+    tb_expect(BUS, "181 44 33 22 11");
+    tb_send(BUS, "080");
+    tb_expect_none(BUS);
+    /* a change: not at the next SYNC */
+    v[0] = 0x55;
+    assert_int_equal(co_od_write(&lean.node, 0x2200, 0, v, 4, true), CO_OK);
+    tb_advance(BUS, 1000);
+    tb_send(BUS, "080");
+    tb_expect_none(BUS);
+    /* a request: at the next SYNC (not before), once */
+    assert_int_equal(co_tpdo_request(&lean.node, 0), CO_OK);
+    tb_advance(BUS, 1000);
+    tb_expect_none(BUS);
+    tb_send(BUS, "080");
+    tb_expect(BUS, "181 55 33 22 11");
+    tb_send(BUS, "080");
+    tb_expect_none(BUS);
+}
+
 static void guarding_device_refused(void **state)
 {
     td_node_t td;
@@ -149,6 +220,8 @@ int main(void)
         cmocka_unit_test_setup(guarding_left_out, setup),
         cmocka_unit_test_setup(tpdo_rtr_left_out, setup),
         cmocka_unit_test_setup(pdo_bitwise_left_out, setup),
+        cmocka_unit_test_setup(tpdo_event_no_change, setup),
+        cmocka_unit_test_setup(tpdo_acyclic_no_change, setup),
         cmocka_unit_test_setup(guarding_device_refused, setup),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

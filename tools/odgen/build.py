@@ -123,6 +123,15 @@ def check(dev: Device, build: dict[str, int]) -> None:
                        and (s.default & 7) != 0})
         if bits:
             need("CO_PDO_BITWISE", "a mapping length not a multiple of 8 (" + ", ".join(bits) + ")")
+    if not cfg.get("CO_TPDO_CHANGE", 1):
+        # settings of the change detection a core without it does not have
+        # (with CO_PERSONALITY=0 the options are refused as deviations too)
+        change = [o for o in dev.options
+                  if o in ("TPDO_NO_CHANGE_DETECT", "TPDO_MASK_254", "TPDO_MASK_255")]
+        if dev.tpdo_mask is not None:
+            change.append(f"tpdo_mask 0x{dev.tpdo_mask:04X}")
+        if change:
+            need("CO_TPDO_CHANGE", "TPDO change detection settings (" + ", ".join(change) + ")")
     if not cfg.get("CO_LSS", 1) and "LSS" in dev.options:
         need("CO_LSS", "LSS ([device] lss)")
     if missing:

@@ -80,6 +80,20 @@
 #define CO_PDO_BITWISE 1
 #endif
 
+#ifndef CO_TPDO_CHANGE
+/** Change detection of event-driven (254, 255) and acyclic synchronous (0)
+ *  TPDOs: their mapped data are compared at every co_node_process (254/255)
+ *  or SYNC (0) and a change sends them. Left out: they compare nothing and
+ *  go out on a request (co_tpdo_request, set.pdo.tpdo_after_rpdo), at their
+ *  event timer and once on entering Operational (type 0: at a SYNC after
+ *  one of these); the tpdo_event callback is not called, and the generator
+ *  refuses a device with set.tpdo.change_mask, a tpdo_mask or
+ *  set.tpdo.change_detection off (CANopenNode v4 compares no PDO data:
+ *  its TPDOs send on the application's request, the event timer and once
+ *  when they become valid in Operational). */
+#define CO_TPDO_CHANGE 1
+#endif
+
 /* ---- services a device may not need (1: in, 0: left out) */
 
 #ifndef CO_SDO_BLOCK

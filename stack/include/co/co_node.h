@@ -163,7 +163,8 @@ typedef struct co_node_callbacks {
      *  the change send it (asked at every co_node_process while the data
      *  differs from what was sent). Not asked for the first transmission in
      *  Operational, a request, the event timer or an RTR. NULL: every
-     *  change sends. */
+     *  change sends. Never asked in a core built with CO_TPDO_CHANGE=0
+     *  (no change detection). */
     bool (*tpdo_event)(void *ctx, struct co_node *node, uint16_t n, const uint8_t last[8],
                        const uint8_t now[8]);
     /** An NMT command @p cs (0x01 start, 0x02 stop, 0x80 pre-operational,
@@ -538,8 +539,8 @@ bool co_sync_window_open(const co_node_t *node);
  *  (at the next SYNC) or 254/255 (as soon as the inhibit time allows).
  *  Changes of mapped data are also found without this call: event-driven
  *  TPDOs compare their data at every co_node_process (not on a device with
- *  CO_TPDO_CHANGE_IGNORED, whose application calls this for its
- *  events). */
+ *  CO_TPDO_CHANGE_IGNORED or in a core built with CO_TPDO_CHANGE=0, whose
+ *  application calls this for its events). */
 co_err_t co_tpdo_request(co_node_t *node, uint16_t n);
 
 /** Fault injection (a simulated device, a test of a master): @p muted true

@@ -69,26 +69,13 @@ typedef enum co_hb_event {
  * device's description file. Shared by all nodes of that type.
  */
 typedef struct co_dev {
-    const co_od_entry_t *od;    /**< od_count entries, sorted by index */
-    const co_od_sub_t *rows;    /**< the entries' rows (co_od_entry_t.rows) */
     uint16_t od_count;
     uint16_t ram_size;          /**< bytes of the per-node RAM image */
     uint16_t comm_end;          /**< [0, comm_end): communication parameters */
     uint16_t app_end;           /**< [comm_end, app_end): stored application values;
                                      [app_end, ram_size): not stored */
-    const uint8_t *defaults;    /**< n_defaults default runs (co_od.h: CO_OD_DEF_RUN) */
-    const uint8_t *rom;         /**< const values (CO_SUB_ROM) */
-    const co_od_limit_t *limits;
-    const uint8_t *boot_emcy_data; /**< 5 bytes, with set.nmt.boot_emcy */
-    const co_pdo_desc_t *pdo;   /**< n_rpdo RPDOs, then n_tpdo TPDOs */
     uint16_t n_rpdo;
     uint16_t n_tpdo;
-    /** With set.tpdo.change_mask: per TPDO (n_tpdo entries) the RAM offset
-     *  of its change mask, two UNSIGNED32 values (the manufacturer object the
-     *  description names, sub 1 and 2): bit k of the first is bit k of PDO
-     *  bytes 0..3, of the second of bytes 4..7; a change of the mapped data
-     *  sends the TPDO only if it touches a set bit. NULL: no masks. */
-    const uint16_t *tpdo_mask;
     /** With set.lss.slave: the bit rates the device supports, bit k for index k
      *  of the CiA 305 bit-timing table (0 1000, 1 800, 2 500, 3 250, 4 125,
      *  6 50, 7 20, 8 10 kbit/s, 9 automatic detection); the generator makes
@@ -112,9 +99,23 @@ typedef struct co_dev {
      *  comm_end or app_end. */
     uint16_t n_defaults;
     uint8_t n_hooks;            /**< hook slots the node's hook table must have */
-    /** The personality (co_settings.h); all zero: CiA 301. Last, so that the
-     *  fields above keep short offsets where a build leaves it unread. */
+    /** The personality (co_settings.h); all zero: CiA 301. (The 16-bit
+     *  fields, n_hooks and the personality first, the pointers last: their
+     *  loads stay short, offsets of at most 124, where a byte's are 31.) */
     co_settings_t set;
+    const co_od_entry_t *od;    /**< od_count entries, sorted by index */
+    const co_od_sub_t *rows;    /**< the entries' rows (co_od_entry_t.rows) */
+    const uint8_t *defaults;    /**< n_defaults default runs (co_od.h: CO_OD_DEF_RUN) */
+    const uint8_t *rom;         /**< const values (CO_SUB_ROM) */
+    const co_od_limit_t *limits;
+    const uint8_t *boot_emcy_data; /**< 5 bytes, with set.nmt.boot_emcy */
+    const co_pdo_desc_t *pdo;   /**< n_rpdo RPDOs, then n_tpdo TPDOs */
+    /** With set.tpdo.change_mask: per TPDO (n_tpdo entries) the RAM offset
+     *  of its change mask, two UNSIGNED32 values (the manufacturer object the
+     *  description names, sub 1 and 2): bit k of the first is bit k of PDO
+     *  bytes 0..3, of the second of bytes 4..7; a change of the mapped data
+     *  sends the TPDO only if it touches a set bit. NULL: no masks. */
+    const uint16_t *tpdo_mask;
 } co_dev_t;
 
 /** The first of the rows of @p e, an entry of @p dev. */

@@ -35,52 +35,6 @@ static bool is_tpdo(const co_node_t *node, uint16_t i)
     return i >= node->dev->n_rpdo;
 }
 
-/* CiA 301 7.3.5: identifiers no PDO may use. */
-/* One mapping entry (index:16 sub:8 bits:8). *bits gets its length, *obj
- * the mapped sub-entry (NULL for a dummy entry; its descriptor in @p buf)
- * and *e its entry. */
-static co_err_t check_entry(const co_node_t *node, bool tx, uint32_t v, uint8_t *bits,
-                            const co_od_entry_t **e, const co_od_sub_t **obj, co_od_sub_t *buf)
-{
-    uint16_t index = (uint16_t)(v >> 16U);
-    uint8_t sub = (uint8_t)((v >> 8U) & 0xFFU);
-    uint32_t size;
-    uint32_t n = v & 0xFFU;
-
-    *bits = (uint8_t)n;
-    *obj = NULL;
-    if ((index >= 0x0001U) && (index <= 0x0007U) && (sub == 0U)) {
-        /* dummy entry: a gap in an RPDO (types BOOLEAN .. UNSIGNED32) */
-        if (tx) {
-            return CO_ERR_NO_MAP;
-        }
-        size = co_type_len((uint8_t)index);
-    } else {
-        const co_od_sub_t *s = buf;
-        co_err_t err = co_od_lookup(node, index, sub, e, buf);
-        if (err == CO_ERR_NO_SUB) {
-            return CO_ERR_NO_MAP;
-        }
-        if (err != CO_OK) {
-            return CO_ERR_NO_OBJECT;
-        }
-        size = co_type_len(s->type);
-        if ((size == 0U) || ((s->flags & (tx ? CO_SUB_MAP_T : CO_SUB_MAP_R)) == 0U)) {
-            return CO_ERR_NO_MAP;
-        }
-        *obj = s;
-    }
-    /* bit granularity: any length up to the object's size (the low bits) */
-    if ((n == 0U) || (n > (size * 8U))) {
-        return CO_ERR_PARAM_INCOMPAT;
-    }
-    if (((n & 7U) != 0U) &&
-        ((CO_PDO_BITWISE == 0) || (CO_SET(node, pdo.granularity) == CO_PDO_MAP_BYTES))) {
-        return CO_ERR_NO_MAP; /* granularity 8 (or a build without bit mapping): whole bytes */
-    }
-    return CO_OK;
-}
-
 #if CO_PDO_FAST_MAX > 0
 /* The code of a mapped object the PDO engine may copy directly between the
  * RAM image and the frame (co_pdo_code), with the same result as the
@@ -126,11 +80,15 @@ static uint16_t direct_code(const co_node_t *node, const co_od_entry_t *e, const
 }
 #endif
 
-/* Validate the first @p count entries of PDO i's mapping as the dictionary
- * holds them; they become the state @p p: the bytes they cover (len; 0
- * while the mapping is disabled or invalid), the first CO_PDO_FAST_MAX
- * entries resolved (p->plain). */
-static co_err_t map_state(const co_node_t *node, uint16_t i, uint32_t count, co_pdo_t *p)
+/* Validate @p count mapping entries of PDO i at @p map (the mapping as the
+ * dictionary holds it, or one entry being written); they become the state
+ * @p p: the bytes they cover (len; 0 while the mapping is disabled or
+ * invalid), the first CO_PDO_FAST_MAX entries resolved (p->plain). Each
+ * entry (index:16 sub:8 bits:8) is a dummy entry (a gap in an RPDO: types
+ * BOOLEAN .. UNSIGNED32) or a mappable sub-entry, of any length up to its
+ * size (the low bits). */
+static co_err_t map_state(const co_node_t *node, uint16_t i, const uint8_t *map, uint32_t count,
+                          co_pdo_t *p)
 {
     const co_pdo_desc_t *d = &node->dev->pdo[i];
     bool tx = is_tpdo(node, i);
@@ -143,23 +101,47 @@ static co_err_t map_state(const co_node_t *node, uint16_t i, uint32_t count, co_
         return CO_ERR_MAP_LEN;
     }
     for (uint32_t k = 0U; k < count; k++) {
-        uint8_t bits;
+        uint32_t v = co_pdo_entry(map, k);
+        uint16_t index = (uint16_t)(v >> 16U);
+        uint8_t sub = (uint8_t)((v >> 8U) & 0xFFU);
+        uint32_t n = v & 0xFFU;
+        uint32_t size;
         const co_od_entry_t *e = NULL;
-        const co_od_sub_t *s;
-        co_od_sub_t sd;
-        co_err_t err = check_entry(node, tx, co_pdo_entry(co_pdo_map(node, d), k),
-                                   &bits, &e, &s, &sd);
-        if (err != CO_OK) {
-            return err;
+        co_od_sub_t s;
+        uint16_t code = CO_PDO_DUMMY;
+
+        if ((index >= 0x0001U) && (index <= 0x0007U) && (sub == 0U)) {
+            if (tx) {
+                return CO_ERR_NO_MAP; /* a TPDO has no gaps */
+            }
+            size = co_type_len((uint8_t)index);
+        } else {
+            co_err_t err = co_od_lookup(node, index, sub, &e, &s);
+            if (err != CO_OK) {
+                return (err == CO_ERR_NO_SUB) ? CO_ERR_NO_MAP : CO_ERR_NO_OBJECT;
+            }
+            size = co_type_len(s.type);
+            if ((size == 0U) || ((s.flags & (tx ? CO_SUB_MAP_T : CO_SUB_MAP_R)) == 0U)) {
+                return CO_ERR_NO_MAP;
+            }
+#if CO_PDO_FAST_MAX > 0
+            code = direct_code(node, e, &s, tx, n, total);
+#endif
+        }
+        if ((n == 0U) || (n > (size * 8U))) {
+            return CO_ERR_PARAM_INCOMPAT;
+        }
+        if (((n & 7U) != 0U) &&
+            ((CO_PDO_BITWISE == 0) || (CO_SET(node, pdo.granularity) == CO_PDO_MAP_BYTES))) {
+            return CO_ERR_NO_MAP; /* granularity 8 (or a build without bit mapping): whole bytes */
         }
 #if CO_PDO_FAST_MAX > 0
         if (k < CO_PDO_FAST_MAX) {
-            p->plain[k] = (s != NULL) ? direct_code(node, e, s, tx, bits, total) : CO_PDO_DUMMY;
-            direct = direct && (p->plain[k] != CO_PDO_SLOW) &&
-                     (!CO_PDO_BITWISE || ((bits & 7U) == 0U));
+            p->plain[k] = code;
+            direct = direct && (code != CO_PDO_SLOW) && (!CO_PDO_BITWISE || ((n & 7U) == 0U));
         }
 #endif
-        total += bits;
+        total += n;
     }
     if (total > 64U) {
         return CO_ERR_MAP_LEN;
@@ -172,7 +154,8 @@ static co_err_t map_state(const co_node_t *node, uint16_t i, uint32_t count, co_
 /* PDO i's state from its mapping as the dictionary holds it. */
 static void remap(co_node_t *node, uint16_t i)
 {
-    (void)map_state(node, i, co_pdo_count(node, i), &node->pdo.p[i]);
+    (void)map_state(node, i, co_pdo_map(node, &node->dev->pdo[i]), co_pdo_count(node, i),
+                    &node->pdo.p[i]);
 }
 
 /* A write of sub @p sub of PDO i's mapping (@p is_map) or communication
@@ -186,16 +169,13 @@ static co_err_t check_write(const co_node_t *node, uint16_t i, bool is_map, uint
     uint32_t cob = co_pdo_cob(node, i);
     bool valid = (cob & CO_PDO_COB_INVALID) == 0U;
     uint32_t v = (sub == 3U) ? co_get_u16(data) : data[0];
-    uint8_t len;
+    co_pdo_t tmp = {0}; /* (a state of its own: the PDO's changes only once written) */
 
     if ((CO_SET(node, pdo.parameter_writes) == CO_PDO_WRITES_PREOP) &&
         (node->nmt != (uint8_t)CO_NMT_PRE_OPERATIONAL)) {
         return CO_ERR_STORE_STATE; /* the device configures PDOs in Pre-operational only */
     }
     if (is_map) {
-        const co_od_entry_t *e;
-        const co_od_sub_t *s;
-        co_od_sub_t sd;
         if (sub > d->map_max) {
             return CO_OK; /* not a mapping entry */
         }
@@ -206,16 +186,14 @@ static co_err_t check_write(const co_node_t *node, uint16_t i, bool is_map, uint
             return CO_ERR_STORE_STATE;
         }
         if (sub == 0U) {
-            /* A new count is checked against the entries as they stand (in
-             * a state of its own: the PDO's changes only once it is written) */
-            co_pdo_t tmp = {0};
-            return map_state(node, i, v, &tmp);
+            /* a new count is checked against the entries as they stand */
+            return map_state(node, i, co_pdo_map(node, d), v, &tmp);
         }
         if (co_pdo_count(node, i) != 0U) {
             return CO_ERR_NO_ACCESS; /* entries are fixed while the mapping is enabled */
         }
-        v = co_get_u32(data);
-        return (v == 0U) ? CO_OK : check_entry(node, tx, v, &len, &e, &s, &sd);
+        v = co_get_u32(data); /* (in the RAM image's byte order) */
+        return (v == 0U) ? CO_OK : map_state(node, i, (const uint8_t *)&v, 1U, &tmp);
     }
     if (sub == 1U) {
         /* 29-bit identifiers are not supported; the CAN-ID changes only while

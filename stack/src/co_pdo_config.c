@@ -83,7 +83,8 @@ static uint16_t direct_code(const co_node_t *node, const co_od_entry_t *e, const
 /* Validate @p count mapping entries of PDO i at @p map (the mapping as the
  * dictionary holds it, or one entry being written); they become the state
  * @p p: the bytes they cover (len; 0 while the mapping is disabled or
- * invalid), the first CO_PDO_FAST_MAX entries resolved (p->plain). Each
+ * invalid), the first CO_PDO_FAST_MAX entries resolved (p->plain: a dummy
+ * entry of whole bytes CO_PDO_DUMMY, one of other bits CO_PDO_SLOW). Each
  * entry (index:16 sub:8 bits:8) is a dummy entry (a gap in an RPDO: types
  * BOOLEAN .. UNSIGNED32) or a mappable sub-entry, of any length up to its
  * size (the low bits). */
@@ -93,9 +94,7 @@ static co_err_t map_state(const co_node_t *node, uint16_t i, const uint8_t *map,
     const co_pdo_desc_t *d = &node->dev->pdo[i];
     bool tx = is_tpdo(node, i);
     uint32_t total = 0U;
-    bool direct = (count != 0U) && (count <= CO_PDO_FAST_MAX);
 
-    p->flags &= (uint16_t)~CO_PDO_F_DIRECT;
     p->len = 0U;
     if (count > d->map_max) {
         return CO_ERR_MAP_LEN;
@@ -108,7 +107,7 @@ static co_err_t map_state(const co_node_t *node, uint16_t i, const uint8_t *map,
         uint32_t size;
         const co_od_entry_t *e = NULL;
         co_od_sub_t s;
-        uint16_t code = CO_PDO_DUMMY;
+        uint16_t code = ((n & 7U) == 0U) ? CO_PDO_DUMMY : CO_PDO_SLOW;
 
         if ((index >= 0x0001U) && (index <= 0x0007U) && (sub == 0U)) {
             if (tx) {
@@ -138,7 +137,6 @@ static co_err_t map_state(const co_node_t *node, uint16_t i, const uint8_t *map,
 #if CO_PDO_FAST_MAX > 0
         if (k < CO_PDO_FAST_MAX) {
             p->plain[k] = code;
-            direct = direct && (code != CO_PDO_SLOW) && (!CO_PDO_BITWISE || ((n & 7U) == 0U));
         }
 #endif
         total += n;
@@ -146,16 +144,29 @@ static co_err_t map_state(const co_node_t *node, uint16_t i, const uint8_t *map,
     if (total > 64U) {
         return CO_ERR_MAP_LEN;
     }
-    p->flags |= (uint16_t)((CO_FAST && direct) ? CO_PDO_F_DIRECT : 0U);
     p->len = (uint8_t)((total + 7U) / 8U); /* (0 for no entries: disabled) */
     return CO_OK;
 }
 
-/* PDO i's state from its mapping as the dictionary holds it. */
+/* PDO i's state from its mapping as the dictionary holds it; in a build for
+ * speed CO_PDO_F_DIRECT when it has 1..CO_PDO_FAST_MAX entries, all
+ * resolved (none CO_PDO_SLOW: whole bytes). */
 static void remap(co_node_t *node, uint16_t i)
 {
-    (void)map_state(node, i, co_pdo_map(node, &node->dev->pdo[i]), co_pdo_count(node, i),
-                    &node->pdo.p[i]);
+    co_pdo_t *p = &node->pdo.p[i];
+    uint32_t count = co_pdo_count(node, i);
+
+    (void)map_state(node, i, co_pdo_map(node, &node->dev->pdo[i]), count, p);
+#if CO_FAST && (CO_PDO_FAST_MAX > 0)
+    p->flags &= (uint16_t)~CO_PDO_F_DIRECT;
+    if ((p->len != 0U) && (count <= CO_PDO_FAST_MAX)) {
+        bool direct = true;
+        for (uint32_t k = 0U; k < count; k++) {
+            direct = direct && (p->plain[k] != CO_PDO_SLOW);
+        }
+        p->flags |= (uint16_t)(direct ? CO_PDO_F_DIRECT : 0U);
+    }
+#endif
 }
 
 /* A write of sub @p sub of PDO i's mapping (@p is_map) or communication
@@ -169,7 +180,7 @@ static co_err_t check_write(const co_node_t *node, uint16_t i, bool is_map, uint
     uint32_t cob = co_pdo_cob(node, i);
     bool valid = (cob & CO_PDO_COB_INVALID) == 0U;
     uint32_t v = (sub == 3U) ? co_get_u16(data) : data[0];
-    co_pdo_t tmp = {0}; /* (a state of its own: the PDO's changes only once written) */
+    co_pdo_t tmp; /* (a state of its own: the PDO's changes only once written) */
 
     if ((CO_SET(node, pdo.parameter_writes) == CO_PDO_WRITES_PREOP) &&
         (node->nmt != (uint8_t)CO_NMT_PRE_OPERATIONAL)) {

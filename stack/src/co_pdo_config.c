@@ -232,49 +232,45 @@ static co_err_t check_write(const co_node_t *node, uint16_t i, bool is_map, uint
                : CO_OK;
 }
 
-/* Forget what a PDO was doing (errors stay until correct PDOs resume). */
-static void restart(co_node_t *node, uint16_t i)
+/* Forget what a PDO was doing (errors stay until correct PDOs resume, all
+ * go with @p reset), its state anew from its mapping (remap). */
+static void restart(co_node_t *node, uint16_t i, bool reset)
 {
     co_pdo_t *p = &node->pdo.p[i];
 
+    if (reset) {
+        p->flags = 0U;
+    }
+    remap(node, i);
     p->flags &= (uint16_t)(CO_PDO_F_DIRECT | CO_PDO_F_TIMEOUT | CO_PDO_F_SHORT |
                            CO_PDO_F_LONG);
     p->count = 0U;
 }
 
+/* After a write: the mapping's number of entries, the COB-ID (the receive
+ * table changes), the transmission type or the event timer restart the PDO. */
 static void pdo_written(co_node_t *node, uint16_t i, bool is_map, uint8_t sub)
 {
-    if (is_map) {
-        if (sub != 0U) {
-            return;
+    if (is_map ? (sub == 0U) : ((sub == 1U) || (sub == 2U) || (sub == 5U))) {
+        if (!is_map && (sub == 1U)) {
+            co_rx_invalidate(node);
         }
-        remap(node, i);
-    } else if (sub == 1U) {
-        co_rx_invalidate(node);
-    } else if ((sub != 2U) && (sub != 5U)) {
-        return;
-    } else {
-        /* the transmission type or the event timer */
+        restart(node, i, false);
     }
-    restart(node, i);
 }
 
 /* An NMT state change: every PDO starts over (restart: buffered synchronous
- * data and pending transmissions are dropped), event-driven TPDOs send
- * their current data once on entering Operational. Leaving Initialising
- * (a reset: co_node.c's boot, the only change from that state), the PDOs
- * also lose their error states and take their mappings anew from the
- * dictionary (no reset entry of their own: the PDOs do nothing before). */
+ * data and pending transmissions are dropped, the state from the mapping
+ * anew), event-driven TPDOs send their current data once on entering
+ * Operational. Leaving Initialising (a reset: co_node.c's boot, the only
+ * change from that state), the PDOs also lose their error states (no reset
+ * entry of their own: the PDOs do nothing before). */
 static void pdo_nmt(co_node_t *node, bool booted)
 {
     uint32_t n = (uint32_t)node->dev->n_rpdo + node->dev->n_tpdo;
 
     for (uint32_t i = 0U; i < n; i++) {
-        if (booted) {
-            node->pdo.p[i].flags = 0U;
-            remap(node, (uint16_t)i);
-        }
-        restart(node, (uint16_t)i);
+        restart(node, (uint16_t)i, booted);
     }
     if (node->nmt == (uint8_t)CO_NMT_OPERATIONAL) {
         (void)co_tpdo_process(node, CO_NO_DEADLINE);

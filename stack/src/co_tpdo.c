@@ -209,6 +209,7 @@ CO_INLINE uint32_t timer_next(const co_node_t *node, const co_pdo_t *p, uint32_t
     return next;
 }
 
+#if CO_TPDO_CHANGE
 /* A due event-driven TPDO (CO_PDO_F_EVENT): sent with @p now unless the
  * inhibit time holds it back (its end is a deadline: timer_next); then the
  * next deadline. */
@@ -222,7 +223,6 @@ CO_INLINE uint32_t event_due(co_node_t *node, uint16_t i, uint32_t next, const u
     return next;
 }
 
-#if CO_TPDO_CHANGE
 /* set.tpdo.change_mask: does the change from the data last sent to
  * @p now touch a bit of TPDO i's change mask (co_dev_t.tpdo_mask)? True
  * when no mask applies to its transmission type. */
@@ -311,7 +311,9 @@ CO_HOT uint32_t event_driven(co_node_t *node, uint16_t i, uint32_t next_in, bool
     }
     if ((p->flags & (CO_PDO_F_EVENT | CO_PDO_F_INHIBIT)) == CO_PDO_F_EVENT) {
         build(node, i, now);
-        next = event_due(node, i, next, now);
+        if (!send(node, i, now, true)) {
+            next = co_deadline_min(node->now, next, node->now + RETRY_US);
+        }
     }
     return timer_next(node, p, ev, inh, next);
 }

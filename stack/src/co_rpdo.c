@@ -31,13 +31,14 @@ static const struct {
 void co_rpdo_error(co_node_t *node, uint16_t i, uint16_t mask, uint16_t on)
 {
     co_pdo_t *p = &node->pdo.p[i];
+    uint16_t chg = (uint16_t)(mask & (p->flags ^ on)); /* asked, and a change */
 
+    p->flags ^= chg;
     for (uint8_t k = 0U; k < (uint8_t)(sizeof rpdo_errs / sizeof rpdo_errs[0]); k++) {
         uint16_t flag = rpdo_errs[k].flag;
-        if (((mask & flag) == 0U) || (((p->flags ^ on) & flag) == 0U)) {
-            continue; /* not asked, or no change */
+        if ((chg & flag) == 0U) {
+            continue;
         }
-        p->flags ^= flag;
         if ((on & flag) != 0U) {
             co_emcy_raise(node, rpdo_errs[k].code, CO_ERREG_COMM, NULL);
         } else if (!any_rpdo(node, flag)) {

@@ -251,7 +251,7 @@ static void restart(co_node_t *node, uint16_t i, bool reset)
  * table changes), the transmission type or the event timer restart the PDO. */
 static void pdo_written(co_node_t *node, uint16_t i, bool is_map, uint8_t sub)
 {
-    if (is_map ? (sub == 0U) : ((sub == 1U) || (sub == 2U) || (sub == 5U))) {
+    if ((is_map && (sub == 0U)) || (!is_map && ((sub == 1U) || (sub == 2U) || (sub == 5U)))) {
         if (!is_map && (sub == 1U)) {
             co_rx_invalidate(node);
         }

@@ -107,7 +107,8 @@ static co_err_t map_state(const co_node_t *node, uint16_t i, const uint8_t *map,
         uint32_t size;
         const co_od_entry_t *e = NULL;
         co_od_sub_t s;
-        uint16_t code = ((n & 7U) == 0U) ? CO_PDO_DUMMY : CO_PDO_SLOW;
+        /* (a dummy entry of other bits than whole bytes: only with bit mapping) */
+        uint16_t code = (CO_PDO_BITWISE && ((n & 7U) != 0U)) ? CO_PDO_SLOW : CO_PDO_DUMMY;
 
         if ((index >= 0x0001U) && (index <= 0x0007U) && (sub == 0U)) {
             if (tx) {

@@ -25,9 +25,9 @@ static const struct {
     {CO_PDO_F_TIMEOUT, CO_EMCY_RPDO_TIMEOUT},
 };
 
-/* Set the error states of RPDO i in @p on, clear the others of @p mask; the
- * EMCY goes with the first PDO in a state and ends with the last one
- * leaving it. */
+/* Set the error states of RPDO i in @p on, clear the others of @p mask (any
+ * other flag of @p mask as well, without EMCY: CO_PDO_F_TIMER); the EMCY
+ * goes with the first PDO in a state and ends with the last one leaving it. */
 void co_rpdo_error(co_node_t *node, uint16_t i, uint16_t mask, uint16_t on)
 {
     co_pdo_t *p = &node->pdo.p[i];

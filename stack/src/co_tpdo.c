@@ -211,16 +211,13 @@ CO_INLINE uint32_t timer_next(const co_node_t *node, const co_pdo_t *p, uint32_t
 
 #if CO_TPDO_CHANGE
 /* A due event-driven TPDO (CO_PDO_F_EVENT): sent with @p now unless the
- * inhibit time holds it back (its end is a deadline: timer_next); then the
- * next deadline. */
-CO_INLINE uint32_t event_due(co_node_t *node, uint16_t i, uint32_t next, const uint8_t *now)
+ * inhibit time holds it back (its end is a deadline: timer_next); true when
+ * the TX path did not take it. */
+CO_INLINE bool event_due(co_node_t *node, uint16_t i, const uint8_t *now)
 {
     const co_pdo_t *p = &node->pdo.p[i];
 
-    if (((p->flags & CO_PDO_F_INHIBIT) == 0U) && !send(node, i, now, true)) {
-        return co_deadline_min(node->now, next, node->now + RETRY_US);
-    }
-    return next;
+    return ((p->flags & CO_PDO_F_INHIBIT) == 0U) && !send(node, i, now, true);
 }
 
 /* set.tpdo.change_mask: does the change from the data last sent to
@@ -255,8 +252,9 @@ static CO_NOINLINE bool masked_change(const co_node_t *node, uint16_t i, const u
  * sooner than the inhibit time allows. Without (CO_TPDO_CHANGE_IGNORED): a
  * request or the event timer (which runs from the start of Operational,
  * when nothing has been sent), sampled when it goes out. Returns the next
- * deadline. */
-CO_HOT uint32_t event_driven(co_node_t *node, uint16_t i, uint32_t next_in, bool detect)
+ * deadline; @p held set when the TX path did not take it. */
+CO_HOT uint32_t event_driven(co_node_t *node, uint16_t i, uint32_t next_in, bool detect,
+                             bool *held)
 {
     uint32_t next = next_in;
     co_pdo_t *p = &node->pdo.p[i];
@@ -286,8 +284,8 @@ CO_HOT uint32_t event_driven(co_node_t *node, uint16_t i, uint32_t next_in, bool
             p->flags |= CO_PDO_F_EVENT;
         }
     }
-    if ((p->flags & CO_PDO_F_EVENT) != 0U) {
-        next = event_due(node, i, next, now);
+    if (((p->flags & CO_PDO_F_EVENT) != 0U) && event_due(node, i, now)) {
+        *held = true;
     }
     return timer_next(node, p, ev, inh, next);
 }
@@ -295,10 +293,11 @@ CO_HOT uint32_t event_driven(co_node_t *node, uint16_t i, uint32_t next_in, bool
 /* Event-driven (254/255) without change detection (CO_TPDO_CHANGE=0): once
  * on entering Operational (nothing sent yet), then on a request or at the
  * event timer, no sooner than the inhibit time allows; sampled when it goes
- * out (@p detect: unused). Returns the next deadline. */
-CO_HOT uint32_t event_driven(co_node_t *node, uint16_t i, uint32_t next_in, bool detect)
+ * out (@p detect: unused). Returns the next deadline; @p held set when the
+ * TX path did not take it. */
+CO_HOT uint32_t event_driven(co_node_t *node, uint16_t i, uint32_t next, bool detect,
+                             bool *held)
 {
-    uint32_t next = next_in;
     co_pdo_t *p = &node->pdo.p[i];
     uint32_t ev = co_pdo_event_us(node, i);
     uint32_t inh = co_pdo_inhibit_us(node, i);
@@ -312,7 +311,7 @@ CO_HOT uint32_t event_driven(co_node_t *node, uint16_t i, uint32_t next_in, bool
     if ((p->flags & (CO_PDO_F_EVENT | CO_PDO_F_INHIBIT)) == CO_PDO_F_EVENT) {
         build(node, i, now);
         if (!send(node, i, now, true)) {
-            next = co_deadline_min(node->now, next, node->now + RETRY_US);
+            *held = true;
         }
     }
     return timer_next(node, p, ev, inh, next);
@@ -346,13 +345,14 @@ CO_HOT uint32_t at_process(co_node_t *node, uint16_t i, uint8_t type, uint32_t n
 {
     uint32_t next = next_in;
     co_pdo_t *p = &node->pdo.p[i];
+    bool held = false; /* the TX path took not all: retried RETRY_US later */
 
 #if CO_PDO_RTR
     if ((p->flags & CO_PDO_F_RTR) != 0U) {
         if (answer_rtr(node, i)) {
             p->flags &= (uint16_t)~CO_PDO_F_RTR;
         } else {
-            next = co_deadline_min(node->now, next, node->now + RETRY_US);
+            held = true;
         }
     }
 #endif
@@ -361,15 +361,15 @@ CO_HOT uint32_t at_process(co_node_t *node, uint16_t i, uint8_t type, uint32_t n
         if (!co_sync_window(node) || send(node, i, p->data, false)) {
             p->flags &= (uint16_t)~CO_PDO_F_SYNC_PEND;
         } else {
-            next = co_deadline_min(node->now, next, node->now + RETRY_US);
+            held = true;
         }
     }
     if (type >= 254U) {
         /* change detection compares the data at every co_node_process */
         node->pdo.poll = (CO_TPDO_CHANGE && detect) ? 1U : node->pdo.poll;
-        next = event_driven(node, i, next, detect);
+        next = event_driven(node, i, next, detect, &held);
     }
-    return next;
+    return held ? co_deadline_min(node->now, next, node->now + RETRY_US) : next;
 }
 
 /* The deadline of RPDO i (armed at a reception in Operational: every NMT
@@ -384,9 +384,9 @@ CO_HOT uint32_t rpdo_deadline(co_node_t *node, uint16_t i, uint32_t next)
         return next; /* not received yet, or no deadline monitoring */
     }
     if (co_time_reached(node->now, end)) {
-        /* missed: monitoring stops until the next reception, EMCY */
-        node->pdo.p[i].flags &= (uint16_t)~CO_PDO_F_TIMER;
-        co_rpdo_error(node, i, CO_PDO_F_TIMEOUT, CO_PDO_F_TIMEOUT);
+        /* missed: monitoring stops until the next reception (the timer
+         * flag cleared with the error state set), EMCY */
+        co_rpdo_error(node, i, CO_PDO_F_TIMEOUT | CO_PDO_F_TIMER, CO_PDO_F_TIMEOUT);
         return next;
     }
     return co_deadline_min(node->now, next, end);
@@ -440,7 +440,7 @@ co_err_t co_tpdo_request(co_node_t *node, uint16_t n)
 {
     uint16_t i = (uint16_t)(node->dev->n_rpdo + n);
 
-    if ((node->dev->pdo == NULL) || (n >= node->dev->n_tpdo)) {
+    if (n >= node->dev->n_tpdo) { /* (no PDOs: no descriptors either) */
         return CO_ERR_NO_OBJECT;
     }
     if (!co_pdo_usable(node, i)) {

@@ -180,7 +180,7 @@ static co_err_t check_write(const co_node_t *node, uint16_t i, bool is_map, uint
     bool tx = is_tpdo(node, i);
     uint32_t cob = co_pdo_cob(node, i);
     bool valid = (cob & CO_PDO_COB_INVALID) == 0U;
-    uint32_t v = (sub == 3U) ? co_get_u16(data) : data[0];
+    uint32_t v;
     co_pdo_t tmp; /* (a state of its own: the PDO's changes only once written) */
 
     if ((CO_SET(node, pdo.parameter_writes) == CO_PDO_WRITES_PREOP) &&
@@ -199,7 +199,7 @@ static co_err_t check_write(const co_node_t *node, uint16_t i, bool is_map, uint
         }
         if (sub == 0U) {
             /* a new count is checked against the entries as they stand */
-            return map_state(node, i, co_pdo_map(node, d), v, &tmp);
+            return map_state(node, i, co_pdo_map(node, d), data[0], &tmp);
         }
         if (co_pdo_count(node, i) != 0U) {
             return CO_ERR_NO_ACCESS; /* entries are fixed while the mapping is enabled */
@@ -217,6 +217,7 @@ static co_err_t check_write(const co_node_t *node, uint16_t i, bool is_map, uint
         }
         return co_check_cob(cob, co_get_u32(data), CO_PDO_COB_INVALID);
     }
+    v = (sub == 3U) ? co_get_u16(data) : data[0];
     if ((sub == 2U) && (v > 240U) && (v < ((tx && CO_PDO_RTR) ? 252U : 254U))) {
         return CO_ERR_VALUE; /* reserved transmission types */
     }

@@ -81,8 +81,10 @@ SDO_CALL static void send8(co_node_t *node, co_frame_t *f)
     co_tx_frame(node, f);
 }
 
-/* An answer, packed into the frame (no 8-byte image copied). */
-static void reply(co_node_t *node, uint8_t cmd, uint16_t index, uint8_t sub, uint32_t data)
+/* An answer, packed into the frame (no 8-byte image copied; at -Os one
+ * copy: inlined, the answers' callers would grow more than it shrinks). */
+SDO_CALL static void reply(co_node_t *node, uint8_t cmd, uint16_t index, uint8_t sub,
+                           uint32_t data)
 {
     co_frame_t f;
 

@@ -9,6 +9,16 @@
 #define CO_ENDIAN_H
 
 #include <stdint.h>
+#include <string.h>
+
+/* On a little-endian CPU the wire order is the CPU's: a value is stored as
+ * one copy (on a CPU that allows unaligned stores, one store instruction
+ * instead of one per byte). */
+#if defined(__BYTE_ORDER__) && defined(__ORDER_LITTLE_ENDIAN__)
+#if __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+#define CO_ENDIAN_LE 1
+#endif
+#endif
 
 static inline uint16_t co_get_u16(const uint8_t *p)
 {
@@ -33,8 +43,12 @@ static inline uint64_t co_get_u64(const uint8_t *p)
 
 static inline void co_put_u16(uint8_t *p, uint16_t v)
 {
+#ifdef CO_ENDIAN_LE
+    (void)memcpy(p, &v, 2U);
+#else
     p[0] = (uint8_t)(v & 0xFFU);
     p[1] = (uint8_t)(v >> 8U);
+#endif
 }
 
 static inline void co_put_u24(uint8_t *p, uint32_t v)
@@ -46,10 +60,14 @@ static inline void co_put_u24(uint8_t *p, uint32_t v)
 
 static inline void co_put_u32(uint8_t *p, uint32_t v)
 {
+#ifdef CO_ENDIAN_LE
+    (void)memcpy(p, &v, 4U);
+#else
     p[0] = (uint8_t)(v & 0xFFU);
     p[1] = (uint8_t)((v >> 8U) & 0xFFU);
     p[2] = (uint8_t)((v >> 16U) & 0xFFU);
     p[3] = (uint8_t)(v >> 24U);
+#endif
 }
 
 static inline void co_put_u64(uint8_t *p, uint64_t v)

@@ -132,12 +132,23 @@ static void history_push(co_node_t *node, uint16_t code, const uint8_t *mfr)
     *node->emcy.hist_count = n;
 }
 
+/* The slot of active error @p code, n_active when it is not active. */
+CO_NOINLINE static uint8_t active_at(const co_node_t *node, uint16_t code)
+{
+    uint8_t i = 0U;
+
+    while ((i < node->emcy.n_active) && (node->emcy.active_code[i] != code)) {
+        i++;
+    }
+    return i;
+}
+
 void co_emcy_raise(co_node_t *node, uint16_t code, uint8_t reg_bits, const uint8_t *mfr)
 {
     uint8_t filled[5];
     const uint8_t *data = mfr;
 
-    if (co_emcy_is_active(node, code) || (code == CO_EMCY_NO_ERROR)) {
+    if ((active_at(node, code) < node->emcy.n_active) || (code == CO_EMCY_NO_ERROR)) {
         return;
     }
     if (node->emcy.n_active < CO_EMCY_ACTIVE_MAX) {
@@ -158,17 +169,6 @@ void co_emcy_raise(co_node_t *node, uint16_t code, uint8_t reg_bits, const uint8
     if (CO_SET(node, emcy.state_pair) != 0U) {
         send_code(node, CO_EMCY_NO_ERROR, NULL);
     }
-}
-
-/* The slot of active error @p code, n_active when it is not active. */
-CO_NOINLINE static uint8_t active_at(const co_node_t *node, uint16_t code)
-{
-    uint8_t i = 0U;
-
-    while ((i < node->emcy.n_active) && (node->emcy.active_code[i] != code)) {
-        i++;
-    }
-    return i;
 }
 
 void co_emcy_clear(co_node_t *node, uint16_t code)

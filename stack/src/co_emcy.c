@@ -231,8 +231,8 @@ static void emcy_booted(co_node_t *node)
      * CiA 301 is silent; we end them here, after the boot-up (the first frame
      * after a reset) and in Pre-operational, where EMCY may be sent. No-op
      * after a node reset (no active errors) and at init. */
-    for (uint8_t i = 0U; i < 4U; i++) {
-        co_emcy_clear(node, ended[i]);
+    for (const uint16_t *c = ended; c != &ended[4]; c++) {
+        co_emcy_clear(node, *c);
     }
     /* the newest parameter set was damaged: an older one or the defaults
      * were loaded (co_store.c); reported until a save writes a whole one */

@@ -26,8 +26,8 @@ static void update_error(co_node_t *node)
 {
     bool lost = (CO_NODE_GUARDING != 0) && (node->errctl.guard_state == (uint8_t)GUARD_LOST);
 
-    for (uint32_t k = 0U; k < node->errctl.n_hb_cons; k++) {
-        if (node->errctl.hbc_state[k] == (uint8_t)HBC_LOST) {
+    for (uint32_t k = node->errctl.n_hb_cons; k > 0U; k--) {
+        if (node->errctl.hbc_state[k - 1U] == (uint8_t)HBC_LOST) {
             lost = true;
         }
     }

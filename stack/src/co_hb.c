@@ -111,8 +111,8 @@ static void hb_reset(co_node_t *node)
 #endif
     /* The boot-up frame counts as the first heartbeat. */
     node->errctl.hb_last = node->now;
-    for (uint32_t k = 0U; k < node->errctl.n_hb_cons; k++) {
-        consumer_start(node, (uint8_t)k);
+    for (uint32_t k = node->errctl.n_hb_cons; k > 0U; k--) {
+        consumer_start(node, (uint8_t)(k - 1U));
     }
 }
 

@@ -244,9 +244,9 @@ static void errctl_rx_slots(co_node_t *node)
 #if CO_NODE_GUARDING
     co_rx_add(node, (uint16_t)(0x700U + node->node_id), CO_ROW_ERRCTL);
 #endif
-    for (uint32_t k = 0U; k < node->errctl.n_hb_cons; k++) {
-        uint8_t id = (uint8_t)((node->errctl.hb_cons[k] >> 16U) & 0x7FU);
-        if ((node->errctl.hbc_state[k] != (uint8_t)HBC_UNUSED) && (id != node->node_id)) {
+    for (uint32_t k = node->errctl.n_hb_cons; k > 0U; k--) {
+        uint8_t id = (uint8_t)((node->errctl.hb_cons[k - 1U] >> 16U) & 0x7FU);
+        if ((node->errctl.hbc_state[k - 1U] != (uint8_t)HBC_UNUSED) && (id != node->node_id)) {
             co_rx_add(node, (uint16_t)(0x700U + id), CO_ROW_ERRCTL);
         }
     }

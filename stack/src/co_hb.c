@@ -303,9 +303,9 @@ static co_err_t hb_consumer_check(const co_node_t *node, uint8_t sub, uint32_t v
     if (id > 127U) {
         return CO_ERR_VALUE;
     }
-    for (uint32_t k = 0U; k < node->errctl.n_hb_cons; k++) {
-        uint32_t o = node->errctl.hb_cons[k];
-        if (((uint8_t)(k + 1U) != sub) && (((o >> 16U) & 0xFFU) == id) && ((o & 0xFFFFU) != 0U)) {
+    for (uint32_t k = node->errctl.n_hb_cons; k > 0U; k--) { /* (k: the sub-index) */
+        uint32_t o = node->errctl.hb_cons[k - 1U];
+        if ((k != sub) && (((o >> 16U) & 0xFFU) == id) && ((o & 0xFFFFU) != 0U)) {
             return CO_ERR_PARAM_INCOMPAT;
         }
     }

@@ -15,8 +15,8 @@ static uint8_t errreg_now(const co_node_t *node)
     bool generic = (CO_SET(node, emcy.generic_bit) == CO_ERREG_GENERIC_ALWAYS);
     uint8_t r = 0U;
 
-    for (uint8_t i = 0U; i < node->emcy.n_active; i++) {
-        uint8_t bits = node->emcy.active_reg[i];
+    for (uint32_t i = node->emcy.n_active; i > 0U; i--) {
+        uint8_t bits = node->emcy.active_reg[i - 1U];
         r |= (uint8_t)(bits | (((bits == 0U) || generic) ? CO_ERREG_GENERIC : 0U));
     }
     return r;

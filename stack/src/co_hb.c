@@ -181,16 +181,17 @@ static uint32_t errctl_process(co_node_t *node, uint32_t next)
          * defines the heartbeat as cyclic (the next one carries the new
          * state); only the boot-up marks a transition. */
         uint32_t period = ms_to_us(*node->errctl.hb_prod);
-        if (co_time_reached(now, node->errctl.hb_last + period)) {
+        uint32_t due = node->errctl.hb_last + period;
+        if (co_time_reached(now, due)) {
             if (node->errctl.hb_muted == 0U) {
                 co_tx(node, 0x700UL + node->node_id, &node->nmt, 1U); /* its state */
             }
-            node->errctl.hb_last += period;
-            if (co_time_reached(now, node->errctl.hb_last + period)) {
-                node->errctl.hb_last = now; /* fell behind (or a shorter period): no burst */
-            }
+            /* fell behind (or a shorter period): no burst */
+            due = co_time_reached(now, due + period) ? now : due;
+            node->errctl.hb_last = due;
+            due += period;
         }
-        next = co_deadline_min(now, next, node->errctl.hb_last + period);
+        next = co_deadline_min(now, next, due);
     }
     for (uint32_t k = 0U; k < node->errctl.n_hb_cons; k++) {
         co_errctl_t *c = &node->errctl;

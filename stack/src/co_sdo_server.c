@@ -501,7 +501,9 @@ static co_err_t segment(co_node_t *node, const uint8_t *d, bool up)
     }
     f.data[0] = (uint8_t)(cmd | t->toggle);
     t->toggle ^= CO_SDO_TOGGLE;
-    if (last && !up) {
+    if ((CO_STORAGE != 0) && last && !up) {
+        /* (the answer may wait for a save; without storage it is the
+         * frame below, its data zeros) */
         download_done(node, f.data[0], 0U, 0U, true);
         return CO_OK;
     }

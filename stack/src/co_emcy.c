@@ -286,7 +286,7 @@ co_err_t co_emcy_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
             err = co_check_cob(*m->cob, co_get_u32(data), 0x80000000UL | CO_COB_RSV30);
         }
     } else if (op == (uint8_t)CO_SVC_READ) {
-        if ((sub > 0U) && (m->hist_count != NULL) && (sub > *m->hist_count)) {
+        if ((m->hist_count != NULL) && (sub > *m->hist_count)) { /* (never sub0) */
             err = CO_ERR_NO_DATA;
         }
     } else if ((sub == 0U) && (data[0] != 0U)) { /* checked (an UNSIGNED8) */

@@ -123,22 +123,20 @@ static void hb_rx(co_node_t *node, uint8_t slot, uint8_t id, const co_frame_t *f
     co_errctl_t *c = &node->errctl;
     uint8_t st = (uint8_t)(f->data[0] & 0x7FU);
     uint8_t prev = c->hbc_state[slot];
+    bool changed = c->hbc_nmt[slot] != st;
 
     c->hbc_deadline[slot] = node->now + ms_to_us(c->hb_cons[slot] & 0xFFFFU);
     c->hbc_state[slot] = (uint8_t)HBC_ACTIVE;
-    if (prev == (uint8_t)HBC_WAITING) {
-        event(node, CO_HB_STARTED, id, st);
-    } else if (prev == (uint8_t)HBC_LOST) {
+    c->hbc_nmt[slot] = st;
+    if (prev == (uint8_t)HBC_LOST) {
         update_error(node);
-        event(node, CO_HB_RECOVERED, id, st);
-    } else {
-        /* still alive */
     }
-    if (c->hbc_nmt[slot] != st) {
-        c->hbc_nmt[slot] = st;
-        if (prev != (uint8_t)HBC_WAITING) {
-            event(node, CO_HB_STATE, id, st);
-        }
+    if (prev != (uint8_t)HBC_ACTIVE) {
+        /* the first heartbeat, or one after a timeout */
+        event(node, (prev == (uint8_t)HBC_WAITING) ? CO_HB_STARTED : CO_HB_RECOVERED, id, st);
+    }
+    if (changed && (prev != (uint8_t)HBC_WAITING)) {
+        event(node, CO_HB_STATE, id, st);
     }
 }
 

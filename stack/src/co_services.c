@@ -42,8 +42,8 @@ const co_svc_hook_t co_svc_hooks[CO_SVC_N_HOOKS] = {
     /* 5: 0x1017 */
     {CO_SVC_CHECK | (CO_NODE_GUARDING ? CO_SVC_WRITTEN : 0U) | CO_SVC_SELF, CO_ROW_ERRCTL,
      co_hb_prod_obj},
-    /* 6: 0x1010, 0x1011 */
-    {CO_SVC_COMMIT, CO_ROW_STORE, co_store_obj},
+    /* 6: 0x1010, 0x1011 (without storage a check that refuses the commands) */
+    {CO_STORAGE ? CO_SVC_COMMIT : (CO_SVC_CHECK | CO_SVC_SELF), CO_ROW_STORE, co_store_obj},
     /* 7: 0x1400..0x1BFF */
     {CO_SVC_CHECK | CO_SVC_WRITTEN, CO_ROW_PDO, co_pdo_obj},
 #if CO_TIME

@@ -406,15 +406,20 @@ bool co_store_busy(const co_node_t *node)
 }
 #endif
 
-/* (a command's value is in RAM, or a writable const: its writes never
- * store, co_store_obj takes them) */
-bool co_store_is_command(const co_od_entry_t *e, const co_od_sub_t *s)
+/* A sub-entry of 0x1010 / 0x1011 that is a command: sub >= 1, UNSIGNED32,
+ * its value in RAM or a writable const (its writes never store,
+ * co_store_obj takes them). */
+static bool command_sub(const co_od_sub_t *s)
 {
     uint32_t where = s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO | CO_SUB_W);
 
-    return ((e->index == 0x1010U) || (e->index == 0x1011U)) && (s->sub != 0U) &&
-           (s->type == (uint8_t)CO_UNSIGNED32) && ((where & CO_SUB_HOOKIO) == 0U) &&
-           (where != CO_SUB_ROM);
+    return (s->sub != 0U) && (s->type == (uint8_t)CO_UNSIGNED32) &&
+           ((where & CO_SUB_HOOKIO) == 0U) && (where != CO_SUB_ROM);
+}
+
+bool co_store_is_command(const co_od_entry_t *e, const co_od_sub_t *s)
+{
+    return ((e->index == 0x1010U) || (e->index == 0x1011U)) && command_sub(s);
 }
 
 #if CO_STORAGE
@@ -521,24 +526,35 @@ static void store_reset(co_node_t *node, uint8_t kind)
 
 /* ------------------------------------------------------------ service */
 
-/* A checked write to 0x1010 / 0x1011: a sub-entry the core acts on (sub
- * >= 1, UNSIGNED32 in RAM) saves or restores, its value is never stored;
- * any other is stored as usual. */
+/* A checked write to 0x1010 / 0x1011 (the hook of those only:
+ * co_svc_hooks): a sub-entry the core acts on (command_sub) saves or
+ * restores, its value is never stored; any other is stored as usual. */
+#if CO_STORAGE
 co_err_t co_store_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
                       const co_od_sub_t *s, const uint8_t *data, uint32_t len)
 {
     (void)op;
-    if (!co_store_is_command(e, s)) {
+    if (!command_sub(s)) {
         co_od_commit(node, e, s, data, len);
         return CO_OK;
     }
-#if CO_STORAGE
     return command(node, e->index, s->sub, data);
-#else
-    (void)data;
-    return CO_ERR_STORE; /* no non-volatile memory */
-#endif
 }
+#else
+/* Without storage the hook is a check (CO_SVC_CHECK, before the
+ * application's hook): a command is refused, there is no non-volatile
+ * memory; any other value the engine stores. */
+co_err_t co_store_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
+                      const co_od_sub_t *s, const uint8_t *data, uint32_t len)
+{
+    (void)node;
+    (void)op;
+    (void)e;
+    (void)data;
+    (void)len;
+    return command_sub(s) ? CO_ERR_STORE : CO_OK;
+}
+#endif
 
 const co_service_t co_svc_store = {
 #if CO_STORAGE

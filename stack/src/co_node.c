@@ -153,10 +153,18 @@ static uint8_t services_running(const co_node_t *node)
 }
 
 /* Event @p ev (CO_SVC_*) to the services in table order: to all of them,
- * CO_SVC_SLOTS to the running ones. */
+ * CO_SVC_SLOTS to the running ones. A reset (CO_RESET_NODE: all of the RAM
+ * image, CO_RESET_COMMUNICATION: the communication area) restores the
+ * values to their defaults first (the store service then loads the stored
+ * set over them). */
 static void services_walk(co_node_t *node, uint8_t ev)
 {
     uint32_t rows = (ev == CO_SVC_SLOTS) ? services_running(node) : co_n_services;
+
+    if ((ev == (uint8_t)CO_RESET_NODE) || (ev == (uint8_t)CO_RESET_COMMUNICATION)) {
+        co_od_restore(node, (ev == (uint8_t)CO_RESET_NODE) ? node->dev->ram_size
+                                                           : node->dev->comm_end);
+    }
 
     for (uint32_t k = 0U; k < rows; k++) {
         void (*fn)(co_node_t *, uint8_t) = co_services[k]->event;
@@ -454,7 +462,7 @@ static void services_reset(co_node_t *node, uint8_t kind)
 static void boot(co_node_t *node)
 {
     node->nmt = (uint8_t)CO_NMT_INITIALISING;
-    services_reset(node, CO_SVC_START);
+    services_walk(node, CO_SVC_START);
     co_rx_invalidate(node);
     if (co_node_unconfigured(node)) {
         return; /* LSS init: no boot-up, no NMT until a valid node-ID */

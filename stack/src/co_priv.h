@@ -380,8 +380,10 @@ extern const co_bind_t co_binds[];
 extern const uint8_t co_n_binds;
 
 /* What the node tells a service (co_service_t.event), in table order to
- * every service: CO_RESET_NODE and CO_RESET_COMMUNICATION while the values
- * are restored (before the application's nmt_reset callback), then
+ * every service: CO_RESET_NODE and CO_RESET_COMMUNICATION once the node has
+ * restored the values of the reset's area to defaults (co_od_restore; the
+ * store service loads the stored set over them), before the application's
+ * nmt_reset callback, then
  * CO_SVC_START before the boot-up frame: the service's state starts over.
  * CO_SVC_BIND: co_node_init, before anything else, to the LSS service alone
  * (its stored configuration: an LSS-stored node-ID replaces the configured
@@ -430,7 +432,9 @@ extern const co_service_t co_svc_sync;
 extern const co_service_t co_svc_time;
 #endif
 extern const co_service_t co_svc_pdo;
-extern const co_service_t co_svc_store;
+#if CO_STORAGE
+extern const co_service_t co_svc_store; /* (a row only with storage) */
+#endif
 #if CO_LSS
 extern const co_service_t co_svc_lss;
 #endif

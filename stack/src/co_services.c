@@ -20,7 +20,9 @@ const co_service_t *const co_services[] = {
     [CO_ROW_TIME] = &co_svc_time,   /* TIME: 0x1012 */
 #endif
     [CO_ROW_PDO] = &co_svc_pdo,    /* RPDO, TPDO: 0x1400..0x1BFF */
+#if CO_STORAGE
     [CO_ROW_STORE] = &co_svc_store,  /* parameter storage: 0x1010, 0x1011 */
+#endif
 };
 
 const uint8_t co_n_services = (uint8_t)(sizeof(co_services) / sizeof(co_services[0]));

@@ -479,20 +479,19 @@ void co_store_forget_comm(co_node_t *node)
 }
 #endif
 
+#if CO_STORAGE
+/* A reset of a kind: the node restored its area to defaults (co_node.c);
+ * the stored groups of that area over them. */
 static void store_reset(co_node_t *node, uint8_t kind)
 {
     const co_dev_t *dev = node->dev;
     bool all = (kind == (uint8_t)CO_RESET_NODE);
     uint16_t end = all ? dev->ram_size : dev->comm_end;
-#if CO_STORAGE
     uint32_t cap = has_nv(node) ? 1U : 0U; /* bit 0: on command */
-#endif
 
     if ((kind != (uint8_t)CO_RESET_NODE) && (kind != (uint8_t)CO_RESET_COMMUNICATION)) {
-        return; /* values are restored by the resets of a kind only */
+        return; /* values are loaded by the resets of a kind only */
     }
-    co_od_restore(node, end);
-#if CO_STORAGE
     node->store.damaged = 0U;
     if (cap != 0U) {
         bool io_err = false; /* an unreadable bank counts as invalid */
@@ -508,8 +507,9 @@ static void store_reset(co_node_t *node, uint8_t kind)
         node->store.damaged = damaged ? 1U : 0U;
     }
     /* What 0x1010 / 0x1011 read: the capability, whatever was written.
-     * (Without CO_STORAGE they read 0: a value in RAM is never written and
-     * co_od_restore zeroed it, or a const 0, odgen's choice for such a build.) */
+     * (Without CO_STORAGE they read 0: a const 0, odgen's choice for such a
+     * build, or a value in RAM the engine never writes (co_store_obj) and
+     * co_od_restore zeroed.) */
     for (uint16_t index = 0x1010U; index <= 0x1011U; index++) {
         const co_od_entry_t *e = co_od_find(dev->od, dev->od_count, index);
         for (uint32_t k = 1U; (e != NULL) && (k <= 0xFEU); k++) {
@@ -521,8 +521,8 @@ static void store_reset(co_node_t *node, uint8_t kind)
             }
         }
     }
-#endif
 }
+#endif
 
 /* ------------------------------------------------------------ service */
 
@@ -556,10 +556,9 @@ co_err_t co_store_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
 }
 #endif
 
-const co_service_t co_svc_store = {
 #if CO_STORAGE
+const co_service_t co_svc_store = {
     store_reset, NULL, store_process,
-#else
-    store_reset, NULL, NULL,
-#endif
 };
+#endif
+/* (without storage the service has nothing to do: no row in co_services[]) */

@@ -85,12 +85,14 @@ static inline uint32_t co_dict_us(uint32_t v, uint32_t unit_us)
 }
 
 /* Restricted CAN-IDs (CiA 301 7.3.5): no configurable COB-ID (PDO, SYNC,
- * TIME, EMCY) may use them. */
+ * TIME, EMCY) may use them: 0x000..0x07F, 0x101..0x180, 0x581..0x5FF,
+ * 0x601..0x67F, 0x6E0..0x6FF, 0x701..0x7FF (@p id: 11 bits). The last four
+ * are 0x581..0x67F and 0x6E0..0x7FF without the one multiple of 0x100 in
+ * each (0x600, 0x700). */
 static inline bool co_cob_restricted(uint32_t id)
 {
-    return (id <= 0x07FU) || ((id >= 0x101U) && (id <= 0x180U)) ||
-           ((id >= 0x581U) && (id <= 0x5FFU)) || ((id >= 0x601U) && (id <= 0x67FU)) ||
-           ((id >= 0x6E0U) && (id <= 0x6FFU)) || (id >= 0x701U);
+    return (id <= 0x07FU) || ((id - 0x101U) <= 0x7FU) ||
+           (((id & 0xFFU) != 0U) && (((id - 0x581U) <= 0xFEU) || (id >= 0x6E0U)));
 }
 
 /* Earliest of a deadline set and another candidate. */

@@ -12,6 +12,7 @@
 
 #include <cmocka.h>
 
+#include "co_priv.h"
 #include "pdo_fx.h"
 #include "test_bus.h"
 #include "test_dev.h"
@@ -154,6 +155,21 @@ static void restricted_cob_ids(void **state)
     tb_send(BUS, "000 01 05");
     tb_expect_none(BUS);
     assert_int_equal(co_node_nmt_state(NODE), CO_NMT_OPERATIONAL);
+}
+
+/* The restricted CAN-IDs are exactly CiA 301 7.3.5's list: every 11-bit
+ * one through co_check_cob with a rule that always checks (the SYNC
+ * consumer's). */
+static void restricted_cob_ids_every_one(void **state)
+{
+    (void)state;
+    for (uint32_t id = 0U; id <= 0x7FFU; id++) {
+        bool listed = (id <= 0x07FU) || ((id >= 0x101U) && (id <= 0x180U)) ||
+                      ((id >= 0x581U) && (id <= 0x5FFU)) || ((id >= 0x601U) && (id <= 0x67FU)) ||
+                      ((id >= 0x6E0U) && (id <= 0x6FFU)) || (id >= 0x701U);
+        assert_int_equal(co_check_cob(0U, id, CO_COB_WHEN_SET | CO_COB_ALWAYS),
+                         listed ? CO_ERR_VALUE : CO_OK);
+    }
 }
 
 /* Item 5: a client abort is unconfirmed, whatever its length. */
@@ -310,6 +326,7 @@ int main(void)
         cmocka_unit_test(tpdo_event_timer_while_inhibited),
         cmocka_unit_test(tpdo_event_timer_tx_full),
         cmocka_unit_test_setup(restricted_cob_ids, setup),
+        cmocka_unit_test(restricted_cob_ids_every_one),
         cmocka_unit_test_setup(client_abort_is_never_answered, setup),
         cmocka_unit_test_setup(stall_beyond_horizon, setup),
         cmocka_unit_test(stall_pdo_timers),

@@ -80,15 +80,15 @@ static void apply(co_node_t *node, uint16_t i, const uint8_t *data, uint8_t dlc)
 static bool length_ok(co_node_t *node, uint16_t i, uint8_t dlc)
 {
     uint8_t len = node->pdo.p[i].len;
+    /* CiA 301: a short one is not processed; one longer than mapped is (the
+     * first bytes), and reported */
+    bool too_short = (dlc < len) && (CO_SET(node, pdo.short_rpdo) == CO_RPDO_SHORT_EMCY);
 
-    if ((dlc < len) && (CO_SET(node, pdo.short_rpdo) == CO_RPDO_SHORT_EMCY)) {
-        co_rpdo_error(node, i, CO_PDO_F_SHORT, CO_PDO_F_SHORT);
-        return false; /* CiA 301: not processed */
-    }
-    /* longer than mapped: processed (the first bytes), and reported */
-    co_rpdo_error(node, i, CO_PDO_F_SHORT | CO_PDO_F_LONG | CO_PDO_F_TIMEOUT,
-               (dlc > len) ? CO_PDO_F_LONG : 0U);
-    return true;
+    co_rpdo_error(node, i,
+                  too_short ? CO_PDO_F_SHORT
+                            : (uint16_t)(CO_PDO_F_SHORT | CO_PDO_F_LONG | CO_PDO_F_TIMEOUT),
+                  too_short ? CO_PDO_F_SHORT : ((dlc > len) ? CO_PDO_F_LONG : 0U));
+    return !too_short;
 }
 
 /* A frame on the COB-ID of RPDO i, which the node's dispatch found valid

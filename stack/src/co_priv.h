@@ -622,7 +622,7 @@ static inline void co_nmt_error(co_node_t *node, uint8_t sub)
 /* ---- PDO (co_pdo_config.c, co_rpdo.c, co_tpdo.c) */
 /* (0x0001 unused; a PDO's mapping is enabled and valid while its len is not 0) */
 #define CO_PDO_F_EVENT     0x0002U /* TPDO: transmission requested / due */
-#define CO_PDO_F_SENT      0x0004U /* TPDO: data[] holds what was sent last */
+#define CO_PDO_F_SENT      0x0004U /* TPDO: sent (with CO_TPDO_CHANGE: data[] holds what) */
 #define CO_PDO_F_TIMER     0x0008U /* timer armed (TPDO event timer, RPDO deadline) */
 #define CO_PDO_F_INHIBIT   0x0010U /* TPDO: inhibit time running until 'inhibit' */
 #define CO_PDO_F_RXBUF     0x0020U /* RPDO: data[] waits for the next SYNC */

@@ -39,7 +39,11 @@ CO_HOT bool send(co_node_t *node, uint16_t i, const uint8_t *data, bool event)
     if (!co_tx_now(node, &f)) {
         return false;
     }
-    (void)memcpy(p->data, f.data, 8U); /* (from the frame: data may be p->data) */
+    if (CO_TPDO_CHANGE) {
+        /* what was sent, for change detection (from the frame: data may be
+         * p->data) */
+        (void)memcpy(p->data, f.data, 8U);
+    }
     p->flags |= CO_PDO_F_SENT;
     if (event) {
         /* the event timer and the inhibit time start now (times of 0 end at
@@ -170,21 +174,25 @@ void co_tpdo_rtr(co_node_t *node, uint16_t i)
 }
 #endif
 
-/* The event timer and the inhibit time of event-driven TPDO i (@p ev, @p
- * inh us, both running from p->at; an event timer of 0 is off, an inhibit
- * time of 0 ends at once), at now. */
-CO_INLINE void event_timers(co_node_t *node, co_pdo_t *p, uint32_t ev, uint32_t inh)
+/* The event timer and the inhibit time of event-driven TPDO @p p (@p ev,
+ * @p inh us, both running from p->at; an event timer of 0 is off, an
+ * inhibit time of 0 ends at once), at now: its flags with them (the caller
+ * stores them, after its own changes: one store). */
+CO_INLINE uint32_t event_timers(const co_node_t *node, const co_pdo_t *p, uint32_t ev,
+                                uint32_t inh)
 {
-    if (((p->flags & CO_PDO_F_TIMER) != 0U) && (ev != 0U) &&
-        co_time_reached(node->now, p->at + ev)) {
-        p->flags |= CO_PDO_F_EVENT;
+    uint32_t f = p->flags;
+
+    if (((f & CO_PDO_F_TIMER) != 0U) && (ev != 0U) && co_time_reached(node->now, p->at + ev)) {
+        f |= CO_PDO_F_EVENT;
     }
     /* (the time since the transmission, not the end as a point in time: the
      * end of an inhibit time of 0 would otherwise look in the future again
      * 2^31 us later) */
-    if (((p->flags & CO_PDO_F_INHIBIT) != 0U) && ((node->now - p->at) >= inh)) {
-        p->flags &= (uint16_t)~CO_PDO_F_INHIBIT;
+    if (((f & CO_PDO_F_INHIBIT) != 0U) && ((node->now - p->at) >= inh)) {
+        f &= ~(uint32_t)CO_PDO_F_INHIBIT;
     }
+    return f;
 }
 
 /* The event timer (@p ev us) as a deadline while it runs. Once expired it
@@ -262,7 +270,7 @@ CO_HOT uint32_t event_driven(co_node_t *node, uint16_t i, uint32_t next_in, bool
     uint32_t inh = co_pdo_inhibit_us(node, i);
     uint8_t now[8];
 
-    event_timers(node, p, ev, inh);
+    p->flags = (uint16_t)event_timers(node, p, ev, inh);
     if (!detect && ((p->flags & CO_PDO_F_TIMER) == 0U) && (ev != 0U)) {
         /* (an inhibit time runs only after a transmission, which starts the
          * timer too) */
@@ -301,14 +309,16 @@ CO_HOT uint32_t event_driven(co_node_t *node, uint16_t i, uint32_t next, bool de
     co_pdo_t *p = &node->pdo.p[i];
     uint32_t ev = co_pdo_event_us(node, i);
     uint32_t inh = co_pdo_inhibit_us(node, i);
+    uint32_t f;
     uint8_t now[8];
 
     (void)detect;
-    event_timers(node, p, ev, inh);
-    if ((p->flags & CO_PDO_F_SENT) == 0U) {
-        p->flags |= CO_PDO_F_EVENT;
+    f = event_timers(node, p, ev, inh);
+    if ((f & CO_PDO_F_SENT) == 0U) {
+        f |= CO_PDO_F_EVENT;
     }
-    if ((p->flags & (CO_PDO_F_EVENT | CO_PDO_F_INHIBIT)) == CO_PDO_F_EVENT) {
+    p->flags = (uint16_t)f;
+    if ((f & (CO_PDO_F_EVENT | CO_PDO_F_INHIBIT)) == CO_PDO_F_EVENT) {
         build(node, i, now);
         if (!send(node, i, now, true)) {
             *held = true;

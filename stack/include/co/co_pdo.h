@@ -34,7 +34,9 @@ typedef struct co_pdo {
     uint16_t flags;
     uint8_t count;    /**< TPDO: SYNCs counted; RPDO: length of the buffered frame */
     uint8_t len;      /**< bytes the mapping covers; 0: disabled or invalid */
-    uint8_t data[8];  /**< TPDO: last sent / sampled; RPDO: buffered until SYNC */
+    uint8_t data[8];  /**< TPDO: sampled (synchronous: sent until the window closes;
+                           type 252: for the answers), with change detection the
+                           last sent; RPDO: buffered until SYNC */
 #if CO_PDO_FAST_MAX > 0
     uint16_t plain[CO_PDO_FAST_MAX]; /**< RAM offsets of the mapped values when every
                            entry is a plain value (copied directly, whole, byte-aligned) */

@@ -9,7 +9,8 @@
  * committed whole too: a rejected or aborted download leaves the old value.
  *
  * One state machine: an open transfer's state names the request it waits
- * for (want[]: byte 0 under a mask), every handler returns an error code,
+ * for (a segment's command, or with block transfer want[]: byte 0 under a
+ * mask), every handler returns an error code,
  * and one abort path (sdo_abort) answers it and ends the transfer.
  */
 #include <string.h>
@@ -25,8 +26,9 @@
 #define SEG 7U           /* data bytes per segment */
 #define SDO_CHUNK 8U     /* block upload: segments read from the value at once */
 
-/* The states (the fuzzer takes 0 for idle); want[state - 1] names the
- * request an open transfer waits for (S_BLK_DL and S_STORE: none). */
+/* The states (the fuzzer takes 0 for idle): the request an open transfer
+ * waits for (a segment of its direction; a block state's want[state -
+ * S_BLK_DL_END]; S_BLK_DL and S_STORE: none). */
 enum {
     S_IDLE = 0,
     S_DL_SEG,     /* segmented download */
@@ -469,8 +471,8 @@ static co_err_t initiate_upload(co_node_t *node, const uint8_t *d, uint16_t inde
 /* ------------------------------------------------------------ segmented */
 
 /* A segment of a segmented download (@p up false: its data written) or
- * upload (the next bytes read); want[] checked the command, this checks
- * the toggle bit. The answer carries the toggle bit; the
+ * upload (the next bytes read); transfer_request checked the command,
+ * this checks the toggle bit. The answer carries the toggle bit; the
  * last segment ends the transfer. */
 static co_err_t segment(co_node_t *node, const uint8_t *d, bool up)
 {
@@ -743,20 +745,19 @@ static void idle_request(co_node_t *node, const uint8_t *d)
 }
 
 /* A request while a segmented or block transfer is open (not S_BLK_DL):
- * byte 0 must be the one the state waits for (want[state - 1]: mask,
- * value), a segment's toggle bit the expected one. */
+ * byte 0 must be the one the state waits for (a segment of the transfer's
+ * direction; a block state's want[]: mask, value), a segment's toggle bit
+ * the expected one. */
 SDO_RARE static co_err_t transfer_request(co_node_t *node, const uint8_t *d)
 {
-    static const uint8_t want[][2] = {
-        {0xE0U, CO_SDO_B0(CO_SDO_CCS_DOWNLOAD_SEGMENT)},
-        {0xE0U, CO_SDO_B0(CO_SDO_CCS_UPLOAD_SEGMENT)},
 #if CO_SDO_BLOCK
+    static const uint8_t want[][2] = {
         {0xE3U, CO_SDO_B0(CO_SDO_CCS_BLOCK_DOWNLOAD) | CO_SDO_BLK_END},
         {0xFFU, CO_SDO_B0(CO_SDO_CCS_BLOCK_UPLOAD) | CO_SDO_BLK_START},
         {0xE3U, CO_SDO_B0(CO_SDO_CCS_BLOCK_UPLOAD) | CO_SDO_BLK_ACK},
         {0xE3U, CO_SDO_B0(CO_SDO_CCS_BLOCK_UPLOAD) | CO_SDO_BLK_END},
-#endif
     };
+#endif
     co_sdo_srv_t *t = &node->sdo;
     uint8_t st = t->state;
 
@@ -767,13 +768,19 @@ SDO_RARE static co_err_t transfer_request(co_node_t *node, const uint8_t *d)
               (uint32_t)CO_ERR_STORE_STATE);
         return CO_OK;
     }
-    if ((d[0] & want[st - 1U][0]) != want[st - 1U][1]) {
-        return CO_ERR_CMD;
-    }
     if (st <= (uint8_t)S_UL_SEG) {
-        return segment(node, d, st == (uint8_t)S_UL_SEG);
+        /* a segment of the transfer's direction */
+        bool up = st == (uint8_t)S_UL_SEG;
+        if (CO_SDO_CS(d[0]) !=
+            (up ? CO_SDO_CCS_UPLOAD_SEGMENT : CO_SDO_CCS_DOWNLOAD_SEGMENT)) {
+            return CO_ERR_CMD;
+        }
+        return segment(node, d, up);
     }
 #if CO_SDO_BLOCK
+    if ((d[0] & want[st - (uint8_t)S_BLK_DL_END][0]) != want[st - (uint8_t)S_BLK_DL_END][1]) {
+        return CO_ERR_CMD;
+    }
     if (st == (uint8_t)S_BLK_UL_END) {
         sdo_reset(node); /* the client confirmed the end */
         return CO_OK;
@@ -879,14 +886,13 @@ static uint32_t sdo_process(co_node_t *node, uint32_t next)
 
 /* ------------------------------------------------------------ service */
 
-/* The server starts over at a reset and in Stopped (no SDO there: an open
- * transfer ends silently). */
+/* The server starts over at a reset (its events, CO_SVC_START) and in
+ * Stopped (no SDO there: an open transfer ends silently). */
 static void sdo_event(co_node_t *node, uint8_t ev)
 {
     if (ev == CO_SVC_SLOTS) {
         co_rx_add(node, (uint16_t)(0x600U + node->node_id), CO_ROW_SDO);
-    } else if ((ev == CO_SVC_START) ||
-               ((ev >= CO_SVC_NMT) && (node->nmt == (uint8_t)CO_NMT_STOPPED))) {
+    } else if ((ev < CO_SVC_SLOTS) || (node->nmt == (uint8_t)CO_NMT_STOPPED)) {
         sdo_reset(node);
     } else {
         /* nothing to do */

@@ -132,13 +132,14 @@ static void history_push(co_node_t *node, uint16_t code, const uint8_t *mfr)
     *node->emcy.hist_count = n;
 }
 
-/* The slot of active error @p code, n_active when it is not active. */
-CO_NOINLINE static uint8_t active_at(const co_node_t *node, uint16_t code)
+/* The slot of active error @p code + 1, 0 when it is not active (the
+ * active codes differ: searched from the last). */
+CO_NOINLINE static uint32_t active_at(const co_node_t *node, uint16_t code)
 {
-    uint8_t i = 0U;
+    uint32_t i = node->emcy.n_active;
 
-    while ((i < node->emcy.n_active) && (node->emcy.active_code[i] != code)) {
-        i++;
+    while ((i > 0U) && (node->emcy.active_code[i - 1U] != code)) {
+        i--;
     }
     return i;
 }
@@ -148,7 +149,7 @@ void co_emcy_raise(co_node_t *node, uint16_t code, uint8_t reg_bits, const uint8
     uint8_t filled[5];
     const uint8_t *data = mfr;
 
-    if ((active_at(node, code) < node->emcy.n_active) || (code == CO_EMCY_NO_ERROR)) {
+    if ((active_at(node, code) != 0U) || (code == CO_EMCY_NO_ERROR)) {
         return;
     }
     if (node->emcy.n_active < CO_EMCY_ACTIVE_MAX) {
@@ -174,11 +175,12 @@ void co_emcy_raise(co_node_t *node, uint16_t code, uint8_t reg_bits, const uint8
 void co_emcy_clear(co_node_t *node, uint16_t code)
 {
     co_emcy_t *m = &node->emcy;
-    uint8_t i = active_at(node, code);
+    uint32_t i = active_at(node, code);
 
-    if (i == m->n_active) {
+    if (i == 0U) {
         return;
     }
+    i--;
     m->n_active--;
     m->active_code[i] = m->active_code[m->n_active];
     m->active_reg[i] = m->active_reg[m->n_active];
@@ -191,7 +193,7 @@ void co_emcy_clear(co_node_t *node, uint16_t code)
 
 bool co_emcy_is_active(const co_node_t *node, uint16_t code)
 {
-    return active_at(node, code) < node->emcy.n_active;
+    return active_at(node, code) != 0U;
 }
 
 static uint32_t emcy_process(co_node_t *node, uint32_t next)

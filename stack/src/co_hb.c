@@ -89,7 +89,7 @@ static void guard_check(co_node_t *node)
 
 /* Entry @p k starts over from its 0x1016 value: a used one waits for its
  * producer's first heartbeat, with no deadline until then. */
-static void consumer_start(co_node_t *node, uint8_t k)
+static void consumer_start(co_node_t *node, uint32_t k)
 {
     uint32_t v = node->errctl.hb_cons[k];
     bool used = ((v & 0xFFFFU) != 0U) && (((v >> 16U) & 0xFFU) != 0U);
@@ -112,7 +112,7 @@ static void hb_reset(co_node_t *node)
     /* The boot-up frame counts as the first heartbeat. */
     node->errctl.hb_last = node->now;
     for (uint32_t k = node->errctl.n_hb_cons; k > 0U; k--) {
-        consumer_start(node, (uint8_t)(k - 1U));
+        consumer_start(node, k - 1U);
     }
 }
 
@@ -335,7 +335,7 @@ co_err_t co_errctl_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
          * does to the other entries; restarting them would pause their
          * monitoring and end a pending timeout of a producer that is still
          * silent */
-        consumer_start(node, (uint8_t)(sub - 1U));
+        consumer_start(node, sub - 1U);
         update_error(node);
     } else if ((CO_NODE_GUARDING != 0) && (e->index != 0x1016U)) {
         /* 0x100C / 0x100D: life guarding is re-armed with the new life time

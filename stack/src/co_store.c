@@ -409,7 +409,7 @@ bool co_store_busy(const co_node_t *node)
 /* A sub-entry of 0x1010 / 0x1011 that is a command: sub >= 1, UNSIGNED32,
  * its value in RAM or a writable const (its writes never store,
  * co_store_obj takes them). */
-static bool command_sub(const co_od_sub_t *s)
+CO_INLINE bool command_sub(const co_od_sub_t *s)
 {
     uint32_t where = s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO | CO_SUB_W);
 

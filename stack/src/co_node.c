@@ -227,42 +227,31 @@ bool co_node_rx_cob(const co_node_t *node, uint16_t i, uint16_t *cob)
     return false;
 }
 
-/* The frame to the service of the slot @p at says (a CO_RX_AT_* code,
- * wider for a PDO slot of any index), if the slot is for @p cob: the PDO
- * service with the PDO's number; a frame for any other service than SYNC
- * and PDO makes it run at the next co_node_process. */
-CO_HOT void rx_slot(co_node_t *node, const co_frame_t *f, uint16_t cob, uint16_t at,
-                    uint32_t now_us)
+/* The frame to the service of slot @p at (a CO_RX_AT_* code, wider for a
+ * PDO slot of any index; one for its COB-ID): the PDO service with the
+ * PDO's number; a frame for any other service than SYNC and PDO makes it
+ * run at the next co_node_process. */
+CO_HOT void rx_slot(co_node_t *node, const co_frame_t *f, uint16_t at, uint32_t now_us)
 {
     uint8_t kind;
 
-    if (at <= CO_RX_SLOTS_MAX) {
-        uint16_t s = node->rx[at - 1U];
-        if ((s & 0x7FFU) != cob) {
-            return;
-        }
-        kind = (uint8_t)(s >> CO_RX_ROW_SHIFT);
-        if (kind != CO_ROW_SYNC) {
-            /* its timers may have changed (a SYNC received changes none: the
-             * producer's run from its own period) */
-            co_svc_touch(node, kind);
-        }
-    } else {
-        uint16_t i = (uint16_t)(at - CO_RX_AT_PDO);
-        if (co_pdo_rx_cob(node, i) != cob) {
-            return;
-        }
-        co_node_clock(node, now_us);
-        co_svc_pdo.rx(node, i, f); /* (known: called directly) */
+    co_node_clock(node, now_us);
+    if (at > CO_RX_SLOTS_MAX) {
+        co_svc_pdo.rx(node, (uint16_t)(at - CO_RX_AT_PDO), f); /* (known: called directly) */
         return;
     }
-    co_node_clock(node, now_us);
+    kind = (uint8_t)(node->rx[at - 1U] >> CO_RX_ROW_SHIFT);
+    if (kind != CO_ROW_SYNC) {
+        /* its timers may have changed (a SYNC received changes none: the
+         * producer's run from its own period) */
+        co_svc_touch(node, kind);
+    }
     co_services[kind]->rx(node, 0U, f);
 }
 
-/* A function code with several slots (or a stale table): a search of the
- * services' slots, then the PDOs'; the slot found (a CO_RX_AT_* code, wider
- * for a PDO of any index), CO_RX_AT_NONE when none is for @p cob. */
+/* A search of the services' slots, then the PDOs'; the slot for @p cob (a
+ * CO_RX_AT_* code, wider for a PDO of any index), CO_RX_AT_NONE when none
+ * is. */
 static uint16_t rx_find(co_node_t *node, uint16_t cob)
 {
     co_rx_settle(node); /* a frame that came while the table was out of date */
@@ -288,12 +277,14 @@ CO_NOINLINE static void rx_many(co_node_t *node, const co_frame_t *f, uint16_t c
     uint16_t at = rx_find(node, cob);
 
     if (at != CO_RX_AT_NONE) {
-        rx_slot(node, f, cob, at, now_us);
+        rx_slot(node, f, at, now_us);
     }
 }
 
-/* The function code's only slot, or a search where it has several (in a
- * build for size one dispatch for both). */
+/* A build for speed: the function code's only slot, if it is for the
+ * frame's COB-ID, or a search where it has several. A build for size: a
+ * search for every function code with a slot (a few comparisons more per
+ * frame, one path instead of two). */
 void co_node_rx(co_node_t *node, const co_frame_t *f, uint32_t now_us)
 {
     uint16_t cob;
@@ -307,17 +298,25 @@ void co_node_rx(co_node_t *node, const co_frame_t *f, uint32_t now_us)
     if (at == CO_RX_AT_NONE) {
         return; /* not for this node */
     }
-    if (at == CO_RX_AT_MANY) {
-        if (CO_FAST) {
-            rx_many(node, f, cob, now_us);
-            return;
-        }
+    if (!CO_FAST) {
         at = rx_find(node, cob);
-        if (at == CO_RX_AT_NONE) {
+        if (at != CO_RX_AT_NONE) {
+            rx_slot(node, f, at, now_us);
+        }
+        return;
+    }
+    if (at == CO_RX_AT_MANY) {
+        rx_many(node, f, cob, now_us);
+        return;
+    }
+    if (at <= CO_RX_SLOTS_MAX) {
+        if ((node->rx[at - 1U] & 0x7FFU) != cob) {
             return;
         }
+    } else if (co_pdo_rx_cob(node, (uint16_t)(at - CO_RX_AT_PDO)) != cob) {
+        return;
     }
-    rx_slot(node, f, cob, at, now_us);
+    rx_slot(node, f, at, now_us);
 }
 
 /* ------------------------------------------------------------ timers */

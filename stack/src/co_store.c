@@ -406,20 +406,24 @@ bool co_store_busy(const co_node_t *node)
 }
 #endif
 
-/* A sub-entry of 0x1010 / 0x1011 that is a command: sub >= 1, UNSIGNED32,
- * its value in RAM or a writable const (its writes never store,
- * co_store_obj takes them). */
+/* A sub-entry of 0x1010 / 0x1011 the core acts on: sub >= 1, UNSIGNED32,
+ * with a stored value (command_sub), that is not a read-only const
+ * (command_of: its value in RAM, or a writable const); its writes never
+ * store, co_store_obj takes them. */
 CO_INLINE bool command_sub(const co_od_sub_t *s)
 {
-    uint32_t where = s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO | CO_SUB_W);
-
     return (s->sub != 0U) && (s->type == (uint8_t)CO_UNSIGNED32) &&
-           ((where & CO_SUB_HOOKIO) == 0U) && (where != CO_SUB_ROM);
+           ((s->flags & CO_SUB_HOOKIO) == 0U);
+}
+
+CO_INLINE bool command_of(const co_od_sub_t *s)
+{
+    return command_sub(s) && ((s->flags & (CO_SUB_ROM | CO_SUB_W)) != CO_SUB_ROM);
 }
 
 bool co_store_is_command(const co_od_entry_t *e, const co_od_sub_t *s)
 {
-    return ((e->index == 0x1010U) || (e->index == 0x1011U)) && command_sub(s);
+    return ((e->index == 0x1010U) || (e->index == 0x1011U)) && command_of(s);
 }
 
 #if CO_STORAGE
@@ -534,7 +538,7 @@ co_err_t co_store_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
                       const co_od_sub_t *s, const uint8_t *data, uint32_t len)
 {
     (void)op;
-    if (!command_sub(s)) {
+    if (!command_of(s)) {
         co_od_commit(node, e, s, data, len);
         return CO_OK;
     }
@@ -543,7 +547,8 @@ co_err_t co_store_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
 #else
 /* Without storage the hook is a check (CO_SVC_CHECK, before the
  * application's hook): a command is refused, there is no non-volatile
- * memory; any other value the engine stores. */
+ * memory; any other value the engine stores. (command_sub: a read-only
+ * const, which only an RPDO could write, keeps its value either way.) */
 co_err_t co_store_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
                       const co_od_sub_t *s, const uint8_t *data, uint32_t len)
 {

@@ -150,7 +150,7 @@ void co_rx_add(co_node_t *node, uint16_t cob, uint8_t svc)
 /* The rows of co_services[] that run: all, or only LSS while unconfigured. */
 static uint8_t services_running(const co_node_t *node)
 {
-    return co_node_unconfigured(node) ? CO_SVC_UNCONFIGURED_ROWS : co_n_services;
+    return co_node_unconfigured(node) ? CO_SVC_UNCONFIGURED_ROWS : CO_N_SERVICES;
 }
 
 /* Event @p ev (CO_SVC_*) to the services in table order: to all of them,
@@ -160,7 +160,7 @@ static uint8_t services_running(const co_node_t *node)
  * set over them). */
 static void services_walk(co_node_t *node, uint8_t ev)
 {
-    uint32_t rows = (ev == CO_SVC_SLOTS) ? services_running(node) : co_n_services;
+    uint32_t rows = (ev == CO_SVC_SLOTS) ? services_running(node) : CO_N_SERVICES;
 
     if ((ev == (uint8_t)CO_RESET_NODE) || (ev == (uint8_t)CO_RESET_COMMUNICATION)) {
         co_od_restore(node, (ev == (uint8_t)CO_RESET_NODE) ? node->dev->ram_size
@@ -568,7 +568,7 @@ void co_node_nmt_command(co_node_t *node, uint8_t cs, uint32_t now_us)
  * this build leaves out refused; then LSS its stored configuration. */
 static co_result_t bind_services(co_node_t *node)
 {
-    for (uint32_t k = 0U; k < co_n_binds; k++) {
+    for (uint32_t k = 0U; k < CO_N_BINDS; k++) {
         const co_bind_t *b = &co_binds[k];
         uint16_t index = (uint16_t)(0x1000U + b->index);
         uint8_t type = (uint8_t)(b->spec & 0x1FU);

@@ -378,8 +378,11 @@ typedef struct co_bind {
 #define CO_BIND_LEN    0x80U
 #define CO_BIND_LEN_HB 0xC0U
 #define CO_BIND_KIND   0xC0U
-extern const co_bind_t co_binds[];
-extern const uint8_t co_n_binds;
+/* Its rows: a constant the node's loop compares with (the table's
+ * definition has this size; an initialiser too long does not compile, a
+ * row left out would be all zeros: test_services checks for one). */
+#define CO_N_BINDS ((uint8_t)(17U - (unsigned)(CO_ERROR_BEHAVIOUR)))
+extern const co_bind_t co_binds[CO_N_BINDS];
 
 /* What the node tells a service (co_service_t.event), in table order to
  * every service: CO_RESET_NODE and CO_RESET_COMMUNICATION once the node has
@@ -422,8 +425,10 @@ typedef struct co_service {
 #define CO_ROW_TIME   ((uint8_t)(CO_ROW_NMT + 5U)) /* only with CO_TIME */
 #define CO_ROW_PDO    ((uint8_t)(CO_ROW_SYNC + 1U + (unsigned)(CO_TIME)))
 #define CO_ROW_STORE  ((uint8_t)(CO_ROW_PDO + 1U))
-extern const co_service_t *const co_services[];
-extern const uint8_t co_n_services;
+/* Its rows, the last one's + 1 (the table's size: the node's walks compare
+ * with a constant). */
+#define CO_N_SERVICES ((uint8_t)(CO_ROW_PDO + 1U + (unsigned)(CO_STORAGE)))
+extern const co_service_t *const co_services[CO_N_SERVICES];
 /* The services (one per file; co_services.c puts them in order). */
 extern const co_service_t co_svc_nmt;
 extern const co_service_t co_svc_sdo;

@@ -7,7 +7,7 @@
  */
 #include "co_priv.h"
 
-const co_service_t *const co_services[] = {
+const co_service_t *const co_services[CO_N_SERVICES] = {
 #if CO_LSS
     [0] = &co_svc_lss,    /* LSS slave, CiA 305 (alone while unconfigured: CO_SVC_UNCONFIGURED_ROWS) */
 #endif
@@ -25,7 +25,6 @@ const co_service_t *const co_services[] = {
 #endif
 };
 
-const uint8_t co_n_services = (uint8_t)(sizeof(co_services) / sizeof(co_services[0]));
 /* (a receive slot holds the row above the 11-bit COB-ID: at most 32 rows) */
 
 /* The services' hooks on the objects they own: slot k - 1 for the entries
@@ -63,7 +62,7 @@ const co_svc_hook_t co_svc_hooks[CO_SVC_N_HOOKS] = {
 #define BIND(index, type, kind, field) \
     {(uint8_t)((index) - 0x1000U), (uint8_t)((uint8_t)(type) | (kind)), \
      (uint16_t)offsetof(co_node_t, field)}
-const co_bind_t co_binds[] = {
+const co_bind_t co_binds[CO_N_BINDS] = {
     /* error control: 0x1016 heartbeat consumers (at most CO_HB_CONSUMERS_MAX
      * of them; read only for entries 1..n_hb_cons), 0x1017 producer time,
      * 0x100C / 0x100D life guarding (a build without refuses a device with
@@ -106,4 +105,3 @@ const co_bind_t co_binds[] = {
     BIND(0x1029U, 0U, CO_BIND_NONE, errctl),
 #endif
 };
-const uint8_t co_n_binds = (uint8_t)(sizeof(co_binds) / sizeof(co_binds[0]));

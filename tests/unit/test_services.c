@@ -44,9 +44,14 @@ static void test_table_order(void **state)
                                         &co_svc_pdo,  &co_svc_store};
 
     (void)state;
-    assert_int_equal(co_n_services, sizeof want / sizeof want[0]);
-    for (uint8_t k = 0U; k < co_n_services; k++) {
+    assert_int_equal(CO_N_SERVICES, sizeof want / sizeof want[0]);
+    for (uint8_t k = 0U; k < CO_N_SERVICES; k++) {
         assert_ptr_equal(co_services[k], want[k]);
+    }
+    /* every row of co_binds[] given (a row left out would be zeros: no
+     * object 0x1000 is bound) */
+    for (uint8_t k = 0U; k < CO_N_BINDS; k++) {
+        assert_int_not_equal(co_binds[k].index, 0U);
     }
     /* every service's objects have its hook, from the const table */
     {

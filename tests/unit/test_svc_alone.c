@@ -105,8 +105,8 @@ static co_err_t rec_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
 
 static const co_service_t rec_svc = {NULL, NULL, NULL};
 
-const co_service_t *const co_services[] = {&rec_svc, &co_svc_store};
-const uint8_t co_n_services = 2U;
+/* (the core's table has CO_N_SERVICES rows; here only the first two) */
+const co_service_t *const co_services[CO_N_SERVICES] = {[0] = &rec_svc, [1] = &co_svc_store};
 
 /* the hook table: the recording service in the slot of 0x1005 (3), storage
  * in its own (6); no other service in this executable */

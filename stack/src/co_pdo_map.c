@@ -52,24 +52,26 @@ static void entry_io(co_node_t *node, uint32_t v, uint16_t code, uint16_t pos, u
     uint8_t bits = (uint8_t)(v & 0xFFU);
     const co_od_entry_t *e = NULL; /* (an entry through the dictionary: its descriptor in s) */
     co_od_sub_t s;
-    uint8_t *ram = &node->ram[code & CO_PDO_OFF_MASK];
-    uint8_t size = (uint8_t)(((code >> 12U) & 7U) + 1U); /* TPDO: the bytes it maps */
-    bool sign = (code & CO_PDO_SIGNED) != 0U;
+    uint8_t *ram = node->ram;
+    uint8_t size;
+    bool sign;
     uint8_t tmp[8] = {0};
 
-    if ((code == CO_PDO_SLOW) && (index > 0x0007U) &&
-        (co_od_lookup(node, index, (uint8_t)((v >> 8U) & 0xFFU), &e, &s) == CO_OK)) {
+    if (code == CO_PDO_DUMMY) {
+        return; /* a dummy entry (an RPDO's gap) */
+    }
+    if (code == CO_PDO_SLOW) {
+        if ((index <= 0x0007U) ||
+            (co_od_lookup(node, index, (uint8_t)((v >> 8U) & 0xFFU), &e, &s) != CO_OK)) {
+            return; /* a dummy entry, or an object that is not there (a TPDO's
+                       zeros: buf is zero) */
+        }
         size = co_type_len(s.type);
         sign = co_type_is_signed(s.type);
     } else {
-        e = NULL;
-        if ((code == CO_PDO_SLOW) || (code == CO_PDO_DUMMY)) {
-            size = 0U; /* a dummy entry, or an object that is not there */
-        }
-    }
-    if (size == 0U) {
-        return; /* a dummy entry (an RPDO's gap), or an object that is not
-                   there (a TPDO's zeros: buf is zero) */
+        ram = &ram[code & CO_PDO_OFF_MASK];
+        size = (uint8_t)(((code >> 12U) & 7U) + 1U); /* TPDO: the bytes it maps */
+        sign = (code & CO_PDO_SIGNED) != 0U;
     }
     if (tx) {
         const uint8_t *src = tmp;

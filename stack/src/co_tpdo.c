@@ -55,8 +55,9 @@ CO_HOT bool send(co_node_t *node, uint16_t i, const uint8_t *data, bool event)
     return true;
 }
 
-/* Synchronous send: sampled now, sent now or, if the TX path is full, while
- * the synchronous window stays open. A build for speed samples straight
+/* Synchronous send: sampled now (replacing data of an earlier SYNC still
+ * waiting), sent now or, if the TX path is full, while the synchronous
+ * window stays open. A build for speed samples straight
  * into the frame; a build for size sends through send(). */
 static void send_sync(co_node_t *node, uint16_t i)
 {
@@ -69,14 +70,14 @@ static void send_sync(co_node_t *node, uint16_t i)
     f.id = co_pdo_cob(node, i) & 0x7FFUL;
     f.dlc = p->len;
     (void)memcpy(p->data, f.data, 8U);
-    p->flags &= (uint16_t)~CO_PDO_F_EVENT;
+    p->flags &= (uint16_t)~(CO_PDO_F_EVENT | CO_PDO_F_SYNC_PEND);
     sent = co_tx_now(node, &f);
     if (sent) {
         p->flags |= CO_PDO_F_SENT;
     }
 #else
     build(node, i, p->data);
-    p->flags &= (uint16_t)~CO_PDO_F_EVENT;
+    p->flags &= (uint16_t)~(CO_PDO_F_EVENT | CO_PDO_F_SYNC_PEND);
     sent = send(node, i, p->data, false);
 #endif
     if (!sent) {
@@ -337,14 +338,14 @@ CO_HOT void at_sync(co_node_t *node, uint16_t i, uint8_t type, uint8_t counter)
     if ((type > 240U) && (!CO_PDO_RTR || (type != 252U))) {
         return;
     }
-    p->flags &= (uint16_t)~CO_PDO_F_SYNC_PEND; /* a new SYNC replaces it */
     if (CO_PDO_RTR && (type == 252U)) {
         build(node, i, p->data); /* sampled now, sent on request */
         p->flags |= CO_PDO_F_SAMPLED;
     } else if ((type == 0U) ? acyclic_due(node, i) : cyclic_due(node, i, type, counter)) {
         send_sync(node, i);
     } else {
-        /* not this SYNC */
+        /* not this SYNC: data still waiting is not sent in its window */
+        p->flags &= (uint16_t)~CO_PDO_F_SYNC_PEND;
     }
 }
 
@@ -373,8 +374,9 @@ CO_HOT uint32_t at_process(co_node_t *node, uint16_t i, uint8_t type, uint32_t n
         } else {
             held = true;
         }
-    }
-    if (type >= 254U) {
+    } else if (type >= 254U) {
+        /* (a synchronous TPDO's data waiting: not event-driven; a new type
+         * restarts the TPDO, which drops it) */
         /* change detection compares the data at every co_node_process */
         node->pdo.poll = (CO_TPDO_CHANGE && detect) ? 1U : node->pdo.poll;
         next = event_driven(node, i, next, detect, &held);

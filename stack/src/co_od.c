@@ -30,18 +30,21 @@ CO_HOT const co_od_entry_t *find(const co_od_entry_t *od, uint32_t count, uint16
     uint32_t step;
 
     if (!CO_FAST) {
-        /* (a build for size: the plain search) */
-        uint32_t lo = 0U;
-        uint32_t hi = count;
-        while (lo < hi) {
-            uint32_t mid = (lo + hi) >> 1U;
-            if (od[mid].index < index) {
-                lo = mid + 1U;
+        /* (a build for size: the plain search, over the n entries from e) */
+        uint32_t n = count;
+        while (n != 0U) {
+            const co_od_entry_t *m = &e[n >> 1U];
+            if (m->index == index) {
+                return m;
+            }
+            if (m->index < index) {
+                e = &m[1];
+                n = (n - 1U) >> 1U; /* (the entries after m) */
             } else {
-                hi = mid;
+                n >>= 1U; /* (the entries before m) */
             }
         }
-        return ((lo < count) && (od[lo].index == index)) ? &od[lo] : NULL;
+        return NULL;
     }
     if (count == 0U) {
         return NULL;
@@ -82,9 +85,16 @@ const co_od_sub_t *co_od_row_sub(const co_od_sub_t *r, uint32_t k, co_od_sub_t *
 
 /* The descriptor of @p sub of @p e, an entry of @p dev, from the row that
  * holds it (of a run, the one @p d before its last: its element n - 1 - d),
- * in @p buf. */
+ * in @p buf. (A build for speed keeps it out of the lookup's hot path, a
+ * build for size inlines it: one copy in co_od_lookup, whose calls are the
+ * only ones it links.) */
+#if CO_FAST
 CO_NOINLINE static const co_od_sub_t *scan_sub(const co_dev_t *dev, const co_od_entry_t *e,
                                                uint8_t sub, co_od_sub_t *buf)
+#else
+CO_INLINE const co_od_sub_t *scan_sub(const co_dev_t *dev, const co_od_entry_t *e, uint8_t sub,
+                                      co_od_sub_t *buf)
+#endif
 {
     const co_od_sub_t *r = co_od_rows(dev, e);
 
@@ -116,8 +126,8 @@ CO_NOINLINE static const co_od_sub_t *scan_sub(const co_dev_t *dev, const co_od_
  * for speed first looks at the row in its dense slot (arrays and most
  * records are dense; a run's row is never there: co_od.h) and gives it
  * itself, no copy. */
-CO_HOT const co_od_sub_t *find_sub(const co_dev_t *dev, const co_od_entry_t *e, uint8_t sub,
-                                   co_od_sub_t *buf)
+CO_INLINE const co_od_sub_t *find_sub(const co_dev_t *dev, const co_od_entry_t *e, uint8_t sub,
+                                      co_od_sub_t *buf)
 {
     if (CO_FAST && (sub < e->nsubs) && (co_od_rows(dev, e)[sub].sub == sub)) {
         return &co_od_rows(dev, e)[sub];

@@ -321,6 +321,8 @@ def generate(dev: Device, toml_name: str, warn=None, storage: bool = True) -> tu
     first_row: dict[int, int] = {}
     rl: list[str] = []
     n_rows = 0
+    ram_off = offsets(ram)
+    joins: list[str] = []   # (the places runs across fields rely on)
     for o in dev.objects:
         sh = share.get(o.index)
         if sh is not None and sh[0] != o.index:
@@ -331,9 +333,10 @@ def generate(dev: Device, toml_name: str, warn=None, storage: bool = True) -> tu
                    if sh is not None and sh[1] is not None else
                    ": the table of every object of these const values" if sh is not None
                    else "") + (", sub-index 0 implicit" if implicit0(o) else "") + " */")
-        for run in rows(table_subs(o)):
+        for run in rows(table_subs(o), ram_off):
             s = run[0]
             n_rows += 1
+            joins += run_joins(run)
             if s.hookio:
                 off = "0U"
             else:
@@ -371,6 +374,9 @@ def generate(dev: Device, toml_name: str, warn=None, storage: bool = True) -> tu
         v = field_init(f)
         c.append(f"    .{f.name} = {v if v is not None else ('{0}' if f.dims else '0U')},")
     c += ["    .rows = {", *rl, "    },", "};", ""]
+    if joins:
+        c += ["/* the runs of values of fields of their own have them one after the other */",
+              f"typedef char {cn}_run_joins[(" + " &&\n    ".join(joins) + ") ? 1 : -1];", ""]
     # sparse defaults (co_dev_t.defaults, co_od.h): runs of the values that
     # are not zero and of the $NODEID ones, in the order of their places in
     # the RAM image, as wire bytes; the core zeroes the rest. A $NODEID value
@@ -415,7 +421,7 @@ def generate(dev: Device, toml_name: str, warn=None, storage: bool = True) -> tu
     for o in dev.objects:
         hook = f"{o.hook_slot + 1}U" if o.hook else "0U"
         sh = share.get(o.index)
-        nrows = len(rows(table_subs(o)))
+        nrows = len(rows(table_subs(o), ram_off))
         at = first_row[(sh or (o.index,))[0]]
         if implicit0(o):
             base = f"{o.hook_slot}U" if o.hook else \
@@ -575,12 +581,15 @@ def fill_holes(block: list[Field], fill: list[Field]) -> list[Field]:
     return out
 
 
-def rows(subs) -> list[list]:
+def rows(subs, at: dict[str, int]) -> list[list]:
     """The rows of an object's table: runs of sub-entries of one row each
     (co_od_sub_t with CO_OD_RUN): consecutive sub-indices of one fixed-size
     type, access, size and limit whose values are consecutive elements of
-    one array field of the RAM image, or one const value (one field of the
-    ROM image), up to 128 of them; any other sub-entry is a row of its own."""
+    one array field of the RAM image, or RAM values of at most 4 bytes one
+    right after the other in the layout @p at (offsets(): fields of their
+    own; the source checks the places, run_joins), or one const value (one
+    field of the ROM image), up to 128 of them; any other sub-entry is a
+    row of its own."""
     out: list[list] = []
     for s in subs:
         r = out[-1] if out else None
@@ -588,13 +597,27 @@ def rows(subs) -> list[list]:
         if p is not None and len(r) < 128 and s.sub == p.sub + 1 and s.type == p.type and \
                 s.fixed != 0 and s.size == s.fixed and s.size == p.size and \
                 s.flags == p.flags and s.limit_slot == p.limit_slot and s.rom == p.rom and \
-                not s.hookio and not p.hookio and s.field and s.field == p.field and \
-                ((not s.rom and p.elem >= 0 and s.elem == p.elem + 1) or
-                 (s.rom and s.elem == p.elem)):
+                not s.hookio and not p.hookio and s.field and p.field and \
+                ((not s.rom and s.field == p.field and p.elem >= 0 and s.elem == p.elem + 1) or
+                 (not s.rom and s.field != p.field and s.size <= 4 and
+                  ram_at(at, s) == ram_at(at, p) + p.size) or
+                 (s.rom and s.field == p.field and s.elem == p.elem)):
             r.append(s)
         else:
             out.append([s])
     return out
+
+
+def ram_at(at: dict[str, int], s) -> int:
+    """Where RAM value @p s is in the layout @p at (offsets())."""
+    return at[s.field] + max(s.elem, 0) * s.size
+
+
+def run_joins(run) -> list[str]:
+    """The checks of the source for a run of rows() (C conditions): each RAM
+    value in a field after the previous one's is right after it."""
+    return [f"({off_expr(s)} == {off_expr(p)} + {p.size}U)"
+            for p, s in zip(run, run[1:]) if not s.rom and s.field != p.field]
 
 
 def offsets(ram: list[Field]) -> dict[str, int]:

@@ -387,8 +387,9 @@ co_err_t co_od_read_part(co_node_t *node, const co_od_entry_t *e, const co_od_su
          * the application's (either may refresh it or veto) */
         co_err_t err = svc_read(node, e, s);
         if ((err == CO_OK) && co_od_hooked(e)) {
-            co_od_io_t io = {NULL, NULL, NULL, NULL, 0U, NULL, 0U, 0U, false};
-            err = app_io(node, e, s, false, &io);
+            /* (on the reader's chunk: what the hook may set there is set
+             * anew below) */
+            err = app_io(node, e, s, false, c);
         }
         if (err != CO_OK) {
             return err;

@@ -25,6 +25,8 @@ typedef struct fx {
     unsigned writes;
     uint32_t seen;        /* value the write hook was offered */
     uint32_t computed;    /* 0x2201 (hook I/O) */
+    bool scribble;        /* the 0x2100 read hook sets its chunk's len, total and last */
+    uint32_t read_offset; /* the offset the 0x2100 read hook saw */
 } fx_t;
 
 static fx_t fx;
@@ -33,6 +35,12 @@ static co_err_t h2100_read(void *ctx, co_od_io_t *io)
 {
     fx_t *f = (fx_t *)ctx;
     f->reads++;
+    f->read_offset = io->offset;
+    if (f->scribble) {
+        io->len = 1U;
+        io->total = 1U;
+        io->last = true;
+    }
     if (f->read_err == CO_OK) {
         *(uint32_t *)io->value = f->refresh;
     }
@@ -264,6 +272,25 @@ static void read_hook_refreshes_value(void **state)
     assert_int_equal(fx.n.ram.hooked, 0x0BADCAFEUL);
 }
 
+/* The read hook of a stored value runs once, at offset 0, on the reader's
+ * chunk: what it sets there (len, total, last) does not cut the value,
+ * which is read after it. */
+static void read_hook_leaves_the_chunk_to_the_value(void **state)
+{
+    uint8_t b[8] = {0};
+    uint32_t len = 0U;
+    (void)state;
+    fx.scribble = true;
+    fx.read_offset = 0xFFFFFFFFUL;
+    tb_xfer(BUS, "605 40 00 21 00 00 00 00 00", "585 43 00 21 00 FE CA AD 0B");
+    assert_int_equal(fx.read_offset, 0);
+    fx.refresh = 0x01020304UL;
+    assert_int_equal(co_od_read(NODE, 0x2100, 0, b, sizeof b, &len), CO_OK);
+    assert_int_equal(len, 4);
+    assert_int_equal(co_get_u32(b), 0x01020304UL);
+    assert_int_equal(fx.reads, 2);
+}
+
 static void write_hook_sees_value_and_vetoes(void **state)
 {
     (void)state;
@@ -366,6 +393,7 @@ int main(void)
         cmocka_unit_test_setup(app_access_path, setup),
         cmocka_unit_test_setup(bind_hook_errors, setup),
         cmocka_unit_test_setup(read_hook_refreshes_value, setup),
+        cmocka_unit_test_setup(read_hook_leaves_the_chunk_to_the_value, setup),
         cmocka_unit_test_setup(write_hook_sees_value_and_vetoes, setup),
         cmocka_unit_test_setup(hook_codes_reach_the_wire, setup),
         cmocka_unit_test_setup(hook_io_value, setup),

@@ -239,7 +239,9 @@ typedef struct co_od_io {
 /**
  * Hooks of one entry.
  * read: for a stored value, called once before the value is read (it may
- *   refresh it, or veto with an error); with CO_SUB_HOOKIO called for every
+ *   refresh it, or veto with an error), on the reader's chunk at offset 0
+ *   (buf and len: the reader's buffer and capacity, which the value fills
+ *   after the hook, whatever it set there); with CO_SUB_HOOKIO called for every
  *   chunk to produce the data, at any offset (again for a retransmission) and
  *   with the capacity the reader has (an SDO block upload asks for up to 56
  *   bytes at a time); fewer bytes than asked are fine, but a chunk shorter

@@ -24,7 +24,7 @@ static inline uint32_t pow2_floor(uint32_t n)
  * two: the first step leaves a range of a power of two entries, which each
  * further step halves without a branch on the comparison (a conditional
  * move); the one entry left is compared at the end. */
-CO_HOT const co_od_entry_t *find(const co_od_entry_t *od, uint32_t count, uint16_t index)
+CO_INLINE const co_od_entry_t *find(const co_od_entry_t *od, uint32_t count, uint16_t index)
 {
     const co_od_entry_t *e = od;
     uint32_t step;
@@ -187,7 +187,8 @@ CO_HOT co_err_t lookup(const co_node_t *node, uint16_t index, uint8_t sub,
 {
     const co_dev_t *dev = node->dev;
 
-    *e = find(dev->od, dev->od_count, index);
+    /* (a build for size: one copy of the search, co_od_find's) */
+    *e = CO_FAST ? find(dev->od, dev->od_count, index) : co_od_find(dev->od, dev->od_count, index);
     if (*e == NULL) {
         return (CO_SET(node, sdo.unknown_object) == CO_SDO_ABORT_NO_ACCESS) ? CO_ERR_NO_ACCESS
                                                                          : CO_ERR_NO_OBJECT;

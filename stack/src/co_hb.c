@@ -20,6 +20,13 @@ static void event(co_node_t *node, co_hb_event_t ev, uint8_t id, uint8_t state)
     }
 }
 
+/* An event of consumer entry @p k: its producer, the state it reported last. */
+static void hb_event(co_node_t *node, co_hb_event_t ev, uint32_t k)
+{
+    event(node, ev, (uint8_t)((node->errctl.hb_cons[k] >> 16U) & 0x7FU),
+          node->errctl.hbc_nmt[k]);
+}
+
 /* EMCY 0x8130 is active while any monitored producer or the guarding master
  * is lost, and cleared when the last one comes back. */
 static void update_error(co_node_t *node)
@@ -116,9 +123,9 @@ static void hb_reset(co_node_t *node)
     }
 }
 
-/* A heartbeat (a data frame of at least one byte) of producer @p id, whom
+/* A heartbeat (a data frame of at least one byte) of the producer whom
  * entry @p slot monitors. */
-static void hb_rx(co_node_t *node, uint8_t slot, uint8_t id, const co_frame_t *f)
+static void hb_rx(co_node_t *node, uint32_t slot, const co_frame_t *f)
 {
     co_errctl_t *c = &node->errctl;
     uint8_t st = (uint8_t)(f->data[0] & 0x7FU);
@@ -133,10 +140,10 @@ static void hb_rx(co_node_t *node, uint8_t slot, uint8_t id, const co_frame_t *f
     }
     if (prev != (uint8_t)HBC_ACTIVE) {
         /* the first heartbeat, or one after a timeout */
-        event(node, (prev == (uint8_t)HBC_WAITING) ? CO_HB_STARTED : CO_HB_RECOVERED, id, st);
+        hb_event(node, (prev == (uint8_t)HBC_WAITING) ? CO_HB_STARTED : CO_HB_RECOVERED, slot);
     }
     if (changed && (prev != (uint8_t)HBC_WAITING)) {
-        event(node, CO_HB_STATE, id, st);
+        hb_event(node, CO_HB_STATE, slot);
     }
 }
 
@@ -197,7 +204,7 @@ static uint32_t errctl_process(co_node_t *node, uint32_t next)
             if (co_time_reached(now, c->hbc_deadline[k])) {
                 c->hbc_state[k] = (uint8_t)HBC_LOST;
                 update_error(node);
-                event(node, CO_HB_TIMEOUT, (uint8_t)((c->hb_cons[k] >> 16U) & 0x7FU), c->hbc_nmt[k]);
+                hb_event(node, CO_HB_TIMEOUT, k);
                 co_nmt_error(node, CO_ERRBEH_COMM); /* 0x1029: a communication error */
             } else {
                 next = co_deadline_min(now, next, c->hbc_deadline[k]);
@@ -282,7 +289,7 @@ static void errctl_rx(co_node_t *node, uint16_t arg, const co_frame_t *f)
     for (uint32_t k = 0U; k < node->errctl.n_hb_cons; k++) {
         if ((node->errctl.hbc_state[k] != (uint8_t)HBC_UNUSED) &&
             (((node->errctl.hb_cons[k] >> 16U) & 0x7FU) == id)) {
-            hb_rx(node, (uint8_t)k, id, f);
+            hb_rx(node, k, f);
             return;
         }
     }

@@ -256,12 +256,14 @@ void co_rx_add(co_node_t *node, uint16_t cob, uint8_t svc);
 #define CO_RX_AT_NONE 0x00U
 #define CO_RX_AT_PDO  0x80U
 #define CO_RX_AT_MANY 0xFFU
-/* Frames on @p cob go to slot @p at (a CO_RX_AT_* code) of the tables. */
+/* Frames on @p cob go to slot @p at (a CO_RX_AT_* code) of the tables (a
+ * build for size searches for the slot of every frame it accepts:
+ * CO_RX_AT_MANY, the caller's slot computed for nothing). */
 static inline void co_rx_accept(co_node_t *node, uint16_t cob, uint8_t at)
 {
     uint8_t *fc = &node->rx_at[cob >> 7U];
 
-    *fc = (*fc == CO_RX_AT_NONE) ? at : CO_RX_AT_MANY;
+    *fc = (CO_FAST && (*fc == CO_RX_AT_NONE)) ? at : CO_RX_AT_MANY;
 }
 /* Change the NMT state: the services' nmt entries in table order, then the
  * application's callback. */

@@ -227,64 +227,54 @@ bool co_node_rx_cob(const co_node_t *node, uint16_t i, uint16_t *cob)
     return false;
 }
 
-/* The frame to the service of slot @p at (a CO_RX_AT_* code, wider for a
- * PDO slot of any index; one for its COB-ID): the PDO service with the
- * PDO's number; a frame for any other service than SYNC and PDO makes it
- * run at the next co_node_process. */
-CO_HOT void rx_slot(co_node_t *node, const co_frame_t *f, uint16_t at, uint32_t now_us)
+/* The frame to the service of row @p kind (the row of a receive slot for
+ * its COB-ID): a frame for any other service than SYNC makes it run at the
+ * next co_node_process. */
+CO_HOT void rx_svc(co_node_t *node, const co_frame_t *f, uint8_t kind, uint32_t now_us)
 {
-    uint8_t kind;
-
+    /* its timers may have changed (a SYNC received changes none: the
+     * producer's run from its own period) */
+    node->svc_run |= (uint16_t)(((kind != CO_ROW_SYNC) ? 1U : 0U) << kind);
     co_node_clock(node, now_us);
-    if (at > CO_RX_SLOTS_MAX) {
-        co_svc_pdo.rx(node, (uint16_t)(at - CO_RX_AT_PDO), f); /* (known: called directly) */
-        return;
-    }
-    kind = (uint8_t)(node->rx[at - 1U] >> CO_RX_ROW_SHIFT);
-    if (kind != CO_ROW_SYNC) {
-        /* its timers may have changed (a SYNC received changes none: the
-         * producer's run from its own period) */
-        co_svc_touch(node, kind);
-    }
     co_services[kind]->rx(node, 0U, f);
 }
 
-/* A search of the services' slots, then the PDOs'; the slot for @p cob (a
- * CO_RX_AT_* code, wider for a PDO of any index), CO_RX_AT_NONE when none
- * is. */
-static uint16_t rx_find(co_node_t *node, uint16_t cob)
+/* The frame to the PDO service, PDO @p i's (its COB-ID). */
+CO_HOT void rx_pdo(co_node_t *node, const co_frame_t *f, uint16_t i, uint32_t now_us)
+{
+    co_node_clock(node, now_us);
+    co_svc_pdo.rx(node, i, f); /* (known: called directly) */
+}
+
+/* A search of the services' slots, then the PDOs', and the frame to the
+ * first one for @p cob. */
+#if CO_FAST
+CO_NOINLINE
+#endif
+static void rx_search(co_node_t *node, const co_frame_t *f, uint16_t cob, uint32_t now_us)
 {
     co_rx_settle(node); /* a frame that came while the table was out of date */
     for (uint32_t k = 0U; k < node->n_rx; k++) {
-        if ((node->rx[k] & 0x7FFU) == cob) {
-            return (uint16_t)(k + 1U);
+        uint16_t slot = node->rx[k];
+        if ((slot & 0x7FFU) == cob) {
+            rx_svc(node, f, (uint8_t)(slot >> CO_RX_ROW_SHIFT), now_us);
+            return;
         }
     }
-    for (uint16_t k = 0U; k < pdo_n_rx(node); k++) {
-        if (co_pdo_rx_cob(node, k) == cob) {
-            return (uint16_t)(CO_RX_AT_PDO + k);
+    for (uint16_t i = 0U; i < pdo_n_rx(node); i++) {
+        if (co_pdo_rx_cob(node, i) == cob) {
+            rx_pdo(node, f, i, now_us);
+            return;
         }
-    }
-    return CO_RX_AT_NONE;
-}
-
-/* The search and its dispatch out of co_node_rx (a build for speed: the
- * frames of a function code with one slot then save no registers for a
- * call they do not make). */
-CO_NOINLINE static void rx_many(co_node_t *node, const co_frame_t *f, uint16_t cob,
-                                uint32_t now_us)
-{
-    uint16_t at = rx_find(node, cob);
-
-    if (at != CO_RX_AT_NONE) {
-        rx_slot(node, f, at, now_us);
     }
 }
 
 /* A build for speed: the function code's only slot, if it is for the
- * frame's COB-ID, or a search where it has several. A build for size: a
- * search for every function code with a slot (a few comparisons more per
- * frame, one path instead of two). */
+ * frame's COB-ID, or a search where it has several (out of line: the
+ * frames of a function code with one slot then save no registers for a
+ * call they do not make). A build for size: a search for every function
+ * code with a slot (a few comparisons more per frame, one path instead of
+ * two). */
 void co_node_rx(co_node_t *node, const co_frame_t *f, uint32_t now_us)
 {
     uint16_t cob;
@@ -298,25 +288,22 @@ void co_node_rx(co_node_t *node, const co_frame_t *f, uint32_t now_us)
     if (at == CO_RX_AT_NONE) {
         return; /* not for this node */
     }
-    if (!CO_FAST) {
-        at = rx_find(node, cob);
-        if (at != CO_RX_AT_NONE) {
-            rx_slot(node, f, at, now_us);
-        }
-        return;
-    }
-    if (at == CO_RX_AT_MANY) {
-        rx_many(node, f, cob, now_us);
+    if (!CO_FAST || (at == CO_RX_AT_MANY)) {
+        rx_search(node, f, cob, now_us);
         return;
     }
     if (at <= CO_RX_SLOTS_MAX) {
-        if ((node->rx[at - 1U] & 0x7FFU) != cob) {
+        uint16_t slot = node->rx[at - 1U];
+        if ((slot & 0x7FFU) != cob) {
             return;
         }
-    } else if (co_pdo_rx_cob(node, (uint16_t)(at - CO_RX_AT_PDO)) != cob) {
+        rx_svc(node, f, (uint8_t)(slot >> CO_RX_ROW_SHIFT), now_us);
         return;
     }
-    rx_slot(node, f, at, now_us);
+    if (co_pdo_rx_cob(node, (uint16_t)(at - CO_RX_AT_PDO)) != cob) {
+        return;
+    }
+    rx_pdo(node, f, (uint16_t)(at - CO_RX_AT_PDO), now_us);
 }
 
 /* ------------------------------------------------------------ timers */

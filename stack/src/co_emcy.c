@@ -52,14 +52,16 @@ static uint32_t inhibit_us(const co_node_t *node)
 }
 
 /* The waiting EMCYs go out, oldest first, as far as the inhibit time lets
- * them (more than one only when it is 0); the others wait for
- * emcy_process. The queue is a ring: q_head is the oldest, nothing moves.
+ * them (more than one only when it is 0); the others wait for the
+ * service's timer. The queue is a ring: q_head is the oldest, nothing moves.
  * Within the inhibit time of the last EMCY: 'next' is at most one inhibit
  * time (< 6.6 s) ahead of now while it runs; any other distance is a time
  * in the past, however long ago. (co_time_reached alone would take a last
  * EMCY more than 2^31 us ago for one in the future and hold the next one
- * back for up to 35 minutes.) */
-static void drain(co_node_t *node)
+ * back for up to 35 minutes.) Returns the earlier of @p next and the time
+ * the oldest waiting EMCY may go (the service's timer: without storage
+ * drain is the service's process entry itself). */
+static uint32_t drain(co_node_t *node, uint32_t next)
 {
     co_emcy_t *m = &node->emcy;
     uint32_t inhibit = inhibit_us(node);
@@ -78,6 +80,7 @@ static void drain(co_node_t *node)
         m->n_q--;
         m->next = node->now + inhibit;
     }
+    return (m->n_q > 0U) ? co_deadline_min(node->now, next, m->next) : next;
 }
 
 /* An EMCY (@p code, 0x1001 now, the manufacturer bytes or zeros) joins the
@@ -100,7 +103,7 @@ static void send_code(co_node_t *node, uint16_t code, const uint8_t *mfr)
         d[2] = update_errreg(node);
         m->n_q++;
     }
-    drain(node);
+    (void)drain(node, 0U);
 }
 
 static void history_push(co_node_t *node, uint16_t code, const uint8_t *mfr)
@@ -196,18 +199,17 @@ bool co_emcy_is_active(const co_node_t *node, uint16_t code)
     return active_at(node, code) != 0U;
 }
 
+#if CO_STORAGE
 static uint32_t emcy_process(co_node_t *node, uint32_t next)
 {
-#if CO_STORAGE
     if ((node->emcy.store_report != 0U) && !co_store_damaged(node)) {
         /* a save or restore wrote a whole parameter set */
         node->emcy.store_report = 0U;
         co_emcy_clear(node, CO_EMCY_STORE_DAMAGED);
     }
-#endif
-    drain(node);
-    return (node->emcy.n_q > 0U) ? co_deadline_min(node->now, next, node->emcy.next) : next;
+    return drain(node, next);
 }
+#endif
 
 /* ------------------------------------------------------------ service */
 
@@ -280,7 +282,7 @@ co_err_t co_emcy_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
     (void)len;
     if (e->index != 0x1003U) {
         /* 0x1014 / 0x1015 (CO_SVC_SELF): a new COB-ID or inhibit time
-         * concerns emcy_process only for an EMCY that waits */
+         * concerns the service's timer only for an EMCY that waits */
         if (m->n_q > 0U) {
             co_svc_touch(node, CO_ROW_EMCY);
         }
@@ -301,5 +303,10 @@ co_err_t co_emcy_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
 }
 
 const co_service_t co_svc_emcy = {
-    emcy_event, NULL, emcy_process,
+    emcy_event, NULL,
+#if CO_STORAGE
+    emcy_process,
+#else
+    drain, /* (nothing else at its timer) */
+#endif
 };

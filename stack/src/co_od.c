@@ -387,9 +387,10 @@ co_err_t co_od_read_part(co_node_t *node, const co_od_entry_t *e, const co_od_su
         /* before a stored value is read: the owning service's hook, then
          * the application's (either may refresh it or veto) */
         co_err_t err = svc_read(node, e, s);
-        if ((err == CO_OK) && co_od_hooked(e)) {
+        if ((err == CO_OK) && (!CO_FAST || co_od_hooked(e))) {
             /* (on the reader's chunk: what the hook may set there is set
-             * anew below) */
+             * anew below; a build for size asks app_io without looking
+             * first: no hook, nothing to do) */
             err = app_io(node, e, s, false, c);
         }
         if (err != CO_OK) {

@@ -196,3 +196,68 @@ def test_store_commands_have_no_default(tmp_path):
     defaults = defaults[:defaults.index("};")]
     assert "x1017_producer_heartbeat_time" in defaults
     assert "x1010" not in defaults
+
+
+ROWS = r'''
+[device]
+name = "rows"
+vendor_id = 1
+product_code = 1
+device_type = 0x000F0191
+
+[[object]]
+index = 0x1001
+name = "Error register"
+type = "UNSIGNED8"
+access = "ro"
+
+[[object]]
+index = 0x1003
+name = "Pre-defined error field"
+array = 4
+sub0 = { name = "Number of errors", access = "rw", default = 0 }
+element = { name = "Standard error field", type = "UNSIGNED32", access = "ro" }
+
+[[object]]
+index = 0x1019
+name = "Synchronous counter overflow value"
+type = "UNSIGNED8"
+access = "rw"
+default = 7
+
+[[object]]
+index = 0x1200
+name = "SDO server parameter"
+subs = [
+  { sub = 1, name = "COB-ID client to server", type = "UNSIGNED32", access = "ro", default = "$NODEID+0x600" },
+  { sub = 2, name = "COB-ID server to client", type = "UNSIGNED32", access = "ro", default = "$NODEID+0x580" },
+]
+'''
+
+
+@pytest.mark.skipif(shutil.which("cc") is None, reason="no C compiler")
+def test_rows_shared_and_joined(tmp_path):
+    """Rows the generator saves: 0x1200's two COB-IDs, fields of their own one
+    right after the other, are one run (their places checked by the source);
+    0x1019, one value whose row is 0x1003's sub 0 but for its offset, uses
+    that row with its own base. Both still read their own values."""
+    src = tmp_path / "rows.toml"
+    src.write_text(textwrap.dedent(ROWS))
+    r = run_odgen(src, tmp_path)
+    assert r.returncode == 0, r.stderr
+    c = (tmp_path / "rows.c").read_text()
+    assert "CO_OD_RUN(0x01U, 2U, (uint8_t)CO_UNSIGNED32" in c
+    assert "rows_run_joins" in c
+    od = c[c.index("static const co_od_entry_t od[]"):]
+    e1003 = next(x for x in od.splitlines() if "0x1003U" in x)
+    e1019 = next(x for x in od.splitlines() if "0x1019U" in x)
+    assert "CO_OD_ENTRY_AT(0x1019U" in e1019 and "F(x1003_number_of_errors)" in e1019
+    row = int(e1003.split(",")[-2].strip(" U)"))  # 0x1003's first row: its sub 0
+    assert f" {row}U, (uint16_t)(F(x1019" in e1019
+    exe = compile_dump(tmp_path, "rows")
+    dump = run_dump(exe, 5)
+    subs = {(e["index"], s["sub"]): s for e in dump["entries"] for s in e["subs"]}
+    assert subs[(0x1019, 0)]["value"] == "07" and subs[(0x1019, 0)]["flags"] & 0x02
+    assert subs[(0x1003, 0)]["value"] == "00"
+    assert subs[(0x1200, 1)]["value"] == "05060000" and subs[(0x1200, 2)]["value"] == "85050000"
+    assert compare(tmp_path / "rows.eds", dump, node_id=5) > 5

@@ -323,10 +323,29 @@ def generate(dev: Device, toml_name: str, warn=None, storage: bool = True) -> tu
     n_rows = 0
     ram_off = offsets(ram)
     joins: list[str] = []   # (the places runs across fields rely on)
+    # an object of one RAM value of its own (no hook, no table shared) whose
+    # row is, but for its offset, a row already in the table uses that row:
+    # its base is the distance between the two values (modulo 2^16, as the
+    # core adds them); {row's (sub, type, flags, size, limit): (its number,
+    # its offset)}, and {object: its base}
+    one_rows: dict = {}
+    var_base: dict[int, str] = {}
     for o in dev.objects:
         sh = share.get(o.index)
         if sh is not None and sh[0] != o.index:
             continue    # the table of the first PDO of its shape
+        own = table_subs(o)
+        key = None
+        if len(own) == 1 and not o.hook and sh is None and not implicit0(o):
+            s0 = own[0]
+            if s0.field and not s0.rom and not s0.hookio:
+                key = (s0.sub, s0.type, s0.flags, s0.size, s0.limit_slot)
+        if key is not None and key in one_rows:
+            first_row[o.index], at0 = one_rows[key]
+            var_base[o.index] = f"(uint16_t)({off_expr(own[0])} - {at0})"
+            rl.append(f"        /* 0x{o.index:04X} {comment(o.name)} ({o.code}): row "
+                      f"{first_row[o.index]}, its RAM offset from its base */")
+            continue
         first_row[o.index] = n_rows
         rl.append(f"        /* {n_rows}: 0x{o.index:04X} {comment(o.name)} ({o.code})" +
                   (f", its RAM offsets from F({sh[1]}): the table of every PDO of this shape"
@@ -348,6 +367,9 @@ def generate(dev: Device, toml_name: str, warn=None, storage: bool = True) -> tu
                 elif o.hook and not s.rom:
                     off = f"(uint16_t)({off} - {o.hook_slot}U)"   # (from its base, its slot)
             lim = f"{s.limit_slot}U" if s.limit_slot >= 0 else "0U"
+            if len(run) == 1 and not o.hook and not s.rom and not s.hookio and s.field:
+                one_rows.setdefault((s.sub, s.type, s.flags, s.size, s.limit_slot),
+                                    (n_rows - 1, off))
             if len(run) == 1:
                 rl.append(f"        CO_OD_SUB(0x{s.sub:02X}U, (uint8_t)CO_{s.type}, "
                           f"{flags_expr(s.flags)}, "
@@ -429,6 +451,9 @@ def generate(dev: Device, toml_name: str, warn=None, storage: bool = True) -> tu
             c.append(f"    CO_OD_ENTRY_TAG(0x{o.index:04X}U, {nrows}U, {at}U, {base}, "
                      f"(uint8_t)(CO_OD_TAG(0x{o.index:04X}U, CO_OBJ_{o.code}, "
                      f"{'true' if o.hook else 'false'}) | CO_OD_TAG_SUB0)),")
+        elif o.index in var_base:
+            c.append(f"    CO_OD_ENTRY_AT(0x{o.index:04X}U, {nrows}U, "
+                     f"(uint8_t)CO_OBJ_{o.code}, {at}U, {var_base[o.index]}),")
         elif sh is None or sh[1] is None:
             c.append(f"    CO_OD_ENTRY(0x{o.index:04X}U, {nrows}U, {hook}, "
                      f"(uint8_t)CO_OBJ_{o.code}, {at}U),")

@@ -149,7 +149,9 @@ typedef struct co_od_sub {
  *  table of rows (co_dev_t.rows) from row @ref rows on (co_od_rows).
  *  Objects of the same shape (the PDOs' parameters) share their rows: the
  *  RAM offsets in them count from @ref base, where each object's values
- *  start (0 for rows of its own, whose offsets are the values' own). An
+ *  start (0 for rows of its own, whose offsets are the values' own; an
+ *  object of one value that uses another's row: the distance between the
+ *  two values, modulo 2^16 as base and offset are added). An
  *  object with a hook slot (CO_OD_TAG_HOOK) has rows of its own and its
  *  slot as its base: their RAM offsets count from it. */
 typedef struct co_od_entry {

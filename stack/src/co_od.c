@@ -479,8 +479,10 @@ static co_err_t check_limits(const co_node_t *node, const co_od_sub_t *s, const 
     return CO_OK;
 }
 
-void co_od_commit(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
-                  const uint8_t *data, uint32_t len)
+/* The engine's commit (co_od_commit): a checked value of @p s from wire
+ * bytes into its RAM place. */
+CO_INLINE void commit(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
+                      const uint8_t *data, uint32_t len)
 {
     uint8_t fixed = co_type_len(s->type);
 
@@ -503,6 +505,12 @@ void co_od_commit(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
             }
         }
     }
+}
+
+void co_od_commit(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
+                  const uint8_t *data, uint32_t len)
+{
+    commit(node, e, s, data, len);
 }
 
 CO_HOT co_err_t write_value(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
@@ -557,8 +565,10 @@ CO_HOT co_err_t write_value(co_node_t *node, const co_od_entry_t *e, const co_od
         err = sh->fn(node, CO_SVC_COMMIT, e, s, data, len); /* the service's commit */
     } else if (CO_FAST && (fixed != 0U) && ((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) == 0U)) {
         co_pdo_from_wire(&node->ram[(uint16_t)(e->base + s->off)], data, fixed); /* a number: no call */
+    } else if (CO_STORAGE) {
+        co_od_commit(node, e, s, data, len); /* (one copy: the store service commits too) */
     } else {
-        co_od_commit(node, e, s, data, len);
+        commit(node, e, s, data, len); /* (its only caller: inlined) */
     }
     touch_owner(node, sh);
     if ((ops & (CO_SVC_COMMIT | CO_SVC_WRITTEN)) == CO_SVC_WRITTEN) {

@@ -345,38 +345,42 @@ typedef struct co_node {
     uint8_t *ram;
     co_od_hook_t *hooks;
     const co_node_callbacks_t *cb; /**< NULL: none */
-    uint32_t now;
-    /** co_node_process: the earliest deadline of the services when they last
-     *  ran (one that has moved later since only costs an early call). */
-    uint32_t due;
+    /* (the order of what follows: what the core uses most where a short
+     * instruction reaches it, without padding; on a Cortex-M a 16-bit load
+     * or store reaches bytes up to offset 31, halfwords up to 62, words up
+     * to 124: SEG stack code -180 bytes) */
     uint8_t node_id;         /**< active node-ID, CO_NODE_ID_UNCONFIGURED while unconfigured */
     uint8_t pending_id;      /**< node-ID from the next reset communication */
-    uint8_t cob_base;        /**< node-ID the $NODEID defaults of the PDO and EMCY
-                                  COB-IDs use (CO_LSS_COBS_KEEP; else node_id) */
     uint8_t nmt;             /**< co_nmt_state_t */
     /* the dispatcher's receive table (co_node.c), rebuilt when rx_dirty */
     uint8_t n_rx;
     uint8_t rx_dirty;
     uint8_t txq_len;
-    uint8_t rx_at[16];       /**< per function code (COB-ID >> 7): its only slot,
-                                  none, or several (co_node.c) */
     /** co_node_process: bit k: service row k has something new since it
      *  last ran (a frame, a write of its objects); CO_SVC_ALL: every row,
      *  and 'due' is stale. */
     uint16_t svc_run;
+    uint32_t now;
+    /** co_node_process: the earliest deadline of the services when they last
+     *  ran (one that has moved later since only costs an early call). */
+    uint32_t due;
+    /* one part per service */
+    co_pdo_svc_t pdo;
+    co_sdo_srv_t sdo;
+    co_sync_t sync;
+    co_errctl_t errctl;
+    co_emcy_t emcy;
+    uint8_t rx_at[16];       /**< per function code (COB-ID >> 7): its only slot,
+                                  none, or several (co_node.c) */
+    uint8_t cob_base;        /**< node-ID the $NODEID defaults of the PDO and EMCY
+                                  COB-IDs use (CO_LSS_COBS_KEEP; else node_id) */
     /** The services' receive slots: the COB-ID in bits 0..10, the row of
      *  the service in the service table above them (co_node.c). */
     uint16_t rx[CO_RX_SLOTS_MAX];
     co_txq_frame_t txq[CO_TXQ_LEN];
-    /* one part per service */
-    co_sdo_srv_t sdo;
-    co_errctl_t errctl;
-    co_emcy_t emcy;
-    co_sync_t sync;
 #if CO_TIME
     co_time_t time;
 #endif
-    co_pdo_svc_t pdo;
 #if CO_STORAGE
     co_store_t store;
 #endif

@@ -154,9 +154,10 @@ def test_edge_device(tmp_path):
     assert "#define EDGE_HOOK_2006 0U" in header
 
 
-STORE = r'''
+# the device and its 0x1001, which the descriptions below begin with
+HEAD = r'''
 [device]
-name = "store"
+name = "{name}"
 vendor_id = 1
 product_code = 1
 device_type = 0x000F0191
@@ -166,7 +167,9 @@ index = 0x1001
 name = "Error register"
 type = "UNSIGNED8"
 access = "ro"
+'''
 
+STORE = HEAD.format(name="store") + r'''
 [[object]]
 index = 0x1010
 name = "Store parameters"
@@ -198,19 +201,7 @@ def test_store_commands_have_no_default(tmp_path):
     assert "x1010" not in defaults
 
 
-ROWS = r'''
-[device]
-name = "rows"
-vendor_id = 1
-product_code = 1
-device_type = 0x000F0191
-
-[[object]]
-index = 0x1001
-name = "Error register"
-type = "UNSIGNED8"
-access = "ro"
-
+ROWS = HEAD.format(name="rows") + r'''
 [[object]]
 index = 0x1003
 name = "Pre-defined error field"

@@ -85,6 +85,59 @@ static void storage_left_out(void **state)
     }
 }
 
+/* The application's write hook: the writes it was asked about. */
+static co_err_t count_writes(void *ctx, co_od_io_t *io)
+{
+    (void)io;
+    (*(uint32_t *)ctx)++;
+    return CO_OK;
+}
+
+/* A build without storage refuses a save or restore command in the store
+ * service's check, before an application's hook on 0x1010 is asked (the
+ * device here: lean-test with a hook slot on 0x1010; the command's value is
+ * never read or written). */
+static void store_command_refused_before_app_hook(void **state)
+{
+    static co_od_entry_t od[64];
+    static co_dev_t dev;
+    co_od_hook_t hooks[1];
+    co_node_config_t cfg;
+    uint32_t asked = 0U;
+    bool hooked = false;
+    (void)state;
+    assert_true(lean_test_dev.od_count <= 64U);
+    memcpy(od, lean_test_dev.od, lean_test_dev.od_count * sizeof od[0]);
+    for (uint16_t i = 0U; i < lean_test_dev.od_count; i++) {
+        if (od[i].index == 0x1010U) {
+            od[i].tag = (uint8_t)(od[i].tag | CO_OD_TAG_HOOK);
+            od[i].base = 0U; /* its slot */
+            hooked = true;
+        }
+    }
+    assert_true(hooked);
+    dev = lean_test_dev;
+    dev.od = od;
+    dev.n_hooks = 1U;
+    memset(&lean, 0, sizeof lean);
+    tb_init(&bus);
+    lean_test_config(&lean, &cfg);
+    cfg.dev = &dev;
+    cfg.hal = tb_hal(&bus, 0);
+    cfg.node_id = 1U;
+    cfg.hooks = hooks;
+    assert_int_equal(co_node_init(&lean.node, &cfg, bus.now), CO_RESULT_OK);
+    hooks[0].write = count_writes; /* (the node's init clears the slots) */
+    hooks[0].ctx = &asked;
+    tb_attach(&bus, 0, &lean.node);
+    tb_expect(BUS, "701 00");
+    tb_xfer(BUS, "601 23 10 10 01 73 61 76 65", "581 80 10 10 01 20 00 00 08");
+    tb_xfer(BUS, "601 23 10 10 02 73 61 76 65", "581 80 10 10 02 20 00 00 08");
+    assert_int_equal(asked, 0U);
+    assert_int_equal(bus.nv_written, 0U);
+    tb_expect_none(BUS);
+}
+
 static void services_kept(void **state)
 {
     uint8_t v[4];
@@ -296,6 +349,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(storage_left_out),
+        cmocka_unit_test(store_command_refused_before_app_hook),
         cmocka_unit_test(services_kept),
         cmocka_unit_test(compact_dictionary),
         cmocka_unit_test(shared_sub_tables),

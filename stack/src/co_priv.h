@@ -135,13 +135,11 @@ static inline uint8_t co_ram_u8(const co_node_t *node, uint16_t off)
 }
 
 /* The CPU stores integers little-endian, like the wire (the compiler says
- * so; without that knowledge the portable conversion is used). */
-#if defined(__BYTE_ORDER__) && defined(__ORDER_LITTLE_ENDIAN__)
-#if __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+ * so: co_endian.h's CO_ENDIAN_LE; without that knowledge the portable
+ * conversion is used). */
+#ifdef CO_ENDIAN_LE
 #define CO_NATIVE_LE true
-#endif
-#endif
-#ifndef CO_NATIVE_LE
+#else
 #define CO_NATIVE_LE false
 #endif
 

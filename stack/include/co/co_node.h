@@ -235,6 +235,15 @@ typedef struct co_store {
 } co_store_t;
 
 typedef struct co_sdo_srv {
+    /* (state, toggle and flags first: the server's most used bytes, where a
+     * 16-bit load or store reaches them; blksize in the byte after them:
+     * SEG stack code -8 bytes, RAM unchanged in both builds) */
+    uint8_t state;
+    uint8_t toggle;
+    uint8_t flags;
+#if CO_SDO_BLOCK
+    uint8_t blksize;
+#endif
     const co_od_entry_t *entry;
     co_od_sub_t desc;    /**< the sub-entry's descriptor (of entry) */
     uint32_t size;       /**< total size, 0 if unknown */
@@ -244,13 +253,9 @@ typedef struct co_sdo_srv {
 #if CO_SDO_BLOCK
     uint16_t crc;
     uint16_t crc_sent;   /**< block upload: CRC up to the last segment sent */
-    uint8_t blksize;
     uint8_t seqno;       /**< block: last good / last sent sequence number */
     uint8_t held[7];     /**< block download: the last segment until its size is known */
 #endif
-    uint8_t state;
-    uint8_t toggle;
-    uint8_t flags;
     /** A value of fixed size gathered before its commit; an upload's first
      *  chunk, staged (at most 7 bytes, its length in buf[7]). */
     uint8_t buf[8];

@@ -360,9 +360,11 @@ static uint16_t services_due(co_node_t *node, uint32_t now_us)
         co_svc_touch_all(node);
     }
     run = node->svc_run;
-    if (CO_TPDO_CHANGE && (node->pdo.poll != 0U)) {
+#if CO_TPDO_CHANGE
+    if (node->pdo_poll != 0U) {
         run |= (uint16_t)(1U << CO_ROW_PDO);
     }
+#endif
     return run;
 }
 

@@ -120,19 +120,19 @@ void co_rpdo_rx(co_node_t *node, uint16_t i, const co_frame_t *f)
             (void)memcpy(p->data, f->data, 8U);
             p->count = f->dlc; /* the buffered frame's length */
             p->flags |= CO_PDO_F_RXBUF;
-            node->pdo.buffered = 1U;
+            node->pdo_buffered = 1U;
         }
         return;
     }
     apply(node, i, f->data, f->dlc);
 }
 
-/* At a SYNC (co_sync.c, when pdo.buffered says an RPDO may hold data):
+/* At a SYNC (co_sync.c, when pdo_buffered says an RPDO may hold data):
  * the buffered synchronous RPDOs take effect. Only in Operational does an
  * RPDO buffer its data, and every NMT state change drops them (restart). */
 void co_rpdo_sync(co_node_t *node)
 {
-    node->pdo.buffered = 0U;
+    node->pdo_buffered = 0U;
     for (uint32_t i = 0U; i < node->dev->n_rpdo; i++) {
         co_pdo_t *p = &node->pdo.p[i];
         if ((p->flags & CO_PDO_F_RXBUF) != 0U) {

@@ -377,8 +377,10 @@ CO_HOT uint32_t at_process(co_node_t *node, uint16_t i, uint8_t type, uint32_t n
     } else if (type >= 254U) {
         /* (a synchronous TPDO's data waiting: not event-driven; a new type
          * restarts the TPDO, which drops it) */
+#if CO_TPDO_CHANGE
         /* change detection compares the data at every co_node_process */
-        node->pdo.poll = (CO_TPDO_CHANGE && detect) ? 1U : node->pdo.poll;
+        node->pdo_poll = detect ? 1U : node->pdo_poll;
+#endif
         next = event_driven(node, i, next, detect, &held);
     }
     return held ? co_deadline_min(node->now, next, node->now + RETRY_US) : next;
@@ -413,9 +415,11 @@ CO_HOT uint32_t tpdo_pass(co_node_t *node, uint32_t next_in, bool sync, uint8_t 
     uint32_t n = (uint32_t)node->dev->n_rpdo + node->dev->n_tpdo;
     bool detect = CO_SET(node, tpdo.change_detection) != CO_TPDO_CHANGE_IGNORED;
 
-    if (CO_TPDO_CHANGE && !sync) {
-        node->pdo.poll = 0U;
+#if CO_TPDO_CHANGE
+    if (!sync) {
+        node->pdo_poll = 0U;
     }
+#endif
     if (node->nmt != (uint8_t)CO_NMT_OPERATIONAL) {
         return next;
     }

@@ -325,12 +325,11 @@ typedef struct co_time {
     uint32_t *cob;           /**< 0x1012 */
 } co_time_t;
 
-/** PDO (co_pdo_config.c, co_rpdo.c, co_tpdo.c). */
+/** PDO (co_pdo_config.c, co_rpdo.c, co_tpdo.c); its flags are in co_node_t
+ *  next to cob_base (pdo_buffered, pdo_poll): after the pointer they would
+ *  pad this part to 8 bytes (RAM -4 B in the SEG and BLK builds). */
 typedef struct co_pdo_svc {
     co_pdo_t *p;             /**< dev->n_rpdo + dev->n_tpdo */
-    uint8_t buffered;        /**< some RPDO may hold data for the next SYNC */
-    uint8_t poll;            /**< 1: event-driven TPDOs compare their data at every
-                                  co_node_process (change detection) */
 } co_pdo_svc_t;
 
 struct co_svc_hook;
@@ -379,6 +378,11 @@ typedef struct co_node {
                                   none, or several (co_node.c) */
     uint8_t cob_base;        /**< node-ID the $NODEID defaults of the PDO and EMCY
                                   COB-IDs use (CO_LSS_COBS_KEEP; else node_id) */
+    uint8_t pdo_buffered;    /**< PDO: some RPDO may hold data for the next SYNC */
+#if CO_TPDO_CHANGE
+    uint8_t pdo_poll;        /**< PDO: 1: event-driven TPDOs compare their data at
+                                  every co_node_process (change detection) */
+#endif
     /** The services' receive slots: the COB-ID in bits 0..10, the row of
      *  the service in the service table above them (co_node.c). */
     uint16_t rx[CO_RX_SLOTS_MAX];

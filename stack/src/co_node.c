@@ -581,7 +581,11 @@ static co_result_t bind_services(co_node_t *node)
 #if CO_LSS
     co_services[0]->event(node, CO_SVC_BIND); /* (its row: the first) */
 #endif
-#if !CO_PERSONALITY
+#if !CO_PERSONALITY && !CO_LSS
+    if (node->dev->nodeid_index != 0U) {
+        return CO_RESULT_DEV_INCOMPAT; /* a deviation this build leaves out */
+    }
+#elif !CO_PERSONALITY
     {
         /* every setting 0 (CiA 301) but lss.slave where the build has LSS:
          * a service, not a deviation; and without block SDO (CO_SDO_BLOCK=0)
@@ -626,12 +630,18 @@ co_result_t co_node_init(co_node_t *node, const co_node_config_t *cfg, uint32_t 
         return CO_RESULT_BAD_CONFIG;
     }
     /* (an LSS slave: a build without LSS refuses it, CO_RESULT_DEV_INCOMPAT) */
-    id = ((CO_LSS != 0) && (cfg->dev->set.lss.node_id == CO_LSS_ID_ONLY)) ? CO_NODE_ID_UNCONFIGURED
-                                                                          : cfg->node_id;
+#if CO_LSS
+    id = (cfg->dev->set.lss.node_id == CO_LSS_ID_ONLY) ? CO_NODE_ID_UNCONFIGURED : cfg->node_id;
     if (((id < 1U) || (id > 127U)) &&
-        ((CO_LSS == 0) || (id != CO_NODE_ID_UNCONFIGURED) || (cfg->dev->set.lss.slave == 0U))) {
+        ((id != CO_NODE_ID_UNCONFIGURED) || (cfg->dev->set.lss.slave == 0U))) {
         return CO_RESULT_BAD_NODE_ID;
     }
+#else
+    id = cfg->node_id;
+    if ((id < 1U) || (id > 127U)) {
+        return CO_RESULT_BAD_NODE_ID;
+    }
+#endif
     (void)memset(node, 0, sizeof *node);
     /* dev, hal, ram, hooks, cb: the first fields of both, in the same
      * places (test_services: test_config_head) */

@@ -59,7 +59,11 @@ static inline void co_copy(void *dst, const void *src, size_t n)
 /* A setting of the node's device (co_settings.h, e.g. CO_SET(node,
  * pdo.granularity)); with CO_PERSONALITY 0 every setting is its CiA 301
  * value 0, so the code of the deviations is not built. */
-#define CO_SET(node, field) ((CO_PERSONALITY != 0) ? (uint32_t)(node)->dev->set.field : 0U)
+#if CO_PERSONALITY
+#define CO_SET(node, field) ((uint32_t)(node)->dev->set.field)
+#else
+#define CO_SET(node, field) ((void)(node), 0U)
+#endif
 
 /* The application's callback @p fn of co_node_callbacks_t, NULL when it has
  * none (or no callbacks at all: co_node_t.cb NULL). */
@@ -578,7 +582,12 @@ static inline bool co_node_unconfigured(const co_node_t *node)
  * (CO_LSS), not a deviation: read past CO_PERSONALITY, as co_node_init does. */
 static inline bool co_lss_enabled(const co_node_t *node)
 {
-    return (CO_LSS != 0) && (node->dev->set.lss.slave != 0U);
+#if CO_LSS
+    return node->dev->set.lss.slave != 0U;
+#else
+    (void)node;
+    return false;
+#endif
 }
 
 /* Drop the communication group of the stored set (a node leaving the

@@ -106,9 +106,11 @@ uint32_t co_store_nv_size_unit(const co_dev_t *dev, uint32_t erase_unit)
 {
     uint32_t size = 2U * bank_bytes(dev, erase_unit);
 
-    if ((CO_LSS != 0) && (dev->set.lss.slave != 0U)) {
+#if CO_LSS
+    if (dev->set.lss.slave != 0U) {
         size += 2U * lss_stride(erase_unit); /* the LSS records (co_lss.c) */
     }
+#endif
     return size;
 }
 

@@ -3,12 +3,15 @@ core build leaves out (--build NAME=VALUE, what co_device passes from the
 core library's definitions), and accepts it when the build has it."""
 from __future__ import annotations
 
+import os
 import re
+import shutil
+import subprocess
 from pathlib import Path
 
 import pytest
 
-from conftest import ROOT, run_odgen
+from conftest import ROOT, WARN, run_odgen
 
 GENERIC = ROOT / "devices" / "generic-301.toml"       # 0x100C/0x100D, 0x1012, 0x1006
 MINIMAL = ROOT / "targets" / "cortex-m" / "minimal-slave.toml"
@@ -184,3 +187,32 @@ def test_pdo_block_padding_holds_bytes(tmp_path: Path) -> None:
     assert h[at + 2] == "uint16_t x1801_inhibit_time"
     assert "uint8_t x1802_sync_start_value" in h
     assert h[h.index("uint8_t x1802_sync_start_value") + 1] == "uint16_t x1802_inhibit_time"
+
+
+def _compile(src: Path, *defines: str) -> "subprocess.CompletedProcess[str]":
+    return subprocess.run(["cc", *WARN, "-c", *[f"-D{d}" for d in defines],
+                           f"-I{ROOT / 'stack' / 'include'}", str(src), "-o", os.devnull],
+                          capture_output=True, text=True, check=False)
+
+
+@pytest.mark.skipif(shutil.which("cc") is None, reason="no C compiler")
+@pytest.mark.parametrize("desc, base, lean_ok", [
+    (KOLLMORGEN, "kollmorgen", False),                      # SDO expedited only
+    (ROOT / "tests" / "perf" / "size-seg.toml", "seg", True),  # no block SDO only
+])
+def test_personality_guard_without_build(tmp_path: Path, desc: Path, base: str,
+                                         lean_ok: bool) -> None:
+    # generated without --build: co_dev_t has the personality (set) only in a
+    # core with CO_PERSONALITY or CO_LSS; a core with neither refuses a device
+    # that needs a deviation when its dictionary is compiled (#error), but
+    # takes "no block SDO" when it has no block SDO itself
+    assert run_odgen(desc, tmp_path, "--c", "--base", base).returncode == 0
+    src = tmp_path / f"{base}.c"
+    assert _compile(src).returncode == 0
+    assert _compile(src, "CO_PERSONALITY=0", "CO_LSS=1").returncode == 0
+    r = _compile(src, "CO_PERSONALITY=0", "CO_LSS=0", "CO_SDO_BLOCK=1")
+    assert r.returncode != 0 and "needs CO_PERSONALITY=1" in r.stderr
+    r = _compile(src, "CO_PERSONALITY=0", "CO_LSS=0", "CO_SDO_BLOCK=0")
+    assert (r.returncode == 0) == lean_ok, r.stderr
+    if not lean_ok:
+        assert "needs CO_PERSONALITY=1" in r.stderr

@@ -532,7 +532,7 @@ def generate(dev: Device, toml_name: str, warn=None, storage: bool = True) -> tu
           "    .rom = (const uint8_t *)&rom,",
           f"    .limits = {'limits' if dev.limits else 'NULL'},",
           f"    .n_hooks = {up}_N_HOOKS,",
-          *personality.settings_c(dev.options),
+          *personality.settings_guarded(dev.options),
           f"    .boot_emcy_data = {'boot_emcy' if dev.boot_emcy_data is not None else 'NULL'},",
           f"    .pdo = {'pdo' if n_pdo else 'NULL'},",
           f"    .n_rpdo = {len(pdos[0])}U,",

@@ -73,6 +73,23 @@ def settings_c(options: list[str]) -> list[str]:
             for f, v in fields.items()]
 
 
+def settings_guarded(options: list[str]) -> list[str]:
+    """settings_c() for a core of any build: co_dev_t has the field set only
+    with CO_PERSONALITY or CO_LSS; a core with neither refuses a device that
+    needs a deviation or LSS at compile time (#error), except "no block SDO"
+    where the core has none (CO_SDO_BLOCK=0), which such a core does anyway
+    (what build.py says with --build)."""
+    lines = settings_c(options)
+    if not lines:
+        return []
+    named = [n for n in SETTINGS if n in options]
+    need = "#error \"this device's personality (" + ", ".join(named) + \
+        ") needs CO_PERSONALITY=1 (or CO_LSS=1 for LSS)\""
+    rest = [n for n in named if n != "SDO_NO_BLOCK"]
+    return ["#if CO_PERSONALITY || CO_LSS", *lines,
+            *(["#else", need] if rest else ["#elif CO_SDO_BLOCK", need]), "#endif"]
+
+
 TRANSFERS = ("expedited", "segmented-upload", "segmented-download", "block")
 # the SDO transfer sets the server offers -> options
 TRANSFER_SETS = {

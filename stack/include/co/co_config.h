@@ -138,7 +138,9 @@
 #ifndef CO_PERSONALITY
 /** Device personalities (co_settings.h, co_dev_t.set): 1 implements every
  *  setting; 0 only the CiA 301 ones (every field 0), the code of the
- *  deviations is not built and a device that needs one is refused. */
+ *  deviations is not built and a device that needs one is refused (with
+ *  CO_LSS=0 too, co_dev_t has no field set: the generated dictionary of
+ *  such a device does not compile, #error). */
 #define CO_PERSONALITY 1
 #endif
 

@@ -101,8 +101,13 @@ typedef struct co_dev {
     uint8_t n_hooks;            /**< hook slots the node's hook table must have */
     /** The personality (co_settings.h); all zero: CiA 301. (The 16-bit
      *  fields, n_hooks and the personality first, the pointers last: their
-     *  loads stay short, offsets of at most 124, where a byte's are 31.) */
+     *  loads stay short, offsets of at most 124, where a byte's are 31.)
+     *  Only in a core with CO_PERSONALITY or CO_LSS: a core with neither
+     *  has nothing to read there (the generated dictionary says so with
+     *  #if, and refuses to compile where it needs a deviation). */
+#if CO_PERSONALITY || CO_LSS
     co_settings_t set;
+#endif
     const co_od_entry_t *od;    /**< od_count entries, sorted by index */
     const co_od_sub_t *rows;    /**< the entries' rows (co_od_entry_t.rows) */
     const uint8_t *defaults;    /**< n_defaults default runs (co_od.h: CO_OD_DEF_RUN) */

@@ -135,6 +135,15 @@ static uint16_t ref_crc(const uint8_t *p, uint32_t n)
     return crc;
 }
 
+/* The DOMAIN's value: @p n bytes counting up from @p first. */
+static void dom_count(dom_t *d, uint32_t n, uint8_t first)
+{
+    for (uint32_t i = 0U; i < n; i++) {
+        d->data[i] = (uint8_t)(first + i);
+    }
+    d->len = n;
+}
+
 /* xorshift32: reproducible pseudo-random test data */
 static void fill_random(uint8_t *p, uint32_t n, uint32_t seed)
 {
@@ -527,10 +536,7 @@ static void block_upload_string(void **state)
 
 static void block_upload_domain_with_and_without_size(void **state)
 {
-    for (uint32_t i = 0U; i < 10U; i++) {
-        DOM.data[i] = (uint8_t)(0xA0U + i);
-    }
-    DOM.len = 10U;
+    dom_count(&DOM, 10U, 0xA0U);
     /* the hook tells the total: size indicated */
     tb_xfer(BUS, "601 A4 00 22 00 7F 00 00 00", "581 C6 00 22 00 0A 00 00 00");
     tb_send(BUS, "601 A3 00 00 00 00 00 00 00");
@@ -554,10 +560,7 @@ static void block_upload_domain_with_and_without_size(void **state)
 
 static void upload_sends_no_more_than_announced(void **state)
 {
-    for (uint32_t i = 0U; i < 20U; i++) {
-        DOM.data[i] = (uint8_t)(0x30U + i);
-    }
-    DOM.len = 20U;
+    dom_count(&DOM, 20U, 0x30U);
     /* the hook announces 10 bytes but has 20: the server sends the 10 */
     DOM.fake_total = 10U;
     tb_xfer(BUS, "601 A4 00 22 00 7F 00 00 00", "581 C6 00 22 00 0A 00 00 00");
@@ -948,10 +951,7 @@ static void upload_tx_full_mid_sub_block(void **state)
 {
     uint8_t r[8];
 
-    for (uint32_t i = 0U; i < 100U; i++) {
-        DOM.data[i] = (uint8_t)i;
-    }
-    DOM.len = 100U; /* 15 segments, 2 bytes in the last */
+    dom_count(&DOM, 100U, 0x00U); /* 15 segments, 2 bytes in the last */
     tb_xfer(BUS, "601 A4 00 22 00 7F 00 00 00", "581 C6 00 22 00 64 00 00 00");
     /* the TX path fills up after the fifth segment */
     BUS->refuse_after = 5U;
@@ -1049,10 +1049,7 @@ static void upload_reads_chunks(void **state)
  * the initiate (its length kept beside it in the staging buffer). */
 static void segmented_upload_short_chunks(void **state)
 {
-    for (uint32_t i = 0U; i < 10U; i++) {
-        DOM.data[i] = (uint8_t)(0x30U + i);
-    }
-    DOM.len = 10U;
+    dom_count(&DOM, 10U, 0x30U);
     DOM.max_read = 3U;
     tb_xfer(BUS, "601 40 00 22 00 00 00 00 00", "581 41 00 22 00 0A 00 00 00");
     tb_xfer(BUS, "601 60 00 00 00 00 00 00 00", "581 08 30 31 32 00 00 00 00");

@@ -652,7 +652,7 @@ co_result_t co_node_init(co_node_t *node, const co_node_config_t *cfg, uint32_t 
     node->node_id = id;
     node->pending_id = id;
     node->cob_base = id;
-    node->sdo.timeout_us = (cfg->sdo_timeout_us != 0U) ? cfg->sdo_timeout_us : 1000000UL;
+    node->sdo.timeout_ms = (cfg->sdo_timeout_ms != 0U) ? cfg->sdo_timeout_ms : 1000U;
     node->pdo.p = cfg->pdo;
     node->now = now_us;
     node->svc_run = CO_SVC_ALL;

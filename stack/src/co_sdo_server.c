@@ -64,6 +64,7 @@ enum {
 #define F_CRC    CO_SDO_BLK_CRC /* both sides use CRC (block; the client's
                                  * bit in a block initiate: taken as it is) */
 #define F_LAST   0x08U /* block upload: the last segment has been sent */
+#define F_TOGGLE CO_SDO_TOGGLE /* segmented: the toggle bit of the next segment */
 
 /* The eight bytes of an answer: command byte, index, sub-index, four data
  * bytes. */
@@ -115,7 +116,7 @@ static void sdo_abort(co_node_t *node, uint16_t index, uint8_t sub, co_err_t err
 SDO_CALL static void start(co_node_t *node, uint8_t state)
 {
     node->sdo.state = state;
-    node->sdo.deadline = node->now + node->sdo.timeout_us;
+    node->sdo.deadline = node->now + (1000U * (uint32_t)node->sdo.timeout_ms);
 }
 
 /* The transfer state of t->desc (the initiate's lookup wrote it there:
@@ -127,7 +128,6 @@ static void open_xfer(co_sdo_srv_t *t, const co_od_entry_t *e, uint32_t size, ui
     t->size = size;
     t->flags = flags;
     t->offset = 0U;
-    t->toggle = 0U;
 #if CO_SDO_BLOCK
     t->crc = 0U;
     t->seqno = 0U;
@@ -483,7 +483,7 @@ static co_err_t segment(co_node_t *node, const uint8_t *d, bool up)
     co_err_t err;
     uint8_t cmd;
 
-    if ((d[0] & CO_SDO_TOGGLE) != t->toggle) {
+    if (((d[0] ^ t->flags) & F_TOGGLE) != 0U) {
         return CO_ERR_TOGGLE;
     }
     if (up) {
@@ -501,8 +501,8 @@ static co_err_t segment(co_node_t *node, const uint8_t *d, bool up)
     if (err != CO_OK) {
         return err;
     }
-    f.data[0] = (uint8_t)(cmd | t->toggle);
-    t->toggle ^= CO_SDO_TOGGLE;
+    f.data[0] = (uint8_t)(cmd | (t->flags & F_TOGGLE));
+    t->flags ^= F_TOGGLE;
     if ((CO_STORAGE != 0) && last && !up) {
         /* (the answer may wait for a save; without storage it is the
          * frame below, its data zeros) */
@@ -541,7 +541,7 @@ static co_err_t block_download_segment(co_node_t *node, const uint8_t *d)
         /* lost or repeated: dropped */
     } else if (last) {
         t->seqno = seq;
-        co_copy(t->held, &d[1], SEG); /* its length comes with the end */
+        co_copy(t->blk.held, &d[1], SEG); /* its length comes with the end */
         start(node, S_BLK_DL_END);
     } else {
         co_err_t err;
@@ -570,11 +570,11 @@ static co_err_t block_download_end(co_node_t *node, const uint8_t *d)
     co_err_t err = CO_OK;
 
     if (((t->flags & F_CRC) != 0U) &&
-        (co_crc16(t->crc, t->held, len) != co_get_u16(&d[1]))) {
+        (co_crc16(t->crc, t->blk.held, len) != co_get_u16(&d[1]))) {
         err = CO_ERR_CRC;
     }
     if (err == CO_OK) {
-        err = write_chunk(node, t->held, len, true);
+        err = write_chunk(node, t->blk.held, len, true);
     }
     if (err == CO_OK) {
         download_done(node, (uint8_t)(CO_SDO_B0(CO_SDO_SCS_BLOCK_DOWNLOAD) | CO_SDO_BLK_END), 0U,
@@ -632,11 +632,11 @@ static co_err_t block_upload_send(co_node_t *node, bool send)
         if ((t->flags & F_CRC) != 0U) {
             /* the CRC as the segments go out (an acknowledge of all of them
              * takes it over, co_crc16 need not read them again) */
-            t->crc_sent = co_crc16(t->crc_sent, &f.data[1], got);
+            t->blk.crc_sent = co_crc16(t->blk.crc_sent, &f.data[1], got);
         }
         t->seqno++;
         /* the client's answer is due one timeout after the last segment */
-        t->deadline = node->now + node->sdo.timeout_us;
+        t->deadline = node->now + (1000U * (uint32_t)t->timeout_ms);
         if (last) {
             /* The end is known now: keep it as the size (t->buf still
              * holds the staged first chunk, which a retransmission from
@@ -655,7 +655,7 @@ static co_err_t next_subblock(co_node_t *node, bool send)
     co_sdo_srv_t *t = &node->sdo;
 
     t->seqno = 0U;
-    t->crc_sent = t->crc;
+    t->blk.crc_sent = t->crc;
     t->flags &= (uint8_t)~F_LAST;
     start(node, S_BLK_UL);
     return block_upload_send(node, send);
@@ -690,7 +690,7 @@ static co_err_t block_upload_ack(co_node_t *node, const uint8_t *d)
             return err;
         }
     }
-    t->crc = t->crc_sent; /* (without CRC both stay 0) */
+    t->crc = t->blk.crc_sent; /* (without CRC both stay 0) */
     /* (F_STAGED stays: a read at offset 0, the staged chunk, comes only
      * while nothing is acknowledged) */
     t->offset += acked;

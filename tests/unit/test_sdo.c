@@ -377,6 +377,40 @@ static void segmented_timeout(void **state)
     tb_xfer(BUS, "601 40 00 10 00 00 00 00 00", "581 43 00 10 00 92 01 02 00");
 }
 
+/* co_node_config_t.sdo_timeout_ms (the node keeps it in 2 bytes): an open
+ * transfer is aborted that many ms after the last request; the largest,
+ * 65,535 ms, holds as well (0: 1 s, segmented_timeout) */
+static void configured_timeout(void **state)
+{
+    static const uint16_t ms[] = {250U, 65535U};
+
+    for (uint32_t k = 0U; k < 2U; k++) {
+        static td_node_t n;
+        co_node_config_t cfg;
+        memset(&n, 0, sizeof n);
+        memset(&cfg, 0, sizeof cfg);
+        cfg.dev = &td_dev;
+        cfg.hal = tb_hal(BUS, 1);
+        cfg.node_id = 4U;
+        cfg.ram = &n.ram;
+        cfg.hooks = n.hooks;
+        cfg.sdo_timeout_ms = ms[k];
+        tb_attach(BUS, 1, &n.node);
+        assert_int_equal(co_node_init(&n.node, &cfg, BUS->now), CO_RESULT_OK);
+        tb_expect(BUS, "704 00");
+        tb_xfer(BUS, "604 21 12 20 00 0A 00 00 00", "584 60 12 20 00 00 00 00 00");
+        /* a segment restarts the timer (and the toggle alternates) */
+        tb_advance(BUS, 1000U * ms[k] - 1U);
+        tb_xfer(BUS, "604 00 43 41 4E 6F 70 65 6E", "584 20 00 00 00 00 00 00 00");
+        tb_advance(BUS, 1000U * ms[k] - 1U);
+        tb_expect_none(BUS);
+        tb_advance(BUS, 1U);
+        tb_expect(BUS, "584 80 12 20 00 00 00 04 05");
+        tb_expect_none(BUS);
+        BUS->nodes[1] = NULL;
+    }
+}
+
 static void new_request_during_transfer_is_refused(void **state)
 {
     tb_xfer(BUS, "601 21 12 20 00 0A 00 00 00", "581 60 12 20 00 00 00 00 00");
@@ -426,6 +460,7 @@ int main(void)
         cmocka_unit_test_setup(segmented_toggle_error, setup),
         cmocka_unit_test_setup(segmented_length_mismatch, setup),
         cmocka_unit_test_setup(segmented_timeout, setup),
+        cmocka_unit_test_setup(configured_timeout, setup),
         cmocka_unit_test_setup(new_request_during_transfer_is_refused, setup),
         cmocka_unit_test_setup(empty_and_short_strings, setup),
     };

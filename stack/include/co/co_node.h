@@ -203,7 +203,9 @@ typedef struct co_node_config {
      *  starts unconfigured. An LSS slave uses the node-ID its LSS
      *  configuration store holds instead, when the HAL's NV has one. */
     uint8_t node_id;
-    uint32_t sdo_timeout_us;       /**< 0: 1 s */
+    /** The SDO server's timeout in ms, 0: 1 s (1..65,535 ms, the range of
+     *  CANopenNode's SDOserverTimeoutTime_ms; the node keeps it in 2 bytes) */
+    uint16_t sdo_timeout_ms;
     co_pdo_t *pdo;                 /**< dev->n_rpdo + dev->n_tpdo elements */
 } co_node_config_t;
 
@@ -240,26 +242,27 @@ typedef struct co_store {
 } co_store_t;
 
 typedef struct co_sdo_srv {
-    /* (state, toggle and flags first: the server's most used bytes, where a
-     * 16-bit load or store reaches them; blksize in the byte after them:
-     * SEG stack code -8 bytes, RAM unchanged in both builds) */
+    /* (state and flags first: the server's most used bytes, where a 16-bit
+     * load or store reaches them) */
     uint8_t state;
-    uint8_t toggle;
-    uint8_t flags;
+    uint8_t flags;       /**< and the toggle bit of the next segment */
+    uint16_t timeout_ms; /**< co_node_config_t.sdo_timeout_ms (0: 1000) */
 #if CO_SDO_BLOCK
     uint8_t blksize;
+    uint8_t seqno;       /**< block: last good / last sent sequence number */
+    uint16_t crc;
 #endif
     const co_od_entry_t *entry;
     co_od_sub_t desc;    /**< the sub-entry's descriptor (of entry) */
     uint32_t size;       /**< total size, 0 if unknown */
     uint32_t offset;     /**< bytes done (acknowledged) */
     uint32_t deadline;
-    uint32_t timeout_us; /**< co_node_config_t.sdo_timeout_us */
 #if CO_SDO_BLOCK
-    uint16_t crc;
-    uint16_t crc_sent;   /**< block upload: CRC up to the last segment sent */
-    uint8_t seqno;       /**< block: last good / last sent sequence number */
-    uint8_t held[7];     /**< block download: the last segment until its size is known */
+    /** (one transfer is an upload or a download: 2 bytes of its 7 shared) */
+    union {
+        uint16_t crc_sent; /**< block upload: CRC up to the last segment sent */
+        uint8_t held[7];   /**< block download: the last segment until its size is known */
+    } blk;
 #endif
     /** A value of fixed size gathered before its commit; an upload's first
      *  chunk, staged (at most 7 bytes, its length in buf[7]). */

@@ -5,42 +5,53 @@
 
 bool co_rxq_init(co_rxq_t *q, co_rxq_frame_t *storage, uint16_t len)
 {
-    if ((storage == NULL) || (len < 2U) || (len > 32768U) || ((len & (len - 1U)) != 0U)) {
+    if ((storage == NULL) || (len < 1U) || (len > 32767U)) {
         return false;
     }
     q->buf = storage;
-    q->mask = (uint16_t)(len - 1U);
+    q->len = len;
     q->head = 0U;
     q->tail = 0U;
     q->dropped = 0U;
     return true;
 }
 
+/* An index is a slot (bits 0..14) and a lap bit, which flips each time the
+ * index passes the last slot: the same slot is an empty queue on the same
+ * lap, a full one on the other. */
+#define LAP 0x8000U
+
+/* The index after @p i of @p q. */
+static inline uint16_t next_index(const co_rxq_t *q, uint32_t i)
+{
+    return (uint16_t)((((i & ~LAP) + 1U) == q->len) ? ((i & LAP) ^ LAP) : (i + 1U));
+}
+
 bool co_rxq_push(co_rxq_t *q, const co_frame_t *f)
 {
-    uint16_t head = q->head;
-    uint16_t next = (uint16_t)((head + 1U) & q->mask);
-    co_rxq_frame_t *s = &q->buf[head];
+    uint32_t head = q->head;
+    co_rxq_frame_t *s;
 
     if ((f->id & CO_FRAME_EFF) != 0U) {
         return true; /* (not for the node) */
     }
-    if (next == q->tail) {
+    if ((head ^ q->tail) == LAP) { /* full: the tail's slot, a lap ahead */
         q->dropped = (uint16_t)(q->dropped + 1U);
         return false;
     }
+    s = &q->buf[head & ~LAP];
     s->id_dlc = (uint16_t)(((f->id & 0x7FFU) << 5U) | ((f->id & CO_FRAME_RTR) >> 26U) |
                            (f->dlc & 0x0FU));
     (void)memcpy(s->data, f->data, sizeof s->data);
     CO_RXQ_BARRIER(); /* the frame is complete before the consumer sees it */
-    q->head = next;
+    q->head = next_index(q, head);
     return true;
 }
 
 bool co_rxq_pop(co_rxq_t *q, co_frame_t *f)
 {
-    uint16_t tail = q->tail;
-    const co_rxq_frame_t *s = &q->buf[tail];
+    uint32_t tail = q->tail;
+    const co_rxq_frame_t *s = &q->buf[tail & ~LAP];
 
     if (tail == q->head) {
         return false;
@@ -50,6 +61,6 @@ bool co_rxq_pop(co_rxq_t *q, co_frame_t *f)
     f->dlc = (uint8_t)(s->id_dlc & 0x0FU);
     (void)memcpy(f->data, s->data, sizeof f->data);
     CO_RXQ_BARRIER(); /* read before the slot is handed back */
-    q->tail = (uint16_t)((tail + 1U) & q->mask);
+    q->tail = next_index(q, tail);
     return true;
 }

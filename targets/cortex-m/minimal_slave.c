@@ -38,11 +38,12 @@ static const co_hal_ops_t hal_ops = {.send = can_send};
 
 static SLAVE_NODE_T node;
 /* Frames that wait for the main loop, which empties the queue on every
- * pass: 4 (40 B). A frame costs the node a few hundred instructions, a CAN
- * frame on the bus at 1 Mbit/s at least 47 us, so only a long pass lets
- * frames pile up; one that finds the queue full is counted in rxq.dropped.
- * A firmware with longer passes makes it deeper (a power of two). */
-#define RXQ_LEN 4U
+ * pass: 3 (30 B; the queue holds as many frames as it has slots). A frame
+ * costs the node a few hundred instructions, a CAN frame on the bus at
+ * 1 Mbit/s at least 47 us, so only a long pass lets frames pile up; one
+ * that finds the queue full is counted in rxq.dropped. A firmware with
+ * longer passes makes it deeper. */
+#define RXQ_LEN 3U
 static co_rxq_frame_t rx_store[RXQ_LEN];
 static co_rxq_t rxq = CO_RXQ_INIT(rx_store, RXQ_LEN);
 volatile uint32_t systick_us;

@@ -31,9 +31,13 @@ static void hb_event(co_node_t *node, co_hb_event_t ev, uint32_t k)
  * is lost, and cleared when the last one comes back. */
 static void update_error(co_node_t *node)
 {
-    bool lost = (CO_NODE_GUARDING != 0) && (node->errctl.guard_state == (uint8_t)GUARD_LOST);
+#if CO_NODE_GUARDING
+    bool lost = node->errctl.guard_state == (uint8_t)GUARD_LOST;
+#else
+    bool lost = false;
+#endif
 
-    for (uint32_t k = node->errctl.n_hb_cons; k > 0U; k--) {
+    for (uint32_t k = node->n_hb_cons; k > 0U; k--) {
         if (node->errctl.hbc_state[k - 1U] == (uint8_t)HBC_LOST) {
             lost = true;
         }
@@ -118,7 +122,7 @@ static void hb_reset(co_node_t *node)
 #endif
     /* The boot-up frame counts as the first heartbeat. */
     node->errctl.hb_last = node->now;
-    for (uint32_t k = node->errctl.n_hb_cons; k > 0U; k--) {
+    for (uint32_t k = node->n_hb_cons; k > 0U; k--) {
         consumer_start(node, k - 1U);
     }
 }
@@ -188,7 +192,7 @@ static uint32_t errctl_process(co_node_t *node, uint32_t next)
         uint32_t period = ms_to_us(*node->errctl.hb_prod);
         uint32_t due = node->errctl.hb_last + period;
         if (co_time_reached(now, due)) {
-            if (node->errctl.hb_muted == 0U) {
+            if (node->hb_muted == 0U) {
                 co_tx(node, 0x700UL + node->node_id, &node->nmt, 1U); /* its state */
             }
             /* fell behind (or a shorter period): no burst */
@@ -198,7 +202,7 @@ static uint32_t errctl_process(co_node_t *node, uint32_t next)
         }
         next = co_deadline_min(now, next, due);
     }
-    for (uint32_t k = 0U; k < node->errctl.n_hb_cons; k++) {
+    for (uint32_t k = 0U; k < node->n_hb_cons; k++) {
         co_errctl_t *c = &node->errctl;
         if (c->hbc_state[k] == (uint8_t)HBC_ACTIVE) {
             if (co_time_reached(now, c->hbc_deadline[k])) {
@@ -231,9 +235,9 @@ static uint32_t errctl_process(co_node_t *node, uint32_t next)
 
 void co_node_hb_mute(co_node_t *node, bool muted, uint32_t now_us)
 {
-    bool was = node->errctl.hb_muted != 0U;
+    bool was = node->hb_muted != 0U;
 
-    node->errctl.hb_muted = muted ? 1U : 0U;
+    node->hb_muted = muted ? 1U : 0U;
     if (was && !muted && heartbeat_producing(node)) {
         /* the first heartbeat at once */
         node->errctl.hb_last = now_us - ms_to_us(*node->errctl.hb_prod);
@@ -250,7 +254,7 @@ static void errctl_rx_slots(co_node_t *node)
 #if CO_NODE_GUARDING
     co_rx_add(node, (uint16_t)(0x700U + node->node_id), CO_ROW_ERRCTL);
 #endif
-    for (uint32_t k = node->errctl.n_hb_cons; k > 0U; k--) {
+    for (uint32_t k = node->n_hb_cons; k > 0U; k--) {
         uint8_t id = (uint8_t)((node->errctl.hb_cons[k - 1U] >> 16U) & 0x7FU);
         if ((node->errctl.hbc_state[k - 1U] != (uint8_t)HBC_UNUSED) && (id != node->node_id)) {
             co_rx_add(node, (uint16_t)(0x700U + id), CO_ROW_ERRCTL);
@@ -286,7 +290,7 @@ static void errctl_rx(co_node_t *node, uint16_t arg, const co_frame_t *f)
     if (co_frame_is_rtr(f) || (f->dlc < 1U)) {
         return; /* no heartbeat */
     }
-    for (uint32_t k = 0U; k < node->errctl.n_hb_cons; k++) {
+    for (uint32_t k = 0U; k < node->n_hb_cons; k++) {
         if ((node->errctl.hbc_state[k] != (uint8_t)HBC_UNUSED) &&
             (((node->errctl.hb_cons[k] >> 16U) & 0x7FU) == id)) {
             hb_rx(node, k, f);
@@ -309,7 +313,7 @@ static co_err_t hb_consumer_check(const co_node_t *node, uint8_t sub, uint32_t v
     if (id > 127U) {
         return CO_ERR_VALUE;
     }
-    for (uint32_t k = node->errctl.n_hb_cons; k > 0U; k--) { /* (k: the sub-index) */
+    for (uint32_t k = node->n_hb_cons; k > 0U; k--) { /* (k: the sub-index) */
         uint32_t o = node->errctl.hb_cons[k - 1U];
         if ((k != sub) && (((o >> 16U) & 0xFFU) == id) && ((o & 0xFFFFU) != 0U)) {
             return CO_ERR_PARAM_INCOMPAT;
@@ -321,11 +325,10 @@ static co_err_t hb_consumer_check(const co_node_t *node, uint8_t sub, uint32_t v
 co_err_t co_errctl_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
                        const co_od_sub_t *s, const uint8_t *data, uint32_t len)
 {
-    co_errctl_t *c = &node->errctl;
     uint8_t sub = s->sub;
     /* (the hook of 0x1016 only, without guarding) */
     bool consumer = ((CO_NODE_GUARDING == 0) || (e->index == 0x1016U)) && (sub > 0U) &&
-                    (sub <= c->n_hb_cons);
+                    (sub <= node->n_hb_cons);
 
     (void)len;
 
@@ -344,15 +347,17 @@ co_err_t co_errctl_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
          * silent */
         consumer_start(node, sub - 1U);
         update_error(node);
-    } else if ((CO_NODE_GUARDING != 0) && (e->index != 0x1016U)) {
+#if CO_NODE_GUARDING
+    } else if (e->index != 0x1016U) {
         /* 0x100C / 0x100D: life guarding is re-armed with the new life time
          * by the next guarding request. A lost state is kept: that request
          * must still end the error (errctl_process ends it if life guarding
          * is now off). */
-        if (c->guard_state == (uint8_t)GUARD_ARMED) {
-            c->guard_state = (uint8_t)GUARD_OFF;
+        if (node->errctl.guard_state == (uint8_t)GUARD_ARMED) {
+            node->errctl.guard_state = (uint8_t)GUARD_OFF;
         }
         co_svc_touch(node, CO_ROW_ERRCTL);
+#endif
     } else {
         /* 0x1016 sub 0 */
     }

@@ -180,7 +180,7 @@ static void services_walk(co_node_t *node, uint8_t ev)
  * (co_node_rx). */
 void co_rx_invalidate(co_node_t *node)
 {
-    node->rx_dirty = 1U;
+    node->n_rx |= CO_RX_STALE;
     (void)memset(node->rx_at, (int)CO_RX_AT_MANY, sizeof node->rx_at);
 }
 
@@ -188,7 +188,6 @@ void co_rx_invalidate(co_node_t *node)
  * new set (its hardware filters). */
 void co_rx_rebuild(co_node_t *node)
 {
-    node->rx_dirty = 0U;
     node->n_rx = 0U;
     (void)memset(node->rx_at, (int)CO_RX_AT_NONE, sizeof node->rx_at);
     services_walk(node, CO_SVC_SLOTS);
@@ -206,7 +205,7 @@ static uint16_t pdo_n_rx(const co_node_t *node)
 
 bool co_node_rx_cob(const co_node_t *node, uint16_t i, uint16_t *cob)
 {
-    uint16_t k = node->n_rx;
+    uint16_t k = node->n_rx & (uint16_t)~CO_RX_STALE; /* (a stale table: as the port has it) */
 
     if (i < k) {
         *cob = (uint16_t)(node->rx[i] & 0x7FFU);
@@ -234,7 +233,7 @@ CO_HOT void rx_svc(co_node_t *node, const co_frame_t *f, uint8_t kind, uint32_t 
 {
     /* its timers may have changed (a SYNC received changes none: the
      * producer's run from its own period) */
-    node->svc_run |= (uint16_t)(((kind != CO_ROW_SYNC) ? 1U : 0U) << kind);
+    node->svc_run |= (co_svc_bits_t)(((kind != CO_ROW_SYNC) ? 1U : 0U) << kind);
     co_node_clock(node, now_us);
     co_services[kind]->rx(node, 0U, f);
 }
@@ -332,7 +331,7 @@ CO_NOINLINE void co_node_stalled(co_node_t *node, uint32_t now_us)
 #if CO_LSS
     node->lss.switch_at = now_us;
 #endif
-    for (uint32_t k = 0U; k < node->errctl.n_hb_cons; k++) {
+    for (uint32_t k = 0U; k < node->n_hb_cons; k++) {
         node->errctl.hbc_deadline[k] = now_us;
     }
     for (uint32_t i = 0U; i < n; i++) {
@@ -383,7 +382,7 @@ static uint32_t run_rows(co_node_t *node, uint16_t run, uint32_t next)
         node->svc_run = 0U;
         for (uint32_t k = 0U; (k < rows) && ((((uint32_t)todo | node->svc_run) >> k) != 0U); k++) {
             if (((((uint32_t)todo | node->svc_run) >> k) & 1U) != 0U) {
-                node->svc_run &= (uint16_t)~(1U << k);
+                node->svc_run &= (co_svc_bits_t)~(1U << k);
                 if (co_services[k]->process != NULL) {
                     due = co_services[k]->process(node, due);
                 }

@@ -239,9 +239,10 @@ void co_rx_rebuild(co_node_t *node);
 /* Rebuild a stale receive table now (the node's entry points, the SDO
  * server after a request: a port with hardware filters must hear of a new
  * COB-ID before frames on it can arrive). */
+#define CO_RX_STALE 0x80U /* co_node_t.n_rx: the table is out of date */
 static inline void co_rx_settle(co_node_t *node)
 {
-    if (node->rx_dirty != 0U) {
+    if ((node->n_rx & CO_RX_STALE) != 0U) {
         co_rx_rebuild(node);
     }
 }
@@ -275,12 +276,12 @@ void co_node_nmt_exec(co_node_t *node, uint8_t cs);
 
 /* ---- what co_node_process runs: only the services with something new
  * (co_node_t.svc_run) until the earliest deadline they returned has come */
-#define CO_SVC_ALL 0xFFFFU /* every row, and the cached deadline is stale */
+#define CO_SVC_ALL ((co_svc_bits_t)~0U) /* every row, and the cached deadline is stale */
 /* Service row @p k has something new (a frame for it, a write of one of
  * its objects): it runs at the next co_node_process. */
 static inline void co_svc_touch(co_node_t *node, uint8_t k)
 {
-    node->svc_run |= (uint16_t)(1U << k);
+    node->svc_run |= (co_svc_bits_t)(1U << k);
 }
 /* Service row @p k has nothing to do for what touched it (a frame answered
  * completely, no timer running): it need not run at the next
@@ -291,7 +292,7 @@ static inline void co_svc_untouch(co_node_t *node, uint8_t k)
 
     if (run != CO_SVC_ALL) {
         run &= ~((uint32_t)1U << k);
-        node->svc_run = (uint16_t)run;
+        node->svc_run = (co_svc_bits_t)run;
     }
 }
 /* A service's deadline that moved to @p when without the service running

@@ -67,7 +67,7 @@ const co_bind_t co_binds[CO_N_BINDS] = {
      * of them; read only for entries 1..n_hb_cons), 0x1017 producer time,
      * 0x100C / 0x100D life guarding (a build without refuses a device with
      * them) */
-    BIND(0x1016U, CO_UNSIGNED32, CO_BIND_LEN_HB, errctl.n_hb_cons),
+    BIND(0x1016U, CO_UNSIGNED32, CO_BIND_LEN_HB, n_hb_cons),
     BIND(0x1016U, CO_UNSIGNED32, CO_BIND_PTR | CO_BIND_SUB1, errctl.hb_cons),
     BIND(0x1017U, CO_UNSIGNED16, CO_BIND_PTR, errctl.hb_prod),
 #if CO_NODE_GUARDING

@@ -142,7 +142,7 @@ int main(int argc, char **argv)
     printf(" \"core\": {\"errreg\": %d, \"hist_depth\": %u, \"n_hb_cons\": %u, "
            "\"emcy_cob\": %d, \"hb_prod\": %d, \"guard_time\": %d, \"life_factor\": %d, "
            "\"emcy_inhibit\": %d, \"frames\": %u, \"first_id\": %lu, \"nmt\": %u},\n",
-           node->emcy.errreg != NULL, (unsigned)node->emcy.hist_depth, (unsigned)node->errctl.n_hb_cons,
+           node->emcy.errreg != NULL, (unsigned)node->emcy.hist_depth, (unsigned)node->n_hb_cons,
            node->emcy.cob != NULL, node->errctl.hb_prod != NULL, guard_time, life_factor,
            node->emcy.inhibit != NULL, frames_sent,
            (unsigned long)first_id, (unsigned)co_node_nmt_state(node));

@@ -158,7 +158,7 @@ static void run_rows_describe_each_sub_index(void **state)
     assert_int_equal(fx.n.ram.homing_speed[1], 60000U);
     /* the services bound the runs' lengths (co_od_array_len) */
     assert_int_equal(fx.n.node.emcy.hist_depth, 8);
-    assert_int_equal(fx.n.node.errctl.n_hb_cons, 4);
+    assert_int_equal(fx.n.node.n_hb_cons, 4);
 }
 
 /* A run of const values (CO_SUB_ROM): one value, at the row's offset, for

@@ -45,6 +45,10 @@ static void test_table_order(void **state)
 
     (void)state;
     assert_int_equal(CO_N_SERVICES, sizeof want / sizeof want[0]);
+    /* co_node_t.svc_run (co_svc_bits_t, co_node.h) has a bit for every row
+     * and is the narrowest such type (its formula matches the table) */
+    assert_true(CO_N_SERVICES <= 8U * sizeof(co_svc_bits_t));
+    assert_true(CO_N_SERVICES > 8U * (sizeof(co_svc_bits_t) - 1U));
     for (uint8_t k = 0U; k < CO_N_SERVICES; k++) {
         assert_ptr_equal(co_services[k], want[k]);
     }

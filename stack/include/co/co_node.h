@@ -269,7 +269,9 @@ typedef struct co_sdo_srv {
     uint8_t buf[8];
 } co_sdo_srv_t;
 
-/** Error control (co_hb.c): heartbeat producer and consumers, node and life guarding. */
+/** Error control (co_hb.c): heartbeat producer and consumers, node and life
+ *  guarding (the consumers' count and the producer's mute flag are bytes of
+ *  co_node_t: n_hb_cons, hb_muted). */
 typedef struct co_errctl {
     uint32_t *hb_cons;       /**< 0x1016 sub1.. */
     uint16_t *hb_prod;       /**< 0x1017 */
@@ -279,10 +281,8 @@ typedef struct co_errctl {
     uint8_t *life_factor;    /**< 0x100D */
     uint32_t guard_deadline;
     uint8_t guard_toggle;
-#endif
-    uint8_t n_hb_cons;
     uint8_t guard_state;     /**< 0 off, 1 armed (first RTR seen), 2 lost */
-    uint8_t hb_muted;        /**< 1: heartbeats held back (co_node_hb_mute) */
+#endif
     /* the heartbeat consumers, one element each (three arrays: no padding) */
     uint32_t hbc_deadline[CO_HB_CONSUMERS_MAX];
     uint8_t hbc_state[CO_HB_CONSUMERS_MAX]; /**< 0 unused, 1 waiting for first, 2 active,
@@ -342,6 +342,14 @@ typedef struct co_pdo_svc {
 
 struct co_svc_hook;
 
+/** co_node_t.svc_run: a bit per row of the core's service table (six rows,
+ *  and LSS, TIME and storage where the build has them: co_priv.h) */
+#if (6 + CO_LSS + CO_TIME + CO_STORAGE) <= 8
+typedef uint8_t co_svc_bits_t;
+#else
+typedef uint16_t co_svc_bits_t;
+#endif
+
 /** A frame held back while the TX path is full (co_node.c): the core sends
  *  only 11-bit data frames of at most 8 bytes, so it keeps the payload and,
  *  in one number, identifier and length (10 bytes instead of the 16 of a
@@ -364,14 +372,19 @@ typedef struct co_node {
     uint8_t node_id;         /**< active node-ID, CO_NODE_ID_UNCONFIGURED while unconfigured */
     uint8_t pending_id;      /**< node-ID from the next reset communication */
     uint8_t nmt;             /**< co_nmt_state_t */
-    /* the dispatcher's receive table (co_node.c), rebuilt when rx_dirty */
+    /** the dispatcher's receive table (co_node.c): its slots in rx[], and
+     *  in bit 7 (CO_RX_STALE) that it is out of date (rebuilt before the
+     *  next lookup) */
     uint8_t n_rx;
-    uint8_t rx_dirty;
     uint8_t txq_len;
+    /* (error control's bytes, here where they fill the bytes before the
+     * words: co_errctl_t 64 -> 60 bytes in the SEG and BLK builds) */
+    uint8_t n_hb_cons;       /**< heartbeat consumer entries (0x1016 sub 1..) */
+    uint8_t hb_muted;        /**< 1: heartbeats held back (co_node_hb_mute) */
     /** co_node_process: bit k: service row k has something new since it
      *  last ran (a frame, a write of its objects); CO_SVC_ALL: every row,
      *  and 'due' is stale. */
-    uint16_t svc_run;
+    co_svc_bits_t svc_run;
     uint32_t now;
     /** co_node_process: the earliest deadline of the services when they last
      *  ran (one that has moved later since only costs an early call). */

@@ -477,7 +477,7 @@ static bool take_nodeid(co_node_t *node)
     if ((v == NULL) || (*v < 1U) || (*v > 127U) || (*v == node->node_id)) {
         return false;
     }
-    node->cob_base = co_node_cob_base_for(node, *v);
+    co_node_keep_cob_base(node, co_node_cob_base_for(node, *v));
     node->node_id = *v;
     node->pending_id = *v;
     return true;
@@ -650,7 +650,7 @@ co_result_t co_node_init(co_node_t *node, const co_node_config_t *cfg, uint32_t 
     }
     node->node_id = id;
     node->pending_id = id;
-    node->cob_base = id;
+    co_node_keep_cob_base(node, id);
     node->sdo.timeout_ms = (cfg->sdo_timeout_ms != 0U) ? cfg->sdo_timeout_ms : 1000U;
     node->pdo.p = cfg->pdo;
     node->now = now_us;
@@ -719,7 +719,7 @@ uint8_t co_node_cob_base_for(const co_node_t *node, uint8_t id)
         (CO_SET(node, lss.cob_ids) != CO_LSS_COBS_KEEP)) {
         return id; /* CiA 305: the COB-IDs follow the node-ID */
     }
-    return node->cob_base; /* valid to valid: the PDO and EMCY COB-IDs stay */
+    return co_node_cob_base(node); /* valid to valid: the PDO and EMCY COB-IDs stay */
 }
 
 co_reset_t co_node_take_id(co_node_t *node, co_reset_t kind)
@@ -730,7 +730,7 @@ co_reset_t co_node_take_id(co_node_t *node, co_reset_t kind)
     if (from == to) {
         return kind;
     }
-    node->cob_base = co_node_cob_base_for(node, to);
+    co_node_keep_cob_base(node, co_node_cob_base_for(node, to));
     node->node_id = to;
     if ((CO_LSS == 0) || (from != CO_NODE_ID_UNCONFIGURED) || (to == CO_NODE_ID_UNCONFIGURED)) {
         return kind;

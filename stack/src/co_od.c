@@ -669,8 +669,7 @@ void co_od_restore(co_node_t *node, uint16_t to)
         if ((h & CO_OD_DEF_NODEID) != 0U) {
             /* added byte by byte from the least significant one, as the
              * value's own width wraps it */
-            uint32_t sum = ((CO_LSS != 0) && ((h & CO_OD_DEF_COB) != 0U)) ? node->cob_base
-                                                                            : node->node_id;
+            uint32_t sum = ((h & CO_OD_DEF_COB) != 0U) ? co_node_cob_base(node) : node->node_id;
             for (uint32_t k = 0U; k < n; k++) {
                 sum += p[k];
                 p[k] = (uint8_t)sum;

@@ -559,6 +559,25 @@ static inline bool co_sync_window(const co_node_t *node)
 /* ---- node-ID (co_node.c) */
 /* The $NODEID base the PDO and EMCY COB-IDs would have with node-ID @p id. */
 uint8_t co_node_cob_base_for(const co_node_t *node, uint8_t id);
+/* The node's $NODEID base of the PDO and EMCY COB-IDs, and setting it: only
+ * an LSS slave keeps one apart from the node-ID (co_node_t.cob_base). */
+static inline uint8_t co_node_cob_base(const co_node_t *node)
+{
+#if CO_LSS
+    return node->cob_base;
+#else
+    return node->node_id;
+#endif
+}
+static inline void co_node_keep_cob_base(co_node_t *node, uint8_t base)
+{
+#if CO_LSS
+    node->cob_base = base;
+#else
+    (void)node;
+    (void)base;
+#endif
+}
 /* At a reset: make the pending node-ID the active one; returns the reset
  * to do (a node leaving the unconfigured state initialises completely). */
 co_reset_t co_node_take_id(co_node_t *node, co_reset_t kind);

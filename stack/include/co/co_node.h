@@ -397,8 +397,10 @@ typedef struct co_node {
     co_emcy_t emcy;
     uint8_t rx_at[16];       /**< per function code (COB-ID >> 7): its only slot,
                                   none, or several (co_node.c) */
+#if CO_LSS
     uint8_t cob_base;        /**< node-ID the $NODEID defaults of the PDO and EMCY
                                   COB-IDs use (CO_LSS_COBS_KEEP; else node_id) */
+#endif
     uint8_t pdo_buffered;    /**< PDO: some RPDO may hold data for the next SYNC */
 #if CO_TPDO_CHANGE
     uint8_t pdo_poll;        /**< PDO: 1: event-driven TPDOs compare their data at

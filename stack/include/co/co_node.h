@@ -346,8 +346,10 @@ struct co_svc_hook;
  *  and LSS, TIME and storage where the build has them: co_priv.h) */
 #if (6 + CO_LSS + CO_TIME + CO_STORAGE) <= 8
 typedef uint8_t co_svc_bits_t;
+#define CO_SVC_BITS_BYTE 1
 #else
 typedef uint16_t co_svc_bits_t;
+#define CO_SVC_BITS_BYTE 0
 #endif
 
 /** A frame held back while the TX path is full (co_node.c): the core sends
@@ -378,9 +380,13 @@ typedef struct co_node {
     uint8_t n_rx;
     uint8_t txq_len;
     /* (error control's bytes, here where they fill the bytes before the
-     * words: co_errctl_t 64 -> 60 bytes in the SEG and BLK builds) */
+     * words: co_errctl_t 64 -> 60 bytes in the SEG and BLK builds; with a
+     * two-byte svc_run hb_muted comes after rx_at, so that these bytes
+     * stay 8 in any build) */
     uint8_t n_hb_cons;       /**< heartbeat consumer entries (0x1016 sub 1..) */
+#if CO_SVC_BITS_BYTE
     uint8_t hb_muted;        /**< 1: heartbeats held back (co_node_hb_mute) */
+#endif
     /** co_node_process: bit k: service row k has something new since it
      *  last ran (a frame, a write of its objects); CO_SVC_ALL: every row,
      *  and 'due' is stale. */
@@ -397,6 +403,9 @@ typedef struct co_node {
     co_emcy_t emcy;
     uint8_t rx_at[16];       /**< per function code (COB-ID >> 7): its only slot,
                                   none, or several (co_node.c) */
+#if !CO_SVC_BITS_BYTE
+    uint8_t hb_muted;        /**< 1: heartbeats held back (co_node_hb_mute) */
+#endif
 #if CO_LSS
     uint8_t cob_base;        /**< node-ID the $NODEID defaults of the PDO and EMCY
                                   COB-IDs use (CO_LSS_COBS_KEEP; else node_id) */

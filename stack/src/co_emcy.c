@@ -27,17 +27,25 @@ static uint8_t update_errreg(co_node_t *node)
 {
     uint8_t r = errreg_now(node);
 
-    if (node->emcy.errreg != NULL) {
-        *node->emcy.errreg = r;
-    }
+    co_ram_end(node)[CO_RAM_END_1001] = r; /* (unused without 0x1001) */
     return r;
+}
+
+/* 0x1014 (co_node.h, CO_RAM_1014: 0 without the object) */
+static uint32_t emcy_cob(const co_node_t *node)
+{
+    return co_ram_u32(node, CO_RAM_1014);
 }
 
 /* The CAN-ID EMCYs go out on, 0 while none may go: in Stopped, with the
  * COB-ID not valid, and while unconfigured. */
 static uint32_t emcy_id(const co_node_t *node)
 {
-    uint32_t cob = (node->emcy.cob != NULL) ? *node->emcy.cob : (0x80UL + node->node_id);
+    uint32_t cob = emcy_cob(node);
+
+    if (cob == 0U) {
+        cob = 0x80UL + node->node_id; /* (no 0x1014) */
+    }
 
     if ((node->nmt == (uint8_t)CO_NMT_STOPPED) || ((cob & 0x80000000UL) != 0U) ||
         co_node_unconfigured(node)) {
@@ -48,7 +56,7 @@ static uint32_t emcy_id(const co_node_t *node)
 
 static uint32_t inhibit_us(const co_node_t *node)
 {
-    return (node->emcy.inhibit != NULL) ? co_dict_us(*node->emcy.inhibit, 100UL) : 0U;
+    return co_dict_us(co_ram_u16(node, CO_RAM_1015), 100UL); /* (0 without 0x1015) */
 }
 
 /* The waiting EMCYs go out, oldest first, as far as the inhibit time lets
@@ -106,15 +114,13 @@ static void send_code(co_node_t *node, uint16_t code, const uint8_t *mfr)
     (void)drain(node, 0U);
 }
 
+/* (without 0x1003 sub 1 the depth is 0: its count stays 0, unused) */
 static void history_push(co_node_t *node, uint16_t code, const uint8_t *mfr)
 {
-    uint8_t n;
+    uint8_t *end = co_ram_end(node);
+    uint8_t n = end[CO_RAM_END_1003];
     uint32_t carry;
 
-    if ((node->emcy.hist == NULL) || (node->emcy.hist_count == NULL)) {
-        return;
-    }
-    n = *node->emcy.hist_count;
     if (n < node->emcy.hist_depth) {
         n++;
     }
@@ -128,11 +134,13 @@ static void history_push(co_node_t *node, uint16_t code, const uint8_t *mfr)
      * loop becomes a call of the C library's memmove, 252 bytes of
      * newlib-nano) */
     for (uint8_t i = 0U; i < n; i++) {
-        uint32_t older = node->emcy.hist[i];
-        node->emcy.hist[i] = carry;
+        uint8_t *at = &end[CO_RAM_END_1003_1 + (4U * i)];
+        uint32_t older;
+        (void)memcpy(&older, at, 4U);
+        (void)memcpy(at, &carry, 4U);
         carry = older;
     }
-    *node->emcy.hist_count = n;
+    end[CO_RAM_END_1003] = n;
 }
 
 /* The slot of active error @p code + 1, 0 when it is not active (the
@@ -213,21 +221,22 @@ static uint32_t emcy_process(co_node_t *node, uint32_t next)
 
 /* ------------------------------------------------------------ service */
 
-/* (its objects: co_binds[], co_services.c) */
+/* (its objects: at their places in the RAM image, co_node.h's CO_RAM_*;
+ * the depth of the history: co_binds[], co_services.c) */
 
 /* Leaving Initialising, after the boot-up frame. */
 static void emcy_booted(co_node_t *node)
 {
     static const uint16_t ended[4] = {CO_EMCY_HB_GUARD, CO_EMCY_PDO_SHORT, CO_EMCY_PDO_LONG,
                                       CO_EMCY_RPDO_TIMEOUT};
+    uint32_t cob = emcy_cob(node);
 
-    if ((CO_SET(node, nmt.boot_emcy) != 0U) && (node->emcy.cob != NULL) &&
-        ((*node->emcy.cob & 0x80000000UL) == 0U)) {
+    if ((CO_SET(node, nmt.boot_emcy) != 0U) && (cob != 0U) && ((cob & 0x80000000UL) == 0U)) {
         uint8_t d[8] = {0};
         if (node->dev->boot_emcy_data != NULL) {
             co_copy(&d[3], node->dev->boot_emcy_data, 5U);
         }
-        co_tx(node, *node->emcy.cob & 0x7FFUL, d, 8U);
+        co_tx(node, cob & 0x7FFUL, d, 8U);
     }
     /* Heartbeat consumers, life guarding and RPDO monitoring started over
      * (their CO_SVC_START reset), so an EMCY 0x8130 of a producer or master
@@ -286,11 +295,11 @@ co_err_t co_emcy_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
         if (m->n_q > 0U) {
             co_svc_touch(node, CO_ROW_EMCY);
         }
-        if ((e->index == 0x1014U) && (m->cob != NULL)) { /* (then an UNSIGNED32) */
-            err = co_check_cob(*m->cob, co_get_u32(data), 0x80000000UL | CO_COB_RSV30);
+        if ((e->index == 0x1014U) && (len == 4U)) { /* (an UNSIGNED32 at its place) */
+            err = co_check_cob(emcy_cob(node), co_get_u32(data), 0x80000000UL | CO_COB_RSV30);
         }
     } else if (op == (uint8_t)CO_SVC_READ) {
-        if ((m->hist_count != NULL) && (sub > *m->hist_count)) { /* (never sub0) */
+        if (sub > co_ram_end(node)[CO_RAM_END_1003]) { /* (never sub0) */
             err = CO_ERR_NO_DATA;
         }
     } else if ((sub == 0U) && (data[0] != 0U)) { /* checked (an UNSIGNED8) */

@@ -20,10 +20,22 @@ static void event(co_node_t *node, co_hb_event_t ev, uint8_t id, uint8_t state)
     }
 }
 
+/* 0x1016 sub @p k + 1 (co_node.h, CO_RAM_1016; k < n_hb_cons) */
+static uint32_t hb_cons(const co_node_t *node, uint32_t k)
+{
+    return co_ram_u32(node, (uint16_t)(CO_RAM_1016 + (4U * k)));
+}
+
+/* 0x1017 (0 without the object) */
+static uint16_t hb_prod(const co_node_t *node)
+{
+    return co_ram_u16(node, CO_RAM_1017);
+}
+
 /* An event of consumer entry @p k: its producer, the state it reported last. */
 static void hb_event(co_node_t *node, co_hb_event_t ev, uint32_t k)
 {
-    event(node, ev, (uint8_t)((node->errctl.hb_cons[k] >> 16U) & 0x7FU),
+    event(node, ev, (uint8_t)((hb_cons(node, k) >> 16U) & 0x7FU),
           node->errctl.hbc_nmt[k]);
 }
 
@@ -51,7 +63,7 @@ static void update_error(co_node_t *node)
 
 static bool heartbeat_producing(const co_node_t *node)
 {
-    return (node->errctl.hb_prod != NULL) && (*node->errctl.hb_prod != 0U);
+    return hb_prod(node) != 0U;
 }
 
 #if CO_NODE_GUARDING
@@ -102,7 +114,7 @@ static void guard_check(co_node_t *node)
  * producer's first heartbeat, with no deadline until then. */
 static void consumer_start(co_node_t *node, uint32_t k)
 {
-    uint32_t v = node->errctl.hb_cons[k];
+    uint32_t v = hb_cons(node, k);
     bool used = ((v & 0xFFFFU) != 0U) && (((v >> 16U) & 0xFFU) != 0U);
 
     node->errctl.hbc_state[k] = used ? (uint8_t)HBC_WAITING : (uint8_t)HBC_UNUSED;
@@ -136,7 +148,7 @@ static void hb_rx(co_node_t *node, uint32_t slot, const co_frame_t *f)
     uint8_t prev = c->hbc_state[slot];
     bool changed = c->hbc_nmt[slot] != st;
 
-    c->hbc_deadline[slot] = node->now + ms_to_us(c->hb_cons[slot] & 0xFFFFU);
+    c->hbc_deadline[slot] = node->now + ms_to_us(hb_cons(node, slot) & 0xFFFFU);
     c->hbc_state[slot] = (uint8_t)HBC_ACTIVE;
     c->hbc_nmt[slot] = st;
     if (prev == (uint8_t)HBC_LOST) {
@@ -189,7 +201,7 @@ static uint32_t errctl_process(co_node_t *node, uint32_t next)
         /* A change of the NMT state sends no heartbeat of its own: CiA 301
          * defines the heartbeat as cyclic (the next one carries the new
          * state); only the boot-up marks a transition. */
-        uint32_t period = ms_to_us(*node->errctl.hb_prod);
+        uint32_t period = ms_to_us(hb_prod(node));
         uint32_t due = node->errctl.hb_last + period;
         if (co_time_reached(now, due)) {
             if (node->hb_muted == 0U) {
@@ -240,14 +252,16 @@ void co_node_hb_mute(co_node_t *node, bool muted, uint32_t now_us)
     node->hb_muted = muted ? 1U : 0U;
     if (was && !muted && heartbeat_producing(node)) {
         /* the first heartbeat at once */
-        node->errctl.hb_last = now_us - ms_to_us(*node->errctl.hb_prod);
+        node->errctl.hb_last = now_us - ms_to_us(hb_prod(node));
     }
     co_svc_touch(node, CO_ROW_ERRCTL);
 }
 
 /* ------------------------------------------------------------ service */
 
-/* (its objects: co_binds[], co_services.c) */
+/* (its objects: 0x1016, 0x1017 at their places in the RAM image, co_node.h's
+ * CO_RAM_*; the number of consumers and guarding's objects: co_binds[],
+ * co_services.c) */
 
 static void errctl_rx_slots(co_node_t *node)
 {
@@ -255,7 +269,7 @@ static void errctl_rx_slots(co_node_t *node)
     co_rx_add(node, (uint16_t)(0x700U + node->node_id), CO_ROW_ERRCTL);
 #endif
     for (uint32_t k = node->n_hb_cons; k > 0U; k--) {
-        uint8_t id = (uint8_t)((node->errctl.hb_cons[k - 1U] >> 16U) & 0x7FU);
+        uint8_t id = (uint8_t)((hb_cons(node, k - 1U) >> 16U) & 0x7FU);
         if ((node->errctl.hbc_state[k - 1U] != (uint8_t)HBC_UNUSED) && (id != node->node_id)) {
             co_rx_add(node, (uint16_t)(0x700U + id), CO_ROW_ERRCTL);
         }
@@ -292,7 +306,7 @@ static void errctl_rx(co_node_t *node, uint16_t arg, const co_frame_t *f)
     }
     for (uint32_t k = 0U; k < node->n_hb_cons; k++) {
         if ((node->errctl.hbc_state[k] != (uint8_t)HBC_UNUSED) &&
-            (((node->errctl.hb_cons[k] >> 16U) & 0x7FU) == id)) {
+            (((hb_cons(node, k) >> 16U) & 0x7FU) == id)) {
             hb_rx(node, k, f);
             return;
         }
@@ -314,7 +328,7 @@ static co_err_t hb_consumer_check(const co_node_t *node, uint8_t sub, uint32_t v
         return CO_ERR_VALUE;
     }
     for (uint32_t k = node->n_hb_cons; k > 0U; k--) { /* (k: the sub-index) */
-        uint32_t o = node->errctl.hb_cons[k - 1U];
+        uint32_t o = hb_cons(node, k - 1U);
         if ((k != sub) && (((o >> 16U) & 0xFFU) == id) && ((o & 0xFFFFU) != 0U)) {
             return CO_ERR_PARAM_INCOMPAT;
         }
@@ -381,9 +395,9 @@ co_err_t co_hb_prod_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
     (void)len;
     if (op != (uint8_t)CO_SVC_CHECK) {
         guard_check(node); /* (written: only with guarding, co_svc_hooks) */
-    } else if (node->errctl.hb_prod != NULL) { /* (then an UNSIGNED16: 2 bytes) */
+    } else if (len == 2U) { /* (an UNSIGNED16 at its place; not one behind a hook) */
         uint16_t ms = co_get_u16(data);
-        if (*node->errctl.hb_prod == 0U) {
+        if (hb_prod(node) == 0U) {
             node->errctl.hb_last = node->now;
         }
         if (ms != 0U) {
@@ -391,7 +405,7 @@ co_err_t co_hb_prod_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
             co_svc_due(node, node->errctl.hb_last + ms_to_us(ms));
         }
     } else {
-        /* not the producer time the service uses */
+        /* not a value the service reads (behind a hook) */
     }
     return CO_OK;
 }

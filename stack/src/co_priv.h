@@ -138,6 +138,12 @@ static inline uint8_t co_ram_u8(const co_node_t *node, uint16_t off)
     return node->ram[off];
 }
 
+/* The values not stored of the RAM image (co_node.h: CO_RAM_END_*). */
+static inline uint8_t *co_ram_end(const co_node_t *node)
+{
+    return &node->ram[node->dev->app_end];
+}
+
 /* The CPU stores integers little-endian, like the wire (the compiler says
  * so: co_endian.h's CO_ENDIAN_LE; without that knowledge the portable
  * conversion is used). */
@@ -363,10 +369,11 @@ co_err_t co_errbeh_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
 
 /* The core objects the services use, bound once at co_node_init (where
  * they live does not change): one table for all (co_services.c), one loop
- * (co_node.c) instead of a bind function per service. A row names object
- * 0x1000 + index, the type its value must have and what the node stores
- * at byte 'at' of co_node_t: CO_BIND_PTR a pointer to the value of the
- * sub-index the row names (0 or CO_BIND_SUB1) in the RAM image
+ * (co_node.c) instead of a bind function per service (the objects with
+ * places in the RAM image, co_node.h's CO_RAM_*, need no row). A row names
+ * object 0x1000 + index, the type its value must have and what the node
+ * stores at byte 'at' of co_node_t: CO_BIND_PTR a pointer to the value of
+ * the sub-index the row names (0 or CO_BIND_SUB1) in the RAM image
  * (co_od_ram_of: NULL without one); CO_BIND_LEN a uint8_t count of the
  * array's entries 1..n of that type stored back to back (co_od_array_len,
  * at most 254; CO_BIND_LEN_HB at most CO_HB_CONSUMERS_MAX); CO_BIND_NONE
@@ -386,7 +393,7 @@ typedef struct co_bind {
 /* Its rows: a constant the node's loop compares with (the table's
  * definition has this size; an initialiser too long does not compile, a
  * row left out would be all zeros: test_services checks for one). */
-#define CO_N_BINDS ((uint8_t)(17U - (unsigned)(CO_ERROR_BEHAVIOUR)))
+#define CO_N_BINDS ((uint8_t)(7U - (unsigned)(CO_ERROR_BEHAVIOUR)))
 extern const co_bind_t co_binds[CO_N_BINDS];
 
 /* What the node tells a service (co_service_t.event), in table order to
@@ -551,7 +558,7 @@ co_err_t co_check_cob(uint32_t cur, uint32_t v, uint32_t rule);
 /* True while the synchronous window (0x1007) after the last SYNC is open. */
 static inline bool co_sync_window(const co_node_t *node)
 {
-    uint32_t w = (node->sync.window != NULL) ? *node->sync.window : 0U;
+    uint32_t w = co_ram_u32(node, CO_RAM_1007); /* (0: none) */
 
     return (w == 0U) || ((uint32_t)(node->now - node->sync.last) <= w);
 }

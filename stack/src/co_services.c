@@ -58,18 +58,17 @@ const co_svc_hook_t co_svc_hooks[CO_SVC_N_HOOKS] = {
 };
 
 /* The core objects the services use (co_bind_t; co_node_init binds them,
- * in this order). */
+ * in this order). The others have their places in the RAM image (co_node.h,
+ * CO_RAM_*: 0x1001, 0x1003, 0x1005, 0x1007, 0x1014..0x1017, 0x1019). */
 #define BIND(index, type, kind, field) \
     {(uint8_t)((index) - 0x1000U), (uint8_t)((uint8_t)(type) | (kind)), \
      (uint16_t)offsetof(co_node_t, field)}
 const co_bind_t co_binds[CO_N_BINDS] = {
     /* error control: 0x1016 heartbeat consumers (at most CO_HB_CONSUMERS_MAX
-     * of them; read only for entries 1..n_hb_cons), 0x1017 producer time,
-     * 0x100C / 0x100D life guarding (a build without refuses a device with
+     * of them; read only for entries 1..n_hb_cons), 0x100C / 0x100D life
+     * guarding (a build without refuses a device with
      * them) */
     BIND(0x1016U, CO_UNSIGNED32, CO_BIND_LEN_HB, n_hb_cons),
-    BIND(0x1016U, CO_UNSIGNED32, CO_BIND_PTR | CO_BIND_SUB1, errctl.hb_cons),
-    BIND(0x1017U, CO_UNSIGNED16, CO_BIND_PTR, errctl.hb_prod),
 #if CO_NODE_GUARDING
     BIND(0x100CU, CO_UNSIGNED16, CO_BIND_PTR, errctl.guard_time),
     BIND(0x100DU, CO_UNSIGNED8, CO_BIND_PTR, errctl.life_factor),
@@ -77,18 +76,9 @@ const co_bind_t co_binds[CO_N_BINDS] = {
     BIND(0x100CU, 0U, CO_BIND_NONE, errctl),
     BIND(0x100DU, 0U, CO_BIND_NONE, errctl),
 #endif
-    /* EMCY: 0x1001, 0x1003 (its depth; entries read only for 1..hist_depth),
-     * 0x1014, 0x1015 */
-    BIND(0x1001U, CO_UNSIGNED8, CO_BIND_PTR, emcy.errreg),
-    BIND(0x1003U, CO_UNSIGNED8, CO_BIND_PTR, emcy.hist_count),
+    /* EMCY: the depth of 0x1003 (entries read only for 1..hist_depth) */
     BIND(0x1003U, CO_UNSIGNED32, CO_BIND_LEN, emcy.hist_depth),
-    BIND(0x1003U, CO_UNSIGNED32, CO_BIND_PTR | CO_BIND_SUB1, emcy.hist),
-    BIND(0x1014U, CO_UNSIGNED32, CO_BIND_PTR, emcy.cob),
-    BIND(0x1015U, CO_UNSIGNED16, CO_BIND_PTR, emcy.inhibit),
-    /* SYNC: 0x1005, 0x1007, 0x1019, 0x1006 (a period only with the producer) */
-    BIND(0x1005U, CO_UNSIGNED32, CO_BIND_PTR, sync.cob),
-    BIND(0x1007U, CO_UNSIGNED32, CO_BIND_PTR, sync.window),
-    BIND(0x1019U, CO_UNSIGNED8, CO_BIND_PTR, sync.overflow),
+    /* SYNC: 0x1006 (a period only with the producer) */
 #if CO_SYNC_PRODUCER
     BIND(0x1006U, CO_UNSIGNED32, CO_BIND_PTR, sync.period),
 #else

@@ -12,9 +12,16 @@ static bool sync_allowed(const co_node_t *node)
            (node->nmt == (uint8_t)CO_NMT_OPERATIONAL);
 }
 
+/* 0x1005 (co_node.h, CO_RAM_1005: 0 without the object) */
+static uint32_t sync_cob(const co_node_t *node)
+{
+    return co_ram_u32(node, CO_RAM_1005);
+}
+
+/* 0x1019 (0 without the object) */
 static uint8_t overflow(const co_node_t *node)
 {
-    return (node->sync.overflow != NULL) ? *node->sync.overflow : 0U;
+    return co_ram_u8(node, CO_RAM_1019);
 }
 
 /* A SYNC period is set (0x1006 non-zero; never without the producer). */
@@ -31,8 +38,7 @@ static bool producing_period(const co_node_t *node)
 #if CO_SYNC_PRODUCER
 static bool producing(const co_node_t *node)
 {
-    return (node->sync.cob != NULL) && ((*node->sync.cob & COB_SYNC_GEN) != 0U) &&
-           producing_period(node);
+    return ((sync_cob(node) & COB_SYNC_GEN) != 0U) && producing_period(node);
 }
 #endif
 
@@ -104,7 +110,7 @@ static uint32_t sync_process(co_node_t *node, uint32_t next)
                 cnt = node->sync.counter;
                 node->sync.counter = (cnt >= ovf) ? 1U : (uint8_t)(cnt + 1U);
             }
-            co_tx(node, *node->sync.cob & 0x7FFUL, &cnt, (ovf > 1U) ? 1U : 0U);
+            co_tx(node, sync_cob(node) & 0x7FFUL, &cnt, (ovf > 1U) ? 1U : 0U);
             on_sync(node, cnt);
         }
         node->sync.deadline += period;
@@ -123,16 +129,19 @@ bool co_sync_window_open(const co_node_t *node)
 
 /* ------------------------------------------------------------ service */
 
-/* (its objects: co_binds[], co_services.c; without the producer a device
- * with a 0x1006 is refused) */
+/* (its objects: 0x1005, 0x1007, 0x1019 at their places in the RAM image,
+ * co_node.h's CO_RAM_*; 0x1006: co_binds[], co_services.c; without the
+ * producer a device with a 0x1006 is refused) */
 
 static void sync_event(co_node_t *node, uint8_t ev)
 {
+    uint32_t cob = sync_cob(node);
+
     if (ev == CO_SVC_START) {
         sync_reset(node);
-    } else if ((ev == CO_SVC_SLOTS) && (node->sync.cob != NULL) &&
-               ((*node->sync.cob & COB_SYNC_GEN) == 0U)) {
-        co_rx_add(node, (uint16_t)(*node->sync.cob & 0x7FFU), CO_ROW_SYNC);
+    } else if ((ev == CO_SVC_SLOTS) && ((cob & COB_SYNC_GEN) == 0U) && ((cob & 0x7FFU) != 0U)) {
+        /* (CAN-ID 0: no 0x1005) */
+        co_rx_add(node, (uint16_t)(cob & 0x7FFU), CO_ROW_SYNC);
     } else {
         /* nothing to do */
     }
@@ -154,8 +163,6 @@ co_err_t co_sync_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
     uint16_t index = e->index;
     co_err_t err = CO_OK;
 
-    (void)len;
-
     if (op == (uint8_t)CO_SVC_WRITTEN) {
         if (index != 0x1007U) {
             sync_reset(node);
@@ -163,14 +170,14 @@ co_err_t co_sync_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
         }
     } else if (s->sub != 0U) {
         /* not a SYNC parameter */
-    } else if ((index == 0x1005U) && (node->sync.cob != NULL)) { /* (an UNSIGNED32: co_binds) */
-        err = co_check_cob(*node->sync.cob, co_get_u32(data),
+    } else if ((index == 0x1005U) && (len == 4U)) { /* (an UNSIGNED32 at its place) */
+        err = co_check_cob(sync_cob(node), co_get_u32(data),
                            COB_SYNC_GEN | CO_COB_WHEN_SET | CO_COB_ALWAYS);
 #if CO_SYNC_PRODUCER /* (without, a device has no 0x1006: co_binds) */
     } else if ((index == 0x1006U) && (len == 4U) && (co_get_u32(data) > CO_HORIZON_US)) {
         err = CO_ERR_VALUE_HIGH;
 #endif
-    } else if (index == 0x1019U) { /* (an UNSIGNED8: co_binds, the engine's type check) */
+    } else if (index == 0x1019U) { /* (at least one byte: the engine's type check) */
         if ((data[0] == 1U) || (data[0] > 240U)) {
             err = CO_ERR_VALUE;
         } else if (producing_period(node)) {

@@ -95,7 +95,7 @@ static bool cyclic_due(co_node_t *node, uint16_t i, uint8_t type, uint8_t counte
     uint8_t start = (d->start != 0U) ? *co_pdo_at(node, i, d->start) : 0U;
 
     if ((start != 0U) && ((p->flags & CO_PDO_F_STARTED) == 0U) &&
-        (node->sync.overflow != NULL) && (*node->sync.overflow > 1U)) {
+        (co_ram_u8(node, CO_RAM_1019) > 1U)) {
         /* the first transmission waits for the SYNC counter */
         if (counter != start) {
             return false;

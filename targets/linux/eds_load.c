@@ -1053,6 +1053,59 @@ static void place(ctx_t *c, bsub_t *b, size_t *off, uint8_t *placed, size_t *nli
     *nid += (size_t)((b->s.flags & CO_SUB_NODEID) != 0U);
 }
 
+/* Sub-entry @p sub of object @p index if it has type @p type, else NULL. */
+static bsub_t *find_sub(ctx_t *c, uint16_t index, uint8_t sub, uint8_t type)
+{
+    bobj_t key;
+    const bobj_t *o;
+
+    key.index = index;
+    o = (const bobj_t *)bsearch(&key, c->obj, c->nobj, sizeof *c->obj, cmp_obj);
+    for (size_t k = 0U; (o != NULL) && (k < o->n); k++) {
+        bsub_t *b = &c->sub[o->first + k];
+        if (b->s.sub == sub) {
+            return (b->s.type == type) ? b : NULL;
+        }
+    }
+    return NULL;
+}
+
+/* The core's objects at their places (co_node.h, CO_RAM_*) from @p base:
+ * scalars of @p n places (index, type, offset), then the UNSIGNED32 entries
+ * sub 1.. of @p array from @p array_at. An object the device lacks, or
+ * has with another type, leaves zeros there (the core's "absent"; such
+ * a value gets a place of its own). Returns where the places end. */
+typedef struct core_place {
+    uint16_t index;
+    uint8_t type;
+    uint8_t at;
+} core_place_t;
+
+static size_t place_core(ctx_t *c, const core_place_t *p, size_t n, uint16_t array,
+                         size_t array_at, size_t base, uint8_t *placed, size_t *nlim, size_t *nid)
+{
+    size_t end = base;
+
+    for (size_t k = 0U; k < n; k++) {
+        bsub_t *b = find_sub(c, p[k].index, 0U, p[k].type);
+        size_t at = base + p[k].at;
+        if (b != NULL) {
+            place(c, b, &at, placed, nlim, nid);
+        }
+        end = base + p[k].at + co_type_size(p[k].type);
+    }
+    for (uint32_t sub = 1U; sub <= 254U; sub++) {
+        bsub_t *b = find_sub(c, array, (uint8_t)sub, (uint8_t)CO_UNSIGNED32);
+        size_t at = base + array_at + (4U * (sub - 1U));
+        if (b == NULL) {
+            break;
+        }
+        place(c, b, &at, placed, nlim, nid);
+        end = at;
+    }
+    return end;
+}
+
 static const co_od_sub_t *find_built(const eds_dev_t *d, uint16_t index, uint8_t sub)
 {
     const co_od_entry_t *e = co_od_find(d->entries, d->dev.od_count, index);
@@ -1162,10 +1215,33 @@ static eds_dev_t *build(ctx_t *c, const char *name, const char *text)
         eds_free(d);
         return NULL;
     }
-    /* RAM image: communication, application, not stored; a PDO's mapping
-     * entries, their number and its transmission type one after the other
-     * where its communication object is (co_pdo_desc_t) */
+    /* RAM image: communication, application, not stored, each of the first
+     * and the last starting with the core's objects at their places
+     * (co_node.h: CO_RAM_*; the last from a multiple of 4, app_end); a PDO's
+     * mapping entries, their number and its transmission type one after the
+     * other where its communication object is (co_pdo_desc_t) */
     for (unsigned r = 0U; r < 3U; r++) {
+        static const core_place_t head[] = {
+            {0x1005U, (uint8_t)CO_UNSIGNED32, CO_RAM_1005},
+            {0x1007U, (uint8_t)CO_UNSIGNED32, CO_RAM_1007},
+            {0x1014U, (uint8_t)CO_UNSIGNED32, CO_RAM_1014},
+            {0x1015U, (uint8_t)CO_UNSIGNED16, CO_RAM_1015},
+            {0x1017U, (uint8_t)CO_UNSIGNED16, CO_RAM_1017},
+            {0x1019U, (uint8_t)CO_UNSIGNED8, CO_RAM_1019},
+        };
+        static const core_place_t tail[] = {
+            {0x1001U, (uint8_t)CO_UNSIGNED8, CO_RAM_END_1001},
+            {0x1003U, (uint8_t)CO_UNSIGNED8, CO_RAM_END_1003},
+        };
+        if (r == 0U) {
+            off = place_core(c, head, sizeof head / sizeof head[0], 0x1016U, CO_RAM_1016, 0U,
+                             placed, &nlim, &nid);
+        } else if (r == 2U) {
+            off = place_core(c, tail, sizeof tail / sizeof tail[0], 0x1003U, CO_RAM_END_1003_1,
+                             off, placed, &nlim, &nid);
+        } else {
+            /* (the application values) */
+        }
         for (size_t i = 0U; i < c->nobj; i++) {
             const bobj_t *o = &c->obj[i];
             const bobj_t *m = pdo_mapping_of(c, o);
@@ -1194,6 +1270,9 @@ static eds_dev_t *build(ctx_t *c, const char *name, const char *text)
                 eds_free(d);
                 return NULL;
             }
+        }
+        if (r == 1U) {
+            off = (off + 3U) / 4U * 4U; /* (app_end) */
         }
         ends[r] = off;
     }

@@ -140,11 +140,12 @@ static void update_allowed(void)
     if (dev->set.lss.slave != 0U) {
         allow(0x7E4U); /* LSS slave -> master (CiA 305) */
     }
-    if ((nd->emcy.cob != NULL) && ((*nd->emcy.cob & 0x80000000UL) == 0U)) {
-        allow(*nd->emcy.cob);
+    /* 0x1014, 0x1005 at their places (co_node.h: CO_RAM_*; 0 without them) */
+    if ((ram_u32(CO_RAM_1014) & 0x80000000UL) == 0U) {
+        allow(ram_u32(CO_RAM_1014));
     }
-    if ((nd->sync.cob != NULL) && ((*nd->sync.cob & 0x40000000UL) != 0U)) {
-        allow(*nd->sync.cob);
+    if ((ram_u32(CO_RAM_1005) & 0x40000000UL) != 0U) {
+        allow(ram_u32(CO_RAM_1005));
     }
     if ((nd->time.cob != NULL) && ((*nd->time.cob & 0x40000000UL) != 0U)) {
         allow(*nd->time.cob);

@@ -28,6 +28,14 @@
 
 typedef XCAT(CODEV_NAME, _node_t) dump_node_t;
 
+/* The core finds object @p index (sub 0) at @p off of the RAM image, its
+ * place (co_node.h: CO_RAM_*). */
+static int at_place(co_node_t *node, uint16_t index, uint32_t off)
+{
+    const uint8_t *v = (const uint8_t *)co_od_value_ptr(node, index, 0U);
+    return (v != NULL) && (v == &node->ram[off]);
+}
+
 static unsigned frames_sent;
 static uint32_t first_id;
 
@@ -142,9 +150,10 @@ int main(int argc, char **argv)
     printf(" \"core\": {\"errreg\": %d, \"hist_depth\": %u, \"n_hb_cons\": %u, "
            "\"emcy_cob\": %d, \"hb_prod\": %d, \"guard_time\": %d, \"life_factor\": %d, "
            "\"emcy_inhibit\": %d, \"frames\": %u, \"first_id\": %lu, \"nmt\": %u},\n",
-           node->emcy.errreg != NULL, (unsigned)node->emcy.hist_depth, (unsigned)node->n_hb_cons,
-           node->emcy.cob != NULL, node->errctl.hb_prod != NULL, guard_time, life_factor,
-           node->emcy.inhibit != NULL, frames_sent,
+           at_place(node, 0x1001U, (uint32_t)dev->app_end + CO_RAM_END_1001),
+           (unsigned)node->emcy.hist_depth, (unsigned)node->n_hb_cons,
+           at_place(node, 0x1014U, CO_RAM_1014), at_place(node, 0x1017U, CO_RAM_1017), guard_time,
+           life_factor, at_place(node, 0x1015U, CO_RAM_1015), frames_sent,
            (unsigned long)first_id, (unsigned)co_node_nmt_state(node));
     printf(" \"entries\": [\n");
     for (uint16_t i = 0U; i < dev->od_count; i++) {

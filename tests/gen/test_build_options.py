@@ -7,6 +7,7 @@ import os
 import re
 import shutil
 import subprocess
+import textwrap
 from pathlib import Path
 
 import pytest
@@ -173,17 +174,27 @@ def test_store_commands_without_storage(tmp_path: Path) -> None:
 
 
 def test_pdo_block_padding_holds_bytes(tmp_path: Path) -> None:
-    # a TPDO's block has a byte of padding after its SYNC start value: one-byte
-    # communication values no block holds go there (the RAM image shrinks by
-    # those bytes; the shared tables' offsets stay, the source checks them)
-    seg = ROOT / "tests" / "perf" / "size-seg.toml"
-    assert run_odgen(seg, tmp_path, "--c", "--base", "d", "--build=CO_STORAGE=1").returncode == 0
+    # the core's head of the image (co_node.h, CO_RAM_*: 0x1019 at 16, 0x1016
+    # from 20) and a TPDO's block (a byte of padding after its SYNC start
+    # value) have padding: one-byte communication values no block holds go
+    # there, the head's first (the RAM image shrinks by those bytes; the
+    # shared tables' offsets stay, the source checks them)
+    desc = tmp_path / "d.toml"
+    desc.write_text(f'include = "{ROOT / "tests" / "perf" / "size-seg.toml"}"\n' + "".join(
+        f'\n[[object]]\nindex = 0x{i:04X}\nname = "Byte {i:04X}"\ntype = "UNSIGNED8"\n'
+        f'access = "rw"\n' for i in (0x1F90, 0x1F91, 0x1F92, 0x1F93)))
+    assert run_odgen(desc, tmp_path, "--c", "--base", "d", "--build=CO_STORAGE=1").returncode == 0
     h = [line.split(";")[0].strip() for line in (tmp_path / "d.h").read_text().splitlines()]
+    at = h.index("uint8_t x1019_synchronous_counter_overflow_value")
+    assert h[at + 1] == "uint8_t x1280_node_id_of_the_sdo_server"
+    assert h[at + 2] == "uint8_t x1F90_byte_1f90"
+    assert h[at + 3] == "uint8_t x1F91_byte_1f91"
+    assert h[at + 4] == "uint32_t x1016_consumer_heartbeat_time[8]"
     at = h.index("uint8_t x1800_sync_start_value")
-    assert h[at + 1] == "uint8_t x1019_synchronous_counter_overflow_value"
+    assert h[at + 1] == "uint8_t x1F92_byte_1f92"
     assert h[at + 2] == "uint16_t x1800_inhibit_time"
     at = h.index("uint8_t x1801_sync_start_value")
-    assert h[at + 1] == "uint8_t x1280_node_id_of_the_sdo_server"
+    assert h[at + 1] == "uint8_t x1F93_byte_1f93"
     assert h[at + 2] == "uint16_t x1801_inhibit_time"
     assert "uint8_t x1802_sync_start_value" in h
     assert h[h.index("uint8_t x1802_sync_start_value") + 1] == "uint16_t x1802_inhibit_time"
@@ -216,3 +227,64 @@ def test_personality_guard_without_build(tmp_path: Path, desc: Path, base: str,
     assert (r.returncode == 0) == lean_ok, r.stderr
     if not lean_ok:
         assert "needs CO_PERSONALITY=1" in r.stderr
+
+
+def test_core_objects_at_their_places(tmp_path: Path) -> None:
+    # the core's objects where co_node.h's CO_RAM_* says: the image starts
+    # with 0x1005, 0x1007, 0x1014, 0x1015, 0x1017, 0x1019, then 0x1016 sub 1..;
+    # the values not stored (app_end, a multiple of 4) with 0x1001, 0x1003
+    # sub 0, then 0x1003 sub 1.. at app_end + 4; the source checks the places
+    # at compile time (d_core_at). A device without them has zeros there
+    # (fields of no object, no default), which the core reads as their
+    # absence; the size of each is the object's.
+    desc = tmp_path / "d.toml"
+    desc.write_text(textwrap.dedent("""
+        [device]
+        name = "places"
+        vendor_id = 0x1234
+        device_type = 0
+
+        [[object]]
+        index = 0x1001
+        name = "Error register"
+        type = "UNSIGNED8"
+        access = "ro"
+
+        [[object]]
+        index = 0x1017
+        name = "Producer heartbeat time"
+        type = "UNSIGNED16"
+        default = 500
+
+        [[object]]
+        index = 0x2000
+        name = "Value"
+        type = "UNSIGNED8"
+        default = 7
+        """))
+    assert run_odgen(desc, tmp_path, "--c", "--base", "d").returncode == 0
+    h = [line.split(";")[0].strip() for line in (tmp_path / "d.h").read_text().splitlines()]
+    ram = h[h.index("typedef struct d_ram {") + 1:h.index("} d_ram_t")]
+    fields = [x for x in ram if x and not x.startswith("/*")]
+    assert fields[:6] == ["uint32_t core_x1005", "uint32_t core_x1007", "uint32_t core_x1014",
+                          "uint16_t core_x1015", "uint16_t x1017_producer_heartbeat_time",
+                          "uint8_t core_x1019"]
+    # (no 0x1016: the others right after the head; the values not stored
+    # start with 0x1001 and the place of 0x1003 sub 0; app_end at a multiple
+    # of 4 only for a 0x1003 history: none here)
+    assert "uint8_t x2000_value" in fields[6:]
+    at = ram.index("/* values not stored (restored to defaults at reset) */")
+    assert ram[at + 1:at + 3] == ["uint8_t x1001_error_register", "uint8_t core_x1003"]
+    c = (tmp_path / "d.c").read_text()
+    assert "typedef char d_core_at[((F(core_x1005) == CO_RAM_1005) &&" in c
+    assert "(F(core_x1003) == F(x1001_error_register) + CO_RAM_END_1003)" in c
+    assert ".app_end = F(x1001_error_register)," in c
+    # the zeros of the places are no default runs
+    assert "core_x" not in c[c.index("static const uint8_t defaults[]"):c.index("};", c.index(
+        "static const uint8_t defaults[]"))]
+    # compiles against the core's header: the places hold
+    src = tmp_path / "check.c"
+    src.write_text(f'#include "{tmp_path / "d.c"}"\n')
+    r = subprocess.run(["cc", *WARN, "-c", f"-I{ROOT / 'stack' / 'include'}", f"-I{tmp_path}",
+                        str(src), "-o", os.devnull], capture_output=True, text=True, check=False)
+    assert r.returncode == 0, r.stderr

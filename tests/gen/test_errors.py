@@ -541,3 +541,60 @@ def test_identity_vendor_at_sub0(tmp_path):
     src.write_text(BASE.replace('device_type = 0', 'device_type = 0\nidentity_layout = "x"'))
     r = run_odgen(src, tmp_path / "out3")
     assert r.returncode == 1 and "identity_layout 'x'" in r.stderr
+
+
+# ------------------------------------ the core's objects at their places
+
+def test_core_object_of_another_type(tmp_path):
+    # the core reads 0x1017 as an UNSIGNED16 at its place (co_node.h, CO_RAM_1017)
+    fails_with(tmp_path, """
+        [[object]]
+        index = 0x1017
+        name = "Producer heartbeat time"
+        type = "UNSIGNED32"
+        """, "object 0x1017 sub 0: the core reads it as UNSIGNED16, not UNSIGNED32")
+
+
+def test_core_array_of_another_type(tmp_path):
+    fails_with(tmp_path, """
+        [[object]]
+        index = 0x1016
+        name = "Consumer heartbeat time"
+        array = 2
+        element = { name = "Consumer heartbeat time", type = "UNSIGNED16" }
+        """, "object 0x1016 sub 1: the core reads it as UNSIGNED32, not UNSIGNED16")
+
+
+def test_core_object_stored_elsewhere(tmp_path):
+    # 0x1015 has its place in the communication parameters (stored), 0x1003's
+    # count among the values not stored
+    fails_with(tmp_path, """
+        [[object]]
+        index = 0x1015
+        name = "Inhibit time EMCY"
+        type = "UNSIGNED16"
+        storage = "none"
+        """, "object 0x1015 sub 0: the core has it with the communication parameters, "
+             "not storage 'none'")
+    fails_with(tmp_path, """
+        [[object]]
+        index = 0x1003
+        name = "Pre-defined error field"
+        array = 2
+        storage = "comm"
+        sub0 = { name = "Number of errors", access = "rw", default = 0 }
+        element = { name = "Standard error field", type = "UNSIGNED32", access = "ro" }
+        """, "object 0x1003 sub 0: the core has it with the values not stored, "
+             "not storage 'comm'")
+
+
+def test_core_history_without_its_count(tmp_path):
+    # the core counts the errors of 0x1003 in sub 0: a value in RAM (not the
+    # implicit const number of entries)
+    fails_with(tmp_path, """
+        [[object]]
+        index = 0x1003
+        name = "Pre-defined error field"
+        array = 2
+        element = { name = "Standard error field", type = "UNSIGNED32", access = "ro" }
+        """, "object 0x1003: the core counts the errors in sub 0")

@@ -251,12 +251,12 @@ static const co_od_entry_t od[] = {
 static const uint8_t defaults[] = {
     /* communication parameters */
     D(F(sync_cob), 0U, 1U, 2U), LE32(0x80UL),
-    D(F(time_cob), END(sync_cob), 1U, 2U), LE32(0x80000100UL),
-    D(F(err_beh), END(time_cob), 3U, 0U), 0U, 1U, 1U,
-    DN(F(node_id), END(err_beh), CO_OD_DEF_NODEID), LE32(0UL),
-    DN(F(emcy_cob), END(node_id), CO_OD_DEF_NODEID | CO_OD_DEF_COB), LE32(0x80UL),
+    DN(F(emcy_cob), END(sync_cob), CO_OD_DEF_NODEID | CO_OD_DEF_COB), LE32(0x80UL),
+    D(F(err_beh), END(emcy_cob), 3U, 0U), 0U, 1U, 1U,
+    D(F(time_cob), END(err_beh), 1U, 2U), LE32(0x80000100UL),
+    DN(F(node_id), END(time_cob), CO_OD_DEF_NODEID), LE32(0UL),
     /* application values */
-    D(F(u16), END(emcy_cob), 1U, 1U), LE16(0x1234U),
+    D(F(u16), END(node_id), 1U, 1U), LE16(0x1234U),
     D(F(u32), END(u16), 1U, 2U), LE32(0xDEADBEEFUL),
     D(F(vstr), END(u32), 5U, 0U), 'h', 'e', 'l', 'l', 'o',
     D(F(lim_u16), F(vstr) + 5U, 1U, 1U), LE16(100U),
@@ -264,13 +264,25 @@ static const uint8_t defaults[] = {
     D(F(rec1), END(rec0), 1U, 1U), LE16(7U),
 };
 /* (each run after the one before it, less than 256 bytes after it) */
-typedef char td_default_gaps[((F(time_cob) >= END(sync_cob)) && (F(u16) >= END(emcy_cob)) &&
-                              (F(u16) - END(emcy_cob) <= 255U) &&
+typedef char td_default_gaps[((F(emcy_cob) >= END(sync_cob)) && (F(err_beh) >= END(emcy_cob)) &&
+                              (F(time_cob) >= END(err_beh)) && (F(node_id) >= END(time_cob)) &&
+                              (F(u16) >= END(node_id)) && (F(u16) - END(node_id) <= 255U) &&
                               (F(vstr) - END(u32) <= 255U) && (F(rec0) > F(lim_u16)) &&
                               (F(lim_u16) - (F(vstr) + 5U) <= 255U) &&
                               (F(rec0) - END(lim_u16) <= 255U) && (F(rec1) == END(rec0)))
                                  ? 1
                                  : -1];
+
+/* the core's objects at their places (co_node.h) */
+typedef char td_core_at[((F(sync_cob) == CO_RAM_1005) && (F(sync_window) == CO_RAM_1007) &&
+                         (F(emcy_cob) == CO_RAM_1014) && (F(emcy_inhibit) == CO_RAM_1015) &&
+                         (F(hb_prod) == CO_RAM_1017) && (F(sync_overflow) == CO_RAM_1019) &&
+                         (F(hb_cons) == CO_RAM_1016) &&
+                         (F(errreg) == F(errreg) + CO_RAM_END_1001) &&
+                         (F(hist_n) == F(errreg) + CO_RAM_END_1003) &&
+                         (F(hist) == F(errreg) + CO_RAM_END_1003_1))
+                            ? 1
+                            : -1];
 
 const co_dev_t td_dev = {
     .od = od,

@@ -13,22 +13,23 @@
 #include "test_bus.h"
 
 typedef struct td_ram {
-    /* communication parameters (stored) */
+    /* communication parameters (stored); the core's objects at their places
+     * (co_node.h, CO_RAM_*) */
     uint32_t sync_cob;     /* 0x1005 */
-    uint32_t sync_period;  /* 0x1006 */
     uint32_t sync_window;  /* 0x1007 */
-    uint32_t time_cob;     /* 0x1012, default 0x80000100 (consumer) */
+    uint32_t emcy_cob;     /* 0x1014, $NODEID+0x80 */
+    uint16_t emcy_inhibit; /* 0x1015 */
+    uint16_t hb_prod;      /* 0x1017 */
     uint8_t sync_overflow; /* 0x1019 */
     uint8_t err_beh[3];    /* 0x1029 sub1..3: communication error (default 0, CiA 301),
                               two device-specific classes (default 1) */
+    uint32_t hb_cons[4];   /* 0x1016 sub1..4 */
+    uint32_t sync_period;  /* 0x1006 */
+    uint32_t time_cob;     /* 0x1012, default 0x80000100 (consumer) */
     uint32_t node_id;      /* 0x100B, $NODEID */
     uint16_t guard_time;   /* 0x100C */
     uint8_t life_factor;   /* 0x100D */
     uint8_t pad0;
-    uint32_t emcy_cob;     /* 0x1014, $NODEID+0x80 */
-    uint16_t emcy_inhibit; /* 0x1015 */
-    uint16_t hb_prod;      /* 0x1017 */
-    uint32_t hb_cons[4];   /* 0x1016 sub1..4 */
     /* application values (stored) */
     uint8_t u8;
     int8_t i8;
@@ -63,12 +64,12 @@ typedef struct td_ram {
     int32_t target_pos;    /* 0x607A */
     int32_t target_vel;    /* 0x60FF */
     uint32_t homing_speed[2]; /* 0x6099 sub1..2, limit 0..60000 */
-    /* not stored */
+    /* not stored (from app_end: the core's objects at their places) */
     uint8_t errreg;        /* 0x1001 */
     uint8_t hist_n;        /* 0x1003 sub0 */
     uint16_t pad1;
-    uint32_t mfr_status;   /* 0x1002 */
     uint32_t hist[8];      /* 0x1003 sub1..8 */
+    uint32_t mfr_status;   /* 0x1002 */
     uint32_t store[3];     /* 0x1010 sub1..3 (core: capability) */
     uint32_t restore[6];   /* 0x1011 sub1..6 (core: capability; 4..6 only with
                               CO_RESTORE_SAVED, else 0) */

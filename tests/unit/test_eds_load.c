@@ -109,12 +109,24 @@ static void the_device(void **state)
 {
     fx_t *f = *state;
     const co_dev_t *d = eds_device(f->eds);
+    const uint8_t *ram = (const uint8_t *)f->ram;
 
     assert_int_equal(d->n_rpdo, 1);
     assert_int_equal(d->n_tpdo, 1);
     assert_string_equal(eds_summary(f->eds), "loader test: 18 objects, 1 RPDOs, 1 TPDOs");
     assert_string_equal(eds_warnings(f->eds), "");
     assert_non_null(strstr(eds_text(f->eds), "ProductName=loader test"));
+    /* the core's objects at their places (co_node.h, CO_RAM_*): the image
+     * starts with them, the values not stored with 0x1001 (app_end a
+     * multiple of 4); 0x1007 absent: zeros in its place */
+    assert_ptr_equal(co_od_value_ptr(&f->node, 0x1005U, 0U), ram + CO_RAM_1005);
+    assert_ptr_equal(co_od_value_ptr(&f->node, 0x1014U, 0U), ram + CO_RAM_1014);
+    assert_ptr_equal(co_od_value_ptr(&f->node, 0x1017U, 0U), ram + CO_RAM_1017);
+    assert_ptr_equal(co_od_value_ptr(&f->node, 0x1001U, 0U),
+                     ram + d->app_end + CO_RAM_END_1001);
+    assert_int_equal(d->app_end % 4U, 0U);
+    assert_null(co_od_value_ptr(&f->node, 0x1007U, 0U));
+    assert_int_equal(ram[CO_RAM_1007] | ram[CO_RAM_1007 + 3U], 0);
 }
 
 static void values_over_sdo(void **state)

@@ -2,7 +2,8 @@
 
 One .h/.c pair per device. The header has the RAM image type (communication
 values first, then stored application values, then values not stored; within
-each region sorted by alignment so there is no padding inside a region), the
+each region sorted by alignment so there is no padding inside a region; the
+core's own objects at their places, co_node.h's CO_RAM_*: core_places), the
 hook slot numbers, the node bundle type and the co_dev_t. The .c has the ROM
 image, the default image, the limits table and the entry/sub tables, sorted
 by index/sub-index. Offsets are left to the C compiler (offsetof).
@@ -30,6 +31,7 @@ class Field:
     size: int
     region: str                   # comm / app / none / rom
     subs: list[Sub] = field(default_factory=list)
+    what: str = ""                # (a field of no object: what it is)
 
     def decl(self) -> str:
         return f"{self.ctype} {self.name}" + "".join(f"[{d}]" for d in self.dims)
@@ -72,6 +74,15 @@ def build_fields(dev: Device) -> list[Field]:
             fields[s.field] = f
             order.append(f)
     return order
+
+
+def layout_end(fields: list[Field]) -> int:
+    """Where a struct of these fields in this order ends (natural alignment,
+    before the padding at its end)."""
+    off = 0
+    for f in fields:
+        off = (off + f.align - 1) // f.align * f.align + f.size
+    return off
 
 
 def layout(fields: list[Field]) -> int:
@@ -218,14 +229,31 @@ def generate(dev: Device, toml_name: str, warn=None, storage: bool = True) -> tu
     fields = build_fields(dev)
     pdos_h = pdo_table(dev, warn)
     blocks = pdo_blocks(dev, fields, pdos_h)
-    in_block = {f.name for b in blocks for f in b}
-    # the padding inside a PDO's block (a TPDO's byte after its SYNC start
-    # value) holds communication values of one byte that no block has
+    # the core's objects at their places (co_node.h, CO_RAM_*): the head of
+    # the image, the start of the values not stored
+    head, end, core_checks = core_places(dev, fields)
+    core = {f.name for f in head + end}
+    blocks = [[f for f in b if f.name not in core] for b in blocks]
+    in_block = {f.name for b in blocks for f in b} | core
+    # the padding inside the head and a PDO's block (a TPDO's byte after its
+    # SYNC start value) holds communication values of one byte that no block
+    # has
     fill = [f for f in sort_region(fields, "comm") if f.name not in in_block and f.size == 1]
+    head = fill_holes(head, fill)
     blocks = [fill_holes(b, fill) for b in blocks]
-    in_block = {f.name for b in blocks for f in b}
-    ram = [f for b in blocks for f in b] + \
-        [f for r, _ in REGIONS for f in sort_region(fields, r) if f.name not in in_block]
+    in_block |= {f.name for b in blocks + [head] for f in b}
+    ram = head + [f for b in blocks for f in b] + \
+        [f for r, _ in REGIONS[:2] for f in sort_region(fields, r) if f.name not in in_block]
+    if any(f.subs and f.subs[0].index == 0x1003 and f.subs[0].sub >= 1 for f in end):
+        # (0x1003 sub 1 at app_end + 4: app_end a multiple of 4)
+        gap = -layout_end(ram) % 4
+        if gap:
+            ram.append(Field(name="core_align", ctype="uint8_t", dims=[gap], align=1, size=gap,
+                             region=ram[-1].region))
+        fill = [f for f in sort_region(fields, "none") if f.name not in in_block and f.size == 1]
+        end = fill_holes(end, fill)
+        in_block |= {f.name for f in end}
+    ram += end + [f for f in sort_region(fields, "none") if f.name not in in_block]
     share, same = shared_tables(dev, ram)
     # the const values only the tables of sharing PDOs name are left out: a
     # shared table names the first PDO's
@@ -267,8 +295,11 @@ def generate(dev: Device, toml_name: str, warn=None, storage: bool = True) -> tu
             continue
         h.append(f"    /* {title} */")
         for f in sel:
-            if not f.subs:
+            if f.name == "sdo_stage":
                 h.append(f"    {f.decl()}; /* SDO download staging (not an object) */")
+                continue
+            if not f.subs:
+                h.append(f"    {f.decl()}; /* {f.what} */")
                 continue
             s0 = f.subs[0]
             if f.subs[0].elem == 0:
@@ -383,6 +414,9 @@ def generate(dev: Device, toml_name: str, warn=None, storage: bool = True) -> tu
     if layout(rom) + 8 * n_rows > 0xFFFF:
         raise DescError(f"ROM image is {layout(rom) + 8 * n_rows} bytes with the rows; at most 65535")
     c += [f"#define F(field) ((uint16_t)offsetof({cn}_ram_t, field))", "",
+          "/* The core's objects at their places (co_node.h, CO_RAM_*; co_node_init",
+          " * refuses a device with them elsewhere). */",
+          f"typedef char {cn}_core_at[(" + " &&\n    ".join(core_checks) + ") ? 1 : -1];", "",
           "/* Const values (CO_SUB_ROM), then the rows of the objects' tables. */",
           f"typedef struct {cn}_rom {{"]
     for f in rom:
@@ -516,7 +550,7 @@ def generate(dev: Device, toml_name: str, warn=None, storage: bool = True) -> tu
 
     def first(region_names):
         for r in region_names:
-            sel = [f for f in ram if f.region == r and f.subs]
+            sel = [f for f in ram if f.region == r and f.name != "sdo_stage"]
             if sel:
                 return f"F({sel[0].name})"
         return f"(uint16_t)sizeof({cn}_ram_t)"
@@ -591,6 +625,78 @@ def pdo_blocks(dev: Device, fields: list[Field], pdos) -> list[list[Field]]:
         other.sort(key=lambda f: (-f.align, f.subs[0].index, f.subs[0].sub))
         blocks.append(big + entries + count + rest + other)
     return blocks
+
+
+# The core's objects at their places in the RAM image (co_node.h, CO_RAM_*):
+# (index, sub, type, the place's name); the head of the image (stored with
+# the communication parameters), then 0x1016 sub 1.. from CO_RAM_1016, and
+# from app_end (the values not stored) 0x1001, 0x1003 sub 0, then 0x1003
+# sub 1.. from app_end + 4.
+CORE_HEAD = ((0x1005, "UNSIGNED32", "CO_RAM_1005"), (0x1007, "UNSIGNED32", "CO_RAM_1007"),
+             (0x1014, "UNSIGNED32", "CO_RAM_1014"), (0x1015, "UNSIGNED16", "CO_RAM_1015"),
+             (0x1017, "UNSIGNED16", "CO_RAM_1017"), (0x1019, "UNSIGNED8", "CO_RAM_1019"))
+CORE_END = ((0x1001, "UNSIGNED8", "CO_RAM_END_1001"), (0x1003, "UNSIGNED8", "CO_RAM_END_1003"))
+CORE_ARRAYS = {0x1016: ("comm", "CO_RAM_1016"), 0x1003: ("none", "CO_RAM_END_1003_1")}
+CTYPES = {"UNSIGNED8": ("uint8_t", 1), "UNSIGNED16": ("uint16_t", 2),
+          "UNSIGNED32": ("uint32_t", 4)}
+
+
+def core_places(dev: Device, fields: list[Field]):
+    """The fields of the core's objects in their places: (head, end, the
+    source's checks of the places). An object the device lacks, or holds in
+    ROM or behind a hook (the core does not use it), leaves a field of zeros
+    of no object in its place; one of another type or storage is an error
+    (the core would refuse the device)."""
+    subs = {(s.index, s.sub): s for o in dev.objects for s in o.subs}
+    by_name = {f.name: f for f in fields}
+
+    def used(s) -> bool:
+        return s is not None and bool(s.field) and not s.rom and not s.hookio
+
+    def wrong(s, typ: str, region: str) -> None:
+        if s.type != typ:
+            raise DescError(f"object 0x{s.index:04X} sub {s.sub}: the core reads it as {typ}, "
+                            f"not {s.type}")
+        if s.storage != region:
+            raise DescError(f"object 0x{s.index:04X} sub {s.sub}: the core has it "
+                            + ("with the communication parameters" if region == "comm"
+                               else "with the values not stored")
+                            + f", not storage {s.storage!r}")
+
+    def place(index: int, typ: str, region: str, where: str) -> tuple[Field, str]:
+        s = subs.get((index, 0))
+        if used(s):
+            wrong(s, typ, region)
+            f = by_name[s.field]
+            if len(f.subs) != 1:
+                raise DescError(f"object 0x{index:04X}: the core needs a value of its own")
+            return f, where
+        ctype, n = CTYPES[typ]
+        return Field(name=f"core_x{index:04X}", ctype=ctype, dims=[], align=n, size=n,
+                     region=region, what=f"no 0x{index:04X}: zeros in its place, {where}"), where
+
+    def array(index: int) -> list[tuple[Field, str]]:
+        region, where = CORE_ARRAYS[index]
+        out: list[Field] = []
+        for s in sorted((s for (i, _), s in subs.items() if i == index and s.sub >= 1),
+                        key=lambda s: s.sub):
+            if used(s):
+                wrong(s, "UNSIGNED32", region)
+                f = by_name[s.field]
+                if f not in out:
+                    out.append(f)
+        # (the core reads sub 1.. one after the other: the source checks the
+        # runs, run_joins, and co_node_init counts them)
+        return [(f, where if k == 0 else "") for k, f in enumerate(out)]
+
+    head = [place(i, t, "comm", w) for i, t, w in CORE_HEAD] + array(0x1016)
+    end = [place(i, t, "none", w) for i, t, w in CORE_END] + array(0x1003)
+    if len(end) > 2 and not used(subs.get((0x1003, 0))):
+        raise DescError("object 0x1003: the core counts the errors in sub 0: give it a value "
+                        "in RAM (sub0 with access rw)")
+    checks = [f"(F({f.name}) == {w})" for f, w in head if w] + \
+        [f"(F({f.name}) == F({end[0][0].name}) + {w})" for f, w in end[1:] if w]
+    return [f for f, _ in head], [f for f, _ in end], checks
 
 
 def fill_holes(block: list[Field], fill: list[Field]) -> list[Field]:

@@ -123,6 +123,39 @@ typedef struct co_dev {
     const uint16_t *tpdo_mask;
 } co_dev_t;
 
+/**
+ * Where the core's services find their objects in a device's RAM image:
+ * at places fixed here, not found at run time (the node keeps no pointers
+ * to them). tools/odgen lays every generated image out so (and its source
+ * checks the places at compile time); co_node_init refuses a device with
+ * a RAM value of one of these objects of another type or in another place
+ * (CO_RESULT_DEV_INCOMPAT). The image starts with these communication
+ * parameters (stored: [0, comm_end)):
+ */
+#define CO_RAM_1005 0U  /**< UNSIGNED32 COB-ID SYNC */
+#define CO_RAM_1007 4U  /**< UNSIGNED32 synchronous window length */
+#define CO_RAM_1014 8U  /**< UNSIGNED32 COB-ID EMCY */
+#define CO_RAM_1015 12U /**< UNSIGNED16 inhibit time EMCY */
+#define CO_RAM_1017 14U /**< UNSIGNED16 producer heartbeat time */
+#define CO_RAM_1019 16U /**< UNSIGNED8 synchronous counter overflow value */
+/** UNSIGNED32 consumer heartbeat times, 0x1016 sub 1.. one after the other
+ *  (bytes 17..19: any values, or unused) */
+#define CO_RAM_1016 20U
+/** The values not stored ([app_end, ram_size)) start with these, counted
+ *  from app_end (a multiple of 4): */
+#define CO_RAM_END_1001 0U /**< UNSIGNED8 error register */
+#define CO_RAM_END_1003 1U /**< UNSIGNED8 0x1003 sub 0, the number of errors */
+/** UNSIGNED32 pre-defined error field, 0x1003 sub 1.. one after the other
+ *  (bytes 2..3: any values, or unused) */
+#define CO_RAM_END_1003_1 4U
+/* A device without one of these objects (or with its value in ROM or
+ * behind a hook) has zeros in its place, which the services read as its
+ * absence: no SYNC (0x1005: CAN-ID 0 is NMT's), the window always open, no
+ * counter, EMCY on 0x80 + node-ID and no boot-up EMCY (0x1014 0: a value no
+ * write gives it), no inhibit time, no heartbeat; without 0x1016 or 0x1003
+ * sub 1 the node monitors nothing and keeps no history (their length,
+ * co_node_t, is 0). */
+
 /** The first of the rows of @p e, an entry of @p dev. */
 static inline const co_od_sub_t *co_od_rows(const co_dev_t *dev, const co_od_entry_t *e)
 {
@@ -271,10 +304,9 @@ typedef struct co_sdo_srv {
 
 /** Error control (co_hb.c): heartbeat producer and consumers, node and life
  *  guarding (the consumers' count and the producer's mute flag are bytes of
- *  co_node_t: n_hb_cons, hb_muted). */
+ *  co_node_t: n_hb_cons, hb_muted; 0x1016, 0x1017 at their places in the RAM
+ *  image, CO_RAM_1016). */
 typedef struct co_errctl {
-    uint32_t *hb_cons;       /**< 0x1016 sub1.. */
-    uint16_t *hb_prod;       /**< 0x1017 */
     uint32_t hb_last;        /**< time of the last heartbeat (or boot-up) */
 #if CO_NODE_GUARDING
     uint16_t *guard_time;    /**< 0x100C */
@@ -294,13 +326,9 @@ typedef struct co_emcy_pending {
     uint8_t data[8];
 } co_emcy_pending_t;
 
-/** EMCY producer (co_emcy.c): 0x1001, 0x1003, 0x1014, 0x1015. */
+/** EMCY producer (co_emcy.c): 0x1001, 0x1003, 0x1014, 0x1015 (at their
+ *  places in the RAM image, CO_RAM_1014). */
 typedef struct co_emcy {
-    uint8_t *errreg;         /**< 0x1001 */
-    uint8_t *hist_count;     /**< 0x1003 sub0 */
-    uint32_t *hist;          /**< 0x1003 sub1.. */
-    uint32_t *cob;           /**< 0x1014 */
-    uint16_t *inhibit;       /**< 0x1015 */
     uint32_t next;           /**< earliest time the next EMCY may go (inhibit) */
     uint8_t hist_depth;
     uint8_t n_active;
@@ -315,11 +343,9 @@ typedef struct co_emcy {
     co_emcy_pending_t q[CO_EMCY_QUEUE_LEN];
 } co_emcy_t;
 
-/** SYNC consumer and producer (co_sync.c): 0x1005, 0x1006, 0x1007, 0x1019. */
+/** SYNC consumer and producer (co_sync.c): 0x1005, 0x1006, 0x1007, 0x1019
+ *  (but 0x1006 at their places in the RAM image, CO_RAM_1005). */
 typedef struct co_sync {
-    uint32_t *cob;           /**< 0x1005 */
-    uint32_t *window;        /**< 0x1007 */
-    uint8_t *overflow;       /**< 0x1019 */
     uint32_t last;           /**< time of the last SYNC (window) */
 #if CO_SYNC_PRODUCER
     uint32_t *period;        /**< 0x1006 */

@@ -126,11 +126,12 @@ typedef struct co_dev {
 /**
  * Where the core's services find their objects in a device's RAM image:
  * at places fixed here, not found at run time (the node keeps no pointers
- * to them). tools/odgen lays every generated image out so (and its source
- * checks the places at compile time); co_node_init refuses a device with
- * a RAM value of one of these objects of another type or in another place
- * (CO_RESULT_DEV_INCOMPAT). The image starts with these communication
- * parameters (stored: [0, comm_end)):
+ * to them). tools/odgen lays every generated image out so: it refuses such
+ * an object of another type or storage, and its source checks the places
+ * at compile time (the EDS loader of targets/linux lays its images out the
+ * same way); co_node_init does not check them: a hand-written co_dev_t
+ * follows them. The image starts with these communication parameters
+ * (stored: [0, comm_end)):
  */
 #define CO_RAM_1005 0U  /**< UNSIGNED32 COB-ID SYNC */
 #define CO_RAM_1007 4U  /**< UNSIGNED32 synchronous window length */

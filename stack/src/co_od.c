@@ -374,6 +374,7 @@ co_err_t co_od_read_part(co_node_t *node, const co_od_entry_t *e, const co_od_su
     uint32_t cap = c->len;
     uint32_t size;
     uint32_t n;
+    uint32_t mapped;
 
     if ((s->flags & CO_SUB_HOOKIO) != 0U) {
         /* the hook produces the chunk (never more than asked for) */
@@ -398,7 +399,12 @@ co_err_t co_od_read_part(co_node_t *node, const co_od_entry_t *e, const co_od_su
         }
     }
     v = (const uint8_t *)co_od_loc(node, e, s);
-    size = (CO_FAST && (fixed != 0U)) ? s->size : data_size(v, s);
+    if ((fixed != 0U) && (s->size != fixed)) {
+        /* a PDO mapping entry: its UNSIGNED32 from its 16-bit form (co_od.h) */
+        mapped = co_od_map_u32(node->dev, co_ram_u16(node, (uint16_t)(v - node->ram)));
+        v = (const uint8_t *)&mapped;
+    }
+    size = (fixed != 0U) ? fixed : data_size(v, s);
     n = (offset < size) ? (size - offset) : 0U;
     if (n > cap) {
         n = cap;
@@ -479,6 +485,53 @@ static co_err_t check_limits(const co_node_t *node, const co_od_sub_t *s, const 
     return CO_OK;
 }
 
+/* ------------------------------------------------ PDO mapping entries */
+
+/* The key a row of the mappable-object table is sorted by. */
+static inline uint32_t map_key(const co_od_map_t *m)
+{
+    return ((uint32_t)m->index << 8U) | m->sub;
+}
+
+uint32_t co_od_map_ref(const co_dev_t *dev, uint32_t v)
+{
+    /* (a write of a mapping entry, rare: the forms of its length one by
+     * one, the dummy types' and the rows', until one reads as @p v) */
+    for (uint32_t r = 1U; r < (CO_OD_MAP_ROW0 + dev->n_maps); r++) {
+        uint32_t form = CO_OD_MAP_ENTRY(r, v & 0xFFU);
+        if (co_od_map_u32(dev, form) == v) {
+            return form;
+        }
+    }
+    return (v == 0U) ? 0U : CO_OD_MAP_NONE;
+}
+
+/* Mapping entry @p wire (UNSIGNED32, wire bytes) into @p v in its 16-bit
+ * form (an entry that has none, which the PDO service's check refuses,
+ * leaves the old one). */
+CO_NOINLINE static void map_put(const co_dev_t *dev, uint8_t *v, const uint8_t *wire)
+{
+    uint32_t ref = co_od_map_ref(dev, co_get_u32(wire));
+
+    if (ref != CO_OD_MAP_NONE) {
+        uint16_t r16 = (uint16_t)ref;
+        (void)memcpy(v, &r16, sizeof r16);
+    }
+}
+
+uint32_t co_od_map_u32(const co_dev_t *dev, uint32_t ref)
+{
+    uint32_t r = (ref & 0xFFFFU) >> CO_OD_MAP_REF_SHIFT;
+    uint32_t bits = (ref & CO_OD_MAP_BITS) + 1U;
+
+    if (r >= CO_OD_MAP_ROW0) {
+        r -= CO_OD_MAP_ROW0;
+        /* (a form that names no row reads as the empty entry) */
+        return (r < dev->n_maps) ? ((map_key(&dev->maps[r]) << 8U) | bits) : 0U;
+    }
+    return (r == 0U) ? 0U : ((r << 16U) | bits); /* the empty entry, a dummy type */
+}
+
 /* The engine's commit (co_od_commit): a checked value of @p s from wire
  * bytes into its RAM place. */
 CO_INLINE void commit(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
@@ -488,7 +541,11 @@ CO_INLINE void commit(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t
 
     if ((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) == 0U) {
         uint8_t *v = &node->ram[(uint16_t)(e->base + s->off)]; /* a RAM value */
-        if ((fixed != 0U) && (CO_FAST || !CO_NATIVE_LE)) {
+        if ((fixed != 0U) && (s->size != fixed)) {
+            /* a PDO mapping entry: its 16-bit form (the PDO service's check
+             * found the object mappable: it has one) */
+            map_put(node->dev, v, data);
+        } else if ((fixed != 0U) && (CO_FAST || !CO_NATIVE_LE)) {
             co_pdo_from_wire(v, data, fixed); /* 1, 2 and 4 bytes without a call */
         } else {
             /* (a build for size on a little-endian CPU: a number's wire
@@ -563,7 +620,8 @@ CO_HOT co_err_t write_value(co_node_t *node, const co_od_entry_t *e, const co_od
     }
     if ((ops & CO_SVC_COMMIT) != 0U) {
         err = sh->fn(node, CO_SVC_COMMIT, e, s, data, len); /* the service's commit */
-    } else if (CO_FAST && (fixed != 0U) && ((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) == 0U)) {
+    } else if (CO_FAST && (fixed != 0U) && ((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) == 0U) &&
+               (s->size == fixed)) {
         co_pdo_from_wire(&node->ram[(uint16_t)(e->base + s->off)], data, fixed); /* a number: no call */
     } else if (CO_STORAGE) {
         co_od_commit(node, e, s, data, len); /* (one copy: the store service commits too) */

@@ -35,87 +35,82 @@ static bool is_tpdo(const co_node_t *node, uint16_t i)
     return i >= node->dev->n_rpdo;
 }
 
-#if CO_PDO_FAST_MAX > 0
-/* The code of a mapped object the PDO engine may copy directly between the
- * RAM image and the frame (co_pdo_code), with the same result as the
- * dictionary's path, else CO_PDO_SLOW. Direct: a RAM value of its type's
- * size (not ROM, not CO_SUB_HOOKIO) at an offset the code holds, of an
+/* Whether the PDO engine may copy the mapped object @p s of @p e (row @p m
+ * of the mappable-object table) directly between the RAM image and the
+ * frame, with the same result as the dictionary's path: a RAM value of its
+ * type's size (not ROM, not CO_SUB_HOOKIO; the table has its place), of an
  * entry without a hook slot (a hook bound later finds the PDO going through
- * the dictionary already), mapped in whole bytes at a byte boundary (the
- * low bytes of a longer value: a TPDO sends them, an RPDO extends them to
- * the value's size, by the sign for signed types). A TPDO reads it directly
- * when no service reads the object first (CO_SVC_READ) (on a big-endian
- * CPU only when it maps the whole value); an RPDO writes it
- * directly when no service hooks the object at all, the value has no
- * limits and is not a BOOLEAN (the dictionary refuses values above 1). */
-static uint16_t direct_code(const co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
-                            bool tx, uint32_t bits, uint32_t pos)
+ * the dictionary already), mapped in whole bytes (@p bits) at a byte
+ * boundary (@p pos; the low bytes of a longer value: a TPDO sends them, an
+ * RPDO extends them to the value's size, by the sign for signed types). A
+ * TPDO reads it directly when no service reads the object first
+ * (CO_SVC_READ) (on a big-endian CPU only when it maps the whole value); an
+ * RPDO writes it directly when no service hooks the object at all, the
+ * value has no limits and is not a BOOLEAN (the dictionary refuses values
+ * above 1). */
+static bool direct_ok(const co_od_entry_t *e, const co_od_sub_t *s, const co_od_map_t *m,
+                      bool tx, uint32_t bits, uint32_t pos)
 {
     uint8_t size = co_type_len(s->type);
     uint8_t svc = co_od_svc_ops(e);
-    uint32_t off = co_od_off(e, s);
-    uint32_t n = tx ? ((uint32_t)bits >> 3U) : size; /* TPDO: bytes mapped, RPDO: value size */
-    uint32_t code = off | ((n - 1U) << 12U);
+    uint32_t n = bits >> 3U; /* the bytes mapped */
 
     if (co_od_hooked(e) || ((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) != 0U) ||
-        (s->size != size) || (off >= CO_PDO_OFF_END) || (CO_PDO_BITWISE && (((pos | bits) & 7U) != 0U)) ||
+        (s->size != size) || (CO_PDO_BITWISE && (((pos | bits) & 7U) != 0U)) ||
         (tx ? (((svc & CO_SVC_READ) != 0U) || (!CO_NATIVE_LE && (n != size)))
             : ((svc != 0U) || ((s->flags & CO_SUB_LIMIT) != 0U) ||
                (s->type == (uint8_t)CO_BOOLEAN)))) {
-        return CO_PDO_SLOW;
-    }
-    if (!tx) {
-        return (uint16_t)(code | (co_type_is_signed(s->type) ? (uint32_t)CO_PDO_SIGNED : 0U));
+        return false;
     }
     /* a build for speed on a little-endian CPU reads 8 bytes at once
      * (co_pdo_get_direct), which a RAM image of fewer than 16 bytes may
      * not have */
-    if (CO_FAST && CO_NATIVE_LE && ((off + 8U) > node->dev->ram_size)) {
-        if ((off + n) < 8U) {
-            return CO_PDO_SLOW;
-        }
-        code |= CO_PDO_AT_END;
-    }
-    return (uint16_t)code;
+    return !(tx && CO_FAST && CO_NATIVE_LE && ((m->info & CO_OD_MAP_AT_END) != 0U) &&
+             ((m->off + n) < 8U));
 }
-#endif
 
-/* Validate @p count mapping entries of PDO i at @p map (the mapping as the
- * dictionary holds it, or one entry being written); they become the state
- * @p p: the bytes they cover (len; 0 while the mapping is disabled or
- * invalid), the first CO_PDO_FAST_MAX entries resolved (p->plain: a dummy
- * entry of whole bytes CO_PDO_DUMMY, one of other bits CO_PDO_SLOW). Each
- * entry (index:16 sub:8 bits:8) is a dummy entry (a gap in an RPDO: types
+/* Validate the mapping entries of PDO i: the @p n entries at @p map (the
+ * mapping as the RAM image holds it, their 16-bit forms), or with @p map
+ * NULL the one entry @p n being written (UNSIGNED32). Each entry
+ * (index:16 sub:8 bits:8) is a dummy entry (a gap in an RPDO: types
  * BOOLEAN .. UNSIGNED32) or a mappable sub-entry, of any length up to its
- * size (the low bits). */
-static co_err_t map_state(const co_node_t *node, uint16_t i, const uint8_t *map, uint32_t count,
+ * size (the low bits). They become the state @p p: len, the bytes they
+ * cover (0 while the mapping is disabled or invalid), and, for the entries
+ * of @p map, CO_PDO_F_DIRECT when there are some and every one may be
+ * copied directly (direct_ok; a dummy entry of whole bytes). A PDO with
+ * any other entry goes through the dictionary for all of them (a choice per
+ * entry would cost RAM in every PDO's state). */
+static co_err_t map_state(const co_node_t *node, uint16_t i, const uint8_t *map, uint32_t n,
                           co_pdo_t *p)
 {
-    const co_pdo_desc_t *d = &node->dev->pdo[i];
+    const co_dev_t *dev = node->dev;
     bool tx = is_tpdo(node, i);
+    uint32_t count = (map != NULL) ? n : 1U;
     uint32_t total = 0U;
+    bool direct = map != NULL;
 
     p->len = 0U;
-    if (count > d->map_max) {
+    p->flags &= (uint16_t)~CO_PDO_F_DIRECT;
+    if (count > dev->pdo[i].map_max) {
         return CO_ERR_MAP_LEN;
     }
     for (uint32_t k = 0U; k < count; k++) {
-        uint32_t v = co_pdo_entry(map, k);
+        uint32_t ref = (map != NULL) ? co_pdo_ref(map, k) : 0U;
+        uint32_t v = (map != NULL) ? co_od_map_u32(dev, ref) : n;
         uint16_t index = (uint16_t)(v >> 16U);
         uint8_t sub = (uint8_t)((v >> 8U) & 0xFFU);
-        uint32_t n = v & 0xFFU;
+        uint32_t bits = v & 0xFFU;
         uint32_t size;
-        const co_od_entry_t *e = NULL;
-        co_od_sub_t s;
-        /* (a dummy entry of other bits than whole bytes: only with bit mapping) */
-        uint16_t code = (CO_PDO_BITWISE && ((n & 7U) != 0U)) ? CO_PDO_SLOW : CO_PDO_DUMMY;
 
         if ((index >= 0x0001U) && (index <= 0x0007U) && (sub == 0U)) {
             if (tx) {
                 return CO_ERR_NO_MAP; /* a TPDO has no gaps */
             }
             size = co_type_len((uint8_t)index);
+            direct = direct && ((bits & 7U) == 0U);
         } else {
+            const co_od_entry_t *e = NULL;
+            co_od_sub_t s;
             co_err_t err = co_od_lookup(node, index, sub, &e, &s);
             if (err != CO_OK) {
                 return (err == CO_ERR_NO_SUB) ? CO_ERR_NO_MAP : CO_ERR_NO_OBJECT;
@@ -124,50 +119,30 @@ static co_err_t map_state(const co_node_t *node, uint16_t i, const uint8_t *map,
             if ((size == 0U) || ((s.flags & (tx ? CO_SUB_MAP_T : CO_SUB_MAP_R)) == 0U)) {
                 return CO_ERR_NO_MAP;
             }
-#if CO_PDO_FAST_MAX > 0
-            code = direct_code(node, e, &s, tx, n, total);
-#endif
+            direct = direct && direct_ok(e, &s, co_pdo_row(dev, ref), tx, bits, total);
         }
-        if ((n == 0U) || (n > (size * 8U))) {
+        if ((bits == 0U) || (bits > (size * 8U))) {
             return CO_ERR_PARAM_INCOMPAT;
         }
-        if (((n & 7U) != 0U) &&
+        if (((bits & 7U) != 0U) &&
             ((CO_PDO_BITWISE == 0) || (CO_SET(node, pdo.granularity) == CO_PDO_MAP_BYTES))) {
             return CO_ERR_NO_MAP; /* granularity 8 (or a build without bit mapping): whole bytes */
         }
-#if CO_PDO_FAST_MAX > 0
-        if (k < CO_PDO_FAST_MAX) {
-            p->plain[k] = code;
-        }
-#endif
-        total += n;
+        total += bits;
     }
     if (total > 64U) {
         return CO_ERR_MAP_LEN;
     }
     p->len = (uint8_t)((total + 7U) / 8U); /* (0 for no entries: disabled) */
+    p->flags |= (uint16_t)((direct && (total != 0U)) ? CO_PDO_F_DIRECT : 0U);
     return CO_OK;
 }
 
-/* PDO i's state from its mapping as the dictionary holds it; in a build for
- * speed CO_PDO_F_DIRECT when it has 1..CO_PDO_FAST_MAX entries, all
- * resolved (none CO_PDO_SLOW: whole bytes). */
+/* PDO i's state from its mapping as the RAM image holds it (map_state). */
 static void remap(co_node_t *node, uint16_t i)
 {
-    co_pdo_t *p = &node->pdo.p[i];
-    uint32_t count = co_pdo_count(node, i);
-
-    (void)map_state(node, i, co_pdo_map(node, &node->dev->pdo[i]), count, p);
-#if CO_FAST && (CO_PDO_FAST_MAX > 0)
-    p->flags &= (uint16_t)~CO_PDO_F_DIRECT;
-    if ((p->len != 0U) && (count <= CO_PDO_FAST_MAX)) {
-        bool direct = true;
-        for (uint32_t k = 0U; k < count; k++) {
-            direct = direct && (p->plain[k] != CO_PDO_SLOW);
-        }
-        p->flags |= (uint16_t)(direct ? CO_PDO_F_DIRECT : 0U);
-    }
-#endif
+    (void)map_state(node, i, co_pdo_map(node, &node->dev->pdo[i]), co_pdo_count(node, i),
+                    &node->pdo.p[i]);
 }
 
 /* A write of sub @p sub of PDO i's mapping (@p is_map) or communication
@@ -183,6 +158,7 @@ static co_err_t check_write(const co_node_t *node, uint16_t i, bool is_map, uint
     uint32_t v;
     co_pdo_t tmp; /* (a state of its own: the PDO's changes only once written) */
 
+    tmp.flags = 0U;
     if ((CO_SET(node, pdo.parameter_writes) == CO_PDO_WRITES_PREOP) &&
         (node->nmt != (uint8_t)CO_NMT_PRE_OPERATIONAL)) {
         return CO_ERR_STORE_STATE; /* the device configures PDOs in Pre-operational only */
@@ -204,8 +180,9 @@ static co_err_t check_write(const co_node_t *node, uint16_t i, bool is_map, uint
         if (co_pdo_count(node, i) != 0U) {
             return CO_ERR_NO_ACCESS; /* entries are fixed while the mapping is enabled */
         }
-        v = co_get_u32(data); /* (in the RAM image's byte order) */
-        return (v == 0U) ? CO_OK : map_state(node, i, (const uint8_t *)&v, 1U, &tmp);
+        /* (the dictionary stores an accepted entry in its 16-bit form) */
+        v = co_get_u32(data);
+        return (v == 0U) ? CO_OK : map_state(node, i, NULL, v, &tmp);
     }
     if (sub == 1U) {
         /* 29-bit identifiers are not supported; the CAN-ID changes only while

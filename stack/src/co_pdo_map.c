@@ -1,11 +1,12 @@
 /*
- * Mapped objects: each mapping entry (index:16 sub:8 bits:8) sampled into a
- * TPDO's bits or written from an RPDO's bits, directly when it was resolved
- * as the mapping was enabled (co_pdo_config.c, co_pdo_code), else by the
- * same path as SDO (hooks, limits, the core's rules) with a bit copy. A
- * build for speed (CO_FAST) copies the PDOs whose entries are all resolved
- * (CO_PDO_F_DIRECT) inline instead (co_pdo_sample_direct,
- * co_pdo_store_direct); a build for size comes here for every PDO.
+ * Mapped objects: each mapping entry (its 16-bit form, co_od.h) sampled into
+ * a TPDO's bits or written from an RPDO's bits, directly from its row of
+ * the mappable-object table when the mapping was found copyable as it was
+ * enabled (co_pdo_config.c, CO_PDO_F_DIRECT), else by the same path as SDO
+ * (hooks, limits, the core's rules) with a bit copy. A build for speed
+ * (CO_FAST) copies the CO_PDO_F_DIRECT PDOs inline instead
+ * (co_pdo_sample_direct, co_pdo_store_direct); a build for size comes here
+ * for every PDO.
  */
 #include "co_priv.h"
 
@@ -39,17 +40,17 @@ static void bits_copy(uint8_t *dst, uint16_t dpos, const uint8_t *src, uint16_t 
     }
 }
 
-/* One entry @p v at bit @p pos of @p buf, resolved as @p code (co_pdo_code):
- * sampled into it (@p tx; an object that cannot be read, a hook's veto, is
- * sent as zeros), or written from it (a value the object refuses, limits or
- * a hook's veto, is dropped; a dummy entry is a gap). A
- * resolved entry is copied between its RAM value and the bits directly,
- * any other goes through the dictionary. */
-static void entry_io(co_node_t *node, uint32_t v, uint16_t code, uint16_t pos, uint8_t *buf,
+/* One entry (16-bit form @p ref) at bit @p pos of @p buf: sampled into it
+ * (@p tx; an object that cannot be read, a hook's veto, is sent as zeros),
+ * or written from it (a value the object refuses, limits or a hook's veto,
+ * is dropped; a dummy entry is a gap). An entry of a CO_PDO_F_DIRECT PDO
+ * (@p direct) is copied between its RAM value and the bits directly, any
+ * other goes through the dictionary. */
+static void entry_io(co_node_t *node, uint32_t ref, bool direct, uint16_t pos, uint8_t *buf,
                      bool tx)
 {
-    uint16_t index = (uint16_t)(v >> 16U);
-    uint8_t bits = (uint8_t)(v & 0xFFU);
+    uint8_t bits = (uint8_t)co_pdo_ref_bits(ref);
+    const co_od_map_t *m;
     const co_od_entry_t *e = NULL; /* (an entry through the dictionary: its descriptor in s) */
     co_od_sub_t s;
     uint8_t *ram = node->ram;
@@ -57,21 +58,20 @@ static void entry_io(co_node_t *node, uint32_t v, uint16_t code, uint16_t pos, u
     bool sign;
     uint8_t tmp[8] = {0};
 
-    if (code == CO_PDO_DUMMY) {
+    if (co_pdo_ref_dummy(ref)) {
         return; /* a dummy entry (an RPDO's gap) */
     }
-    if (code == CO_PDO_SLOW) {
-        if ((index <= 0x0007U) ||
-            (co_od_lookup(node, index, (uint8_t)((v >> 8U) & 0xFFU), &e, &s) != CO_OK)) {
-            return; /* a dummy entry, or an object that is not there (a TPDO's
-                       zeros: buf is zero) */
+    m = co_pdo_row(node->dev, ref);
+    if (!direct) {
+        if (co_od_lookup(node, m->index, m->sub, &e, &s) != CO_OK) {
+            return; /* an object that is not there (a TPDO's zeros: buf is zero) */
         }
         size = co_type_len(s.type);
         sign = co_type_is_signed(s.type);
     } else {
-        ram = &ram[code & CO_PDO_OFF_MASK];
-        size = (uint8_t)(((code >> 12U) & 7U) + 1U); /* TPDO: the bytes it maps */
-        sign = (code & CO_PDO_SIGNED) != 0U;
+        ram = &ram[m->off];
+        size = (uint8_t)((m->info & CO_OD_MAP_SIZE) + 1U);
+        sign = (m->info & CO_OD_MAP_SIGNED) != 0U;
     }
     if (tx) {
         const uint8_t *src = tmp;
@@ -105,15 +105,14 @@ static void entry_io(co_node_t *node, uint32_t v, uint16_t code, uint16_t pos, u
     }
 }
 
-/* The entries of PDO i (co_pdo_code resolves them when the mapping is
- * enabled): sampled into @p buf (8 bytes, zero past the mapping) with
- * @p dlc CO_PDO_SAMPLE, else written from @p buf, the entries its @p dlc
- * bytes (0..8) cover. */
+/* The entries of PDO i: sampled into @p buf (8 bytes, zero past the
+ * mapping) with @p dlc CO_PDO_SAMPLE, else written from @p buf, the entries
+ * its @p dlc bytes (0..8) cover. */
 void co_pdo_io(co_node_t *node, uint16_t i, uint8_t *buf, uint8_t dlc)
 {
-    const co_pdo_t *p = &node->pdo.p[i];
     const uint8_t *map = co_pdo_map(node, &node->dev->pdo[i]);
     uint32_t count = co_pdo_count(node, i);
+    bool direct = (node->pdo.p[i].flags & CO_PDO_F_DIRECT) != 0U;
     bool tx = dlc == CO_PDO_SAMPLE;
     uint32_t avail = tx ? 64U : (dlc * 8U);
     uint32_t pos = 0U;
@@ -122,12 +121,12 @@ void co_pdo_io(co_node_t *node, uint16_t i, uint8_t *buf, uint8_t dlc)
         (void)memset(buf, 0, 8U);
     }
     for (uint32_t k = 0U; k < count; k++) {
-        uint32_t v = co_pdo_entry(map, k);
-        uint32_t end = pos + (v & 0xFFU);
+        uint32_t ref = co_pdo_ref(map, k);
+        uint32_t end = pos + co_pdo_ref_bits(ref);
         if (end > avail) {
             break;
         }
-        entry_io(node, v, co_pdo_code(p, (uint8_t)k), (uint16_t)pos, buf, tx);
+        entry_io(node, ref, direct, (uint16_t)pos, buf, tx);
         pos = end;
     }
 }

@@ -674,34 +674,36 @@ static inline void co_nmt_error(co_node_t *node, uint8_t sub)
 #define CO_PDO_F_STARTED   0x0400U /* TPDO: SYNC start value reached */
 #define CO_PDO_F_SAMPLED   0x0800U /* TPDO 252: data[] sampled at the last SYNC */
 #define CO_PDO_F_RTR       0x1000U /* TPDO: a remote request waits for an answer */
-#define CO_PDO_F_DIRECT    0x2000U /* every mapping entry resolved (co_pdo_code) */
+#define CO_PDO_F_DIRECT    0x2000U /* every mapping entry copied directly (co_pdo_config.c) */
 
-/* Mapping entries resolved when the mapping is enabled (co_pdo_t.plain[k],
- * the first CO_PDO_FAST_MAX entries): a RAM value the PDO copies directly
- * between frame and RAM image, with the dictionary path's result, is coded
- * as its RAM offset (bits 0..11) and, for an RPDO, its type's size - 1
- * (bits 12..14) and whether it is signed (bit 15); for a TPDO, the bytes it
- * maps - 1 (bits 12..14) and where the 8 bytes read at once lie (bit 15,
- * CO_PDO_AT_END: the RAM image ends within 8 bytes of the offset, so they
- * end with the mapped bytes instead of starting with them).
- * CO_PDO_SLOW: through the dictionary; CO_PDO_DUMMY: a dummy entry. */
-#define CO_PDO_SLOW     0xFFFFU
-#define CO_PDO_DUMMY    0xFFFEU /* an RPDO's dummy entry: nothing to write */
-#define CO_PDO_OFF_MASK 0x0FFFU
-#define CO_PDO_OFF_END  0x0FFEU /* direct entries have offsets below */
-#define CO_PDO_SIGNED   0x8000U
-#define CO_PDO_AT_END   0x8000U
-CO_INLINE uint16_t co_pdo_code(const co_pdo_t *p, uint8_t k)
+/* PDO i's mapping entries in the RAM image: 16 bits each (co_od.h,
+ * CO_OD_MAP_ENTRY), a reference to a dummy type or to a row of the
+ * device's mappable-object table (co_od_map_t), with the bits it maps - 1.
+ * When the mapping is enabled, a PDO whose every entry is a plain RAM value
+ * the engine may copy directly between frame and RAM image, with the
+ * dictionary path's result, gets CO_PDO_F_DIRECT: its entries are then
+ * copied from the table's rows (offset, size, sign, at the end of the
+ * image), with no lookup. A PDO with any other entry goes through the
+ * dictionary for every entry (a per-entry choice would cost RAM per PDO). */
+CO_INLINE uint16_t co_pdo_ref(const uint8_t *map, uint32_t k)
 {
-#if CO_PDO_FAST_MAX > 0
-    if (k < CO_PDO_FAST_MAX) {
-        return p->plain[k];
-    }
-#else
-    (void)p;
-    (void)k;
-#endif
-    return CO_PDO_SLOW;
+    uint16_t v;
+    (void)memcpy(&v, &map[2U * k], sizeof v);
+    return v;
+}
+/* The bits entry @p ref maps; its table row (a reference of a row) */
+CO_INLINE uint32_t co_pdo_ref_bits(uint32_t ref)
+{
+    return (ref & CO_OD_MAP_BITS) + 1U;
+}
+CO_INLINE const co_od_map_t *co_pdo_row(const co_dev_t *dev, uint32_t ref)
+{
+    return &dev->maps[(ref >> CO_OD_MAP_REF_SHIFT) - CO_OD_MAP_ROW0];
+}
+/* A dummy entry (an RPDO's gap): its reference is a type's */
+CO_INLINE bool co_pdo_ref_dummy(uint32_t ref)
+{
+    return ref < (CO_OD_MAP_ROW0 << CO_OD_MAP_REF_SHIFT);
 }
 
 #define CO_PDO_COB_INVALID 0x80000000UL
@@ -729,14 +731,7 @@ CO_INLINE uint32_t co_pdo_cob(const co_node_t *node, uint16_t i)
 
 CO_INLINE const uint8_t *co_pdo_map(const co_node_t *node, const co_pdo_desc_t *d)
 {
-    return &node->ram[d->count - (4U * d->map_max)];
-}
-
-CO_INLINE uint32_t co_pdo_entry(const uint8_t *map, uint32_t k)
-{
-    uint32_t v;
-    (void)memcpy(&v, &map[4U * k], sizeof v);
-    return v;
+    return &node->ram[d->count - (2U * d->map_max)];
 }
 
 CO_INLINE uint8_t co_pdo_count(const co_node_t *node, uint16_t i)
@@ -827,26 +822,21 @@ CO_INLINE void co_copy_small(uint8_t *dst, const uint8_t *src, uint8_t n)
     }
 }
 
-/* The bytes a resolved TPDO entry (co_pdo_code @p code) maps. */
-CO_INLINE uint32_t co_tpdo_code_len(uint32_t code)
+/* A direct TPDO entry, @p n bytes of the value at @p m into the frame at
+ * @p at (8 bytes of room): the low bytes of the value's wire image (on a
+ * little-endian CPU the first bytes of the native value; on a big-endian
+ * CPU the entry maps the whole value). On a little-endian CPU 8 bytes are
+ * read at once, the ones past the entry's for the next entry or the
+ * padding to overwrite (a value at the end of the RAM image: the 8 bytes
+ * that end with the mapped ones, CO_OD_MAP_AT_END). */
+CO_INLINE void co_pdo_get_direct(const co_node_t *node, const co_od_map_t *m, uint32_t n,
+                                 uint8_t *at)
 {
-    return ((code >> 12U) & 7U) + 1U;
-}
-
-/* A resolved TPDO entry into the frame at @p at (8 bytes of room): the low
- * bytes of the value's wire image (on a little-endian CPU the first bytes
- * of the native value; on a big-endian CPU the entry maps the whole value).
- * On a little-endian CPU 8 bytes are read at once, the ones past the
- * entry's for the next entry or the padding to overwrite. Returns the
- * entry's length. */
-CO_INLINE uint32_t co_pdo_get_direct(const co_node_t *node, uint32_t code, uint8_t *at)
-{
-    uint32_t off = code & CO_PDO_OFF_MASK;
-    uint32_t n = co_tpdo_code_len(code);
+    uint32_t off = m->off;
 
     if (CO_NATIVE_LE) {
         uint64_t x;
-        if ((code & CO_PDO_AT_END) == 0U) {
+        if ((m->info & CO_OD_MAP_AT_END) == 0U) {
             (void)memcpy(&x, &node->ram[off], 8U);
         } else {
             uint32_t shift = 8U * (8U - n);
@@ -857,13 +847,14 @@ CO_INLINE uint32_t co_pdo_get_direct(const co_node_t *node, uint32_t code, uint8
     } else {
         co_pdo_to_wire(at, &node->ram[off], (uint8_t)n);
     }
-    return n;
 }
 
-CO_INLINE void co_pdo_put_direct(co_node_t *node, uint16_t code, const uint8_t *at, uint8_t n)
+/* A direct RPDO entry: @p n bytes at @p at into the value at @p m. */
+CO_INLINE void co_pdo_put_direct(co_node_t *node, const co_od_map_t *m, const uint8_t *at,
+                                 uint8_t n)
 {
-    uint8_t *v = &node->ram[code & CO_PDO_OFF_MASK];
-    uint8_t size = (uint8_t)(((code >> 12U) & 7U) + 1U);
+    uint8_t *v = &node->ram[m->off];
+    uint8_t size = (uint8_t)((m->info & CO_OD_MAP_SIZE) + 1U);
 
     if (n == size) {
         if (CO_NATIVE_LE) {
@@ -874,56 +865,53 @@ CO_INLINE void co_pdo_put_direct(co_node_t *node, uint16_t code, const uint8_t *
     } else {
         /* the low bytes, extended by the sign for signed types */
         uint8_t wire[8];
-        bool neg = ((code & CO_PDO_SIGNED) != 0U) && ((at[n - 1U] & 0x80U) != 0U);
+        bool neg = ((m->info & CO_OD_MAP_SIGNED) != 0U) && ((at[n - 1U] & 0x80U) != 0U);
         (void)memset(wire, neg ? 0xFF : 0x00, sizeof wire);
         co_copy(wire, at, n);
         co_from_wire(v, wire, size);
     }
 }
 
-/* PDO i has CO_PDO_F_DIRECT (every entry resolved, co_pdo_code): its
- * mapped objects straight into @p out (8 bytes, zero past the mapping), or
- * from @p data (@p dlc bytes, the entries the frame covers; dummies are
- * gaps), without a call. */
+/* PDO i has CO_PDO_F_DIRECT (every entry copied directly, in whole bytes):
+ * its mapped objects straight into @p out (8 bytes, zero past the
+ * mapping), or from @p data (@p dlc bytes, the entries the frame covers;
+ * dummies are gaps), without a call. */
 CO_INLINE void co_pdo_sample_direct(const co_node_t *node, uint16_t i, uint8_t *out)
 {
     uint8_t buf[16]; /* room for the 8 bytes written at the last entry */
     uint8_t *at = buf;
-#if CO_PDO_FAST_MAX > 0
-    const co_pdo_t *p = &node->pdo.p[i];
+    const co_dev_t *dev = node->dev;
+    const uint8_t *map = co_pdo_map(node, &dev->pdo[i]);
     uint32_t count = co_pdo_count(node, i);
 
-    /* (a PDO with more entries is not direct: only the compiler needs to know) */
-    count = (count <= CO_PDO_FAST_MAX) ? count : 0U;
+    /* (at most 8 entries of a byte or more: only the compiler needs to know) */
+    count = (count <= 8U) ? count : 0U;
     for (uint32_t k = 0U; k < count; k++) {
-        at = &at[co_pdo_get_direct(node, co_pdo_code(p, (uint8_t)k), at)];
+        uint32_t ref = co_pdo_ref(map, k);
+        uint32_t n = co_pdo_ref_bits(ref) >> 3U; /* (a TPDO has no dummy entry) */
+        co_pdo_get_direct(node, co_pdo_row(dev, ref), n, at);
+        at = &at[n];
     }
-#else
-    (void)node;
-    (void)i;
-#endif
     (void)memset(at, 0, 8U);
     (void)memcpy(out, buf, 8U);
 }
 
 CO_INLINE void co_pdo_store_direct(co_node_t *node, uint16_t i, const uint8_t *data, uint8_t dlc)
 {
-    const co_pdo_t *p = &node->pdo.p[i];
-    const uint8_t *map = co_pdo_map(node, &node->dev->pdo[i]);
+    const co_dev_t *dev = node->dev;
+    const uint8_t *map = co_pdo_map(node, &dev->pdo[i]);
     uint8_t count = co_pdo_count(node, i);
     uint8_t avail = (dlc > 8U) ? 8U : dlc;
     uint8_t at = 0U;
 
-    /* (a PDO with more entries is not direct: only the compiler needs to know) */
-    count = (count <= CO_PDO_FAST_MAX) ? count : 0U;
     for (uint8_t k = 0U; k < count; k++) {
-        uint8_t n = (uint8_t)((co_pdo_entry(map, k) & 0xFFU) >> 3U);
-        uint16_t code = co_pdo_code(p, k);
+        uint32_t ref = co_pdo_ref(map, k);
+        uint8_t n = (uint8_t)(co_pdo_ref_bits(ref) >> 3U);
         if ((uint8_t)(at + n) > avail) {
             break;
         }
-        if (code != CO_PDO_DUMMY) {
-            co_pdo_put_direct(node, code, &data[at], n);
+        if (!co_pdo_ref_dummy(ref)) {
+            co_pdo_put_direct(node, co_pdo_row(dev, ref), &data[at], n);
         }
         at = (uint8_t)(at + n);
     }
@@ -958,7 +946,7 @@ CO_INLINE uint32_t co_pdo_inhibit_us(const co_node_t *node, uint16_t i)
 }
 #endif
 /* The mapped objects of PDO i (co_pdo_map.c, one entry point for both
- * directions), the resolved entries directly, the others through the
+ * directions), a CO_PDO_F_DIRECT PDO's entries directly, the others through the
  * dictionary: sample them into @p out (8 bytes, zero past the mapping; an
  * object that cannot be read is sent as zeros), or write them from @p data
  * (@p dlc bytes; entries the frame does not cover are skipped, a refused

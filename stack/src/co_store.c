@@ -131,7 +131,8 @@ uint32_t co_store_lss_unit(const co_node_t *node)
 
 #if CO_STORAGE
 /* Identifies the RAM layout: sizes, the CPU's byte order (the image holds
- * native integers) and, for every stored value, where it is and what it is.
+ * native integers) and, for every stored value, where it is and what it is
+ * (and the mappable objects, which the stored PDO mapping entries name).
  * A set written with another layout is not loaded. */
 static uint16_t layout_sig(const co_dev_t *dev)
 {
@@ -162,6 +163,12 @@ static uint16_t layout_sig(const co_dev_t *dev)
                 }
             }
         }
+    }
+    /* the mapping entries' 16-bit forms name rows of the mappable-object table */
+    for (uint32_t k = 0U; k < dev->n_maps; k++) {
+        co_put_u16(&b[0], dev->maps[k].index);
+        b[2] = dev->maps[k].sub;
+        crc = co_crc16(crc, b, 3U);
     }
     return crc;
 }

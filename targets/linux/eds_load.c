@@ -72,6 +72,7 @@ struct eds_dev {
     uint8_t *defaults;
     co_od_limit_t *limits;
     co_pdo_desc_t *pdo;
+    co_od_map_t *maps;
     char *warnings;
 };
 
@@ -1004,7 +1005,8 @@ static unsigned region_of(uint16_t index)
 static size_t align_of(const co_od_sub_t *s)
 {
     const tinfo_t *ti = type_info(s->type);
-    uint8_t len = (ti != NULL) ? ti->len : 0U;
+    /* (a number's size: its type's, but a PDO mapping entry's 16-bit form) */
+    size_t len = ((ti != NULL) && (ti->len != 0U)) ? s->size : 0U;
 
     return ((len == 2U) || (len == 4U) || (len == 8U)) ? len : 1U;
 }
@@ -1161,7 +1163,7 @@ static size_t pdo_scan(const eds_dev_t *d, uint16_t comm_base, uint16_t map_base
             break;
         }
         /* (laid out as co_pdo_desc_t wants: build) */
-        if ((ms[1].off != (uint16_t)(cnt->off - (4U * maps))) ||
+        if ((ms[1].off != (uint16_t)(cnt->off - (2U * maps))) || (ms[1].size != 2U) ||
             (type->off != (uint16_t)(cnt->off + 1U)) || (pdo_rel(cob, start) > 0xFFU) ||
             (pdo_rel(cob, inh) > 0xFFU) || (pdo_rel(cob, ev) > 0xFFU)) {
             break;
@@ -1189,6 +1191,7 @@ static eds_dev_t *build(ctx_t *c, const char *name, const char *text)
     def_val_t *dv = NULL;
     size_t nr;
     size_t nt;
+    uint32_t nmaps;
     uint8_t *placed;
 
     if (d == NULL) {
@@ -1253,6 +1256,8 @@ static eds_dev_t *build(ctx_t *c, const char *name, const char *text)
                 bsub_t *type = &c->sub[o->first + k];
                 if ((type->s.sub == 2U) && (type->s.type == (uint8_t)CO_UNSIGNED8)) {
                     for (size_t e = 1U; e <= n; e++) {
+                        /* (the entries in their 16-bit forms: co_od.h) */
+                        c->sub[m->first + e].s.size = 2U;
                         place(c, &c->sub[m->first + e], &off, placed, &nlim, &nid);
                     }
                     place(c, &c->sub[m->first], &off, placed, &nlim, &nid);
@@ -1318,6 +1323,24 @@ static eds_dev_t *build(ctx_t *c, const char *name, const char *text)
                 d->subs[ns++] = b->s;
             }
         }
+        /* the mappable objects, which the PDO mapping entries' 16-bit
+         * forms name (co_od.h; their defaults below) */
+        d->dev.od = d->entries;
+        d->dev.rows = d->subs;
+        d->dev.od_count = (uint16_t)c->nobj;
+        d->dev.ram_size = (uint16_t)off;
+        nmaps = co_od_map_table(&d->dev, NULL, 0U);
+        d->maps = (co_od_map_t *)calloc((nmaps != 0U) ? nmaps : 1U, sizeof *d->maps);
+        if ((d->maps == NULL) || (nmaps > CO_OD_MAP_ROWS_MAX)) {
+            (void)fail(c, NULL, NULL, (d->maps == NULL) ? "out of memory"
+                                                         : "more than 1016 mappable objects");
+            free(dv);
+            eds_free(d);
+            return NULL;
+        }
+        (void)co_od_map_table(&d->dev, d->maps, nmaps);
+        d->dev.maps = d->maps;
+        d->dev.n_maps = (uint16_t)nmaps;
         /* the default runs: the values that are not zero and the $NODEID
          * ones, in the order of their places */
         qsort(dv, ns, sizeof *dv, cmp_def);
@@ -1330,7 +1353,26 @@ static eds_dev_t *build(ctx_t *c, const char *name, const char *text)
                             : (uint8_t)(CO_OD_DEF_NODEID | (cob ? CO_OD_DEF_COB : 0U));
             size_t n = b->s.size;
             uint32_t w = 0U;
-            if ((co_type_size(b->s.type) == n) && ((n == 2U) || (n == 4U) || (n == 8U))) {
+            const uint8_t *val = b->val;
+            uint16_t form = 0U;
+            if ((co_type_size(b->s.type) == 4U) && (n == 2U) && (val != NULL)) {
+                /* a PDO mapping entry: its 16-bit form */
+                uint32_t v;
+                uint32_t ref;
+                (void)memcpy(&v, val, sizeof v);
+                ref = co_od_map_ref(&d->dev, v);
+                if (ref == CO_OD_MAP_NONE) {
+                    (void)fail(c, NULL, NULL,
+                               "object 0x%04X sub-index %u: default 0x%08X maps no mappable object",
+                               (unsigned)dv[i].index, (unsigned)b->s.sub, (unsigned)v);
+                    free(dv);
+                    eds_free(d);
+                    return NULL;
+                }
+                form = (uint16_t)ref;
+                val = (const uint8_t *)&form;
+                w = 1U;
+            } else if ((co_type_size(b->s.type) == n) && ((n == 2U) || (n == 4U) || (n == 8U))) {
                 w = (n == 2U) ? 1U : (n == 4U) ? 2U : 3U; /* a native number */
             } else if (marks == 0U) {
                 while ((n > 0U) && (b->val[n - 1U] == 0U)) {
@@ -1339,8 +1381,8 @@ static eds_dev_t *build(ctx_t *c, const char *name, const char *text)
             } else {
                 /* one byte */
             }
-            if ((b->val != NULL) && ((marks != 0U) || (any_set(b->val, n) != 0))) {
-                def_run(d->defaults, &len, &nd, &end, b->s.off, b->val, n, w, marks);
+            if ((val != NULL) && ((marks != 0U) || (any_set(val, n) != 0))) {
+                def_run(d->defaults, &len, &nd, &end, b->s.off, val, n, w, marks);
             }
         }
         d->dev.n_defaults = (uint16_t)nd;
@@ -1498,6 +1540,7 @@ void eds_free(eds_dev_t *d)
     free(d->subs);
     free(d->limits);
     free(d->pdo);
+    free(d->maps);
     free(d->warnings);
     free(d);
 }

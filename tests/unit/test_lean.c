@@ -243,7 +243,9 @@ static void shared_sub_tables(void **state)
     tb_xfer(BUS, "601 23 00 1A 01 10 00 00 22", "581 60 00 1A 01 00 00 00 00");
     assert_int_equal(lean.ram.x1800_cob_id_used_by_tpdo, 0x80000181UL);
     assert_int_equal(lean.ram.x1800_transmission_type, 5U);
-    assert_int_equal(lean.ram.x1A00_tpdo1_mapping_parameter[0], 0x22000010UL);
+    /* (a mapping entry in its 16-bit form, co_od.h) */
+    assert_int_equal(co_od_map_u32(&lean_test_dev, lean.ram.x1A00_tpdo1_mapping_parameter[0]),
+                     0x22000010UL);
     assert_int_equal(lean.ram.x1A00_number_of_mapped_objects, 0U);
     assert_int_equal(lean.ram.x1400_cob_id_used_by_rpdo, 0x201UL);
     assert_int_equal(get_u32(0x1600, 1), 0x21000020UL);

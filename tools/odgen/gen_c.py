@@ -11,11 +11,13 @@ by index/sub-index. Offsets are left to the C compiler (offsetof).
 from __future__ import annotations
 
 import copy
+import dataclasses
 import struct
 from dataclasses import dataclass, field
 
 import personality
-from model import F_CONST, F_NODEID, F_R, F_ROM, F_W, FLAG_NAMES, DescError, Device, Sub, encoded_default
+from model import F_CONST, F_MAP_R, F_MAP_T, F_NODEID, F_R, F_ROM, F_W, FLAG_NAMES, DescError, \
+    Device, Sub, encoded_default
 
 REGIONS = (("comm", "communication parameters (stored)"),
            ("app", "application values (stored)"),
@@ -191,6 +193,68 @@ def consts(dev: Device, storage: bool) -> Device:
     return dev
 
 
+# PDO mapping entries (co_od.h, CO_OD_MAP_ENTRY): in the RAM image 16 bits,
+# a reference to a dummy type (1..7) or to a row of the device's
+# mappable-object table (MAP_ROW0 + k) and the bits mapped - 1; the
+# dictionary's users see the UNSIGNED32 index:16 sub:8 bits:8
+MAP_REF_SHIFT, MAP_ROW0 = 6, 8
+MAP_ROWS_MAX = (1 << (16 - MAP_REF_SHIFT)) - MAP_ROW0
+
+
+class MapEntrySub(Sub):
+    """A PDO mapping entry as the C tables hold it: a row of type UNSIGNED32
+    and size 2 (its 16-bit form in the RAM image, co_od.c converts)."""
+
+    @property
+    def fixed(self) -> int:
+        return 2
+
+
+def mappable(dev: Device) -> list[Sub]:
+    """The device's mappable-object table (co_dev_t.maps): every sub-entry of
+    a fixed-size type that may be mapped into a PDO, sorted by index and
+    sub-index."""
+    subs = [s for o in dev.objects for s in o.subs
+            if (s.flags & (F_MAP_T | F_MAP_R)) and s.fixed != 0]
+    return sorted(subs, key=lambda s: (s.index, s.sub))
+
+
+def map_entry_form(v: int, rows: dict, what: str) -> int:
+    """The 16-bit form of mapping entry @p v (rows: (index, sub) -> row)."""
+    if v == 0:
+        return 0
+    index, sub, bits = v >> 16, (v >> 8) & 0xFF, v & 0xFF
+    if 1 <= index <= 7 and sub == 0:
+        ref = index
+    elif (index, sub) in rows:
+        ref = MAP_ROW0 + rows[(index, sub)]
+    else:
+        raise DescError(f"{what}: default 0x{v:08X} maps 0x{index:04X}:{sub:02X}, "
+                        "which is not a mappable object of the device")
+    if not 1 <= bits <= 64:
+        raise DescError(f"{what}: default 0x{v:08X} maps {bits} bits (1..64)")
+    return (ref << MAP_REF_SHIFT) | (bits - 1)
+
+
+def map_entries(pdos, table: list[Sub]) -> None:
+    """The mapping entries (sub 1..) of the PDOs' mapping objects as the C
+    tables hold them (MapEntrySub, their defaults in their 16-bit forms)."""
+    if len(table) > MAP_ROWS_MAX:
+        raise DescError(f"{len(table)} mappable objects; a PDO mapping entry's 16-bit form "
+                        f"(co_od.h CO_OD_MAP_ROWS_MAX) names at most {MAP_ROWS_MAX}")
+    rows = {(s.index, s.sub): k for k, s in enumerate(table)}
+    for _comm, mapping in pdos[0] + pdos[1]:
+        for k, s in enumerate(mapping.subs):
+            if s.sub == 0 or isinstance(s, MapEntrySub):
+                continue
+            m = MapEntrySub(**{f.name: getattr(s, f.name) for f in dataclasses.fields(s)})
+            m.size = 2
+            if s.default is not None:
+                m.default = map_entry_form(int(s.default), rows,
+                                           f"object 0x{s.index:04X}:{s.sub:02X}")
+            mapping.subs[k] = m
+
+
 def field_init(f: Field) -> str | None:
     if f.dims and f.subs[0].elem == 0:
         vals = [c_value(s) for s in f.subs]
@@ -226,8 +290,11 @@ def generate(dev: Device, toml_name: str, warn=None, storage: bool = True) -> tu
     dev = consts(dev, storage)
     cn = dev.cname
     up = cn.upper()
-    fields = build_fields(dev)
     pdos_h = pdo_table(dev, warn)
+    # (a device without PDOs needs no table: nothing refers to it)
+    maps = mappable(dev) if pdos_h[0] or pdos_h[1] else []
+    map_entries(pdos_h, maps)
+    fields = build_fields(dev)
     blocks = pdo_blocks(dev, fields, pdos_h)
     # the core's objects at their places (co_node.h, CO_RAM_*): the head of
     # the image, the start of the values not stored
@@ -527,11 +594,11 @@ def generate(dev: Device, toml_name: str, warn=None, storage: bool = True) -> tu
             # parameters at most 255 bytes after the COB-ID (pdo_blocks lays
             # them out so)
             rel = {k: off(cs[k]) - off(cs[1]) for k in (6, 3, 5) if k in cs}
-            if off(ms[1]) + 4 * n_map != off(ms[0]) or off(cs[2]) != off(ms[0]) + 1 or \
+            if off(ms[1]) + 2 * n_map != off(ms[0]) or off(cs[2]) != off(ms[0]) + 1 or \
                     any(not 0 < r <= 255 for r in rel.values()):
                 raise DescError(f"object 0x{comm.index:04X}: the parameters of a PDO must be "
                                 "stored with the communication parameters, of no other object")
-            checks += [f"({off_expr(ms[1])} + {4 * n_map}U == {off_expr(ms[0])})",
+            checks += [f"({off_expr(ms[1])} + {2 * n_map}U == {off_expr(ms[0])})",
                        f"({off_expr(cs[2])} == {off_expr(ms[0])} + 1U)"] + \
                 [f"({off_expr(cs[k])} == {off_expr(cs[1])} + {r}U)" for k, r in rel.items()]
             c.append(f"    {{{off_expr(cs[1])}, {off_expr(ms[0])}, {n_map}U, "
@@ -540,6 +607,21 @@ def generate(dev: Device, toml_name: str, warn=None, storage: bool = True) -> tu
         c += ["};", "",
               "/* each PDO's parameters where co_pdo_desc_t says */",
               f"typedef char {cn}_pdo_at[(" + " &&\n    ".join(checks) + ") ? 1 : -1];", ""]
+
+    if maps:
+        c += ["/* The mappable objects (co_od_map_t), which the PDO mapping entries in the",
+              " * RAM image name by their row. */",
+              "static const co_od_map_t maps[] = {"]
+        for m in maps:
+            info = [f"{m.fixed - 1}U"] + (["CO_OD_MAP_SIGNED"] if m.kind == "int" else [])
+            if m.field and not m.rom and not m.hookio:
+                off = off_expr(m)
+                info.append(f"((({off} + 8U) > sizeof({cn}_ram_t)) ? CO_OD_MAP_AT_END : 0U)")
+            else:
+                off = "0U"
+            c.append(f"    {{0x{m.index:04X}U, 0x{m.sub:02X}U, (uint8_t)({' | '.join(info)}), "
+                     f"{off}}}, /* {comment(m.name)} */")
+        c += ["};", ""]
 
     masks = mask_table(dev, len(pdos[1]))
     if masks:
@@ -569,6 +651,8 @@ def generate(dev: Device, toml_name: str, warn=None, storage: bool = True) -> tu
           *personality.settings_guarded(dev.options),
           f"    .boot_emcy_data = {'boot_emcy' if dev.boot_emcy_data is not None else 'NULL'},",
           f"    .pdo = {'pdo' if n_pdo else 'NULL'},",
+          f"    .maps = {'maps' if maps else 'NULL'},",
+          f"    .n_maps = {len(maps)}U,",
           f"    .n_rpdo = {len(pdos[0])}U,",
           f"    .n_tpdo = {len(pdos[1])}U,",
           f"    .tpdo_mask = {'tpdo_mask' if masks else 'NULL'},",

@@ -53,13 +53,10 @@
 
 /* ---- PDO */
 
-#ifndef CO_PDO_FAST_MAX
-/** Mapping entries per PDO the core resolves once, when the mapping is
- *  enabled, instead of at every PDO: 2 bytes of RAM per PDO each (0..8). A
- *  PDO of at most this many entries, all plain values, is copied directly
- *  between frame and RAM image (docs/core.md, PDO). */
-#define CO_PDO_FAST_MAX 4U
-#endif
+/* (CO_PDO_FAST_MAX, the mapping entries per PDO once resolved into the
+ * PDO's RAM state, is gone: every PDO whose entries are all plain values is
+ * copied directly, whatever their number, from the device's const table of
+ * mappable objects (co_od_map_t); a definition of it is ignored.) */
 
 #ifndef CO_PDO_RTR
 /** Remote requests of TPDOs (CiA 301: COB-ID bit 30 clear) and the

@@ -76,6 +76,7 @@ typedef struct co_dev {
                                      [app_end, ram_size): not stored */
     uint16_t n_rpdo;
     uint16_t n_tpdo;
+    uint16_t n_maps;            /**< rows of @ref maps */
     /** With set.lss.slave: the bit rates the device supports, bit k for index k
      *  of the CiA 305 bit-timing table (0 1000, 1 800, 2 500, 3 250, 4 125,
      *  6 50, 7 20, 8 10 kbit/s, 9 automatic detection); the generator makes
@@ -115,6 +116,9 @@ typedef struct co_dev {
     const co_od_limit_t *limits;
     const uint8_t *boot_emcy_data; /**< 5 bytes, with set.nmt.boot_emcy */
     const co_pdo_desc_t *pdo;   /**< n_rpdo RPDOs, then n_tpdo TPDOs */
+    /** The mappable objects (co_od_map_t, n_maps rows sorted by index and
+     *  sub-index), which the PDO mapping entries in the RAM image refer to. */
+    const co_od_map_t *maps;
     /** With set.tpdo.change_mask: per TPDO (n_tpdo entries) the RAM offset
      *  of its change mask, two UNSIGNED32 values (the manufacturer object the
      *  description names, sub 1 and 2): bit k of the first is bit k of PDO

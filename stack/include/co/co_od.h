@@ -218,6 +218,52 @@ static inline uint16_t co_od_off(const co_od_entry_t *e, const co_od_sub_t *s)
     return ((s->flags & CO_SUB_ROM) != 0U) ? s->off : (uint16_t)(e->base + s->off);
 }
 
+/** One mappable object of a device (co_dev_t.maps, sorted by index and
+ *  sub-index): every sub-entry of a fixed-size type that may be mapped into
+ *  a PDO (CO_SUB_MAP_T or CO_SUB_MAP_R), with what the PDO engine needs to
+ *  copy its value without a dictionary lookup. The generator makes the
+ *  table (a dictionary built at run time: co_od_map_table). */
+typedef struct co_od_map {
+    uint16_t index;
+    uint8_t  sub;
+    uint8_t  info;   /**< CO_OD_MAP_SIZE, CO_OD_MAP_SIGNED, CO_OD_MAP_AT_END */
+    uint16_t off;    /**< offset of its value in the RAM image (0: not in RAM) */
+} co_od_map_t;
+#define CO_OD_MAP_SIZE   0x07U /**< info: its type's size - 1 */
+#define CO_OD_MAP_SIGNED 0x08U /**< info: a signed type */
+#define CO_OD_MAP_AT_END 0x10U /**< info: fewer than 8 bytes of the RAM image from off on */
+
+/** A PDO mapping entry (the UNSIGNED32 index:16 sub:8 bits:8 of CiA 301)
+ *  is stored in the RAM image as 16 bits: (reference << CO_OD_MAP_REF_SHIFT)
+ *  | (bits - 1), where the reference is 1..7 for the dummy types
+ *  0x0001..0x0007 (sub-index 0) and CO_OD_MAP_ROW0 + k for row k of the
+ *  device's mappable-object table; 0 is the entry 0x00000000. A device has
+ *  at most CO_OD_MAP_ROWS_MAX mappable objects (the generator refuses
+ *  more). The dictionary shows such a sub-entry (a row of type UNSIGNED32
+ *  and size 2) as its UNSIGNED32 value: co_od.c converts it both ways. */
+#define CO_OD_MAP_REF_SHIFT 6U
+#define CO_OD_MAP_BITS      0x3FU
+#define CO_OD_MAP_ROW0      8U
+#define CO_OD_MAP_ROWS_MAX  (1024U - CO_OD_MAP_ROW0)
+/** The 16-bit form of a mapping entry of @p bits (1..64) bits of reference
+ *  @p ref (CO_OD_MAP_ROW0 + its object's row, or its dummy type). */
+#define CO_OD_MAP_ENTRY(ref, bits) \
+    ((uint16_t)(((uint32_t)(ref) << CO_OD_MAP_REF_SHIFT) | ((uint32_t)(bits) - 1U)))
+
+/** The rows of the mappable-object table of a dictionary built at run time
+ *  (an EDS loaded by a daemon; the generator writes its own, the same):
+ *  at most @p cap rows into @p out (NULL with cap 0: count only); returns
+ *  the number of mappable objects (more than @p cap: not all written). */
+uint32_t co_od_map_table(const struct co_dev *dev, co_od_map_t *out, uint32_t cap);
+/** The 16-bit form of mapping entry @p v in @p dev, CO_OD_MAP_NONE when
+ *  it has none (an object that is not in the table, a length of 0 or above
+ *  64 bits). */
+#define CO_OD_MAP_NONE 0xFFFFFFFFUL
+uint32_t co_od_map_ref(const struct co_dev *dev, uint32_t v);
+/** The UNSIGNED32 mapping entry of 16-bit form @p ref in @p dev (a form
+ *  that names no object reads as 0). */
+uint32_t co_od_map_u32(const struct co_dev *dev, uint32_t ref);
+
 /** Value limits. Compared as signed or unsigned according to the type. */
 typedef struct co_od_limit {
     int64_t min;

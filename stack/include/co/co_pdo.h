@@ -13,7 +13,8 @@
 
 /** Where the parameters of one PDO live in the RAM image (native values):
  *  the number of its mapping entries (mapping record sub0, UNSIGNED8) with
- *  the entries (sub1..map_max, UNSIGNED32 each) right before it and the
+ *  the entries (sub1..map_max, 16 bits each: co_od.h CO_OD_MAP_ENTRY, the
+ *  dictionary shows them as UNSIGNED32) right before it and the
  *  transmission type (communication record sub2, UNSIGNED8) right after it;
  *  the COB-ID (sub1, UNSIGNED32), and the optional parameters by their
  *  distance after the COB-ID. RPDOs first, then TPDOs. */
@@ -37,10 +38,6 @@ typedef struct co_pdo {
     uint8_t data[8];  /**< TPDO: sampled (synchronous: sent until the window closes;
                            type 252: for the answers), with change detection the
                            last sent; RPDO: buffered until SYNC */
-#if CO_PDO_FAST_MAX > 0
-    uint16_t plain[CO_PDO_FAST_MAX]; /**< RAM offsets of the mapped values when every
-                           entry is a plain value (copied directly, whole, byte-aligned) */
-#endif
 } co_pdo_t;
 
 #endif /* CO_PDO_H */

@@ -1042,6 +1042,52 @@ static size_t pdo_entries(const ctx_t *c, const bobj_t *m)
     return n;
 }
 
+/* Sub-entry @p sub of object @p index, NULL if there is none. */
+static const bsub_t *bsub_of(const ctx_t *c, uint16_t index, uint8_t sub)
+{
+    bobj_t key;
+    const bobj_t *o;
+
+    key.index = index;
+    o = (const bobj_t *)bsearch(&key, c->obj, c->nobj, sizeof *c->obj, cmp_obj);
+    for (size_t k = 0U; (o != NULL) && (k < o->n); k++) {
+        if (c->sub[o->first + k].s.sub == sub) {
+            return &c->sub[o->first + k];
+        }
+    }
+    return NULL;
+}
+
+/* Whether sub @p sub of @p index is absent (@p opt) or of @p type. */
+static bool sub_is(const ctx_t *c, uint16_t index, uint8_t sub, co_type_t type, bool opt)
+{
+    const bsub_t *b = bsub_of(c, index, sub);
+
+    return (b == NULL) ? opt : (b->s.type == (uint8_t)type);
+}
+
+/* Whether the core will run the PDO of communication object @p comm
+ * (pdo_scan, before the layout: the types of its parameters and of every
+ * PDO of its kind before it, numbered without gaps): only its mapping
+ * entries take their 16-bit forms (co_od.h), which only the PDO service
+ * checks. */
+static bool pdo_runs(const ctx_t *c, uint16_t comm)
+{
+    for (uint16_t i = (comm < 0x1800U) ? 0x1400U : 0x1800U; i <= comm; i++) {
+        bobj_t key;
+        const bobj_t *m;
+        key.index = (uint16_t)(i + 0x200U);
+        m = (const bobj_t *)bsearch(&key, c->obj, c->nobj, sizeof *c->obj, cmp_obj);
+        if ((m == NULL) || (pdo_entries(c, m) == 0U) ||
+            !sub_is(c, i, 1U, CO_UNSIGNED32, false) || !sub_is(c, i, 2U, CO_UNSIGNED8, false) ||
+            !sub_is(c, i, 3U, CO_UNSIGNED16, true) || !sub_is(c, i, 5U, CO_UNSIGNED16, true) ||
+            !sub_is(c, i, 6U, CO_UNSIGNED8, true)) {
+            return false;
+        }
+    }
+    return true;
+}
+
 /* Sub-entry @p b at the next offset its alignment allows from *off. */
 static void place(ctx_t *c, bsub_t *b, size_t *off, uint8_t *placed, size_t *nlim, size_t *nid)
 {
@@ -1255,9 +1301,13 @@ static eds_dev_t *build(ctx_t *c, const char *name, const char *text)
             for (size_t k = 0U; (n != 0U) && (k < o->n); k++) {
                 bsub_t *type = &c->sub[o->first + k];
                 if ((type->s.sub == 2U) && (type->s.type == (uint8_t)CO_UNSIGNED8)) {
+                    bool runs = pdo_runs(c, o->index);
                     for (size_t e = 1U; e <= n; e++) {
-                        /* (the entries in their 16-bit forms: co_od.h) */
-                        c->sub[m->first + e].s.size = 2U;
+                        /* (the entries of a PDO the core runs in their
+                         * 16-bit forms: co_od.h) */
+                        if (runs) {
+                            c->sub[m->first + e].s.size = 2U;
+                        }
                         place(c, &c->sub[m->first + e], &off, placed, &nlim, &nid);
                     }
                     place(c, &c->sub[m->first], &off, placed, &nlim, &nid);

@@ -598,3 +598,27 @@ def test_core_history_without_its_count(tmp_path):
         array = 2
         element = { name = "Standard error field", type = "UNSIGNED32", access = "ro" }
         """, "object 0x1003: the core counts the errors in sub 0")
+
+
+def test_too_many_mappable_objects(tmp_path):
+    """A PDO mapping entry is 16 bits in the RAM image (co_od.h
+    CO_OD_MAP_ENTRY): a reference into the device's table of mappable
+    objects, which holds at most 1016 of them; one more is refused with the
+    limit, and 1016 are fine."""
+    def arrays(n_objects: int, last: int) -> str:
+        out = ""
+        for k in range(n_objects):
+            out += textwrap.dedent(f"""
+                [[object]]
+                index = 0x{0x2100 + k:04X}
+                name = "Inputs"
+                object = "ARRAY"
+                array = {254 if k < n_objects - 1 else last}
+                element = {{ name = "Input", type = "UNSIGNED8", access = "ro", pdo_mapping = true }}
+                """)
+        return out
+    pdo = tpdo_comm() + tpdo_map(0x10010008)
+    # 0x1001:00 and the arrays' 4 x 254 entries: 1017
+    fails_with(tmp_path, pdo + arrays(4, 254), "1017 mappable objects", "at most 1016")
+    _, r = generate(tmp_path, pdo + arrays(4, 253))
+    assert r.returncode == 0, r.stderr

@@ -8,6 +8,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <string.h>
 
 #include <cmocka.h>
@@ -48,6 +49,83 @@ static void mapping_needs_invalid_pdo(void **state)
     tb_xfer(BUS, "601 23 00 18 01 81 01 00 00", "581 60 00 18 01 00 00 00 00");
     tb_xfer(BUS, "601 40 00 1A 00 00 00 00 00", "581 4F 00 1A 00 01 00 00 00");
     tb_xfer(BUS, "601 40 00 1A 01 00 00 00 00", "581 43 00 1A 01 40 00 05 20");
+}
+
+/* A frame "601 23 II II SS BB ss ii ii" (download of mapping entry @p sub of
+ * @p index: @p v) or its answer, as tb_xfer's text. */
+static void entry_frame(char *out, size_t cap, const char *head, uint16_t index, uint8_t sub,
+                        uint32_t v)
+{
+    (void)snprintf(out, cap, "%s %02X %02X %02X %02X %02X %02X %02X", head,
+                   (unsigned)(index & 0xFFU), (unsigned)(index >> 8U), (unsigned)sub,
+                   (unsigned)(v & 0xFFU), (unsigned)((v >> 8U) & 0xFFU),
+                   (unsigned)((v >> 16U) & 0xFFU), (unsigned)(v >> 24U));
+}
+
+/* The mapping entries live in the RAM image in 16-bit forms (co_od.h), a
+ * reference into the device's mappable-object table: over SDO each reads
+ * back as the UNSIGNED32 written, for the objects at both ends of the table
+ * and a dummy entry; a refused write leaves the entry as it was; the
+ * generator's table is the one co_od_map_table makes from the dictionary. */
+static void mapping_entry_forms(void **state)
+{
+    const co_dev_t *dev = &pdo_test_dev;
+    co_od_map_t rows[64];
+    uint32_t n = co_od_map_table(dev, rows, 64U);
+    char req[64];
+    char ans[64];
+    (void)state;
+    assert_int_equal(n, dev->n_maps);
+    assert_true((n >= 2U) && (n <= 64U));
+    for (uint32_t k = 0U; k < n; k++) {
+        assert_int_equal(rows[k].index, dev->maps[k].index);
+        assert_int_equal(rows[k].sub, dev->maps[k].sub);
+        assert_int_equal(rows[k].info, dev->maps[k].info);
+        assert_int_equal(rows[k].off, dev->maps[k].off);
+        if (k > 0U) {
+            assert_true(((uint32_t)rows[k - 1U].index << 8U | rows[k - 1U].sub) <
+                        ((uint32_t)rows[k].index << 8U | rows[k].sub));
+        }
+    }
+    pfx_start(&fx, 1, NULL);
+    tb_xfer(BUS, "601 23 00 14 01 01 02 00 80", "581 60 00 14 01 00 00 00 00");
+    tb_xfer(BUS, "601 23 00 18 01 81 01 00 80", "581 60 00 18 01 00 00 00 00");
+    tb_xfer(BUS, "601 2F 00 16 00 00 00 00 00", "581 60 00 16 00 00 00 00 00");
+    tb_xfer(BUS, "601 2F 00 1A 00 00 00 00 00", "581 60 00 1A 00 00 00 00 00");
+    for (uint32_t k = 0U; k < n; k += n - 1U) {
+        const co_od_map_t *m = &dev->maps[k];
+        const co_od_entry_t *e = co_od_find(dev->od, dev->od_count, m->index);
+        co_od_sub_t sd;
+        const co_od_sub_t *s = (e != NULL) ? co_od_find_sub(dev, e, m->sub, &sd) : NULL;
+        uint16_t map;
+        uint32_t v = ((uint32_t)m->index << 16U) | ((uint32_t)m->sub << 8U) |
+                     (8U * ((m->info & CO_OD_MAP_SIZE) + 1U));
+        assert_non_null(s);
+        if (s == NULL) {
+            return;
+        }
+        map = ((s->flags & CO_SUB_MAP_R) != 0U) ? 0x1600U : 0x1A00U;
+        entry_frame(req, sizeof req, "601 23", map, 1U, v);
+        entry_frame(ans, sizeof ans, "581 60", map, 1U, 0U);
+        tb_xfer(BUS, req, ans);
+        entry_frame(req, sizeof req, "601 40", map, 1U, 0U);
+        entry_frame(ans, sizeof ans, "581 43", map, 1U, v);
+        tb_xfer(BUS, req, ans);
+        assert_int_equal(pfx_get(&fx, map, 1U), v);
+        /* refused (no such object: 0x06020000): the entry stays */
+        entry_frame(req, sizeof req, "601 23", map, 1U, 0x99990010UL);
+        entry_frame(ans, sizeof ans, "581 80", map, 1U, 0x06020000UL);
+        tb_xfer(BUS, req, ans);
+        entry_frame(req, sizeof req, "601 40", map, 1U, 0U);
+        entry_frame(ans, sizeof ans, "581 43", map, 1U, v);
+        tb_xfer(BUS, req, ans);
+    }
+    /* a dummy entry (UNSIGNED16 gap) reads back as written */
+    tb_xfer(BUS, "601 23 00 16 02 10 00 06 00", "581 60 00 16 02 00 00 00 00");
+    tb_xfer(BUS, "601 40 00 16 02 00 00 00 00", "581 43 00 16 02 10 00 06 00");
+    /* and 0 as 0 */
+    tb_xfer(BUS, "601 23 00 16 02 00 00 00 00", "581 60 00 16 02 00 00 00 00");
+    tb_xfer(BUS, "601 40 00 16 02 00 00 00 00", "581 43 00 16 02 00 00 00 00");
 }
 
 static void rpdo_mapping_rules(void **state)
@@ -312,6 +390,7 @@ int main(void)
         cmocka_unit_test(ssd_630_sync_pdo_setup),
         cmocka_unit_test(kollmorgen_free_mapping),
         cmocka_unit_test(ssd_630_profile_velocity),
+        cmocka_unit_test(mapping_entry_forms),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -88,9 +88,10 @@ static co_err_t map_state(const co_node_t *node, uint16_t i, const uint8_t *map,
     uint32_t count = (map != NULL) ? n : 1U;
     uint32_t total = 0U;
     bool direct = map != NULL;
+    uint32_t end = 0U;
 
     p->len = 0U;
-    p->flags &= (uint16_t)~CO_PDO_F_DIRECT;
+    p->flags &= (uint16_t)~(CO_PDO_F_DIRECT | CO_PDO_F_AT_END);
     if (count > dev->pdo[i].map_max) {
         return CO_ERR_MAP_LEN;
     }
@@ -119,7 +120,11 @@ static co_err_t map_state(const co_node_t *node, uint16_t i, const uint8_t *map,
             if ((size == 0U) || ((s.flags & (tx ? CO_SUB_MAP_T : CO_SUB_MAP_R)) == 0U)) {
                 return CO_ERR_NO_MAP;
             }
-            direct = direct && direct_ok(e, &s, co_pdo_row(dev, ref), tx, bits, total);
+            if (direct) {
+                const co_od_map_t *m = co_pdo_row(dev, ref);
+                direct = direct_ok(e, &s, m, tx, bits, total);
+                end |= CO_FAST ? (m->info & CO_OD_MAP_AT_END) : 0U;
+            }
         }
         if ((bits == 0U) || (bits > (size * 8U))) {
             return CO_ERR_PARAM_INCOMPAT;
@@ -134,7 +139,9 @@ static co_err_t map_state(const co_node_t *node, uint16_t i, const uint8_t *map,
         return CO_ERR_MAP_LEN;
     }
     p->len = (uint8_t)((total + 7U) / 8U); /* (0 for no entries: disabled) */
-    p->flags |= (uint16_t)((direct && (total != 0U)) ? CO_PDO_F_DIRECT : 0U);
+    p->flags |= (uint16_t)((direct && (total != 0U))
+                               ? (CO_PDO_F_DIRECT | ((end != 0U) ? CO_PDO_F_AT_END : 0U))
+                               : 0U);
     return CO_OK;
 }
 
@@ -221,7 +228,7 @@ static void restart(co_node_t *node, uint16_t i, bool reset)
         p->flags = 0U;
     }
     remap(node, i);
-    p->flags &= (uint16_t)(CO_PDO_F_DIRECT | CO_PDO_F_TIMEOUT | CO_PDO_F_SHORT |
+    p->flags &= (uint16_t)(CO_PDO_F_DIRECT | CO_PDO_F_AT_END | CO_PDO_F_TIMEOUT | CO_PDO_F_SHORT |
                            CO_PDO_F_LONG);
     p->count = 0U;
 }

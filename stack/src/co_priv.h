@@ -675,6 +675,8 @@ static inline void co_nmt_error(co_node_t *node, uint8_t sub)
 #define CO_PDO_F_SAMPLED   0x0800U /* TPDO 252: data[] sampled at the last SYNC */
 #define CO_PDO_F_RTR       0x1000U /* TPDO: a remote request waits for an answer */
 #define CO_PDO_F_DIRECT    0x2000U /* every mapping entry copied directly (co_pdo_config.c) */
+#define CO_PDO_F_AT_END    0x4000U /* a build for speed, CO_PDO_F_DIRECT: an entry's row has
+                                      CO_OD_MAP_AT_END (only such a PDO looks at it) */
 
 /* PDO i's mapping entries in the RAM image: 16 bits each (co_od.h,
  * CO_OD_MAP_ENTRY), a reference to a dummy type or to a row of the
@@ -830,13 +832,13 @@ CO_INLINE void co_copy_small(uint8_t *dst, const uint8_t *src, uint8_t n)
  * padding to overwrite (a value at the end of the RAM image: the 8 bytes
  * that end with the mapped ones, CO_OD_MAP_AT_END). */
 CO_INLINE void co_pdo_get_direct(const co_node_t *node, const co_od_map_t *m, uint32_t n,
-                                 uint8_t *at)
+                                 uint8_t *at, bool may_end)
 {
     uint32_t off = m->off;
 
     if (CO_NATIVE_LE) {
         uint64_t x;
-        if ((m->info & CO_OD_MAP_AT_END) == 0U) {
+        if (!may_end || ((m->info & CO_OD_MAP_AT_END) == 0U)) {
             (void)memcpy(&x, &node->ram[off], 8U);
         } else {
             uint32_t shift = 8U * (8U - n);
@@ -876,21 +878,32 @@ CO_INLINE void co_pdo_put_direct(co_node_t *node, const co_od_map_t *m, const ui
  * its mapped objects straight into @p out (8 bytes, zero past the
  * mapping), or from @p data (@p dlc bytes, the entries the frame covers;
  * dummies are gaps), without a call. */
-CO_INLINE void co_pdo_sample_direct(const co_node_t *node, uint16_t i, uint8_t *out)
+CO_INLINE uint8_t *co_pdo_sample_entries(const co_node_t *node, const uint8_t *map,
+                                         uint32_t count, uint8_t *at, bool may_end)
 {
-    uint8_t buf[16]; /* room for the 8 bytes written at the last entry */
-    uint8_t *at = buf;
-    const co_dev_t *dev = node->dev;
-    const uint8_t *map = co_pdo_map(node, &dev->pdo[i]);
-    uint32_t count = co_pdo_count(node, i);
-
     /* (at most 8 entries of a byte or more: only the compiler needs to know) */
     count = (count <= 8U) ? count : 0U;
     for (uint32_t k = 0U; k < count; k++) {
         uint32_t ref = co_pdo_ref(map, k);
         uint32_t n = co_pdo_ref_bits(ref) >> 3U; /* (a TPDO has no dummy entry) */
-        co_pdo_get_direct(node, co_pdo_row(dev, ref), n, at);
+        co_pdo_get_direct(node, co_pdo_row(node->dev, ref), n, at, may_end);
         at = &at[n];
+    }
+    return at;
+}
+
+CO_INLINE void co_pdo_sample_direct(const co_node_t *node, uint16_t i, uint8_t *out)
+{
+    uint8_t buf[16]; /* room for the 8 bytes written at the last entry */
+    uint8_t *at = buf;
+    const uint8_t *map = co_pdo_map(node, &node->dev->pdo[i]);
+    uint32_t count = co_pdo_count(node, i);
+
+    /* (the entries' rows looked at for CO_OD_MAP_AT_END only where one has it) */
+    if ((node->pdo.p[i].flags & CO_PDO_F_AT_END) == 0U) {
+        at = co_pdo_sample_entries(node, map, count, at, false);
+    } else {
+        at = co_pdo_sample_entries(node, map, count, at, true);
     }
     (void)memset(at, 0, 8U);
     (void)memcpy(out, buf, 8U);

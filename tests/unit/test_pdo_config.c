@@ -112,6 +112,15 @@ static void mapping_entry_forms(void **state)
         entry_frame(ans, sizeof ans, "581 43", map, 1U, v);
         tb_xfer(BUS, req, ans);
         assert_int_equal(pfx_get(&fx, map, 1U), v);
+        {
+            /* a part of it: its low bytes (the wire image) */
+            uint8_t b[2] = {0U, 0U};
+            uint32_t len = 0U;
+            assert_int_equal(co_od_read(&fx.n.node, map, 1U, b, 2U, &len), CO_ERR_TYPE_TOO_LONG);
+            assert_int_equal(len, 2U);
+            assert_int_equal(b[0], v & 0xFFU);
+            assert_int_equal(b[1], (v >> 8U) & 0xFFU);
+        }
         /* refused (no such object: 0x06020000): the entry stays */
         entry_frame(req, sizeof req, "601 23", map, 1U, 0x99990010UL);
         entry_frame(ans, sizeof ans, "581 80", map, 1U, 0x06020000UL);

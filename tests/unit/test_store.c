@@ -1084,6 +1084,8 @@ static void stored_pdo_mapping_after_power_on(void **state)
     tb_xfer(BUS, "605 23 00 18 01 85 01 00 00", "585 60 00 18 01 00 00 00 00");
     tb_xfer(BUS, "605 23 10 10 02 73 61 76 65", "585 60 10 10 02 00 00 00 00");
     start_generic();
+    /* (the entry is stored in its 16-bit form, co_od.h: read back whole) */
+    tb_xfer(BUS, "605 40 00 1A 01 00 00 00 00", "585 43 00 1A 01 10 00 01 21");
     tb_xfer(BUS, "605 2B 01 21 00 34 12 00 00", "585 60 01 21 00 00 00 00 00");
     tb_send(BUS, "000 01 05");
     tb_expect(BUS, "285 00 00 00 00 00 00 00 00"); /* TPDO2, event-driven */

@@ -401,7 +401,9 @@ co_err_t co_od_read_part(co_node_t *node, const co_od_entry_t *e, const co_od_su
     v = (const uint8_t *)co_od_loc(node, e, s);
     if ((fixed != 0U) && (s->size != fixed)) {
         /* a PDO mapping entry: its UNSIGNED32 from its 16-bit form (co_od.h) */
-        mapped = co_od_map_u32(node->dev, co_ram_u16(node, (uint16_t)(v - node->ram)));
+        uint16_t form;
+        (void)memcpy(&form, v, sizeof form);
+        mapped = co_od_map_u32(node->dev, form);
         v = (const uint8_t *)&mapped;
     }
     size = (fixed != 0U) ? fixed : data_size(v, s);

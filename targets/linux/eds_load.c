@@ -1066,9 +1066,65 @@ static bool sub_is(const ctx_t *c, uint16_t index, uint8_t sub, co_type_t type, 
     return (b == NULL) ? opt : (b->s.type == (uint8_t)type);
 }
 
+/* The default of mapping entry @p b (UNSIGNED32, native), 0 for none. */
+static uint32_t entry_default(const bsub_t *b)
+{
+    uint32_t v = 0U;
+
+    if (b->val != NULL) {
+        (void)memcpy(&v, b->val, sizeof v);
+    }
+    return v;
+}
+
+static int cmp_map(const void *a, const void *b)
+{
+    const co_od_map_t *x = (const co_od_map_t *)a;
+    const co_od_map_t *y = (const co_od_map_t *)b;
+    uint32_t kx = ((uint32_t)x->index << 8U) | x->sub;
+    uint32_t ky = ((uint32_t)y->index << 8U) | y->sub;
+
+    return (kx < ky) ? -1 : (kx > ky) ? 1 : 0;
+}
+
+/* The @p n rows of the mappable objects at @p rows (room for one more per
+ * sub-entry), with a row of its own for every object a default mapping
+ * entry names that is not one of them (absent, or not mappable: a foreign
+ * EDS may have such a default; its PDO then waits for a valid mapping, as
+ * the core makes of it, and the entry reads back as the EDS says), sorted.
+ * Returns their number. */
+static uint32_t map_rows(const ctx_t *c, co_od_map_t *rows, uint32_t n)
+{
+    uint32_t total = n;
+
+    for (size_t i = 0U; i < c->nsub; i++) {
+        const bsub_t *b = &c->sub[i];
+        uint32_t v = entry_default(b);
+        co_od_map_t key;
+        bool known = false;
+        if ((b->s.type != (uint8_t)CO_UNSIGNED32) || (b->s.size != 2U) || (v == 0U) ||
+            (((v >> 8U) & 0xFFU) == 0U && ((v >> 16U) >= 1U) && ((v >> 16U) <= 7U))) {
+            continue; /* not a mapping entry in its 16-bit form, none, a dummy */
+        }
+        key.index = (uint16_t)(v >> 16U);
+        key.sub = (uint8_t)(v >> 8U);
+        key.info = 0U;
+        key.off = 0U;
+        for (uint32_t k = 0U; (k < total) && !known; k++) {
+            known = cmp_map(&rows[k], &key) == 0;
+        }
+        if (!known) {
+            rows[total++] = key;
+        }
+    }
+    qsort(rows, total, sizeof *rows, cmp_map);
+    return total;
+}
+
 /* Whether the core will run the PDO of communication object @p comm
  * (pdo_scan, before the layout: the types of its parameters and of every
- * PDO of its kind before it, numbered without gaps): only its mapping
+ * PDO of its kind before it, numbered without gaps; default mapping entries
+ * of 1..64 bits, which have 16-bit forms): only its mapping
  * entries take their 16-bit forms (co_od.h), which only the PDO service
  * checks. */
 static bool pdo_runs(const ctx_t *c, uint16_t comm)
@@ -1078,7 +1134,15 @@ static bool pdo_runs(const ctx_t *c, uint16_t comm)
         const bobj_t *m;
         key.index = (uint16_t)(i + 0x200U);
         m = (const bobj_t *)bsearch(&key, c->obj, c->nobj, sizeof *c->obj, cmp_obj);
-        if ((m == NULL) || (pdo_entries(c, m) == 0U) ||
+        size_t n = (m != NULL) ? pdo_entries(c, m) : 0U;
+        for (size_t e = 1U; e <= n; e++) {
+            /* a default of 0 or more than 64 bits has no 16-bit form */
+            uint32_t bits = entry_default(&c->sub[m->first + e]) & 0xFFU;
+            if ((entry_default(&c->sub[m->first + e]) != 0U) && ((bits == 0U) || (bits > 64U))) {
+                return false;
+            }
+        }
+        if ((m == NULL) || (n == 0U) ||
             !sub_is(c, i, 1U, CO_UNSIGNED32, false) || !sub_is(c, i, 2U, CO_UNSIGNED8, false) ||
             !sub_is(c, i, 3U, CO_UNSIGNED16, true) || !sub_is(c, i, 5U, CO_UNSIGNED16, true) ||
             !sub_is(c, i, 6U, CO_UNSIGNED8, true)) {
@@ -1380,15 +1444,23 @@ static eds_dev_t *build(ctx_t *c, const char *name, const char *text)
         d->dev.od_count = (uint16_t)c->nobj;
         d->dev.ram_size = (uint16_t)off;
         nmaps = co_od_map_table(&d->dev, NULL, 0U);
-        d->maps = (co_od_map_t *)calloc((nmaps != 0U) ? nmaps : 1U, sizeof *d->maps);
-        if ((d->maps == NULL) || (nmaps > CO_OD_MAP_ROWS_MAX)) {
-            (void)fail(c, NULL, NULL, (d->maps == NULL) ? "out of memory"
-                                                         : "more than 1016 mappable objects");
+        /* (room for a row per default mapping entry too: map_rows) */
+        d->maps = (co_od_map_t *)calloc(nmaps + c->nsub + 1U, sizeof *d->maps);
+        if (d->maps == NULL) {
+            (void)fail(c, NULL, NULL, "out of memory");
             free(dv);
             eds_free(d);
             return NULL;
         }
         (void)co_od_map_table(&d->dev, d->maps, nmaps);
+        nmaps = map_rows(c, d->maps, nmaps);
+        if (nmaps > CO_OD_MAP_ROWS_MAX) {
+            (void)fail(c, NULL, NULL, "more than %u mappable objects",
+                       (unsigned)CO_OD_MAP_ROWS_MAX);
+            free(dv);
+            eds_free(d);
+            return NULL;
+        }
         d->dev.maps = d->maps;
         d->dev.n_maps = (uint16_t)nmaps;
         /* the default runs: the values that are not zero and the $NODEID

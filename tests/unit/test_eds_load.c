@@ -260,6 +260,67 @@ static void objects_left_out(void **state)
     eds_free(d);
 }
 
+/* A PDO mapping entry is held in its 16-bit form (co_od.h), a row of the
+ * mappable-object table: a default that names an object the EDS lacks
+ * still loads and reads back as written (a row of its own), its PDO waits
+ * for a valid mapping, and a mapping written over SDO then runs. */
+static void mapping_default_of_an_absent_object(void **state)
+{
+    static const char from[] = "DefaultValue=0x20020010";
+    char *text = malloc(sizeof EDS);
+    char *at;
+    char err[256] = "";
+    fx_t *f = calloc(1U, sizeof *f);
+    co_node_config_t cfg;
+    tb_bus_t *b;
+
+    (void)state;
+    assert_non_null(text);
+    assert_non_null(f);
+    if ((text == NULL) || (f == NULL)) {
+        free(text);
+        free(f);
+        return;
+    }
+    (void)memcpy(text, EDS, sizeof EDS);
+    at = strstr(text, from);
+    assert_non_null(at);
+    (void)memcpy(at, "DefaultValue=0x60400010", sizeof from - 1U);
+    f->eds = eds_load_text("t.eds", text, err, sizeof err);
+    assert_string_equal(err, "");
+    assert_non_null(f->eds);
+    f->ram = calloc(1U, eds_device(f->eds)->ram_size);
+    tb_init(&f->bus);
+    b = &f->bus;
+    (void)memset(&cfg, 0, sizeof cfg);
+    cfg.dev = eds_device(f->eds);
+    cfg.hal = tb_hal(b, 0U);
+    cfg.node_id = 5U;
+    cfg.ram = f->ram;
+    cfg.pdo = f->pdo;
+    assert_int_equal(co_node_init(&f->node, &cfg, 0U), CO_RESULT_OK);
+    tb_attach(b, 0U, &f->node);
+    tb_expect(b, "705 00");
+    tb_xfer(b, "605 40 00 16 01 00 00 00 00", "585 43 00 16 01 10 00 40 60");
+    tb_send(b, "000 01 05");
+    tb_send(b, "205 32 00");
+    tb_xfer(b, "605 40 02 20 00 00 00 00 00", "585 4B 02 20 00 14 00 00 00");
+    /* remapped to 0x2002 */
+    tb_send(b, "000 80 05");
+    tb_xfer(b, "605 23 00 14 01 05 02 00 80", "585 60 00 14 01 00 00 00 00");
+    tb_xfer(b, "605 2F 00 16 00 00 00 00 00", "585 60 00 16 00 00 00 00 00");
+    tb_xfer(b, "605 23 00 16 01 10 00 02 20", "585 60 00 16 01 00 00 00 00");
+    tb_xfer(b, "605 2F 00 16 00 01 00 00 00", "585 60 00 16 00 00 00 00 00");
+    tb_xfer(b, "605 23 00 14 01 05 02 00 00", "585 60 00 14 01 00 00 00 00");
+    tb_send(b, "000 01 05");
+    tb_send(b, "205 32 00");
+    tb_xfer(b, "605 40 02 20 00 00 00 00 00", "585 4B 02 20 00 32 00 00 00");
+    eds_free(f->eds);
+    free(f->ram);
+    free(f);
+    free(text);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -267,6 +328,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(values_over_sdo, setup, teardown),
         cmocka_unit_test_setup_teardown(limits, setup, teardown),
         cmocka_unit_test_setup_teardown(heartbeat_and_pdos, setup, teardown),
+        cmocka_unit_test(mapping_default_of_an_absent_object),
         cmocka_unit_test(bad_files),
         cmocka_unit_test(objects_left_out),
     };

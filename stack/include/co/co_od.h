@@ -222,7 +222,10 @@ static inline uint16_t co_od_off(const co_od_entry_t *e, const co_od_sub_t *s)
  *  sub-index): every sub-entry of a fixed-size type that may be mapped into
  *  a PDO (CO_SUB_MAP_T or CO_SUB_MAP_R), with what the PDO engine needs to
  *  copy its value without a dictionary lookup. The generator makes the
- *  table (a dictionary built at run time: co_od_map_table). */
+ *  table (a dictionary built at run time: co_od_map_table; the daemon's
+ *  EDS loader adds a row for each object a default mapping entry names
+ *  that is not mappable, so that entry reads back: the PDO engine looks
+ *  the object up before it uses a row). */
 typedef struct co_od_map {
     uint16_t index;
     uint8_t  sub;

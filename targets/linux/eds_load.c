@@ -1099,12 +1099,15 @@ static uint32_t map_rows(const ctx_t *c, co_od_map_t *rows, uint32_t n)
 
     for (size_t i = 0U; i < c->nsub; i++) {
         const bsub_t *b = &c->sub[i];
-        uint32_t v = entry_default(b);
+        uint32_t v;
         co_od_map_t key;
         bool known = false;
-        if ((b->s.type != (uint8_t)CO_UNSIGNED32) || (b->s.size != 2U) || (v == 0U) ||
-            (((v >> 8U) & 0xFFU) == 0U && ((v >> 16U) >= 1U) && ((v >> 16U) <= 7U))) {
-            continue; /* not a mapping entry in its 16-bit form, none, a dummy */
+        if ((b->s.type != (uint8_t)CO_UNSIGNED32) || (b->s.size != 2U)) {
+            continue; /* not a mapping entry in its 16-bit form */
+        }
+        v = entry_default(b);
+        if ((v == 0U) || ((((v >> 8U) & 0xFFU) == 0U) && ((v >> 16U) >= 1U) && ((v >> 16U) <= 7U))) {
+            continue; /* none, a dummy */
         }
         key.index = (uint16_t)(v >> 16U);
         key.sub = (uint8_t)(v >> 8U);

@@ -146,7 +146,8 @@ def fw_node(firmware, network, eds_path, sniffer):
 def test_daemon_case_on_firmware(case, fw_node, sniffer, monkeypatch):
     collect = test_pdo.sync_and_collect
     monkeypatch.setattr(test_pdo, "sync_and_collect",
-                        lambda s, n, gap=FW_SYNC_GAP: collect(s, n, max(gap, FW_SYNC_GAP)))
+                        lambda s, n, gap=FW_SYNC_GAP, expect=False:
+                        collect(s, n, max(gap, FW_SYNC_GAP), expect))
     args = {"node": fw_node, "sniffer": sniffer}
     case(**{k: args[k] for k in inspect.signature(case).parameters})
 

@@ -536,7 +536,7 @@ uint32_t co_od_map_u32(const co_dev_t *dev, uint32_t ref)
 
 /* The engine's commit (co_od_commit): a checked value of @p s from wire
  * bytes into its RAM place. */
-CO_INLINE void commit(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
+CO_INLINE void commit_value(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
                       const uint8_t *data, uint32_t len)
 {
     uint8_t fixed = co_type_len(s->type);
@@ -569,7 +569,7 @@ CO_INLINE void commit(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t
 void co_od_commit(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
                   const uint8_t *data, uint32_t len)
 {
-    commit(node, e, s, data, len);
+    commit_value(node, e, s, data, len);
 }
 
 CO_HOT co_err_t write_value(co_node_t *node, const co_od_entry_t *e, const co_od_sub_t *s,
@@ -628,7 +628,7 @@ CO_HOT co_err_t write_value(co_node_t *node, const co_od_entry_t *e, const co_od
     } else if (CO_STORAGE) {
         co_od_commit(node, e, s, data, len); /* (one copy: the store service commits too) */
     } else {
-        commit(node, e, s, data, len); /* (its only caller: inlined) */
+        commit_value(node, e, s, data, len); /* (its only caller: inlined) */
     }
     touch_owner(node, sh);
     if ((ops & (CO_SVC_COMMIT | CO_SVC_WRITTEN)) == CO_SVC_WRITTEN) {

@@ -882,14 +882,15 @@ CO_INLINE uint8_t *co_pdo_sample_entries(const co_node_t *node, const uint8_t *m
                                          uint32_t count, uint8_t *at, bool may_end)
 {
     /* (at most 8 entries of a byte or more: only the compiler needs to know) */
-    count = (count <= 8U) ? count : 0U;
-    for (uint32_t k = 0U; k < count; k++) {
+    uint32_t n_ent = (count <= 8U) ? count : 0U;
+    uint8_t *out = at;
+    for (uint32_t k = 0U; k < n_ent; k++) {
         uint32_t ref = co_pdo_ref(map, k);
         uint32_t n = co_pdo_ref_bits(ref) >> 3U; /* (a TPDO has no dummy entry) */
-        co_pdo_get_direct(node, co_pdo_row(node->dev, ref), n, at, may_end);
-        at = &at[n];
+        co_pdo_get_direct(node, co_pdo_row(node->dev, ref), n, out, may_end);
+        out = &out[n];
     }
-    return at;
+    return out;
 }
 
 CO_INLINE void co_pdo_sample_direct(const co_node_t *node, uint16_t i, uint8_t *out)

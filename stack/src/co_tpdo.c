@@ -382,6 +382,8 @@ CO_HOT uint32_t at_process(co_node_t *node, uint16_t i, uint8_t type, uint32_t n
         node->pdo_poll = detect ? 1U : node->pdo_poll;
 #endif
         next = event_driven(node, i, next, detect, &held);
+    } else {
+        /* synchronous (0..240), nothing waiting: the SYNC decides */
     }
     return held ? co_deadline_min(node->now, next, node->now + RETRY_US) : next;
 }

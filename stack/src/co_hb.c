@@ -118,6 +118,7 @@ static void consumer_start(co_node_t *node, uint32_t k)
     bool used = ((v & 0xFFFFU) != 0U) && (((v >> 16U) & 0xFFU) != 0U);
 
     node->errctl.hbc_state[k] = used ? (uint8_t)HBC_WAITING : (uint8_t)HBC_UNUSED;
+    node->errctl.hbc_left[k] = 0U; /* (no deadline: hbc_advance) */
     node->errctl.hbc_nmt[k] = (uint8_t)CO_NMT_INITIALISING;
     co_rx_invalidate(node);
 }
@@ -139,6 +140,47 @@ static void hb_reset(co_node_t *node)
     }
 }
 
+/* The consumers' deadlines in 16 bits: units of 1024 us (HBC_SHIFT) after
+ * a time base (co_errctl_t.hbc_base), rounded up. A consumer time of at
+ * most 65,535 ms is at most 64,001 units. Rounded up, a timeout is never
+ * detected before the consumer time has passed, and at most 1023 us after
+ * it (when co_node_process is called at the deadline it returned): CiA 301
+ * gives the consumer time in ms and a master sets it well above its
+ * producer time (CAN arbitration and the port's tick, typically 1 ms, add
+ * jitter of the same order), so a detection within the next millisecond is
+ * what a consumer of ms resolution does anyway. RAM -16 B for 8 consumers
+ * (the base +4). */
+#define HBC_SHIFT 10U
+#define HBC_UNIT  (1UL << HBC_SHIFT)
+
+/* Move the time base to node->now, less than a unit before it: the
+ * deadlines' units shrink by the whole units passed (0: the deadline has
+ * come; an entry not active has 0). A time before the base (a receive time
+ * stamp taken before the last run: co_priv.h, CO_STEP_BACK_MAX) moves
+ * nothing. With no deadline ahead the base is simply now (none to keep),
+ * so the base is never older than the last heartbeat or run of the service
+ * while a deadline is ahead: the service runs by the earliest (at most
+ * 65.5 s ahead), and a call 67 s (2^16 units) or more after the base, of
+ * a port that called it late, finds every deadline come. */
+static void hbc_advance(co_node_t *node)
+{
+    co_errctl_t *c = &node->errctl;
+    uint32_t d = node->now - c->hbc_base;
+    uint32_t units = (d <= (0xFFFFFFFFUL - CO_STEP_BACK_MAX)) ? (d >> HBC_SHIFT) : 0U;
+    uint32_t any = 0U;
+
+    c->hbc_base += units << HBC_SHIFT;
+    for (uint32_t k = node->n_hb_cons; k > 0U; k--) {
+        uint32_t left = c->hbc_left[k - 1U];
+        left = (left > units) ? (left - units) : 0U;
+        c->hbc_left[k - 1U] = (uint16_t)left;
+        any |= left;
+    }
+    if (any == 0U) {
+        c->hbc_base = node->now;
+    }
+}
+
 /* A heartbeat (a data frame of at least one byte) of the producer whom
  * entry @p slot monitors. */
 static void hb_rx(co_node_t *node, uint32_t slot, const co_frame_t *f)
@@ -147,8 +189,15 @@ static void hb_rx(co_node_t *node, uint32_t slot, const co_frame_t *f)
     uint8_t st = (uint8_t)(f->data[0] & 0x7FU);
     uint8_t prev = c->hbc_state[slot];
     bool changed = c->hbc_nmt[slot] != st;
+    int32_t end;
 
-    c->hbc_deadline[slot] = node->now + ms_to_us(hb_cons(node, slot) & 0xFFFFU);
+    /* the deadline: the consumer time after now, now less than a unit
+     * after the base (or before it: a time stamp before the last run) */
+    hbc_advance(node);
+    end = (int32_t)(node->now - c->hbc_base) +
+          (int32_t)ms_to_us(hb_cons(node, slot) & 0xFFFFU);
+    c->hbc_left[slot] =
+        (uint16_t)((end > 0) ? (((uint32_t)end + (HBC_UNIT - 1U)) >> HBC_SHIFT) : 0U);
     c->hbc_state[slot] = (uint8_t)HBC_ACTIVE;
     c->hbc_nmt[slot] = st;
     if (prev == (uint8_t)HBC_LOST) {
@@ -214,16 +263,18 @@ static uint32_t errctl_process(co_node_t *node, uint32_t next)
         }
         next = co_deadline_min(now, next, due);
     }
+    hbc_advance(node);
     for (uint32_t k = 0U; k < node->n_hb_cons; k++) {
         co_errctl_t *c = &node->errctl;
         if (c->hbc_state[k] == (uint8_t)HBC_ACTIVE) {
-            if (co_time_reached(now, c->hbc_deadline[k])) {
+            if (c->hbc_left[k] == 0U) {
                 c->hbc_state[k] = (uint8_t)HBC_LOST;
                 update_error(node);
                 hb_event(node, CO_HB_TIMEOUT, k);
                 co_nmt_error(node, CO_ERRBEH_COMM); /* 0x1029: a communication error */
             } else {
-                next = co_deadline_min(now, next, c->hbc_deadline[k]);
+                next = co_deadline_min(now, next,
+                                       c->hbc_base + ((uint32_t)c->hbc_left[k] << HBC_SHIFT));
             }
         }
     }

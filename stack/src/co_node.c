@@ -318,6 +318,9 @@ CO_NOINLINE void co_node_stalled(co_node_t *node, uint32_t now_us)
     /* the next heartbeat due now (the last one long past: then the cycle
      * starts over from now) */
     node->errctl.hb_last = now_us - (uint32_t)CO_HORIZON_US;
+    /* every heartbeat consumer's deadline has come (co_hb.c: hbc_advance
+     * finds 2^21 units passed) */
+    node->errctl.hbc_base = now_us - (uint32_t)CO_HORIZON_US;
 #if CO_NODE_GUARDING
     node->errctl.guard_deadline = now_us;
 #endif
@@ -331,9 +334,6 @@ CO_NOINLINE void co_node_stalled(co_node_t *node, uint32_t now_us)
 #if CO_LSS
     node->lss.switch_at = now_us;
 #endif
-    for (uint32_t k = 0U; k < node->n_hb_cons; k++) {
-        node->errctl.hbc_deadline[k] = now_us;
-    }
     for (uint32_t i = 0U; i < n; i++) {
         node->pdo.p[i].at = now_us - (uint32_t)CO_HORIZON_US; /* every PDO time has ended */
     }

@@ -635,7 +635,7 @@ static void loss_warning_stops_until_fault_reset(void **state)
     /* consume node 0x7F's heartbeat (100 ms); it comes once, then stops */
     tb_xfer(BUS, "601 23 16 10 01 64 00 7F 00", "581 60 16 10 01 00 00 00 00");
     tb_send(BUS, "77F 05");
-    t402_run(&fx, 100000);
+    t402_run(&fx, 100000 + 1023); /* (a consumer: within 1023 us, co_hb.c) */
     tb_expect(BUS, "081 30 81 11 00 00 00 00 00");
     tb_expect_none(BUS);
     assert_int_equal(co402_state(AX), CO402_OPERATION_ENABLED);

@@ -324,7 +324,7 @@ static void heartbeat_consumer_and_error_behaviour(void **state)
     tb_send(&S->bus, "77F 05");
     sr_run(S, 1499);
     tb_expect_none(&S->bus);
-    sr_run(S, 1);
+    sr_run(S, 2); /* (the consumer: within 1023 us, co_hb.c) */
     /* the core's EMCY 0x8130, with 0x2320 = 0x0100 in bytes 3-4 (the
      * plug-in's emcy_mfr) */
     sr_expect(S, "082 30 81 11 00 01 00 00 00");
@@ -367,7 +367,7 @@ static void heartbeat_loss_with_fault_mask(void **state)
     tb_send(&S->bus, "77F 05");
     sr_run(S, 1499);
     tb_expect_none(&S->bus);
-    sr_run(S, 1);
+    sr_run(S, 2); /* (the consumer: within 1023 us, co_hb.c) */
     sr_expect(S, "082 30 81 11 00 01 00 00 00");
     tb_expect_none(&S->bus);
     /* the plug-in's next step: Fault (the power stage is off in Ready to

@@ -220,6 +220,10 @@ static void heartbeat_muted_and_resumed(void **state)
 
 /* -------------------------------------------------- heartbeat consumer */
 
+/* A consumer timeout is detected at its consumer time or up to 1023 us
+ * later, never before (co_hb.c: its deadline in units of 1024 us). */
+#define HBC_LATE 1023U
+
 static void heartbeat_consumer_timeout_and_recovery(void **state)
 {
     /* sub1: producer 5, 200 ms */
@@ -244,7 +248,7 @@ static void heartbeat_consumer_timeout_and_recovery(void **state)
     /* silence: timeout exactly 200 ms after the last heartbeat */
     tb_advance(BUS, 199999U);
     tb_expect_none(BUS);
-    tb_advance(BUS, 1U);
+    tb_advance(BUS, 1U + HBC_LATE);
     tb_expect(BUS, "081 30 81 11 00 00 00 00 00");
     tb_expect_none(BUS);
     assert_int_equal(REC.n, 2);
@@ -264,7 +268,7 @@ static void heartbeat_consumer_timeout_and_recovery(void **state)
     expect_event(&REC, 2, CO_HB_RECOVERED, 5, CO_NMT_OPERATIONAL);
     tb_xfer(BUS, "601 40 01 10 00 00 00 00 00", "581 4F 01 10 00 00 00 00 00");
     /* and are monitored again */
-    tb_advance(BUS, 200000U);
+    tb_advance(BUS, 200000U + HBC_LATE);
     tb_expect(BUS, "081 30 81 11 00 00 00 00 00");
     tb_expect_none(BUS);
 }
@@ -286,7 +290,7 @@ static void heartbeat_consumer_state_changes(void **state)
     tb_send(BUS, "708 04");
     tb_advance(BUS, 499999U);
     tb_expect_none(BUS);
-    tb_advance(BUS, 1U);
+    tb_advance(BUS, 1U + HBC_LATE);
     tb_expect(BUS, "081 30 81 11 00 00 00 00 00");
     expect_event(&REC, 3, CO_HB_TIMEOUT, 9, CO_NMT_OPERATIONAL);
     tb_expect_none(BUS);
@@ -299,7 +303,7 @@ static void heartbeat_consumer_two_producers_one_error(void **state)
     tb_send(BUS, "705 05");
     tb_send(BUS, "706 05");
     /* 5 times out first: one EMCY */
-    tb_advance(BUS, 100000U);
+    tb_advance(BUS, 100000U + HBC_LATE);
     tb_expect(BUS, "081 30 81 11 00 00 00 00 00");
     tb_expect_none(BUS);
     /* 6 times out too: the error is already active */
@@ -347,7 +351,7 @@ static void heartbeat_consumer_disabled_entry_clears_error(void **state)
 {
     tb_xfer(BUS, "601 23 16 10 01 64 00 05 00", "581 60 16 10 01 00 00 00 00");
     tb_send(BUS, "705 05");
-    tb_advance(BUS, 100000U);
+    tb_advance(BUS, 100000U + HBC_LATE);
     tb_expect(BUS, "081 30 81 11 00 00 00 00 00");
     tb_expect_none(BUS);
     /* the master stops monitoring 5: nothing is lost any more */
@@ -372,7 +376,7 @@ static void heartbeat_consumer_write_restarts_that_entry_only(void **state)
     tb_xfer(BUS, "601 23 16 10 02 2C 01 06 00", "581 60 16 10 02 00 00 00 00");
     tb_advance(BUS, 49999U);
     tb_expect_none(BUS);
-    tb_advance(BUS, 1U);
+    tb_advance(BUS, 1U + HBC_LATE);
     tb_expect(BUS, "081 30 81 11 00 00 00 00 00");
     tb_expect_none(BUS);
     assert_int_equal(REC.n, 3);
@@ -403,13 +407,16 @@ static void timers_across_the_clock_wrap(void **state)
     tb_xfer(BUS, "601 2B 17 10 00 64 00 00 00", "581 60 17 10 00 00 00 00 00");
     tb_xfer(BUS, "601 23 16 10 01 C8 00 05 00", "581 60 16 10 01 00 00 00 00");
     tb_send(BUS, "705 05");
-    for (int i = 0; i < 4; i++) {
-        tb_advance(BUS, 99999U);
+    for (uint32_t i = 0; i < 4U; i++) {
+        uint32_t late = (i == 2U) ? HBC_LATE : 0U;
+        tb_advance(BUS, 99999U - late);
         tb_expect_none(BUS);
         tb_advance(BUS, 1U);
         tb_expect(BUS, "701 7F");
-        if (i == 1) {
-            /* the consumer times out 200 ms after the heartbeat, past the wrap */
+        if (i == 1U) {
+            /* the consumer times out 200 ms after the heartbeat, past the
+             * wrap (within 1023 us after) */
+            tb_advance(BUS, HBC_LATE);
             tb_expect(BUS, "081 30 81 11 00 00 00 00 00");
             expect_event(&REC, 1, CO_HB_TIMEOUT, 5, CO_NMT_OPERATIONAL);
         }
@@ -418,11 +425,116 @@ static void timers_across_the_clock_wrap(void **state)
     assert_true(BUS->now < 1000000UL);
 }
 
+/* At any phase of a heartbeat's time stamp (the deadlines count in units of
+ * 1024 us from a time base the service moves), the timeout comes never
+ * before the consumer time and at most 1023 us after it, exactly at the
+ * deadline co_node_process returned; a call just before it finds nothing. */
+static void heartbeat_consumer_timeout_within_a_ms(void **state)
+{
+    tb_xfer(BUS, "601 23 16 10 01 C8 00 05 00", "581 60 16 10 01 00 00 00 00");
+    for (uint32_t i = 0U; i < 14U; i++) {
+        uint32_t t;
+        uint32_t d;
+
+        tb_advance(BUS, 1000U + (97U * i)); /* (a phase of its own each time) */
+        t = BUS->now;
+        tb_send(BUS, "705 05");
+        if (i > 0U) {
+            tb_expect(BUS, "081 00 00 00 00 00 00 00 00"); /* recovered */
+        }
+        d = co_node_process(NODE, t + 199999U);
+        tb_expect_none(BUS);
+        assert_in_range(d - t, 200000U, 200000U + HBC_LATE);
+        assert_int_equal(co_node_process(NODE, d - 1U), d);
+        tb_expect_none(BUS);
+        BUS->now = d;
+        tb_advance(BUS, 0U);
+        tb_expect(BUS, "081 30 81 11 00 00 00 00 00");
+        tb_expect_none(BUS);
+        assert_int_equal(REC.n, 1 + (2 * (int)i) + 1);
+        expect_event(&REC, REC.n - 1, CO_HB_TIMEOUT, 5, CO_NMT_OPERATIONAL);
+    }
+}
+
+/* A port that calls co_node_process late (70 s without a call, more than
+ * the 2^16 units of 1024 us the deadlines count): the consumers whose time
+ * has passed time out at that call (also one whose heartbeat came within
+ * the 70 s but longer ago than its time), one whose heartbeat came since
+ * (65,535 ms, the longest consumer time) does not, and comes due at its
+ * own time; an entry still waiting for its first heartbeat reports
+ * nothing. */
+static void heartbeat_consumer_after_70_s_without_process(void **state)
+{
+    uint32_t t0;
+    uint32_t d;
+
+    tb_xfer(BUS, "601 23 16 10 01 E8 03 05 00", "581 60 16 10 01 00 00 00 00");
+    tb_xfer(BUS, "601 23 16 10 02 FF FF 06 00", "581 60 16 10 02 00 00 00 00");
+    tb_xfer(BUS, "601 23 16 10 03 FF FF 07 00", "581 60 16 10 03 00 00 00 00");
+    tb_xfer(BUS, "601 23 16 10 04 64 00 08 00", "581 60 16 10 04 00 00 00 00");
+    tb_advance(BUS, 333U);
+    t0 = BUS->now;
+    tb_send(BUS, "705 05");
+    tb_send(BUS, "706 05");
+    tb_send(BUS, "708 05");
+    assert_int_equal(REC.n, 3);
+    /* no call of co_node_process: 8 speaks again after 67.5 s, 6 after 69 s */
+    BUS->now = t0 + 67500000U;
+    tb_send(BUS, "708 7F");
+    BUS->now = t0 + 69000000U;
+    tb_send(BUS, "706 05");
+    assert_int_equal(REC.n, 4); /* (8's new state) */
+    expect_event(&REC, 3, CO_HB_STATE, 8, CO_NMT_PRE_OPERATIONAL);
+    /* at 70 s: 5 (1 s after 0.3 ms) and 8 (100 ms after 67.5 s) time out */
+    BUS->now = t0 + 70000000U;
+    tb_advance(BUS, 0U);
+    tb_expect(BUS, "081 30 81 11 00 00 00 00 00");
+    tb_expect_none(BUS);
+    assert_int_equal(REC.n, 6);
+    expect_event(&REC, 4, CO_HB_TIMEOUT, 5, CO_NMT_OPERATIONAL);
+    expect_event(&REC, 5, CO_HB_TIMEOUT, 8, CO_NMT_PRE_OPERATIONAL);
+    /* 6: 65,535 ms after 69 s, within 1023 us */
+    d = co_node_process(NODE, BUS->now);
+    assert_in_range(d - (t0 + 69000000U), 65535000U, 65535000U + HBC_LATE);
+    BUS->now = d - 1U;
+    tb_advance(BUS, 0U);
+    assert_int_equal(REC.n, 6);
+    /* and again no call for 70 s: it times out at the late call */
+    BUS->now = d + 70000000U;
+    tb_advance(BUS, 0U);
+    assert_int_equal(REC.n, 7);
+    expect_event(&REC, 6, CO_HB_TIMEOUT, 6, CO_NMT_OPERATIONAL);
+    tb_expect_none(BUS);
+    assert_int_equal(co_node_process(NODE, BUS->now), CO_NO_DEADLINE);
+}
+
+/* The time base is only kept while a deadline is ahead: a first heartbeat
+ * 71 minutes after the service last ran (2^32 - 2^25 us: as many as a time
+ * stamp 33.5 s in the past would be) still gets its whole consumer time. */
+static void heartbeat_consumer_first_after_71_min(void **state)
+{
+    tb_xfer(BUS, "601 23 16 10 01 C8 00 05 00", "581 60 16 10 01 00 00 00 00");
+    tb_advance(BUS, 0U);
+    for (int i = 0; i < 7; i++) {
+        tb_advance(BUS, 600000000U); /* (no stall: 10 minutes at a time) */
+    }
+    tb_advance(BUS, (uint32_t)(0xFFFFFFFFUL - 0x1FFFFFFUL - 4200000000UL));
+    tb_expect_none(BUS);
+    tb_send(BUS, "705 05");
+    expect_event(&REC, 0, CO_HB_STARTED, 5, CO_NMT_OPERATIONAL);
+    tb_advance(BUS, 199999U);
+    tb_expect_none(BUS);
+    assert_int_equal(REC.n, 1);
+    tb_advance(BUS, 1U + HBC_LATE);
+    tb_expect(BUS, "081 30 81 11 00 00 00 00 00");
+    expect_event(&REC, 1, CO_HB_TIMEOUT, 5, CO_NMT_OPERATIONAL);
+}
+
 static void reset_communication_ends_monitoring(void **state)
 {
     tb_xfer(BUS, "601 23 16 10 01 64 00 05 00", "581 60 16 10 01 00 00 00 00");
     tb_send(BUS, "705 05");
-    tb_advance(BUS, 100000U);
+    tb_advance(BUS, 100000U + HBC_LATE);
     tb_expect(BUS, "081 30 81 11 00 00 00 00 00");
     tb_expect_none(BUS);
     /* reset communication: 0x1016 back to its default (unused). The boot-up
@@ -623,7 +735,7 @@ static void heartbeat_and_guarding_errors_share_the_code(void **state)
     tb_advance(BUS, 300000U);
     tb_expect(BUS, "081 30 81 11 00 00 00 00 00");
     tb_expect_none(BUS);
-    tb_advance(BUS, 200000U); /* heartbeat of 5 lost as well */
+    tb_advance(BUS, 200000U + HBC_LATE); /* heartbeat of 5 lost as well */
     tb_expect_none(BUS);
     /* guarding resumes: 5 is still lost */
     tb_xfer(BUS, "701 R1", "701 FF");
@@ -677,7 +789,7 @@ static void heartbeat_timeout_enters_pre_operational(void **state)
     tb_send(BUS, "000 01 01");
     consume_node_20(state);
     assert_int_equal(guarded_state(state), 0x05);
-    tb_advance(BUS, 100000U);
+    tb_advance(BUS, 100000U + HBC_LATE);
     tb_expect(BUS, "081 30 81 11 00 00 00 00 00");
     tb_expect_none(BUS);
     assert_int_equal(co_node_nmt_state(NODE), CO_NMT_PRE_OPERATIONAL);
@@ -689,7 +801,7 @@ static void heartbeat_timeout_enters_pre_operational(void **state)
     tb_expect_none(BUS);
     assert_int_equal(guarded_state(state), 0x7F);
     /* 0 from Pre-operational or Stopped: no change */
-    tb_advance(BUS, 100000U);
+    tb_advance(BUS, 100000U + HBC_LATE);
     tb_expect(BUS, "081 30 81 11 00 00 00 00 00");
     assert_int_equal(guarded_state(state), 0x7F);
     tb_send(BUS, "720 05");
@@ -706,14 +818,14 @@ static void heartbeat_timeout_no_change_or_stopped(void **state)
     tb_xfer(BUS, "601 2F 29 10 01 01 00 00 00", "581 60 29 10 01 00 00 00 00");
     tb_send(BUS, "000 01 01");
     consume_node_20(state);
-    tb_advance(BUS, 100000U);
+    tb_advance(BUS, 100000U + HBC_LATE);
     tb_expect(BUS, "081 30 81 11 00 00 00 00 00");
     tb_expect_none(BUS);
     assert_int_equal(guarded_state(state), 0x05);
     tb_send(BUS, "720 05");
     tb_expect(BUS, "081 00 00 00 00 00 00 00 00");
     tb_xfer(BUS, "601 2F 29 10 01 02 00 00 00", "581 60 29 10 01 00 00 00 00");
-    tb_advance(BUS, 100000U);
+    tb_advance(BUS, 100000U + HBC_LATE);
     tb_expect(BUS, "081 30 81 11 00 00 00 00 00");
     tb_expect_none(BUS);
     assert_int_equal(co_node_nmt_state(NODE), CO_NMT_STOPPED);
@@ -724,7 +836,7 @@ static void heartbeat_timeout_no_change_or_stopped(void **state)
     tb_send(BUS, "000 80 01");
     tb_send(BUS, "720 05");
     tb_expect(BUS, "081 00 00 00 00 00 00 00 00");
-    tb_advance(BUS, 100000U);
+    tb_advance(BUS, 100000U + HBC_LATE);
     tb_expect(BUS, "081 30 81 11 00 00 00 00 00");
     tb_expect_none(BUS);
     assert_int_equal(guarded_state(state), 0x04);
@@ -733,7 +845,7 @@ static void heartbeat_timeout_no_change_or_stopped(void **state)
     tb_send(BUS, "720 05");
     tb_expect(BUS, "081 00 00 00 00 00 00 00 00");
     tb_xfer(BUS, "601 2F 29 10 01 80 00 00 00", "581 60 29 10 01 00 00 00 00");
-    tb_advance(BUS, 100000U);
+    tb_advance(BUS, 100000U + HBC_LATE);
     tb_expect(BUS, "081 30 81 11 00 00 00 00 00");
     assert_int_equal(guarded_state(state), 0x05);
 }
@@ -804,7 +916,7 @@ static void without_error_behaviour_object(void **state)
     tb_expect(BUS, "701 00");
     tb_send(BUS, "000 01 01");
     consume_node_20(state);
-    tb_advance(BUS, 100000U);
+    tb_advance(BUS, 100000U + HBC_LATE);
     tb_expect(BUS, "081 30 81 11 00 00 00 00 00");
     tb_expect_none(BUS);
     assert_int_equal(co_node_nmt_state(NODE), CO_NMT_OPERATIONAL);
@@ -827,6 +939,9 @@ int main(void)
         cmocka_unit_test_setup(heartbeat_consumer_disabled_entry_clears_error, setup),
         cmocka_unit_test_setup(heartbeat_consumer_write_restarts_that_entry_only, setup),
         cmocka_unit_test_setup(timers_across_the_clock_wrap, setup),
+        cmocka_unit_test_setup(heartbeat_consumer_timeout_within_a_ms, setup),
+        cmocka_unit_test_setup(heartbeat_consumer_after_70_s_without_process, setup),
+        cmocka_unit_test_setup(heartbeat_consumer_first_after_71_min, setup),
         cmocka_unit_test_setup(reset_communication_ends_monitoring, setup),
         cmocka_unit_test_setup(node_guarding_toggle, setup),
         cmocka_unit_test_setup(node_guarding_not_answered_with_heartbeat, setup),

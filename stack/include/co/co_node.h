@@ -320,8 +320,12 @@ typedef struct co_errctl {
     uint8_t guard_toggle;
     uint8_t guard_state;     /**< 0 off, 1 armed (first RTR seen), 2 lost */
 #endif
+    /** the heartbeat consumers' time base: their deadlines count from it */
+    uint32_t hbc_base;
     /* the heartbeat consumers, one element each (three arrays: no padding) */
-    uint32_t hbc_deadline[CO_HB_CONSUMERS_MAX];
+    /** the deadline, in units of 1024 us after hbc_base, rounded up (16 bits:
+     *  a consumer time of 65,535 ms is 64,000 units; co_hb.c) */
+    uint16_t hbc_left[CO_HB_CONSUMERS_MAX];
     uint8_t hbc_state[CO_HB_CONSUMERS_MAX]; /**< 0 unused, 1 waiting for first, 2 active,
                                                  3 timed out */
     uint8_t hbc_nmt[CO_HB_CONSUMERS_MAX];   /**< producer's last state */

@@ -34,7 +34,7 @@ static uint8_t update_errreg(co_node_t *node)
 /* 0x1014 (co_node.h, CO_RAM_1014: 0 without the object) */
 static uint32_t emcy_cob(const co_node_t *node)
 {
-    return co_ram_u32(node, CO_RAM_1014);
+    return co_ram_cob(node, CO_RAM_1014);
 }
 
 /* The CAN-ID EMCYs go out on, 0 while none may go: in Stopped, with the
@@ -47,7 +47,7 @@ static uint32_t emcy_id(const co_node_t *node)
         cob = 0x80UL + node->node_id; /* (no 0x1014) */
     }
 
-    if ((node->nmt == (uint8_t)CO_NMT_STOPPED) || ((cob & 0x80000000UL) != 0U) ||
+    if ((node->nmt == (uint8_t)CO_NMT_STOPPED) || ((cob & CO_COB_B31) != 0U) ||
         co_node_unconfigured(node)) {
         cob = 0U;
     }
@@ -231,7 +231,7 @@ static void emcy_booted(co_node_t *node)
                                       CO_EMCY_RPDO_TIMEOUT};
     uint32_t cob = emcy_cob(node);
 
-    if ((CO_SET(node, nmt.boot_emcy) != 0U) && (cob != 0U) && ((cob & 0x80000000UL) == 0U)) {
+    if ((CO_SET(node, nmt.boot_emcy) != 0U) && (cob != 0U) && ((cob & CO_COB_B31) == 0U)) {
         uint8_t d[8] = {0};
         if (node->dev->boot_emcy_data != NULL) {
             co_copy(&d[3], node->dev->boot_emcy_data, 5U);
@@ -296,7 +296,7 @@ co_err_t co_emcy_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
             co_svc_touch(node, CO_ROW_EMCY);
         }
         if ((e->index == 0x1014U) && (len == 4U)) { /* (an UNSIGNED32 at its place) */
-            err = co_check_cob(emcy_cob(node), co_get_u32(data), 0x80000000UL | CO_COB_RSV30);
+            err = co_check_cob(emcy_cob(node), co_get_u32(data), CO_COB_B31 | CO_COB_RSV30);
         }
     } else if (op == (uint8_t)CO_SVC_READ) {
         if (sub > co_ram_end(node)[CO_RAM_END_1003]) { /* (never sub0) */

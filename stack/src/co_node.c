@@ -117,12 +117,15 @@ co_err_t co_check_cob(uint32_t cur, uint32_t v, uint32_t rule)
     bool always = (rule & CO_COB_ALWAYS) != 0U;
     /* in use: a bit of use_bits set, or (!CO_COB_WHEN_SET) the one bit clear */
     uint32_t flip = ((rule & CO_COB_WHEN_SET) != 0U) ? 0U : use_bits;
-    bool cur_used = ((cur ^ flip) & use_bits) != 0U;
-    bool new_used = ((v ^ flip) & use_bits) != 0U;
+    bool cur_used;
+    bool new_used;
 
     if ((v & (0x3FFFF800UL | reserved)) != 0U) {
         return CO_ERR_VALUE;
     }
+    cur_used = ((cur ^ flip) & use_bits) != 0U;
+    /* (bits 31 and 30 of @p v where the form of @p cur has them) */
+    new_used = (((v >> 16U) ^ flip) & use_bits) != 0U;
     if (cur_used && new_used && ((v & 0x7FFUL) != (cur & 0x7FFUL))) {
         return CO_ERR_VALUE;
     }

@@ -400,10 +400,12 @@ co_err_t co_od_read_part(co_node_t *node, const co_od_entry_t *e, const co_od_su
     }
     v = (const uint8_t *)co_od_loc(node, e, s);
     if ((fixed != 0U) && (s->size != fixed)) {
-        /* a PDO mapping entry: its UNSIGNED32 from its 16-bit form (co_od.h) */
+        /* a stored form (co_od.h): a COB-ID's or a PDO mapping entry's
+         * UNSIGNED32 from its 16 bits */
         uint16_t form;
         (void)memcpy(&form, v, sizeof form);
-        mapped = co_od_map_u32(node->dev, form);
+        mapped = ((s->flags & CO_SUB_COB16) != 0U) ? co_od_cob_u32(form)
+                                                    : co_od_map_u32(node->dev, form);
         v = (const uint8_t *)&mapped;
     }
     size = (fixed != 0U) ? fixed : data_size(v, s);
@@ -508,12 +510,15 @@ uint32_t co_od_map_ref(const co_dev_t *dev, uint32_t v)
     return (v == 0U) ? 0U : CO_OD_MAP_NONE;
 }
 
-/* Mapping entry @p wire (UNSIGNED32, wire bytes) into @p v in its 16-bit
- * form (an entry that has none, which the PDO service's check refuses,
- * leaves the old one). */
-CO_NOINLINE static void map_put(const co_dev_t *dev, uint8_t *v, const uint8_t *wire)
+/* UNSIGNED32 @p wire (wire bytes) of @p s into @p v in its stored form
+ * (co_od.h): a COB-ID's 16 bits (write_value refused one without), or a
+ * mapping entry's (an entry that has none, which the PDO service's check
+ * refuses, leaves the old one). */
+CO_NOINLINE static void form_put(const co_dev_t *dev, const co_od_sub_t *s, uint8_t *v,
+                                 const uint8_t *wire)
 {
-    uint32_t ref = co_od_map_ref(dev, co_get_u32(wire));
+    uint32_t x = co_get_u32(wire);
+    uint32_t ref = ((s->flags & CO_SUB_COB16) != 0U) ? co_od_cob16(x) : co_od_map_ref(dev, x);
 
     if (ref != CO_OD_MAP_NONE) {
         uint16_t r16 = (uint16_t)ref;
@@ -544,9 +549,9 @@ CO_INLINE void commit_value(co_node_t *node, const co_od_entry_t *e, const co_od
     if ((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) == 0U) {
         uint8_t *v = &node->ram[(uint16_t)(e->base + s->off)]; /* a RAM value */
         if ((fixed != 0U) && (s->size != fixed)) {
-            /* a PDO mapping entry: its 16-bit form (the PDO service's check
-             * found the object mappable: it has one) */
-            map_put(node->dev, v, data);
+            /* a stored form: a COB-ID's, a PDO mapping entry's (the PDO
+             * service's check found the object mappable: it has one) */
+            form_put(node->dev, s, v, data);
         } else if ((fixed != 0U) && (CO_FAST || !CO_NATIVE_LE)) {
             co_pdo_from_wire(v, data, fixed); /* 1, 2 and 4 bytes without a call */
         } else {
@@ -683,11 +688,19 @@ co_err_t co_od_write_part(co_node_t *node, const co_od_entry_t *e, const co_od_s
     if ((s->flags & CO_SUB_ROM) != 0U) {
         return CO_ERR_NO_ACCESS;
     }
-    if ((offset > s->size) || (len > (s->size - offset))) {
+    /* (a value in a stored form, co_od.h, comes whole as its UNSIGNED32) */
+    uint32_t room = co_type_len(s->type);
+    if (room == 0U) {
+        room = s->size;
+    }
+    if ((offset > room) || (len > (room - offset))) {
         return CO_ERR_TYPE_TOO_LONG;
     }
     if ((offset == 0U) && last) {
         return co_od_write_value(node, e, s, data, len); /* whole: nothing to gather */
+    }
+    if (room != s->size) {
+        return CO_ERR_TYPE_TOO_LONG; /* (a stored form: no parts gather in its place) */
     }
     {
         /* parts gather in the staging area (co_dev_t.stage) when it holds the

@@ -138,6 +138,24 @@ static inline uint8_t co_ram_u8(const co_node_t *node, uint16_t off)
     return node->ram[off];
 }
 
+/* The COB-ID at @p p in the RAM image, in its 16-bit form there (co_od.h,
+ * CO_SUB_COB16): bit 31 of its UNSIGNED32 in CO_COB_B31, bit 30 in
+ * CO_COB_B30, the CAN-ID in bits 10..0 (and 0 for the UNSIGNED32 0). Every
+ * reader of a COB-ID the core checks (PDO, SYNC, EMCY, TIME) reads it
+ * through this and works on the form (co_check_cob takes it too). */
+#define CO_COB_B31 0x8000U
+#define CO_COB_B30 0x4000U
+CO_INLINE uint32_t co_cob_at(const uint8_t *p)
+{
+    uint16_t v;
+    (void)memcpy(&v, p, sizeof v);
+    return v;
+}
+CO_INLINE uint32_t co_ram_cob(const co_node_t *node, uint16_t off)
+{
+    return co_cob_at(&node->ram[off]);
+}
+
 /* The values not stored of the RAM image (co_node.h: CO_RAM_END_*). */
 static inline uint8_t *co_ram_end(const co_node_t *node)
 {
@@ -539,7 +557,8 @@ uint8_t *co_od_ram_of(co_node_t *node, uint16_t index, uint8_t sub, uint8_t type
  * values of @p type are stored back to back, 0 if there are none. */
 uint8_t co_od_array_len(co_node_t *node, uint16_t index, uint8_t type, uint8_t max);
 
-/* A COB-ID write (CiA 301 7.5.2) of @p v over @p cur: 29-bit identifiers
+/* A COB-ID write (CiA 301 7.5.2) of @p v (UNSIGNED32) over @p cur (its
+ * 16-bit form, co_cob_at): 29-bit identifiers
  * are not supported, bits 11..28 are 0 (and bit 30 with CO_COB_RSV30), and
  * the CAN-ID may not change while the object is in use: in use is any of
  * the use bits of @p rule set (CO_COB_WHEN_SET) or its one bit clear (a
@@ -549,8 +568,8 @@ uint8_t co_od_array_len(co_node_t *node, uint16_t index, uint8_t type, uint8_t m
  * registers. */
 co_err_t co_check_cob(uint32_t cur, uint32_t v, uint32_t rule);
 /* co_check_cob's @p rule: the object's use bits (bits 31 and 30 of its
- * COB-ID) and the flags below */
-#define CO_COB_USE      0xC0000000U
+ * COB-ID: CO_COB_B31, CO_COB_B30) and the flags below */
+#define CO_COB_USE      (CO_COB_B31 | CO_COB_B30)
 #define CO_COB_WHEN_SET 0x01U /* in use while a use bit is set (else: while clear) */
 #define CO_COB_ALWAYS   0x02U /* the CAN-ID counts as in use whatever the bits say */
 #define CO_COB_RSV30    0x04U /* bit 30 is reserved: must be 0 */
@@ -708,8 +727,9 @@ CO_INLINE bool co_pdo_ref_dummy(uint32_t ref)
     return ref < (CO_OD_MAP_ROW0 << CO_OD_MAP_REF_SHIFT);
 }
 
-#define CO_PDO_COB_INVALID 0x80000000UL
-#define CO_PDO_COB_NO_RTR  0x40000000UL
+/* (of the COB-ID's 16-bit form, co_pdo_cob) */
+#define CO_PDO_COB_INVALID CO_COB_B31
+#define CO_PDO_COB_NO_RTR  CO_COB_B30
 
 /* PDO i's parameters in the RAM image (co_pdo_desc_t): the optional ones
  * by their distance from the COB-ID, the mapping entries before their
@@ -728,7 +748,7 @@ CO_INLINE uint16_t co_pdo_u16(const co_node_t *node, uint16_t i, uint32_t rel)
 
 CO_INLINE uint32_t co_pdo_cob(const co_node_t *node, uint16_t i)
 {
-    return co_ram_u32(node, node->dev->pdo[i].cob);
+    return co_ram_cob(node, node->dev->pdo[i].cob);
 }
 
 CO_INLINE const uint8_t *co_pdo_map(const co_node_t *node, const co_pdo_desc_t *d)

@@ -156,6 +156,7 @@ static uint16_t layout_sig(const co_dev_t *dev)
                     (co_od_off(e, s) < dev->app_end)) {
                     co_put_u16(&b[0], e->index);
                     b[2] = s->sub;
+                    /* (a COB-ID's 16-bit form: a value of another size) */
                     b[3] = s->type;
                     co_put_u16(&b[4], co_od_off(e, s));
                     co_put_u16(&b[6], s->size);

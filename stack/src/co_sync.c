@@ -4,7 +4,7 @@
 #include "co/co_endian.h"
 #include "co_priv.h"
 
-#define COB_SYNC_GEN  0x40000000UL /* 0x1005 bit 30: this node produces SYNC */
+#define COB_SYNC_GEN  CO_COB_B30 /* 0x1005 bit 30: this node produces SYNC (co_cob_at) */
 
 static bool sync_allowed(const co_node_t *node)
 {
@@ -15,7 +15,7 @@ static bool sync_allowed(const co_node_t *node)
 /* 0x1005 (co_node.h, CO_RAM_1005: 0 without the object) */
 static uint32_t sync_cob(const co_node_t *node)
 {
-    return co_ram_u32(node, CO_RAM_1005);
+    return co_ram_cob(node, CO_RAM_1005);
 }
 
 /* 0x1019 (0 without the object) */

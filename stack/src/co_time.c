@@ -7,8 +7,14 @@
 
 #if CO_TIME
 
-#define COB_TIME_CONS 0x80000000UL /* 0x1012 bit 31: consume TIME */
-#define COB_TIME_PROD 0x40000000UL /* 0x1012 bit 30: produce TIME */
+#define COB_TIME_CONS CO_COB_B31 /* 0x1012 bit 31: consume TIME (co_cob_at) */
+#define COB_TIME_PROD CO_COB_B30 /* 0x1012 bit 30: produce TIME */
+
+/* 0x1012 (0 without the object) */
+static uint32_t time_cob(const co_node_t *node)
+{
+    return (node->time.cob != NULL) ? co_cob_at(node->time.cob) : 0U;
+}
 
 static bool time_allowed(const co_node_t *node)
 {
@@ -18,11 +24,9 @@ static bool time_allowed(const co_node_t *node)
 
 static void time_rx(co_node_t *node, uint16_t arg, const co_frame_t *f)
 {
-    const uint32_t *cob = node->time.cob;
-
     (void)arg;
-    if (!time_allowed(node) || co_frame_is_rtr(f) || (f->dlc < 6U) || (cob == NULL) ||
-        ((*cob & COB_TIME_CONS) == 0U)) {
+    if (!time_allowed(node) || co_frame_is_rtr(f) || (f->dlc < 6U) ||
+        ((time_cob(node) & COB_TIME_CONS) == 0U)) {
         return;
     }
     if (CO_CB(node, time) != NULL) {
@@ -33,10 +37,10 @@ static void time_rx(co_node_t *node, uint16_t arg, const co_frame_t *f)
 
 co_err_t co_time_send(co_node_t *node, uint32_t ms, uint16_t days)
 {
-    const uint32_t *cob = node->time.cob;
+    uint32_t cob = time_cob(node);
     uint8_t d[6];
 
-    if ((cob == NULL) || ((*cob & COB_TIME_PROD) == 0U)) {
+    if ((cob & COB_TIME_PROD) == 0U) {
         return CO_ERR_NO_ACCESS;
     }
     if (!time_allowed(node)) {
@@ -44,7 +48,7 @@ co_err_t co_time_send(co_node_t *node, uint32_t ms, uint16_t days)
     }
     co_put_u32(d, ms & 0x0FFFFFFFUL);
     co_put_u16(&d[4], days);
-    co_tx(node, *cob & 0x7FFUL, d, 6U);
+    co_tx(node, cob & 0x7FFUL, d, 6U);
     return CO_OK;
 }
 
@@ -52,10 +56,10 @@ co_err_t co_time_send(co_node_t *node, uint32_t ms, uint16_t days)
 
 static void time_event(co_node_t *node, uint8_t ev)
 {
-    const uint32_t *cob = node->time.cob;
+    uint32_t cob = time_cob(node);
 
-    if ((ev == CO_SVC_SLOTS) && (cob != NULL) && ((*cob & COB_TIME_CONS) != 0U)) {
-        co_rx_add(node, (uint16_t)(*cob & 0x7FFU), CO_ROW_TIME);
+    if ((ev == CO_SVC_SLOTS) && ((cob & COB_TIME_CONS) != 0U)) {
+        co_rx_add(node, (uint16_t)(cob & 0x7FFU), CO_ROW_TIME);
     }
 }
 
@@ -68,7 +72,7 @@ co_err_t co_time_obj(co_node_t *node, uint8_t op, const co_od_entry_t *e,
     if (op == (uint8_t)CO_SVC_WRITTEN) {
         co_rx_invalidate(node);
     } else if ((s->sub == 0U) && (len == 4U) && (node->time.cob != NULL)) {
-        return co_check_cob(*node->time.cob, co_get_u32(data),
+        return co_check_cob(time_cob(node), co_get_u32(data),
                             COB_TIME_CONS | COB_TIME_PROD | CO_COB_WHEN_SET);
     } else {
         /* no rule */

@@ -1102,7 +1102,8 @@ static uint32_t map_rows(const ctx_t *c, co_od_map_t *rows, uint32_t n)
         uint32_t v;
         co_od_map_t key;
         bool known = false;
-        if ((b->s.type != (uint8_t)CO_UNSIGNED32) || (b->s.size != 2U)) {
+        if ((b->s.type != (uint8_t)CO_UNSIGNED32) || (b->s.size != 2U) ||
+            ((b->s.flags & CO_SUB_COB16) != 0U)) {
             continue; /* not a mapping entry in its 16-bit form */
         }
         v = entry_default(b);
@@ -1153,6 +1154,16 @@ static bool pdo_runs(const ctx_t *c, uint16_t comm)
         }
     }
     return true;
+}
+
+/* Sub-entry @p b, a COB-ID the core reads, in its 16-bit form (co_od.h,
+ * CO_SUB_COB16; its default below). */
+static void cob_form(bsub_t *b)
+{
+    if (b != NULL) {
+        b->s.size = 2U;
+        b->s.flags |= CO_SUB_COB16;
+    }
 }
 
 /* Sub-entry @p b at the next offset its alignment allows from *off. */
@@ -1336,6 +1347,10 @@ static eds_dev_t *build(ctx_t *c, const char *name, const char *text)
      * (co_node.h: CO_RAM_*; the last from a multiple of 4, app_end); a PDO's
      * mapping entries, their number and its transmission type one after the
      * other where its communication object is (co_pdo_desc_t) */
+    /* the COB-IDs the core reads (SYNC, TIME, EMCY; the PDOs' below) */
+    cob_form(find_sub(c, 0x1005U, 0U, (uint8_t)CO_UNSIGNED32));
+    cob_form(find_sub(c, 0x1012U, 0U, (uint8_t)CO_UNSIGNED32));
+    cob_form(find_sub(c, 0x1014U, 0U, (uint8_t)CO_UNSIGNED32));
     for (unsigned r = 0U; r < 3U; r++) {
         static const core_place_t head[] = {
             {0x1005U, (uint8_t)CO_UNSIGNED32, CO_RAM_1005},
@@ -1374,6 +1389,9 @@ static eds_dev_t *build(ctx_t *c, const char *name, const char *text)
                          * 16-bit forms: co_od.h) */
                         if (runs) {
                             c->sub[m->first + e].s.size = 2U;
+                        }
+                        if (runs && (e == 1U)) {
+                            cob_form(find_sub(c, o->index, 1U, (uint8_t)CO_UNSIGNED32));
                         }
                         place(c, &c->sub[m->first + e], &off, placed, &nlim, &nid);
                     }
@@ -1480,7 +1498,23 @@ static eds_dev_t *build(ctx_t *c, const char *name, const char *text)
             uint32_t w = 0U;
             const uint8_t *val = b->val;
             uint16_t form = 0U;
-            if ((co_type_size(b->s.type) == 4U) && (n == 2U) && (val != NULL)) {
+            if (((b->s.flags & CO_SUB_COB16) != 0U) && (val != NULL)) {
+                /* a COB-ID: its 16-bit form (its node-ID added within bits 10..0) */
+                uint32_t v;
+                (void)memcpy(&v, val, sizeof v);
+                if (!co_od_cob_fits(v) ||
+                    ((marks != 0U) && (((v & CO_OD_COB16_CAN_ID) + 127U) > CO_OD_COB16_CAN_ID))) {
+                    (void)fail(c, NULL, NULL,
+                               "object 0x%04X sub-index %u: default 0x%08X is not an 11-bit COB-ID",
+                               (unsigned)dv[i].index, (unsigned)b->s.sub, (unsigned)v);
+                    free(dv);
+                    eds_free(d);
+                    return NULL;
+                }
+                form = co_od_cob16(v);
+                val = (const uint8_t *)&form;
+                w = 1U;
+            } else if ((co_type_size(b->s.type) == 4U) && (n == 2U) && (val != NULL)) {
                 /* a PDO mapping entry: its 16-bit form */
                 uint32_t v;
                 uint32_t ref;

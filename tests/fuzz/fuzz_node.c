@@ -110,11 +110,18 @@ static bool is_allowed(uint32_t id)
     return (fz.allowed[(id & 0x7FFU) >> 3U] & (uint8_t)(1U << (id & 7U))) != 0U;
 }
 
-static uint32_t ram_u32(uint16_t off)
+/* A COB-ID the core reads, at @p p in the RAM image: its UNSIGNED32 from
+ * its 16-bit form (co_od.h, CO_SUB_COB16) */
+static uint32_t cob_at(const uint8_t *p)
 {
-    uint32_t v;
-    (void)memcpy(&v, &fz.n.node.ram[off], 4U);
-    return v;
+    uint16_t v;
+    (void)memcpy(&v, p, sizeof v);
+    return co_od_cob_u32(v);
+}
+
+static uint32_t ram_cob(uint16_t off)
+{
+    return cob_at(&fz.n.node.ram[off]);
 }
 
 /* The identifiers the node's configuration lets it send on now (a frame
@@ -141,17 +148,17 @@ static void update_allowed(void)
         allow(0x7E4U); /* LSS slave -> master (CiA 305) */
     }
     /* 0x1014, 0x1005 at their places (co_node.h: CO_RAM_*; 0 without them) */
-    if ((ram_u32(CO_RAM_1014) & 0x80000000UL) == 0U) {
-        allow(ram_u32(CO_RAM_1014));
+    if ((ram_cob(CO_RAM_1014) & 0x80000000UL) == 0U) {
+        allow(ram_cob(CO_RAM_1014));
     }
-    if ((ram_u32(CO_RAM_1005) & 0x40000000UL) != 0U) {
-        allow(ram_u32(CO_RAM_1005));
+    if ((ram_cob(CO_RAM_1005) & 0x40000000UL) != 0U) {
+        allow(ram_cob(CO_RAM_1005));
     }
-    if ((nd->time.cob != NULL) && ((*nd->time.cob & 0x40000000UL) != 0U)) {
-        allow(*nd->time.cob);
+    if ((nd->time.cob != NULL) && ((cob_at(nd->time.cob) & 0x40000000UL) != 0U)) {
+        allow(cob_at(nd->time.cob));
     }
     for (uint16_t i = dev->n_rpdo; i < (uint16_t)(dev->n_rpdo + dev->n_tpdo); i++) {
-        uint32_t cob = ram_u32(dev->pdo[i].cob);
+        uint32_t cob = ram_cob(dev->pdo[i].cob);
         if ((cob & 0x80000000UL) == 0U) {
             allow(cob);
         }

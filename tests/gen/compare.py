@@ -14,6 +14,7 @@ from canopen.objectdictionary import ODArray, ODRecord
 NODE_ID = 5
 R, W, CONST, MAP_T, MAP_R, ROM, HOOKIO, NODEID, LIMIT = (
     0x1, 0x2, 0x4, 0x8, 0x10, 0x20, 0x40, 0x80, 0x100)
+COB16 = 0x0200   # a COB-ID in its 16-bit form (co_od.h CO_SUB_COB16)
 NO_DATA = 0x08000024
 NO_ACCESS = 0x06010000
 
@@ -188,12 +189,14 @@ def compare(eds_path, dump, node_id: int = NODE_ID, eds_only=()) -> int:
                 data = bytes.fromhex(s["value"])
             fixed = {**SIGNED, **UNSIGNED, 0x08: 4, 0x11: 8}.get(s["type"])
             if fixed:
-                # (a PDO mapping entry's row: its 16-bit form in the RAM image,
-                # co_od.h; the dictionary reads its UNSIGNED32)
+                # (a PDO mapping entry's row, a COB-ID's with CO_SUB_COB16: its
+                # 16-bit form in the RAM image, co_od.h; the dictionary reads its
+                # UNSIGNED32)
                 mapping = (0x1600 <= key[0] <= 0x17FF or 0x1A00 <= key[0] <= 0x1BFF) and \
-                    key[1] > 0 and s["type"] == 0x07
+                    key[1] > 0 and s["type"] == 0x07 and not flags & COB16
+                cob16 = bool(flags & COB16) and s["type"] == 0x07
                 assert len(data) == fixed, where
-                assert s["size"] == (2 if mapping and s["size"] == 2 else fixed), where
+                assert s["size"] == (2 if (mapping or cob16) and s["size"] == 2 else fixed), where
             assert decode(s["type"], data) == expected(var, s["size"]), where
             checked += 1
     assert checked > 0

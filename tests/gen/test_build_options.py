@@ -266,7 +266,7 @@ def test_core_objects_at_their_places(tmp_path: Path) -> None:
     h = [line.split(";")[0].strip() for line in (tmp_path / "d.h").read_text().splitlines()]
     ram = h[h.index("typedef struct d_ram {") + 1:h.index("} d_ram_t")]
     fields = [x for x in ram if x and not x.startswith("/*")]
-    assert fields[:6] == ["uint32_t core_x1005", "uint32_t core_x1007", "uint32_t core_x1014",
+    assert fields[:6] == ["uint32_t core_x1007", "uint16_t core_x1005", "uint16_t core_x1014",
                           "uint16_t core_x1015", "uint16_t x1017_producer_heartbeat_time",
                           "uint8_t core_x1019"]
     # (no 0x1016: the others right after the head; the values not stored
@@ -276,7 +276,7 @@ def test_core_objects_at_their_places(tmp_path: Path) -> None:
     at = ram.index("/* values not stored (restored to defaults at reset) */")
     assert ram[at + 1:at + 3] == ["uint8_t x1001_error_register", "uint8_t core_x1003"]
     c = (tmp_path / "d.c").read_text()
-    assert "typedef char d_core_at[((F(core_x1005) == CO_RAM_1005) &&" in c
+    assert "typedef char d_core_at[((F(core_x1007) == CO_RAM_1007) &&" in c
     assert "(F(core_x1003) == F(x1001_error_register) + CO_RAM_END_1003)" in c
     assert ".app_end = F(x1001_error_register)," in c
     # the zeros of the places are no default runs

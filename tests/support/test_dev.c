@@ -123,10 +123,10 @@ static const co_od_sub_t rows[] = {
     RAM(0, CO_UNSIGNED8, CO_SUB_RW, hist_n),
     /* (one row for sub 1..8: a run, CO_OD_RUN) */
     CO_OD_RUN(1, 8U, (uint8_t)CO_UNSIGNED32, CO_SUB_RO, 4U, F(hist), 0U),
-    /* 0x1005 */ RAM(0, CO_UNSIGNED32, CO_SUB_RW, sync_cob),
+    /* 0x1005 */ RAM(0, CO_UNSIGNED32, CO_SUB_RW | CO_SUB_COB16, sync_cob),
     /* 0x1006 */ RAM(0, CO_UNSIGNED32, CO_SUB_RW, sync_period),
     /* 0x1007 */ RAM(0, CO_UNSIGNED32, CO_SUB_RW, sync_window),
-    /* 0x1012 */ RAM(0, CO_UNSIGNED32, CO_SUB_RW, time_cob),
+    /* 0x1012 */ RAM(0, CO_UNSIGNED32, CO_SUB_RW | CO_SUB_COB16, time_cob),
     /* 0x1019 */ RAM(0, CO_UNSIGNED8, CO_SUB_RW, sync_overflow),
     /* 0x1029 */
     ROM(0, CO_UNSIGNED8, CO_SUB_RO | CO_SUB_CONST, n1029),
@@ -149,7 +149,7 @@ static const co_od_sub_t rows[] = {
 #define R(i) CO_OD_SUB((i), (uint8_t)CO_UNSIGNED32, CO_SUB_RW, 4U, (uint16_t)(F(restore) + 4U * ((i) - 1U)), 0U)
     R(1), R(2), R(3), R(4), R(5), R(6),
 #undef R
-    /* 0x1014 */ RAM(0, CO_UNSIGNED32, CO_SUB_RW | CO_SUB_NODEID, emcy_cob),
+    /* 0x1014 */ RAM(0, CO_UNSIGNED32, CO_SUB_RW | CO_SUB_NODEID | CO_SUB_COB16, emcy_cob),
     /* 0x1015 */ RAM(0, CO_UNSIGNED16, CO_SUB_RW, emcy_inhibit),
     /* 0x1016 */
     ROM(0, CO_UNSIGNED8, CO_SUB_RO | CO_SUB_CONST, n1016),
@@ -245,15 +245,17 @@ static const co_od_entry_t od[] = {
  * values of 1 << w bytes at @p at, the run before it ending at @p end. */
 #define D(at, end, n, w) (uint8_t)((at) - (end)), CO_OD_DEF_RUN((n), (w))
 #define DN(at, end, marks) (uint8_t)((at) - (end)), (uint8_t)(CO_OD_DEF_RUN(1U, 2U) | (marks))
+#define DN16(at, end, marks) (uint8_t)((at) - (end)), (uint8_t)(CO_OD_DEF_RUN(1U, 1U) | (marks))
 #define END(field) (F(field) + Z(field))
 #define LE16(v) (uint8_t)(v), (uint8_t)((v) >> 8)
 #define LE32(v) (uint8_t)(v), (uint8_t)((v) >> 8), (uint8_t)((v) >> 16), (uint8_t)((v) >> 24)
 static const uint8_t defaults[] = {
     /* communication parameters */
-    D(F(sync_cob), 0U, 1U, 2U), LE32(0x80UL),
-    DN(F(emcy_cob), END(sync_cob), CO_OD_DEF_NODEID | CO_OD_DEF_COB), LE32(0x80UL),
+    /* (the COB-IDs in their 16-bit forms: co_od.h CO_SUB_COB16) */
+    D(F(sync_cob), 0U, 1U, 1U), LE16(0x80U),
+    DN16(F(emcy_cob), END(sync_cob), CO_OD_DEF_NODEID | CO_OD_DEF_COB), LE16(0x80U),
     D(F(err_beh), END(emcy_cob), 3U, 0U), 0U, 1U, 1U,
-    D(F(time_cob), END(err_beh), 1U, 2U), LE32(0x80000100UL),
+    D(F(time_cob), END(err_beh), 1U, 1U), LE16(0x8100U), /* 0x80000100 */
     DN(F(node_id), END(time_cob), CO_OD_DEF_NODEID), LE32(0UL),
     /* application values */
     D(F(u16), END(node_id), 1U, 1U), LE16(0x1234U),

@@ -15,9 +15,9 @@
 typedef struct td_ram {
     /* communication parameters (stored); the core's objects at their places
      * (co_node.h, CO_RAM_*) */
-    uint32_t sync_cob;     /* 0x1005 */
     uint32_t sync_window;  /* 0x1007 */
-    uint32_t emcy_cob;     /* 0x1014, $NODEID+0x80 */
+    uint16_t sync_cob;     /* 0x1005 (the COB-IDs in their 16-bit forms: co_od.h CO_SUB_COB16) */
+    uint16_t emcy_cob;     /* 0x1014, $NODEID+0x80 */
     uint16_t emcy_inhibit; /* 0x1015 */
     uint16_t hb_prod;      /* 0x1017 */
     uint8_t sync_overflow; /* 0x1019 */
@@ -25,7 +25,8 @@ typedef struct td_ram {
                               two device-specific classes (default 1) */
     uint32_t hb_cons[4];   /* 0x1016 sub1..4 */
     uint32_t sync_period;  /* 0x1006 */
-    uint32_t time_cob;     /* 0x1012, default 0x80000100 (consumer) */
+    uint16_t time_cob;     /* 0x1012, default 0x80000100 (consumer) */
+    uint16_t pad3;
     uint32_t node_id;      /* 0x100B, $NODEID */
     uint16_t guard_time;   /* 0x100C */
     uint8_t life_factor;   /* 0x100D */

@@ -127,6 +127,23 @@ static void the_device(void **state)
     assert_int_equal(d->app_end % 4U, 0U);
     assert_null(co_od_value_ptr(&f->node, 0x1007U, 0U));
     assert_int_equal(ram[CO_RAM_1007] | ram[CO_RAM_1007 + 3U], 0);
+    /* the COB-IDs the core reads in their 16-bit forms (co_od.h,
+     * CO_SUB_COB16), as the generator makes them: the EMCY's and the PDOs'
+     * with the node-ID */
+    {
+        uint16_t v;
+        const uint8_t *tp = (const uint8_t *)co_od_value_ptr(&f->node, 0x1800U, 1U);
+        (void)memcpy(&v, ram + CO_RAM_1005, 2U);
+        assert_int_equal(v, 0x0080U);
+        (void)memcpy(&v, ram + CO_RAM_1014, 2U);
+        assert_int_equal(v, 0x0085U);
+        assert_non_null(tp);
+        (void)memcpy(&v, tp, 2U);
+        assert_int_equal(v, 0x0185U);
+        assert_int_equal(co_od_find(d->od, d->od_count, 0x1800U) != NULL, 1);
+        assert_int_equal(co_od_rows(d, co_od_find(d->od, d->od_count, 0x1800U))[1].flags &
+                             CO_SUB_COB16, CO_SUB_COB16);
+    }
 }
 
 static void values_over_sdo(void **state)
@@ -138,6 +155,10 @@ static void values_over_sdo(void **state)
     /* $NODEID+0x80, 0x200+$NODEID */
     tb_xfer(b, "605 40 14 10 00 00 00 00 00", "585 43 14 10 00 85 00 00 00");
     tb_xfer(b, "605 40 00 14 01 00 00 00 00", "585 43 00 14 01 05 02 00 00");
+    /* a PDO COB-ID (its 16-bit form in RAM): bit 31 round trip, bits 29..11 refused */
+    tb_xfer(b, "605 23 00 18 01 85 01 00 80", "585 60 00 18 01 00 00 00 00");
+    tb_xfer(b, "605 23 00 18 01 85 01 00 90", "585 80 00 18 01 30 00 09 06");
+    tb_xfer(b, "605 40 00 18 01 00 00 00 00", "585 43 00 18 01 85 01 00 80");
     /* DCF: ParameterValue 7 over DefaultValue 1 */
     tb_xfer(b, "605 40 01 20 00 00 00 00 00", "585 4F 01 20 00 07 00 00 00");
     /* CompactSubObj=3: NrOfObjects, the default, the [2003Value] entry */

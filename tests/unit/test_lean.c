@@ -241,7 +241,13 @@ static void shared_sub_tables(void **state)
     tb_xfer(BUS, "601 2F 00 18 02 05 00 00 00", "581 60 00 18 02 00 00 00 00");
     tb_xfer(BUS, "601 2F 00 1A 00 00 00 00 00", "581 60 00 1A 00 00 00 00 00");
     tb_xfer(BUS, "601 23 00 1A 01 10 00 00 22", "581 60 00 1A 01 00 00 00 00");
-    assert_int_equal(lean.ram.x1800_cob_id_used_by_tpdo, 0x80000181UL);
+    /* (a COB-ID in its 16-bit form, co_od.h CO_SUB_COB16) */
+    assert_int_equal(lean.ram.x1800_cob_id_used_by_tpdo, 0x8181U);
+    assert_int_equal(co_od_cob_u32(lean.ram.x1800_cob_id_used_by_tpdo), 0x80000181UL);
+    /* bits 29..11 have no 16-bit form: refused, the old value stays */
+    tb_xfer(BUS, "601 23 00 18 01 81 09 00 80", "581 80 00 18 01 30 00 09 06");
+    tb_xfer(BUS, "601 23 00 18 01 81 01 00 A0", "581 80 00 18 01 30 00 09 06");
+    assert_int_equal(lean.ram.x1800_cob_id_used_by_tpdo, 0x8181U);
     assert_int_equal(lean.ram.x1800_transmission_type, 5U);
     /* (a mapping entry in its 16-bit form, co_od.h) */
     assert_int_equal(co_od_map_u32(&lean_test_dev, lean.ram.x1A00_tpdo1_mapping_parameter[0]),

@@ -272,6 +272,29 @@ static void save_all_survives_resets_and_power_cycle(void **state)
     }
 }
 
+/* The COB-IDs the core reads are stored in their 16-bit forms (co_od.h,
+ * CO_SUB_COB16): a saved set gives bits 31 and 30 and the CAN-ID back. */
+static void cob_ids_in_16_bits_survive_reset_and_power_cycle(void **state)
+{
+    (void)state;
+    /* EMCY not valid (bit 31), SYNC producer (bit 30; no period: none sent) */
+    tb_xfer(BUS, "601 23 14 10 00 85 00 00 80", "581 60 14 10 00 00 00 00 00");
+    tb_xfer(BUS, "601 23 05 10 00 80 00 00 40", "581 60 05 10 00 00 00 00 00");
+    assert_int_equal(fx.n.ram.emcy_cob, 0x8085U);
+    assert_int_equal(fx.n.ram.sync_cob, 0x4080U);
+    tb_xfer(BUS, SAVE_COMM, SAVED_COMM);
+    tb_xfer(BUS, "601 23 14 10 00 85 00 00 00", "581 60 14 10 00 00 00 00 00");
+    tb_xfer(BUS, "601 23 05 10 00 80 00 00 00", "581 60 05 10 00 00 00 00 00");
+    reset_node();
+    tb_xfer(BUS, "601 40 14 10 00 00 00 00 00", "581 43 14 10 00 85 00 00 80");
+    tb_xfer(BUS, "601 40 05 10 00 00 00 00 00", "581 43 05 10 00 80 00 00 40");
+    power_cycle();
+    tb_xfer(BUS, "601 40 14 10 00 00 00 00 00", "581 43 14 10 00 85 00 00 80");
+    tb_xfer(BUS, "601 40 05 10 00 00 00 00 00", "581 43 05 10 00 80 00 00 40");
+    assert_int_equal(fx.n.ram.emcy_cob, 0x8085U);
+    assert_int_equal(fx.n.ram.sync_cob, 0x4080U);
+}
+
 static void save_comm_only(void **state)
 {
     (void)state;
@@ -1099,6 +1122,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_setup(capability_reads_and_signature_does_not_change_them, setup),
         cmocka_unit_test_setup(save_all_survives_resets_and_power_cycle, setup),
+        cmocka_unit_test_setup(cob_ids_in_16_bits_survive_reset_and_power_cycle, setup),
         cmocka_unit_test_setup(save_comm_only, setup),
         cmocka_unit_test_setup(save_app_only, setup),
         cmocka_unit_test_setup(partial_save_keeps_the_other_group, setup),

@@ -158,6 +158,35 @@ static void bad_sync_cob_ids(void **state)
     tb_xfer(BUS, "601 23 05 10 00 80 08 00 00", "581 80 05 10 00 30 00 09 06"); /* bit 11 */
 }
 
+/* 0x1005 in its 16-bit form (co_od.h, CO_SUB_COB16): bits 31 and 30 and the
+ * CAN-ID read back as written; a value with any of bits 29..11 is refused
+ * and leaves the old one. */
+static void sync_cob_id_in_16_bits(void **state)
+{
+    (void)state;
+    tb_xfer(BUS, "601 40 05 10 00 00 00 00 00", "581 43 05 10 00 80 00 00 00");
+    assert_int_equal(fx.n.ram.sync_cob, 0x0080U);
+    tb_xfer(BUS, "601 23 05 10 00 81 00 00 C0", "581 60 05 10 00 00 00 00 00");
+    assert_int_equal(fx.n.ram.sync_cob, 0xC081U);
+    tb_xfer(BUS, "601 40 05 10 00 00 00 00 00", "581 43 05 10 00 81 00 00 C0");
+    static const char *const bad[] = {"601 23 05 10 00 81 08 00 C0",  /* bit 11 */
+                                      "601 23 05 10 00 81 00 01 C0",  /* bit 16 */
+                                      "601 23 05 10 00 81 00 00 E0"}; /* bit 29 */
+    for (size_t k = 0U; k < sizeof bad / sizeof bad[0]; k++) {
+        tb_xfer(BUS, bad[k], "581 80 05 10 00 30 00 09 06");
+        assert_int_equal(fx.n.ram.sync_cob, 0xC081U);
+    }
+    tb_xfer(BUS, "601 40 05 10 00 00 00 00 00", "581 43 05 10 00 81 00 00 C0");
+    /* a segmented download of the UNSIGNED32, one segment (the CAN-ID in
+     * use stays) */
+    tb_xfer(BUS, "601 21 05 10 00 04 00 00 00", "581 60 05 10 00 00 00 00 00");
+    tb_xfer(BUS, "601 07 81 00 00 40 00 00 00", "581 20 00 00 00 00 00 00 00");
+    assert_int_equal(fx.n.ram.sync_cob, 0x4081U);
+    tb_xfer(BUS, "601 40 05 10 00 00 00 00 00", "581 43 05 10 00 81 00 00 40");
+    tb_xfer(BUS, "601 23 05 10 00 80 00 00 00", "581 60 05 10 00 00 00 00 00");
+    assert_int_equal(fx.n.ram.sync_cob, 0x0080U);
+}
+
 static void window(void **state)
 {
     (void)state;
@@ -185,6 +214,9 @@ static void time_consumer_and_producer(void **state)
     assert_int_equal(co_time_send(&fx.n.node, 1, 2), CO_ERR_NO_ACCESS);
     /* consumer off: not received; producer on */
     tb_xfer(BUS, "601 23 12 10 00 00 01 00 40", "581 60 12 10 00 00 00 00 00");
+    /* (in its 16-bit form, co_od.h CO_SUB_COB16) */
+    assert_int_equal(fx.n.ram.time_cob, 0x4100U);
+    tb_xfer(BUS, "601 40 12 10 00 00 00 00 00", "581 43 12 10 00 00 01 00 40");
     tb_send(BUS, "100 00 2E 93 02 98 3A");
     assert_int_equal(fx.times, 1);
     assert_int_equal(co_time_send(&fx.n.node, 43200000UL, 15000), CO_OK);
@@ -197,6 +229,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_setup(consumer_without_counter, setup),
+        cmocka_unit_test_setup(sync_cob_id_in_16_bits, setup),
         cmocka_unit_test_setup(consumer_only_in_pre_operational_and_operational, setup),
         cmocka_unit_test_setup(consumer_with_counter, setup),
         cmocka_unit_test_setup(counter_overflow_value_rules, setup),

@@ -16,7 +16,7 @@ import struct
 from dataclasses import dataclass, field
 
 import personality
-from model import F_CONST, F_MAP_R, F_MAP_T, F_NODEID, F_R, F_ROM, F_W, FLAG_NAMES, DescError, \
+from model import F_COB16, F_CONST, F_MAP_R, F_MAP_T, F_NODEID, F_R, F_ROM, F_W, FLAG_NAMES, DescError, \
     Device, Sub, encoded_default
 
 REGIONS = (("comm", "communication parameters (stored)"),
@@ -255,6 +255,52 @@ def map_entries(pdos, table: list[Sub]) -> None:
             mapping.subs[k] = m
 
 
+# COB-IDs the core checks (co_od.h, CO_SUB_COB16): in the RAM image 16 bits,
+# bits 31 and 30 in bits 15 and 14, the CAN-ID in bits 10..0; the
+# dictionary's users see the UNSIGNED32
+COB16_OBJECTS = {0x1005: (0,), 0x1012: (0,), 0x1014: (0,)}
+
+
+class Cob16Sub(Sub):
+    """A COB-ID as the C tables hold it: a row of type UNSIGNED32, size 2 and
+    CO_SUB_COB16 (its 16-bit form in the RAM image, co_od.c converts)."""
+
+    @property
+    def fixed(self) -> int:
+        return 2
+
+    @property
+    def flags(self) -> int:
+        return super().flags | F_COB16
+
+
+def cob16_form(v: int, nodeid: bool, what: str) -> int:
+    """The 16-bit form of COB-ID default @p v (+ a node-ID 1..127 with @p nodeid)."""
+    if v & 0x3FFFF800 or (nodeid and (v & 0x7FF) + 127 > 0x7FF):
+        raise DescError(f"{what}: default 0x{v:08X}{' + $NODEID' if nodeid else ''} is not "
+                        "an 11-bit COB-ID (bits 29..11 are 0: the core stores it in 16 bits)")
+    return (v & 0x7FF) | ((v >> 16) & 0xC000)
+
+
+def cob_forms(dev: Device, pdos) -> None:
+    """The COB-IDs the core reads (SYNC, TIME, EMCY, the PDOs it runs) and the
+    SDO server's, RAM values, as the C tables hold them (Cob16Sub, their
+    defaults in their 16-bit forms)."""
+    pdo_comm = {comm.index for comm, _m in pdos[0] + pdos[1]}
+    for o in dev.objects:
+        want = (1,) if o.index in pdo_comm else COB16_OBJECTS.get(o.index, ())
+        for k, s in enumerate(o.subs):
+            if s.sub not in want or s.type != "UNSIGNED32" or s.rom or s.hookio or \
+                    not s.field or isinstance(s, Cob16Sub):
+                continue
+            c = Cob16Sub(**{f.name: getattr(s, f.name) for f in dataclasses.fields(s)})
+            c.size = 2
+            if s.default is not None:
+                c.default = cob16_form(int(s.default), s.nodeid,
+                                       f"object 0x{s.index:04X}:{s.sub:02X}")
+            o.subs[k] = c
+
+
 def field_init(f: Field) -> str | None:
     if f.dims and f.subs[0].elem == 0:
         vals = [c_value(s) for s in f.subs]
@@ -294,6 +340,8 @@ def generate(dev: Device, toml_name: str, warn=None, storage: bool = True) -> tu
     # (a device without PDOs needs no table: nothing refers to it)
     maps = mappable(dev) if pdos_h[0] or pdos_h[1] else []
     map_entries(pdos_h, maps)
+    # (after the table: a mappable COB-ID's row has its UNSIGNED32's size)
+    cob_forms(dev, pdos_h)
     fields = build_fields(dev)
     blocks = pdo_blocks(dev, fields, pdos_h)
     # the core's objects at their places (co_node.h, CO_RAM_*): the head of
@@ -703,7 +751,8 @@ def pdo_blocks(dev: Device, fields: list[Field], pdos) -> list[list[Field]]:
         # other sub-entry after them)
         other = [f for f in block if f not in entries + count and
                  (f.subs[0].index != comm.index or f.subs[0].sub not in PDO_COMM_TYPES)]
-        big = [f for f in block if f not in entries + count + other and f.align >= 4]
+        big = [f for f in block if f not in entries + count + other and
+               (f.align >= 4 or (f.subs[0].index, f.subs[0].sub) == (comm.index, 1))]
         rest = [f for f in block if f not in entries + count + big + other]
         rest.sort(key=lambda f: (f.align, f.subs[0].index, f.subs[0].sub))
         other.sort(key=lambda f: (-f.align, f.subs[0].index, f.subs[0].sub))
@@ -716,13 +765,13 @@ def pdo_blocks(dev: Device, fields: list[Field], pdos) -> list[list[Field]]:
 # the communication parameters), then 0x1016 sub 1.. from CO_RAM_1016, and
 # from app_end (the values not stored) 0x1001, 0x1003 sub 0, then 0x1003
 # sub 1.. from app_end + 4.
-CORE_HEAD = ((0x1005, "UNSIGNED32", "CO_RAM_1005"), (0x1007, "UNSIGNED32", "CO_RAM_1007"),
-             (0x1014, "UNSIGNED32", "CO_RAM_1014"), (0x1015, "UNSIGNED16", "CO_RAM_1015"),
+CORE_HEAD = ((0x1007, "UNSIGNED32", "CO_RAM_1007"), (0x1005, "COB16", "CO_RAM_1005"),
+             (0x1014, "COB16", "CO_RAM_1014"), (0x1015, "UNSIGNED16", "CO_RAM_1015"),
              (0x1017, "UNSIGNED16", "CO_RAM_1017"), (0x1019, "UNSIGNED8", "CO_RAM_1019"))
 CORE_END = ((0x1001, "UNSIGNED8", "CO_RAM_END_1001"), (0x1003, "UNSIGNED8", "CO_RAM_END_1003"))
 CORE_ARRAYS = {0x1016: ("comm", "CO_RAM_1016"), 0x1003: ("none", "CO_RAM_END_1003_1")}
 CTYPES = {"UNSIGNED8": ("uint8_t", 1), "UNSIGNED16": ("uint16_t", 2),
-          "UNSIGNED32": ("uint32_t", 4)}
+          "UNSIGNED32": ("uint32_t", 4), "COB16": ("uint16_t", 2)}
 
 
 def core_places(dev: Device, fields: list[Field]):
@@ -738,6 +787,8 @@ def core_places(dev: Device, fields: list[Field]):
         return s is not None and bool(s.field) and not s.rom and not s.hookio
 
     def wrong(s, typ: str, region: str) -> None:
+        if typ == "COB16":
+            typ = "UNSIGNED32"   # (a COB-ID: cob_forms gave it its 16-bit form)
         if s.type != typ:
             raise DescError(f"object 0x{s.index:04X} sub {s.sub}: the core reads it as {typ}, "
                             f"not {s.type}")
@@ -803,13 +854,13 @@ def rows(subs, at: dict[str, int]) -> list[list]:
     one array field of the RAM image, or RAM values of at most 4 bytes one
     right after the other in the layout @p at (offsets(): fields of their
     own; the source checks the places, run_joins), or one const value (one
-    field of the ROM image), up to 128 of them; any other sub-entry is a
+    field of the ROM image), up to 64 of them (co_od.h, CO_SUB_RUN_SHIFT); any other sub-entry is a
     row of its own."""
     out: list[list] = []
     for s in subs:
         r = out[-1] if out else None
         p = r[-1] if r else None
-        if p is not None and len(r) < 128 and s.sub == p.sub + 1 and s.type == p.type and \
+        if p is not None and len(r) < 64 and s.sub == p.sub + 1 and s.type == p.type and \
                 s.fixed != 0 and s.size == s.fixed and s.size == p.size and \
                 s.flags == p.flags and s.limit_slot == p.limit_slot and s.rom == p.rom and \
                 not s.hookio and not p.hookio and s.field and p.field and \

@@ -52,10 +52,12 @@ STORAGE = ("comm", "app", "none")
 # Flags as in stack/include/co/co_od.h
 F_R, F_W, F_CONST, F_MAP_T, F_MAP_R = 0x0001, 0x0002, 0x0004, 0x0008, 0x0010
 F_ROM, F_HOOKIO, F_NODEID, F_LIMIT = 0x0020, 0x0040, 0x0080, 0x0100
+F_COB16 = 0x0200    # (the C tables only: a COB-ID in its 16-bit form, gen_c.Cob16Sub)
 FLAG_NAMES = [
     (F_R, "CO_SUB_R"), (F_W, "CO_SUB_W"), (F_CONST, "CO_SUB_CONST"),
     (F_MAP_T, "CO_SUB_MAP_T"), (F_MAP_R, "CO_SUB_MAP_R"), (F_ROM, "CO_SUB_ROM"),
     (F_HOOKIO, "CO_SUB_HOOKIO"), (F_NODEID, "CO_SUB_NODEID"), (F_LIMIT, "CO_SUB_LIMIT"),
+    (F_COB16, "CO_SUB_COB16"),
 ]
 
 def core_options() -> dict[str, int]:

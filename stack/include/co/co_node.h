@@ -137,15 +137,15 @@ typedef struct co_dev {
  * follows them. The image starts with these communication parameters
  * (stored: [0, comm_end)):
  */
-#define CO_RAM_1005 0U  /**< UNSIGNED32 COB-ID SYNC */
-#define CO_RAM_1007 4U  /**< UNSIGNED32 synchronous window length */
-#define CO_RAM_1014 8U  /**< UNSIGNED32 COB-ID EMCY */
-#define CO_RAM_1015 12U /**< UNSIGNED16 inhibit time EMCY */
-#define CO_RAM_1017 14U /**< UNSIGNED16 producer heartbeat time */
-#define CO_RAM_1019 16U /**< UNSIGNED8 synchronous counter overflow value */
+#define CO_RAM_1007 0U  /**< UNSIGNED32 synchronous window length */
+#define CO_RAM_1005 4U  /**< UNSIGNED32 COB-ID SYNC, its 16-bit form (co_od.h CO_SUB_COB16) */
+#define CO_RAM_1014 6U  /**< UNSIGNED32 COB-ID EMCY, its 16-bit form (CO_SUB_COB16) */
+#define CO_RAM_1015 8U  /**< UNSIGNED16 inhibit time EMCY */
+#define CO_RAM_1017 10U /**< UNSIGNED16 producer heartbeat time */
+#define CO_RAM_1019 12U /**< UNSIGNED8 synchronous counter overflow value */
 /** UNSIGNED32 consumer heartbeat times, 0x1016 sub 1.. one after the other
- *  (bytes 17..19: any values, or unused) */
-#define CO_RAM_1016 20U
+ *  (bytes 13..15: any values, or unused) */
+#define CO_RAM_1016 16U
 /** The values not stored ([app_end, ram_size)) start with these, counted
  *  from app_end (a multiple of 4): */
 #define CO_RAM_END_1001 0U /**< UNSIGNED8 error register */
@@ -365,7 +365,7 @@ typedef struct co_sync {
 
 /** TIME consumer and producer (co_time.c): 0x1012. */
 typedef struct co_time {
-    uint32_t *cob;           /**< 0x1012 */
+    uint8_t *cob;            /**< 0x1012, its 16-bit form (co_od.h CO_SUB_COB16) */
 } co_time_t;
 
 /** PDO (co_pdo_config.c, co_rpdo.c, co_tpdo.c); its flags are in co_node_t

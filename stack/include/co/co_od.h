@@ -51,17 +51,20 @@ typedef enum co_type {
 #define CO_SUB_HOOKIO  0x0040U /**< no stored value: the entry's hook reads/writes it */
 #define CO_SUB_NODEID  0x0080U /**< default is relative to the node-ID ($NODEID+x) */
 #define CO_SUB_LIMIT   0x0100U /**< 'limit' indexes the device's limit table */
+/** An UNSIGNED32 COB-ID stored in 16 bits (size 2: co_od_cob_u32; a PDO
+ *  mapping entry is an UNSIGNED32 of size 2 without it: CO_OD_MAP_ENTRY) */
+#define CO_SUB_COB16   0x0200U
 /** A row of a dictionary table may describe a run of sub-indices (uniform
  *  ARRAY and RECORD elements: the same type, flags, size and limit, values
  *  one after the other in RAM, or one const value for all in ROM): the
- *  run's length - 1 in these bits of its flags, its last sub-index in 'sub'
+ *  run's length - 1 (up to 64) in these bits of its flags, its last sub-index in 'sub'
  *  (CO_OD_RUN). The run's k-th sub-index has its value at off + k * size,
  *  with CO_SUB_ROM at off (the same value). (A row's place in its table is never above
  *  its first sub-index, so a run's row never sits at the place of its
  *  'sub': a row found there is one sub-index.) The descriptors the lookups
  *  give (co_od_find_sub) are one sub-index each, without these bits. */
-#define CO_SUB_RUN_SHIFT 9U
-#define CO_SUB_FLAGS   0x01FFU /**< the CO_SUB_* flags of a row's flags */
+#define CO_SUB_RUN_SHIFT 10U
+#define CO_SUB_FLAGS   0x03FFU /**< the CO_SUB_* flags of a row's flags */
 #define CO_SUB_MAP     (CO_SUB_MAP_T | CO_SUB_MAP_R)
 #define CO_SUB_RO      CO_SUB_R
 #define CO_SUB_WO      CO_SUB_W
@@ -95,7 +98,7 @@ typedef struct co_od_sub {
 #else
 #define CO_OD_SUB(sub, type, flags, size, off, limit) {(sub), (type), (flags), (size), (off)}
 #endif
-/** Initialiser of one row for the @p n (2..128) sub-indices sub..sub+n-1
+/** Initialiser of one row for the @p n (2..64) sub-indices sub..sub+n-1
  *  of one type, flags, size and limit, with values at off, off + size, ...
  *  (with CO_SUB_ROM: one value at off) */
 #define CO_OD_RUN(sub, n, type, flags, size, off, limit) \
@@ -252,6 +255,31 @@ typedef struct co_od_map {
  *  @p ref (CO_OD_MAP_ROW0 + its object's row, or its dummy type). */
 #define CO_OD_MAP_ENTRY(ref, bits) \
     ((uint16_t)(((uint32_t)(ref) << CO_OD_MAP_REF_SHIFT) | ((uint32_t)(bits) - 1U)))
+
+/** Stored forms: a sub-entry of type UNSIGNED32 and a size below 4 keeps
+ *  its value in the RAM image in a compact form (and its default, and a
+ *  stored parameter set); the dictionary's users (SDO, the application's
+ *  co_od_read / co_od_write, the EDS) see the UNSIGNED32, co_od.c converts
+ *  both ways. Size 2 without CO_SUB_COB16: a PDO mapping entry
+ *  (CO_OD_MAP_ENTRY). Size 2 with CO_SUB_COB16: a COB-ID (CiA 301 7.5.2)
+ *  of an 11-bit CAN-ID, bits 31 and 30 in bits 15 and 14, the CAN-ID in
+ *  bits 10..0 (bits 13..11 are 0); a value with any of bits 29..11 set has
+ *  no such form: a write of it is refused (0x06090030) and leaves the old
+ *  value. */
+#define CO_OD_COB16_CAN_ID 0x07FFU
+static inline uint32_t co_od_cob_u32(uint32_t form)
+{
+    return (form & CO_OD_COB16_CAN_ID) | ((form & 0xC000U) << 16U);
+}
+/** The 16-bit form of COB-ID @p v (bits 29..11: none, see co_od_cob_fits). */
+static inline uint16_t co_od_cob16(uint32_t v)
+{
+    return (uint16_t)((v & CO_OD_COB16_CAN_ID) | ((v >> 16U) & 0xC000U));
+}
+static inline bool co_od_cob_fits(uint32_t v)
+{
+    return (v & 0x3FFFF800U) == 0U;
+}
 
 /** The rows of the mappable-object table of a dictionary built at run time
  *  (an EDS loaded by a daemon; the generator writes its own, the same):

@@ -16,7 +16,7 @@
  *  the entries (sub1..map_max, 16 bits each: co_od.h CO_OD_MAP_ENTRY, the
  *  dictionary shows them as UNSIGNED32) right before it and the
  *  transmission type (communication record sub2, UNSIGNED8) right after it;
- *  the COB-ID (sub1, UNSIGNED32), and the optional parameters by their
+ *  the COB-ID (sub1, UNSIGNED32 in its 16-bit form: co_od.h CO_SUB_COB16), and the optional parameters by their
  *  distance after the COB-ID. RPDOs first, then TPDOs. */
 typedef struct co_pdo_desc {
     uint16_t cob;     /**< sub1 COB-ID */

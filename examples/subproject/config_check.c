@@ -3,7 +3,7 @@
  * stops here. */
 #include "co/co_config.h"
 
-#if CO_TXQ_LEN != 8U || CO_HB_CONSUMERS_MAX != 2U || CO_TIME != 0
+#if CO_EMCY_QUEUE_LEN != 8U || CO_HB_CONSUMERS_MAX != 2U || CO_TIME != 0
 #error "my_co_config.h was not used by co_config.h"
 #endif
 

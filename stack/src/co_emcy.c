@@ -59,9 +59,12 @@ static uint32_t inhibit_us(const co_node_t *node)
     return co_dict_us(co_ram_u16(node, CO_RAM_1015), 100UL); /* (0 without 0x1015) */
 }
 
-/* The waiting EMCYs go out, oldest first, as far as the inhibit time lets
- * them (more than one only when it is 0); the others wait for the
- * service's timer. The queue is a ring: q_head is the oldest, nothing moves.
+/* The waiting EMCYs go out, oldest first, as far as the inhibit time and
+ * the TX path let them (more than one only when the inhibit time is 0); the
+ * others wait for the service's timer, or, one the TX path refused, for its
+ * next run (every co_node_process while a frame waits, co_node_tx_ready):
+ * an EMCY leaves the queue when it is sent (or dropped: none may go). The
+ * queue is a ring: q_head is the oldest, nothing moves.
  * Within the inhibit time of the last EMCY: 'next' is at most one inhibit
  * time (< 6.6 s) ahead of now while it runs; any other distance is a time
  * in the past, however long ago. (co_time_reached alone would take a last
@@ -76,13 +79,19 @@ static uint32_t drain(co_node_t *node, uint32_t next)
 
     while (m->n_q > 0U) {
         uint32_t left = m->next - node->now;
-        uint32_t id;
+        co_frame_t f;
         if ((left != 0U) && (left <= inhibit)) {
             break; /* inhibited */
         }
-        id = emcy_id(node);
-        if (id != 0U) {
-            co_tx(node, id, m->q[m->q_head].data, 8U);
+        f.id = emcy_id(node);
+        f.dlc = 8U;
+        (void)memcpy(f.data, m->q[m->q_head].data, 8U);
+        if (f.id == 0U) {
+            node->tx_hold &= (uint8_t)~CO_TXH_EMCY; /* dropped: it waits no more */
+        } else if (!co_tx_try(node, CO_TXH_EMCY, &f)) {
+            return next; /* the TX path: no timer, the node runs the service again */
+        } else {
+            /* sent */
         }
         m->q_head = (uint8_t)((m->q_head + 1U) % CO_EMCY_QUEUE_LEN);
         m->n_q--;
@@ -232,11 +241,16 @@ static void emcy_booted(co_node_t *node)
     uint32_t cob = emcy_cob(node);
 
     if ((CO_SET(node, nmt.boot_emcy) != 0U) && (cob != 0U) && ((cob & CO_COB_B31) == 0U)) {
-        uint8_t d[8] = {0};
+        /* through the queue (the queue starts empty: CO_SVC_START), error
+         * register 0 */
+        co_emcy_t *m = &node->emcy;
+        uint8_t *d = m->q[(m->q_head + m->n_q) % CO_EMCY_QUEUE_LEN].data;
+        (void)memset(d, 0, 8U);
         if (node->dev->boot_emcy_data != NULL) {
             co_copy(&d[3], node->dev->boot_emcy_data, 5U);
         }
-        co_tx(node, cob & 0x7FFUL, d, 8U);
+        m->n_q++;
+        (void)drain(node, 0U);
     }
     /* Heartbeat consumers, life guarding and RPDO monitoring started over
      * (their CO_SVC_START reset), so an EMCY 0x8130 of a producer or master

@@ -215,7 +215,6 @@ static void hb_rx(co_node_t *node, uint32_t slot, const co_frame_t *f)
 #if CO_NODE_GUARDING
 static void guard_rx(co_node_t *node, const co_frame_t *f)
 {
-    uint8_t reply;
     uint32_t life;
 
     if (!co_frame_is_rtr(f)) {
@@ -224,9 +223,9 @@ static void guard_rx(co_node_t *node, const co_frame_t *f)
     if (!guarding_answered(node)) {
         return;
     }
-    reply = (uint8_t)(node->errctl.guard_toggle | node->nmt);
-    node->errctl.guard_toggle ^= 0x80U;
-    co_tx(node, 0x700UL + node->node_id, &reply, 1U);
+    /* the reply: toggle bit and NMT state, made as it goes (the toggle
+     * changes then; a request while a reply still waits gets that one) */
+    co_tx_hold(node, CO_TXH_GUARD, NULL);
 
     life = life_ms(node);
     if (life != 0U) {
@@ -254,7 +253,9 @@ static uint32_t errctl_process(co_node_t *node, uint32_t next)
         uint32_t due = node->errctl.hb_last + period;
         if (co_time_reached(now, due)) {
             if (node->hb_muted == 0U) {
-                co_tx(node, 0x700UL + node->node_id, &node->nmt, 1U); /* its state */
+                /* its state when it goes (one that waits still: the next
+                 * one replaces it, the cycle keeps its times) */
+                co_tx_hold(node, CO_TXH_HB, NULL);
             }
             /* fell behind (or a shorter period): no burst */
             due = co_time_reached(now, due + period) ? now : due;
@@ -301,6 +302,9 @@ void co_node_hb_mute(co_node_t *node, bool muted, uint32_t now_us)
     bool was = node->hb_muted != 0U;
 
     node->hb_muted = muted ? 1U : 0U;
+    if (muted) {
+        node->tx_hold &= (uint8_t)~CO_TXH_HB; /* one that waits too */
+    }
     if (was && !muted && heartbeat_producing(node)) {
         /* the first heartbeat at once */
         node->errctl.hb_last = now_us - ms_to_us(hb_prod(node));

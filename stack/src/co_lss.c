@@ -43,7 +43,7 @@
 #if CO_LSS
 
 #define LSS_RX 0x7E5U
-#define LSS_TX 0x7E4U
+/* (answers on CO_LSS_TX_ID, co_priv.h) */
 
 #define CS_SWITCH_GLOBAL  0x04U
 #define CS_CONF_NODE_ID   0x11U
@@ -85,7 +85,7 @@ static void answer(co_node_t *node, uint8_t cs, uint8_t b1, uint8_t b2)
     d[0] = cs;
     d[1] = b1;
     d[2] = b2;
-    co_tx(node, LSS_TX, d, 8U);
+    co_tx_hold(node, CO_TXH_LSS, d); /* (on CO_LSS_TX_ID) */
 }
 
 static void answer_u32(co_node_t *node, uint8_t cs, uint32_t v)
@@ -94,7 +94,7 @@ static void answer_u32(co_node_t *node, uint8_t cs, uint32_t v)
 
     d[0] = cs;
     co_put_u32(&d[1], v);
-    co_tx(node, LSS_TX, d, 8U);
+    co_tx_hold(node, CO_TXH_LSS, d); /* (on CO_LSS_TX_ID) */
 }
 
 /* LSS address part @p k (0 vendor-ID, 1 product code, 2 revision, 3 serial):

@@ -1,5 +1,5 @@
 /*
- * The node: initialisation, receive dispatch by COB-ID, timers, TX hold-back.
+ * The node: initialisation, receive dispatch by COB-ID, timers, the TX path.
  */
 #include <stddef.h>
 #include <string.h>
@@ -18,95 +18,81 @@ static bool hal_send(co_node_t *node, const co_frame_t *f)
 #if !CO_FAST
 bool co_tx_now(co_node_t *node, const co_frame_t *f)
 {
-    return (node->txq_len == 0U) && hal_send(node, f);
+    return (node->tx_hold == 0U) && hal_send(node, f);
 }
 #endif
 
-/* The hold-back queue is kept in CAN priority order (lowest identifier
- * first; frames of one identifier in the order they were made), so that a
- * controller that frees a mailbox gets the frame that would win arbitration. */
-static void tx_drain(co_node_t *node)
+bool co_tx_try(co_node_t *node, uint8_t bit, const co_frame_t *f)
 {
-    uint32_t kept = 0U;
+    bool sent = ((node->tx_hold & ((uint32_t)bit - 1U)) == 0U) && hal_send(node, f);
 
-    /* in order until the controller refuses one; that one and the rest move
-     * to the front (in this loop: no call of the C library's memmove) */
-    for (uint32_t k = 0U; k < node->txq_len; k++) {
-        if (kept == 0U) {
-            const co_txq_frame_t *q = &node->txq[k];
-            co_frame_t f;
-            f.id = (uint32_t)q->id_dlc >> 4U;
-            f.dlc = (uint8_t)(q->id_dlc & 0x0FU);
-            (void)memcpy(f.data, q->data, sizeof f.data);
-            if (hal_send(node, &f)) {
-                continue;
-            }
-        }
-        if (kept != k) {
-            co_copy(&node->txq[kept], &node->txq[k], sizeof node->txq[0]);
-        }
-        kept++;
-    }
-    node->txq_len = (uint8_t)kept;
+    node->tx_hold = (uint8_t)(sent ? (node->tx_hold & ~(uint32_t)bit) : (node->tx_hold | bit));
+    return sent;
 }
 
-void co_tx_frame(co_node_t *node, const co_frame_t *f)
+/* The frames the node makes itself (CO_TXH_SDO and the bits above it), in
+ * their order as long as the HAL takes them, none while a SYNC or an EMCY
+ * waits: the held answers from their slots, the boot-up (the state
+ * Initialising, 0x00), a heartbeat (the NMT state now) and a guarding reply
+ * (the toggle bit and the NMT state now; the toggle changes with each reply
+ * that goes out). */
+static void tx_tail(co_node_t *node)
 {
-    uint16_t key;
-    uint16_t last;
-    uint8_t at;
+    uint32_t bit = CO_TXH_SDO;
 
-    if (CO_FAST && co_tx_now(node, f)) {
-        return; /* (a build for size: the frame through the queue, which tx_drain
-                   sends at once when it is the only one) */
-    }
-    /* the queue's key: CAN-ID, then length; 'last' the greatest key of the
-     * CAN-ID */
-    key = (uint16_t)((co_frame_cob(f) << 4U) | f->dlc);
-    last = (uint16_t)(key | 0x0FU);
-    if (node->txq_len == CO_TXQ_LEN) {
-        /* full: the frame of lowest priority is lost (the new one, when
-         * nothing waiting ranks below it) */
-        if (node->txq[CO_TXQ_LEN - 1U].id_dlc <= last) {
-            return;
+    while ((bit <= CO_TXH_LAST) && ((node->tx_hold & (bit - 1U)) == 0U)) {
+        if ((node->tx_hold & bit) != 0U) {
+            co_frame_t f;
+            f.id = 0x700UL + node->node_id;
+            f.dlc = 1U;
+            (void)memset(f.data, 0, sizeof f.data);
+            if ((bit & CO_TXH_ANSWERS) != 0U) {
+                f.id = (bit == CO_TXH_SDO) ? (0x580UL + node->node_id) : CO_LSS_TX_ID;
+                f.dlc = 8U;
+                (void)memcpy(f.data, node->tx_answer[CO_TX_ANSWER_SLOT(bit)], 8U);
+            } else if (bit != CO_TXH_BOOT) {
+                f.data[0] = node->nmt;
+#if CO_NODE_GUARDING
+                if (bit == CO_TXH_GUARD) {
+                    f.data[0] |= node->errctl.guard_toggle;
+                }
+#endif
+            } else {
+                /* the boot-up: 0x00 */
+            }
+            if (!hal_send(node, &f)) {
+                break;
+            }
+            node->tx_hold &= (uint8_t)~bit;
+#if CO_NODE_GUARDING
+            if (bit == CO_TXH_GUARD) {
+                node->errctl.guard_toggle ^= 0x80U;
+            }
+#endif
         }
-        node->txq_len--;
+        bit <<= 1U;
     }
-    /* behind the frames of the same or a higher priority; the ones of
-     * lower priority move back as they are passed (no memmove) */
-    at = node->txq_len;
-    while ((at > 0U) && (node->txq[at - 1U].id_dlc > last)) {
-        co_copy(&node->txq[at], &node->txq[at - 1U], sizeof node->txq[0]);
-        at--;
+}
+
+void co_tx_hold(co_node_t *node, uint8_t bit, const uint8_t *answer)
+{
+    if (answer != NULL) {
+        (void)memcpy(node->tx_answer[CO_TX_ANSWER_SLOT(bit)], answer, 8U);
     }
-    node->txq[at].id_dlc = key;
-    (void)memcpy(node->txq[at].data, f->data, sizeof f->data);
-    node->txq_len++;
-    tx_drain(node); /* the controller may have room again */
+    node->tx_hold |= bit;
+    tx_tail(node);
 }
 
 void co_node_tx_ready(co_node_t *node, uint32_t now_us)
 {
     co_node_clock(node, now_us);
-    tx_drain(node);
-    if (node->txq_len == 0U) {
-        /* a stream stalled on the full TX path (SDO block upload) goes on:
-         * the services' timers, as an extra co_node_process would */
-        (void)run_rows(node, CO_SVC_ALL, CO_NO_DEADLINE);
-        co_svc_touch_all(node); /* their deadlines, taken anew by co_node_process */
-    }
-}
-
-void co_tx(co_node_t *node, uint32_t id, const uint8_t *data, uint8_t len)
-{
-    co_frame_t f;
-
-    /* co_frame_set, with the core's copy (the core's frames: data, 0..8 bytes) */
-    f.id = id;
-    f.dlc = len;
-    (void)memset(f.data, 0, sizeof f.data);
-    co_copy(f.data, data, len);
-    co_tx_frame(node, &f);
+    /* the services' timers, as an extra co_node_process would: the SYNC
+     * and the EMCYs that wait go out, then what the node makes itself; a
+     * stream stalled on the full TX path (SDO block upload) goes on */
+    tx_tail(node);
+    (void)run_rows(node, CO_SVC_ALL, CO_NO_DEADLINE);
+    tx_tail(node);
+    co_svc_touch_all(node); /* their deadlines, taken anew by co_node_process */
 }
 
 /* A COB-ID write (CiA 301 7.5.2), for the services' checks. */
@@ -357,7 +343,7 @@ static uint16_t services_due(co_node_t *node, uint32_t now_us)
 {
     uint16_t run;
 
-    if ((node->txq_len > 0U) ||
+    if ((node->tx_hold != 0U) ||
         ((node->due != CO_NO_DEADLINE) && co_time_reached(now_us, node->due))) {
         co_svc_touch_all(node);
     }
@@ -403,8 +389,8 @@ uint32_t co_node_process(co_node_t *node, uint32_t now_us)
 
     co_node_clock(node, now_us);
     co_rx_settle(node); /* COB-IDs the application changed since */
-    if (!CO_FAST || (node->txq_len != 0U)) {
-        tx_drain(node); /* (a build for size: also when the queue is empty) */
+    if (node->tx_hold != 0U) {
+        tx_tail(node); /* what waits before what the services make now */
     }
     run = services_due(node, now_us);
     next = node->due;
@@ -414,7 +400,11 @@ uint32_t co_node_process(co_node_t *node, uint32_t now_us)
             next = (uint32_t)CO_NO_DEADLINE;
         }
         next = run_rows(node, run, next);
-        if (node->txq_len > 0U) {
+        if (node->tx_hold != 0U) {
+            /* the services' frames first (an EMCY before a held answer) */
+            tx_tail(node);
+        }
+        if (node->tx_hold != 0U) {
             /* TX path still full: look again in a millisecond */
             next = co_deadline_min(now_us, next, now_us + 1000U);
         }
@@ -455,12 +445,15 @@ static void boot(co_node_t *node)
     node->nmt = (uint8_t)CO_NMT_INITIALISING;
     services_walk(node, CO_SVC_START);
     co_rx_invalidate(node);
+    /* the producers' frames that waited are made anew from the state they
+     * start over from (a held answer still goes) */
+    node->tx_hold &= (uint8_t)CO_TXH_ANSWERS;
     if (co_node_unconfigured(node)) {
         return; /* LSS init: no boot-up, no NMT until a valid node-ID */
     }
     if (CO_SET(node, nmt.bootup) == CO_BOOTUP_FRAME) {
         /* the boot-up: one byte, the state Initialising (0x00) */
-        co_tx(node, 0x700UL + node->node_id, &node->nmt, 1U);
+        co_tx_hold(node, CO_TXH_BOOT, NULL);
     }
     co_node_set_state(node, CO_NMT_PRE_OPERATIONAL);
 }

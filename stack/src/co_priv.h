@@ -241,21 +241,48 @@ void co_node_clock(co_node_t *node, uint32_t now_us);
 #endif
 
 /* ---- transmit (co_node.c) */
-/* Send @p f now or not at all: false while frames are held back or the HAL
- * refuses it. */
+/* No frame waits in a queue of frames: a producer whose frame the HAL
+ * refuses keeps what it needs to make it again and it goes when the TX path
+ * takes it (co_node_process looks again every 1 ms while any waits,
+ * co_node_tx_ready at once). co_node_t.tx_hold has a bit per producer, in
+ * the CAN priority of its frame (the CAN-IDs of the predefined connection
+ * set: SYNC 0x080, EMCY 0x080 + node-ID, SDO 0x580 + node-ID, error control
+ * 0x700 + node-ID, LSS 0x7E4), and a frame goes only while no bit below its
+ * own is set: of what waits, the frame that would win arbitration goes
+ * first. Only the request/response services' answers are kept as frames
+ * (co_node_t.tx_answer: one each, a service has at most one outstanding). */
+#define CO_TXH_SYNC    0x01U /* the SYNC producer's SYNC (co_sync.c) */
+#define CO_TXH_EMCY    0x02U /* the oldest EMCY of the EMCY queue (co_emcy.c) */
+#define CO_TXH_SDO     0x04U /* the SDO server's answer, tx_answer[0] */
+#define CO_TXH_BOOT    0x08U /* the boot-up */
+#define CO_TXH_HB      0x10U /* a heartbeat (co_hb.c): the NMT state when it goes */
+#define CO_TXH_GUARD   0x20U /* a node-guarding reply (co_hb.c) */
+#define CO_TXH_LSS     0x40U /* the LSS slave's answer, tx_answer[CO_TX_ANSWERS - 1] */
+#define CO_TXH_LAST    CO_TXH_LSS
+#define CO_TXH_ANSWERS (CO_TXH_SDO | CO_TXH_LSS)
+#define CO_TX_ANSWER_SLOT(bit) (((bit) == CO_TXH_LSS) ? (CO_TX_ANSWERS - 1U) : 0U)
+#define CO_LSS_TX_ID   0x7E4UL /* the LSS slave's answers (CiA 305) */
+/* Send @p f now or not at all: false while any frame waits (tx_hold) or the
+ * HAL refuses it (the TPDOs, an SDO block upload's segments, TIME). */
 #if CO_FAST
 static inline bool co_tx_now(co_node_t *node, const co_frame_t *f)
 {
-    return (node->txq_len == 0U) && (node->hal.ops->send(node->hal.ctx, f) == 0);
+    return (node->tx_hold == 0U) && (node->hal.ops->send(node->hal.ctx, f) == 0);
 }
 #else
 bool co_tx_now(co_node_t *node, const co_frame_t *f); /* (one copy: co_node.c) */
 #endif
-/* Send @p f, or hold it back while the TX path is full (CO_TXQ_LEN). The
- * core sends 11-bit data frames only (what the queue keeps: co_txq_frame_t). */
-void co_tx_frame(co_node_t *node, const co_frame_t *f);
-/* A data frame of @p len (0..8) bytes from @p data, zeros past them. */
-void co_tx(co_node_t *node, uint32_t id, const uint8_t *data, uint8_t len);
+/* The frame of producer @p bit (CO_TXH_SYNC, CO_TXH_EMCY) now, unless a
+ * frame of a higher priority waits or the HAL refuses it: then its bit is
+ * set and the producer makes it again at its next run (every run while
+ * tx_hold is not 0); sent, its bit is cleared. */
+bool co_tx_try(co_node_t *node, uint8_t bit, const co_frame_t *f);
+/* The frame of @p bit (CO_TXH_SDO and above) waits, and what waits of those
+ * goes now as far as the HAL takes it: an answer's 8 data bytes @p answer
+ * (replacing an answer still held: the service's state is that of its
+ * newest), NULL for the frames the node makes from its state (boot-up,
+ * heartbeat, guarding reply). */
+void co_tx_hold(co_node_t *node, uint8_t bit, const uint8_t *answer);
 /* The receive table is out of date (a COB-ID changed): the node rebuilds it
  * from the services' CO_SVC_SLOTS events before it looks up the next frame. */
 void co_rx_invalidate(co_node_t *node);

@@ -76,12 +76,18 @@ static void pack_answer(uint8_t *d, uint8_t cmd, uint16_t index, uint8_t sub, ui
     co_put_u32(&d[4], data);
 }
 
-/* The eight data bytes of @p f go out on the server's COB-ID. */
+/* The eight data bytes of @p f go out on the server's COB-ID (a build for
+ * speed: at once when nothing waits), or wait as the node's held answer. */
 SDO_CALL static void send8(co_node_t *node, co_frame_t *f)
 {
-    f->id = 0x580UL + node->node_id;
-    f->dlc = 8U;
-    co_tx_frame(node, f);
+    if (CO_FAST) {
+        f->id = 0x580UL + node->node_id;
+        f->dlc = 8U;
+        if (co_tx_now(node, f)) {
+            return;
+        }
+    }
+    co_tx_hold(node, CO_TXH_SDO, f->data);
 }
 
 /* An answer, packed into the frame (no 8-byte image copied; at -Os one

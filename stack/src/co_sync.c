@@ -70,6 +70,7 @@ static void sync_reset(co_node_t *node)
     node->sync.last = node->now;
 #if CO_SYNC_PRODUCER
     node->sync.counter = 1U;
+    node->tx_hold &= (uint8_t)~CO_TXH_SYNC; /* SYNC starts over */
     if (producing(node)) {
         node->sync.deadline = node->now + period_us(node);
     }
@@ -96,26 +97,45 @@ static void sync_rx(co_node_t *node, const co_frame_t *f)
 }
 
 #if CO_SYNC_PRODUCER
+/* The SYNC due now, or one the TX path refused before: made from the
+ * producer's state and sent if the TX path takes it (a refused one waits
+ * for the next run: co_tx_try); what a SYNC sets in motion here (counter,
+ * window, RPDOs, TPDOs) starts when it is sent. The period keeps its
+ * times: a SYNC that waits when the next is due is that one. */
 static uint32_t sync_process(co_node_t *node, uint32_t next)
 {
+    bool send = (node->tx_hold & CO_TXH_SYNC) != 0U;
+
+    node->tx_hold &= (uint8_t)~CO_TXH_SYNC; /* (sent, or set again by co_tx_try) */
     if (!producing(node)) {
-        return next;
+        return next; /* (one that waits is dropped) */
     }
     if (co_time_reached(node->now, node->sync.deadline)) {
-        uint8_t ovf = overflow(node);
-        uint8_t cnt = 0U;
         uint32_t period = period_us(node);
-        if (sync_allowed(node)) {
-            if (ovf > 1U) {
-                cnt = node->sync.counter;
-                node->sync.counter = (cnt >= ovf) ? 1U : (uint8_t)(cnt + 1U);
-            }
-            co_tx(node, sync_cob(node) & 0x7FFUL, &cnt, (ovf > 1U) ? 1U : 0U);
-            on_sync(node, cnt);
-        }
+        send = true;
         node->sync.deadline += period;
         if (co_time_reached(node->now, node->sync.deadline)) {
             node->sync.deadline = node->now + period; /* fell behind: no burst */
+        }
+    }
+    if (send && sync_allowed(node)) {
+        uint8_t ovf = overflow(node);
+        uint8_t cnt = (ovf > 1U) ? node->sync.counter : 0U;
+        co_frame_t f;
+        f.id = sync_cob(node) & 0x7FFUL;
+        f.dlc = (ovf > 1U) ? 1U : 0U;
+        (void)memset(f.data, 0, sizeof f.data);
+        f.data[0] = cnt;
+        if (co_tx_try(node, CO_TXH_SYNC, &f)) {
+            if (ovf > 1U) {
+                node->sync.counter = (cnt >= ovf) ? 1U : (uint8_t)(cnt + 1U);
+            }
+            on_sync(node, cnt);
+            if ((node->tx_hold & CO_TXH_EMCY) != 0U) {
+                /* an EMCY waited behind it: its row (before this one in
+                 * the table) runs once more */
+                co_svc_touch(node, CO_ROW_EMCY);
+            }
         }
     }
     return co_deadline_min(node->now, next, node->sync.deadline);

@@ -38,7 +38,7 @@ static void time_rx(co_node_t *node, uint16_t arg, const co_frame_t *f)
 co_err_t co_time_send(co_node_t *node, uint32_t ms, uint16_t days)
 {
     uint32_t cob = time_cob(node);
-    uint8_t d[6];
+    co_frame_t f;
 
     if ((cob & COB_TIME_PROD) == 0U) {
         return CO_ERR_NO_ACCESS;
@@ -46,10 +46,14 @@ co_err_t co_time_send(co_node_t *node, uint32_t ms, uint16_t days)
     if (!time_allowed(node)) {
         return CO_ERR_STORE_STATE;
     }
-    co_put_u32(d, ms & 0x0FFFFFFFUL);
-    co_put_u16(&d[4], days);
-    co_tx(node, cob & 0x7FFUL, d, 6U);
-    return CO_OK;
+    f.id = cob & 0x7FFUL;
+    f.dlc = 6U;
+    (void)memset(f.data, 0, sizeof f.data);
+    co_put_u32(f.data, ms & 0x0FFFFFFFUL);
+    co_put_u16(&f.data[4], days);
+    /* the time of the call, or none: a later frame would carry a stale
+     * time (the application sends a new one) */
+    return co_tx_now(node, &f) ? CO_OK : CO_ERR_RESOURCE;
 }
 
 /* (its object: co_binds[], co_services.c) */

@@ -4,7 +4,7 @@
  * event-driven with change detection, inhibit time and event timer), and the
  * SYNC start value and window.
  *
- * A TPDO never waits in the core's TX hold-back queue: when the HAL does not
+ * A TPDO never waits as a frame (co_priv.h, the TX path): when the HAL does not
  * take it, the TPDO stays due and is sampled again (event-driven) or retried
  * while the synchronous window is open (synchronous), so what goes out is
  * never older than necessary.

@@ -56,6 +56,9 @@ typedef generic_301_node_t dev_node_t;
 #endif
 
 #define NV_SIZE 32768U
+/* co_node_t.tx_hold: the SDO server's answer waits for the TX path
+ * (stack/src/co_priv.h, CO_TXH_SDO) */
+#define FZ_TX_SDO 0x04U
 #define SNAP_MAX 4096U
 
 typedef struct fz {
@@ -323,7 +326,7 @@ static void process(void)
          * next round (or never: the client aborted, a reset, Stopped) */
         if ((fz.sdo_answers != answers) || (fz.n.node.sdo.state == 0U)) {
             fz.store_wait = false;
-        } else if (done_before && (fz.n.node.txq_len == 0U)) {
+        } else if (done_before && ((fz.n.node.tx_hold & FZ_TX_SDO) == 0U)) {
             fail("a save was durable but its SDO answer did not come");
         } else {
             /* still being written, or the answer is held back (TX path full) */
@@ -341,17 +344,13 @@ static void deliver(const co_frame_t *f)
     bool sdo = (id == (0x600U + NODE_ID)) && ((f->id & (CO_FRAME_RTR | CO_FRAME_EFF)) == 0U);
     uint8_t st = fz.n.node.nmt;
     bool live = (st == (uint8_t)CO_NMT_PRE_OPERATIONAL) || (st == (uint8_t)CO_NMT_OPERATIONAL);
-    bool idle = (fz.n.node.sdo.state == 0U) && (fz.n.node.txq_len == 0U) && (fz.refuse == 0U);
+    bool idle = (fz.n.node.sdo.state == 0U) && (fz.n.node.tx_hold == 0U) && (fz.refuse == 0U);
     unsigned before = fz.sdo_answers;
-    unsigned held_sdo = 0U; /* answers to earlier requests, held back, may go out now */
+    /* the answer to an earlier request, held back, may go out now */
+    unsigned held_sdo = ((fz.n.node.tx_hold & FZ_TX_SDO) != 0U) ? 1U : 0U;
     uint8_t cs = f->data[0];
     uint8_t ccs = (uint8_t)(cs >> 5U);
 
-    for (uint8_t i = 0U; i < fz.n.node.txq_len; i++) {
-        if ((fz.n.node.txq[i].id_dlc >> 4U) == (0x580U + NODE_ID)) {
-            held_sdo++;
-        }
-    }
     update_allowed();
     fz.rx = f;
     if (fz.trace) {
@@ -361,13 +360,13 @@ static void deliver(const co_frame_t *f)
         for (uint8_t i = 0U; i < f->dlc; i++) {
             (void)fprintf(stderr, " %02X", f->data[i]);
         }
-        (void)fprintf(stderr, "   (nmt %02X sdo %u txq %u)\n", fz.n.node.nmt, fz.n.node.sdo.state,
-                      fz.n.node.txq_len);
+        (void)fprintf(stderr, "   (nmt %02X sdo %u tx_hold %02X)\n", fz.n.node.nmt, fz.n.node.sdo.state,
+                      fz.n.node.tx_hold);
     }
     co_node_rx(&fz.n.node, f, fz.now);
     if (fz.trace) {
-        (void)fprintf(stderr, "            after: nmt %02X sdo %u txq %u refuse %u n_rx %u:", fz.n.node.nmt,
-                      fz.n.node.sdo.state, fz.n.node.txq_len, fz.refuse, fz.n.node.n_rx);
+        (void)fprintf(stderr, "            after: nmt %02X sdo %u tx_hold %02X refuse %u n_rx %u:", fz.n.node.nmt,
+                      fz.n.node.sdo.state, fz.n.node.tx_hold, fz.refuse, fz.n.node.n_rx);
         for (uint8_t i = 0U; i < fz.n.node.n_rx; i++) {
             (void)fprintf(stderr, " %03X/%u", (unsigned)(fz.n.node.rx[i] & 0x7FFU), (unsigned)(fz.n.node.rx[i] >> 11U));
         }

@@ -227,15 +227,16 @@ def test_tx_path_down_no_spin_timers_run_and_recover(daemons, sniffer):
     assert ticks <= 0.6 * hz, f"{ticks / hz:.2f} s CPU in 1.5 s with the interface down"
     # the consumer's timer ran while the interface was down: the error
     # register shows the communication error (its EMCY 0x8130 was raised
-    # while nothing could go out; it goes out if the hold-back queue of
-    # CO_TXQ_LEN frames still had room for it)
+    # while nothing could go out; it waits in the EMCY queue and goes out
+    # when the path takes frames again)
     sdo = [data for _, c, data in w.frames if c == 0x580 + NODE_ID]
     assert sdo and sdo[-1][:4] == bytes([0x4F, 0x01, 0x10, 0x00]), sdo
     assert sdo[-1][4] & 0x10, f"error register {sdo[-1][4]:#x}: no communication error"
     emcy = [data for t, c, data in w.frames if c == EMCY and t >= up - 0.1]
     assert all(e[:2] == bytes([0x30, 0x81]) for e in emcy[:1]), emcy
-    # heartbeats resume: the held-back ones first (up to CO_TXQ_LEN), then
-    # one every 50 ms: 30 in 1.5 s (at least 90 % where timing is checked)
+    # heartbeats resume: the one that waited first (those due while the
+    # interface was down are that one), then one every 50 ms: 30 in 1.5 s
+    # (at least 90 % where timing is checked)
     beats = w.times(HB, up - 0.1)
     assert beats, "no heartbeat after the interface came back"
     sched = [t for t in beats if t >= beats[0] + 0.01]

@@ -5,8 +5,8 @@
  *
  *   CO_CAN_ERROR_PASSIVE  raise EMCY 0x8120 "CAN in error passive mode"
  *                         (0x1001 communication bit); 0x8140 is cleared.
- *   CO_CAN_BUS_OFF        raise EMCY 0x8140 "recovered from bus-off" (it is
- *                         held back in the core's TX queue while the bus is
+ *   CO_CAN_BUS_OFF        raise EMCY 0x8140 "recovered from bus-off" (it
+ *                         waits in the core's EMCY queue while the bus is
  *                         off and leaves once the controller is back, which
  *                         is what the code means) and, on the change into
  *                         bus-off, apply 0x1029 sub 1 (communication error:

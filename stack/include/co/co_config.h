@@ -29,15 +29,19 @@
 
 /* ---- sizes of the node's fixed tables (co_node_t) */
 
-#ifndef CO_TXQ_LEN
-#define CO_TXQ_LEN 4U          /**< frames held back while the HAL's TX path is full, in CAN-ID
-                                    order; when full, the frame of highest CAN-ID is lost */
-#endif
+/* (CO_TXQ_LEN, the depth of a queue of frames held back while the HAL's TX
+ * path is full, is gone: a producer whose frame the HAL refuses makes it
+ * again from its own state when the path takes it (SYNC, EMCY from the EMCY
+ * queue, boot-up, heartbeat, guarding reply; TPDOs), in CAN priority order,
+ * so only the answers of the request/response services are held as frames:
+ * one each, as such a service has at most one answer outstanding (the SDO
+ * server's, and with CO_LSS the LSS slave's: co_node.h, CO_TX_ANSWERS,
+ * 8 bytes each). A definition of it is ignored.) */
 #ifndef CO_EMCY_ACTIVE_MAX
 #define CO_EMCY_ACTIVE_MAX 8U  /**< distinct error codes active at once */
 #endif
 #ifndef CO_EMCY_QUEUE_LEN
-#define CO_EMCY_QUEUE_LEN 4U   /**< EMCYs waiting for the inhibit time */
+#define CO_EMCY_QUEUE_LEN 4U   /**< EMCYs waiting for the inhibit time or the TX path */
 #endif
 #ifndef CO_HB_CONSUMERS_MAX
 #define CO_HB_CONSUMERS_MAX 8U /**< heartbeat consumer entries the core tracks (0x1016

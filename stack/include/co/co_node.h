@@ -387,14 +387,12 @@ typedef uint16_t co_svc_bits_t;
 #define CO_SVC_BITS_BYTE 0
 #endif
 
-/** A frame held back while the TX path is full (co_node.c): the core sends
- *  only 11-bit data frames of at most 8 bytes, so it keeps the payload and,
- *  in one number, identifier and length (10 bytes instead of the 16 of a
- *  co_frame_t). */
-typedef struct co_txq_frame {
-    uint16_t id_dlc; /**< CAN-ID << 4 | length */
-    uint8_t data[8];
-} co_txq_frame_t;
+/** The answers the node holds back while the TX path is full (co_node.c):
+ *  one per request/response service, which has at most one answer
+ *  outstanding: the SDO server's, and with CO_LSS the LSS slave's. Every
+ *  other frame the core sends is made again from its producer's state when
+ *  the TX path takes it (co_priv.h, CO_TXH_*). */
+#define CO_TX_ANSWERS (1U + (unsigned)(CO_LSS))
 
 typedef struct co_node {
     const co_dev_t *dev;
@@ -413,7 +411,10 @@ typedef struct co_node {
      *  in bit 7 (CO_RX_STALE) that it is out of date (rebuilt before the
      *  next lookup) */
     uint8_t n_rx;
-    uint8_t txq_len;
+    /** frames waiting for the TX path, a bit per producer in CAN priority
+     *  order (co_priv.h, CO_TXH_*): a frame goes only while no bit below
+     *  its own is set */
+    uint8_t tx_hold;
     /* (error control's bytes, here where they fill the bytes before the
      * words: co_errctl_t 64 -> 60 bytes in the SEG and BLK builds; with a
      * two-byte svc_run hb_muted comes after rx_at, so that these bytes
@@ -453,7 +454,9 @@ typedef struct co_node {
     /** The services' receive slots: the COB-ID in bits 0..10, the row of
      *  the service in the service table above them (co_node.c). */
     uint16_t rx[CO_RX_SLOTS_MAX];
-    co_txq_frame_t txq[CO_TXQ_LEN];
+    /** the answers held back (CO_TX_ANSWERS): their data bytes (identifier
+     *  and length are the service's) */
+    uint8_t tx_answer[CO_TX_ANSWERS][8];
 #if CO_TIME
     co_time_t time;
 #endif
@@ -535,10 +538,11 @@ typedef enum co_nmt_cmd {
 uint32_t co_node_now(const co_node_t *node);
 /** The port's TX-ready notice: the controller has room again (a TX mailbox
  *  or FIFO slot emptied; on an MCU the TX interrupt sets a flag the main loop
- *  turns into this call). Frames held back go out now, lowest CAN-ID first,
- *  and a block upload stalled on the full TX path resumes; without the
- *  notice both wait for co_node_process, which looks again every 1 ms while
- *  the path is full. */
+ *  turns into this call). The frames that wait for the TX path (made again
+ *  from their producers' state; an SDO or LSS answer held) go out now,
+ *  lowest CAN-ID first, and a block upload stalled on the full TX path
+ *  resumes; without the notice both wait for co_node_process, which looks
+ *  again every 1 ms while the path is full. */
 void co_node_tx_ready(co_node_t *node, uint32_t now_us);
 
 /** The @p i-th CAN-ID (11 bits, 0-based) of the frames the node acts on:
@@ -609,7 +613,10 @@ void co_emcy_raise(co_node_t *node, uint16_t code, uint8_t reg_bits, const uint8
 void co_emcy_clear(co_node_t *node, uint16_t code);
 
 /** Send a TIME_OF_DAY (0x1012 producer bit set; Pre-operational or
- *  Operational). */
+ *  Operational): CO_ERR_NO_ACCESS when the node is no TIME producer,
+ *  CO_ERR_STORE_STATE in another NMT state, CO_ERR_RESOURCE when the TX path
+ *  is full (frames wait or the HAL refused it: nothing is sent, the time it
+ *  carries would be stale later; call again with the time then). */
 co_err_t co_time_send(co_node_t *node, uint32_t ms, uint16_t days);
 
 /** True while the synchronous window (0x1007) after the last SYNC is open

@@ -5,7 +5,13 @@
 #include "co/co_endian.h"
 #include "co_priv.h"
 
-enum { HBC_UNUSED = 0, HBC_WAITING, HBC_ACTIVE, HBC_LOST };
+/* A consumer entry's state, without a byte of its own: hbc_nmt holds
+ * HBC_WAITING (bit 7, no NMT state has it) until the first heartbeat (also
+ * in an entry not used), then the state the producer reported last;
+ * hbc_left is HBC_LOST (no count of units reaches it: hbc_advance) while
+ * the producer is lost, else the units to the deadline (0: it has come). */
+#define HBC_WAITING 0x80U
+#define HBC_LOST    0xFFFFU
 enum { GUARD_OFF = 0, GUARD_ARMED, GUARD_LOST };
 
 static uint32_t ms_to_us(uint32_t ms)
@@ -24,6 +30,13 @@ static void event(co_node_t *node, co_hb_event_t ev, uint8_t id, uint8_t state)
 static uint32_t hb_cons(const co_node_t *node, uint32_t k)
 {
     return co_ram_u32(node, (uint16_t)(CO_RAM_1016 + (4U * k)));
+}
+
+/* An entry in use: a consumer time and a producer (CiA 301: 0 in either
+ * switches it off) */
+static bool hbc_used(uint32_t v)
+{
+    return ((v & 0xFFFFU) != 0U) && (((v >> 16U) & 0xFFU) != 0U);
 }
 
 /* 0x1017 (0 without the object) */
@@ -50,7 +63,7 @@ static void update_error(co_node_t *node)
 #endif
 
     for (uint32_t k = node->n_hb_cons; k > 0U; k--) {
-        if (node->errctl.hbc_state[k - 1U] == (uint8_t)HBC_LOST) {
+        if (node->errctl.hbc_left[k - 1U] == HBC_LOST) {
             lost = true;
         }
     }
@@ -110,16 +123,12 @@ static void guard_check(co_node_t *node)
 #endif
 }
 
-/* Entry @p k starts over from its 0x1016 value: a used one waits for its
- * producer's first heartbeat, with no deadline until then. */
+/* Entry @p k starts over from its 0x1016 value: a used one (hbc_used)
+ * waits for its producer's first heartbeat, with no deadline until then. */
 static void consumer_start(co_node_t *node, uint32_t k)
 {
-    uint32_t v = hb_cons(node, k);
-    bool used = ((v & 0xFFFFU) != 0U) && (((v >> 16U) & 0xFFU) != 0U);
-
-    node->errctl.hbc_state[k] = used ? (uint8_t)HBC_WAITING : (uint8_t)HBC_UNUSED;
     node->errctl.hbc_left[k] = 0U; /* (no deadline: hbc_advance) */
-    node->errctl.hbc_nmt[k] = (uint8_t)CO_NMT_INITIALISING;
+    node->errctl.hbc_nmt[k] = (uint8_t)HBC_WAITING;
     co_rx_invalidate(node);
 }
 
@@ -172,9 +181,11 @@ static void hbc_advance(co_node_t *node)
     c->hbc_base += units << HBC_SHIFT;
     for (uint32_t k = node->n_hb_cons; k > 0U; k--) {
         uint32_t left = c->hbc_left[k - 1U];
-        left = (left > units) ? (left - units) : 0U;
-        c->hbc_left[k - 1U] = (uint16_t)left;
-        any |= left;
+        if (left != HBC_LOST) {
+            left = (left > units) ? (left - units) : 0U;
+            c->hbc_left[k - 1U] = (uint16_t)left;
+            any |= left;
+        }
     }
     if (any == 0U) {
         c->hbc_base = node->now;
@@ -187,7 +198,8 @@ static void hb_rx(co_node_t *node, uint32_t slot, const co_frame_t *f)
 {
     co_errctl_t *c = &node->errctl;
     uint8_t st = (uint8_t)(f->data[0] & 0x7FU);
-    uint8_t prev = c->hbc_state[slot];
+    bool waiting = c->hbc_nmt[slot] == (uint8_t)HBC_WAITING;
+    bool lost = c->hbc_left[slot] == HBC_LOST;
     bool changed = c->hbc_nmt[slot] != st;
     int32_t end;
 
@@ -198,16 +210,15 @@ static void hb_rx(co_node_t *node, uint32_t slot, const co_frame_t *f)
           (int32_t)ms_to_us(hb_cons(node, slot) & 0xFFFFU);
     c->hbc_left[slot] =
         (uint16_t)((end > 0) ? (((uint32_t)end + (HBC_UNIT - 1U)) >> HBC_SHIFT) : 0U);
-    c->hbc_state[slot] = (uint8_t)HBC_ACTIVE;
     c->hbc_nmt[slot] = st;
-    if (prev == (uint8_t)HBC_LOST) {
+    if (lost) {
         update_error(node);
     }
-    if (prev != (uint8_t)HBC_ACTIVE) {
+    if (waiting || lost) {
         /* the first heartbeat, or one after a timeout */
-        hb_event(node, (prev == (uint8_t)HBC_WAITING) ? CO_HB_STARTED : CO_HB_RECOVERED, slot);
+        hb_event(node, waiting ? CO_HB_STARTED : CO_HB_RECOVERED, slot);
     }
-    if (changed && (prev != (uint8_t)HBC_WAITING)) {
+    if (changed && !waiting) {
         hb_event(node, CO_HB_STATE, slot);
     }
 }
@@ -267,16 +278,16 @@ static uint32_t errctl_process(co_node_t *node, uint32_t next)
     hbc_advance(node);
     for (uint32_t k = 0U; k < node->n_hb_cons; k++) {
         co_errctl_t *c = &node->errctl;
-        if (c->hbc_state[k] == (uint8_t)HBC_ACTIVE) {
-            if (c->hbc_left[k] == 0U) {
-                c->hbc_state[k] = (uint8_t)HBC_LOST;
-                update_error(node);
-                hb_event(node, CO_HB_TIMEOUT, k);
-                co_nmt_error(node, CO_ERRBEH_COMM); /* 0x1029: a communication error */
-            } else {
-                next = co_deadline_min(now, next,
-                                       c->hbc_base + ((uint32_t)c->hbc_left[k] << HBC_SHIFT));
-            }
+        uint32_t left = c->hbc_left[k];
+        if ((c->hbc_nmt[k] == (uint8_t)HBC_WAITING) || (left == HBC_LOST)) {
+            /* not monitored (yet), or lost */
+        } else if (left == 0U) {
+            c->hbc_left[k] = (uint16_t)HBC_LOST;
+            update_error(node);
+            hb_event(node, CO_HB_TIMEOUT, k);
+            co_nmt_error(node, CO_ERRBEH_COMM); /* 0x1029: a communication error */
+        } else {
+            next = co_deadline_min(now, next, c->hbc_base + (left << HBC_SHIFT));
         }
     }
     /* 0x100C/0x100D written since the last call (errctl_written keeps a
@@ -325,7 +336,7 @@ static void errctl_rx_slots(co_node_t *node)
 #endif
     for (uint32_t k = node->n_hb_cons; k > 0U; k--) {
         uint8_t id = (uint8_t)((hb_cons(node, k - 1U) >> 16U) & 0x7FU);
-        if ((node->errctl.hbc_state[k - 1U] != (uint8_t)HBC_UNUSED) && (id != node->node_id)) {
+        if (hbc_used(hb_cons(node, k - 1U)) && (id != node->node_id)) {
             co_rx_add(node, (uint16_t)(0x700U + id), CO_ROW_ERRCTL);
         }
     }
@@ -360,8 +371,8 @@ static void errctl_rx(co_node_t *node, uint16_t arg, const co_frame_t *f)
         return; /* no heartbeat */
     }
     for (uint32_t k = 0U; k < node->n_hb_cons; k++) {
-        if ((node->errctl.hbc_state[k] != (uint8_t)HBC_UNUSED) &&
-            (((hb_cons(node, k) >> 16U) & 0x7FU) == id)) {
+        uint32_t v = hb_cons(node, k);
+        if (hbc_used(v) && (((v >> 16U) & 0x7FU) == id)) {
             hb_rx(node, k, f);
             return;
         }

@@ -425,6 +425,35 @@ static void timers_across_the_clock_wrap(void **state)
     assert_true(BUS->now < 1000000UL);
 }
 
+/* An entry that is not used (consumer time 0) names the producer a used
+ * entry monitors: the heartbeats go to the used one, through its states
+ * (waiting, active, lost, recovered). */
+static void heartbeat_consumer_unused_entry_same_producer(void **state)
+{
+    tb_xfer(BUS, "601 23 16 10 01 00 00 05 00", "581 60 16 10 01 00 00 00 00");
+    tb_xfer(BUS, "601 23 16 10 02 64 00 05 00", "581 60 16 10 02 00 00 00 00");
+    tb_advance(BUS, 1000000U);
+    assert_int_equal(REC.n, 0);
+    tb_send(BUS, "705 05");
+    assert_int_equal(REC.n, 1);
+    expect_event(&REC, 0, CO_HB_STARTED, 5, CO_NMT_OPERATIONAL);
+    tb_advance(BUS, 99999U);
+    tb_expect_none(BUS);
+    tb_advance(BUS, 1U + HBC_LATE);
+    tb_expect(BUS, "081 30 81 11 00 00 00 00 00");
+    tb_expect_none(BUS);
+    assert_int_equal(REC.n, 2);
+    expect_event(&REC, 1, CO_HB_TIMEOUT, 5, CO_NMT_OPERATIONAL);
+    tb_advance(BUS, 1000000U);
+    assert_int_equal(REC.n, 2);
+    tb_send(BUS, "705 7F");
+    tb_expect(BUS, "081 00 00 00 00 00 00 00 00");
+    tb_expect_none(BUS);
+    assert_int_equal(REC.n, 4);
+    expect_event(&REC, 2, CO_HB_RECOVERED, 5, CO_NMT_PRE_OPERATIONAL);
+    expect_event(&REC, 3, CO_HB_STATE, 5, CO_NMT_PRE_OPERATIONAL);
+}
+
 /* At any phase of a heartbeat's time stamp (the deadlines count in units of
  * 1024 us from a time base the service moves), the timeout comes never
  * before the consumer time and at most 1023 us after it, exactly at the
@@ -939,6 +968,7 @@ int main(void)
         cmocka_unit_test_setup(heartbeat_consumer_disabled_entry_clears_error, setup),
         cmocka_unit_test_setup(heartbeat_consumer_write_restarts_that_entry_only, setup),
         cmocka_unit_test_setup(timers_across_the_clock_wrap, setup),
+        cmocka_unit_test_setup(heartbeat_consumer_unused_entry_same_producer, setup),
         cmocka_unit_test_setup(heartbeat_consumer_timeout_within_a_ms, setup),
         cmocka_unit_test_setup(heartbeat_consumer_after_70_s_without_process, setup),
         cmocka_unit_test_setup(heartbeat_consumer_first_after_71_min, setup),

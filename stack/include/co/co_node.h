@@ -322,13 +322,13 @@ typedef struct co_errctl {
 #endif
     /** the heartbeat consumers' time base: their deadlines count from it */
     uint32_t hbc_base;
-    /* the heartbeat consumers, one element each (three arrays: no padding) */
+    /* the heartbeat consumers, one element each (two arrays: no padding;
+     * an entry's state is in their values: co_hb.c) */
     /** the deadline, in units of 1024 us after hbc_base, rounded up (16 bits:
-     *  a consumer time of 65,535 ms is 64,000 units; co_hb.c) */
+     *  a consumer time of 65,535 ms is 64,000 units), 0xFFFF while lost */
     uint16_t hbc_left[CO_HB_CONSUMERS_MAX];
-    uint8_t hbc_state[CO_HB_CONSUMERS_MAX]; /**< 0 unused, 1 waiting for first, 2 active,
-                                                 3 timed out */
-    uint8_t hbc_nmt[CO_HB_CONSUMERS_MAX];   /**< producer's last state */
+    uint8_t hbc_nmt[CO_HB_CONSUMERS_MAX];   /**< producer's last state, 0x80 before the
+                                                 first heartbeat */
 } co_errctl_t;
 
 typedef struct co_emcy_pending {

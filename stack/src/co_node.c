@@ -47,7 +47,8 @@ static void tx_tail(co_node_t *node)
             f.dlc = 1U;
             (void)memset(f.data, 0, sizeof f.data);
             if ((bit & CO_TXH_ANSWERS) != 0U) {
-                f.id = (bit == CO_TXH_SDO) ? (0x580UL + node->node_id) : CO_LSS_TX_ID;
+                f.id = ((CO_LSS == 0) || (bit == CO_TXH_SDO)) ? (0x580UL + node->node_id)
+                                                              : CO_LSS_TX_ID;
                 f.dlc = 8U;
                 (void)memcpy(f.data, node->tx_answer[CO_TX_ANSWER_SLOT(bit)], 8U);
             } else if (bit != CO_TXH_BOOT) {

@@ -258,7 +258,8 @@ void co_node_clock(co_node_t *node, uint32_t now_us);
 #define CO_TXH_HB      0x10U /* a heartbeat (co_hb.c): the NMT state when it goes */
 #define CO_TXH_GUARD   0x20U /* a node-guarding reply (co_hb.c) */
 #define CO_TXH_LSS     0x40U /* the LSS slave's answer, tx_answer[CO_TX_ANSWERS - 1] */
-#define CO_TXH_LAST    CO_TXH_LSS
+/* (the last bit a build has: its frames' loop ends there) */
+#define CO_TXH_LAST    (CO_LSS ? CO_TXH_LSS : (CO_NODE_GUARDING ? CO_TXH_GUARD : CO_TXH_HB))
 #define CO_TXH_ANSWERS (CO_TXH_SDO | CO_TXH_LSS)
 #define CO_TX_ANSWER_SLOT(bit) (((bit) == CO_TXH_LSS) ? (CO_TX_ANSWERS - 1U) : 0U)
 #define CO_LSS_TX_ID   0x7E4UL /* the LSS slave's answers (CiA 305) */

@@ -10,8 +10,9 @@
  * event-driven or acyclic TPDO does not go out when its data change (only
  * once on entering Operational, on a request and at its event timer), the
  * expedited and segmented SDO, the heartbeat, the synchronous TPDO and
- * mappings of some of an object's bytes keep working, and a device with
- * 0x100C/0x100D is refused.
+ * mappings of some of an object's bytes keep working, a full TX path sends
+ * what waits in CAN priority order, and a device with 0x100C/0x100D is
+ * refused.
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -21,6 +22,7 @@
 
 #include <cmocka.h>
 
+#include "co/co_canstate.h"
 #include "lean_test.h"
 #include "test_bus.h"
 #include "test_dev.h"
@@ -70,6 +72,29 @@ static void guarding_left_out(void **state)
     tb_xfer(BUS, "601 2B 17 10 00 64 00 00 00", "581 60 17 10 00 00 00 00 00");
     tb_advance(BUS, 100000);
     tb_expect(BUS, "701 7F");
+}
+
+/* The TX path of a core without LSS and guarding (the heartbeat is the last
+ * frame the node makes itself): what waits goes in CAN priority order. */
+static void full_tx_path(void **state)
+{
+    (void)state;
+    tb_xfer(BUS, "601 2B 17 10 00 0A 00 00 00", "581 60 17 10 00 00 00 00 00");
+    BUS->refuse = 1000U;
+    tb_send(BUS, "000 81 01");                            /* reset node: the boot-up */
+    tb_send(BUS, "601 40 08 10 00 00 00 00 00");          /* an SDO answer */
+    tb_advance(BUS, 30000U);                              /* no heartbeat (0x1017 reset) */
+    assert_int_equal(co_od_write(&lean.node, 0x1017U, 0U, "\x0A\x00", 2U, true), CO_OK);
+    tb_advance(BUS, 10000U);                              /* a heartbeat due */
+    co_node_can_overrun(&lean.node, true);                /* an EMCY */
+    tb_expect_none(BUS);
+    BUS->refuse = 0U;
+    co_node_tx_ready(&lean.node, BUS->now);
+    tb_expect(BUS, "081 10 81 11 00 00 00 00 00");
+    tb_expect(BUS, "581 47 08 10 00 6D 69 6E 00");
+    tb_expect(BUS, "701 00");
+    tb_expect(BUS, "701 7F");
+    tb_expect_none(BUS);
 }
 
 static void tpdo_rtr_left_out(void **state)
@@ -218,6 +243,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_setup(block_sdo_left_out, setup),
         cmocka_unit_test_setup(guarding_left_out, setup),
+        cmocka_unit_test_setup(full_tx_path, setup),
         cmocka_unit_test_setup(tpdo_rtr_left_out, setup),
         cmocka_unit_test_setup(pdo_bitwise_left_out, setup),
         cmocka_unit_test_setup(tpdo_event_no_change, setup),

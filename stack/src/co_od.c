@@ -797,6 +797,13 @@ co_err_t co_od_write(co_node_t *node, uint16_t index, uint8_t sub, const void *d
     if ((err == CO_OK) && as_app && ((s->flags & (CO_SUB_ROM | CO_SUB_W)) == CO_SUB_ROM)) {
         err = CO_ERR_READ_ONLY; /* (a writable const is a command: check_access) */
     }
+    if ((err == CO_OK) && ((s->flags & CO_SUB_COB16) != 0U) && (len == 4U) &&
+        !co_od_cob_fits(co_get_u32((const uint8_t *)data))) {
+        /* a COB-ID without a 16-bit form (co_od.h; the services' checks refuse
+         * one over SDO, the generator gives a COB-ID no service checks its
+         * form only where SDO cannot write it) */
+        err = CO_ERR_VALUE;
+    }
     if (err == CO_OK) {
         if (co_od_is_streamed(s) && ((s->flags & CO_SUB_HOOKIO) != 0U)) {
             co_od_chunk_t c = {NULL, NULL, NULL, NULL, 0U, (uint8_t *)(uintptr_t)data, len, len,

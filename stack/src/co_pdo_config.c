@@ -55,8 +55,12 @@ static bool direct_ok(const co_od_entry_t *e, const co_od_sub_t *s, const co_od_
     uint8_t svc = co_od_svc_ops(e);
     uint32_t n = bits >> 3U; /* the bytes mapped */
 
+    /* (a COB-ID's 16-bit form, co_od.h CO_SUB_COB16, begins with the low
+     * byte of its UNSIGNED32: a TPDO may copy that byte directly) */
     if (co_od_hooked(e) || ((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) != 0U) ||
-        (s->size != size) || (CO_PDO_BITWISE && (((pos | bits) & 7U) != 0U)) ||
+        ((s->size != size) &&
+         !(tx && (n == 1U) && CO_NATIVE_LE && ((s->flags & CO_SUB_COB16) != 0U))) ||
+        (CO_PDO_BITWISE && (((pos | bits) & 7U) != 0U)) ||
         (tx ? (((svc & CO_SVC_READ) != 0U) || (!CO_NATIVE_LE && (n != size)))
             : ((svc != 0U) || ((s->flags & CO_SUB_LIMIT) != 0U) ||
                (s->type == (uint8_t)CO_BOOLEAN)))) {

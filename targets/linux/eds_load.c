@@ -1351,6 +1351,13 @@ static eds_dev_t *build(ctx_t *c, const char *name, const char *text)
     cob_form(find_sub(c, 0x1005U, 0U, (uint8_t)CO_UNSIGNED32));
     cob_form(find_sub(c, 0x1012U, 0U, (uint8_t)CO_UNSIGNED32));
     cob_form(find_sub(c, 0x1014U, 0U, (uint8_t)CO_UNSIGNED32));
+    /* (and the SDO server's where only the application writes them) */
+    for (uint8_t sub = 1U; sub <= 2U; sub++) {
+        bsub_t *b = find_sub(c, 0x1200U, sub, (uint8_t)CO_UNSIGNED32);
+        if ((b != NULL) && ((b->s.flags & (CO_SUB_W | CO_SUB_MAP_R)) == 0U)) {
+            cob_form(b);
+        }
+    }
     for (unsigned r = 0U; r < 3U; r++) {
         static const core_place_t head[] = {
             {0x1005U, (uint8_t)CO_UNSIGNED32, CO_RAM_1005},

@@ -34,6 +34,10 @@ static const char EDS[] =
     "[1018sub0]\r\nDataType=0x0005\r\nAccessType=ro\r\nDefaultValue=1\r\n"
     "[1018sub1]\r\nDataType=0x0007\r\nAccessType=ro\r\nDefaultValue=0x12345678\r\n"
     "[1005]\r\nDataType=0x0007\r\nAccessType=rw\r\nDefaultValue=0x80\r\n"
+    "[1200]\r\nObjectType=0x9\r\n"
+    "[1200sub0]\r\nDataType=0x0005\r\nAccessType=const\r\nDefaultValue=2\r\n"
+    "[1200sub1]\r\nDataType=0x0007\r\nAccessType=ro\r\nDefaultValue=$NODEID+0x600\r\n"
+    "[1200sub2]\r\nDataType=0x0007\r\nAccessType=ro\r\nDefaultValue=$NODEID+0x580\r\n"
     "[1400]\r\nObjectType=0x9\r\n"
     "[1400sub0]\r\nDataType=0x0005\r\nAccessType=const\r\nDefaultValue=2\r\n"
     "[1400sub1]\r\nDataType=0x0007\r\nAccessType=rw\r\nDefaultValue=0x200+$NODEID\r\n"
@@ -113,7 +117,7 @@ static void the_device(void **state)
 
     assert_int_equal(d->n_rpdo, 1);
     assert_int_equal(d->n_tpdo, 1);
-    assert_string_equal(eds_summary(f->eds), "loader test: 18 objects, 1 RPDOs, 1 TPDOs");
+    assert_string_equal(eds_summary(f->eds), "loader test: 19 objects, 1 RPDOs, 1 TPDOs");
     assert_string_equal(eds_warnings(f->eds), "");
     assert_non_null(strstr(eds_text(f->eds), "ProductName=loader test"));
     /* the core's objects at their places (co_node.h, CO_RAM_*): the image
@@ -143,6 +147,9 @@ static void the_device(void **state)
         assert_int_equal(co_od_find(d->od, d->od_count, 0x1800U) != NULL, 1);
         assert_int_equal(co_od_rows(d, co_od_find(d->od, d->od_count, 0x1800U))[1].flags &
                              CO_SUB_COB16, CO_SUB_COB16);
+        /* (and the SDO server's, read-only) */
+        (void)memcpy(&v, co_od_value_ptr(&f->node, 0x1200U, 2U), 2U);
+        assert_int_equal(v, 0x0585U);
     }
 }
 
@@ -155,6 +162,8 @@ static void values_over_sdo(void **state)
     /* $NODEID+0x80, 0x200+$NODEID */
     tb_xfer(b, "605 40 14 10 00 00 00 00 00", "585 43 14 10 00 85 00 00 00");
     tb_xfer(b, "605 40 00 14 01 00 00 00 00", "585 43 00 14 01 05 02 00 00");
+    tb_xfer(b, "605 40 00 12 01 00 00 00 00", "585 43 00 12 01 05 06 00 00");
+    tb_xfer(b, "605 40 00 12 02 00 00 00 00", "585 43 00 12 02 85 05 00 00");
     /* a PDO COB-ID (its 16-bit form in RAM): bit 31 round trip, bits 29..11 refused */
     tb_xfer(b, "605 23 00 18 01 85 01 00 80", "585 60 00 18 01 00 00 00 00");
     tb_xfer(b, "605 23 00 18 01 85 01 00 90", "585 80 00 18 01 30 00 09 06");

@@ -14,6 +14,7 @@
 
 #include <cmocka.h>
 
+#include "co/co_endian.h"
 #include "pdo_fx.h"
 
 static pfx_t fx;
@@ -748,6 +749,51 @@ static void dictionary_path(void **state)
     assert_int_equal(fx.hook_writes, 3);
 }
 
+/* The SDO server's COB-IDs, read-only, in 16 bits (co_od.h CO_SUB_COB16):
+ * read as their UNSIGNED32, a TPDO copies the low byte directly or reads
+ * the whole value through the dictionary, the application's value without
+ * a 16-bit form is refused and leaves the old one. */
+static void sdo_server_cob_ids_in_16_bits(void **state)
+{
+    uint8_t v[4];
+
+    (void)state;
+    pfx_start(&fx, 5, NULL);
+    tb_xfer(BUS, "605 40 00 12 01 00 00 00 00", "585 43 00 12 01 05 06 00 00");
+    tb_xfer(BUS, "605 40 00 12 02 00 00 00 00", "585 43 00 12 02 85 05 00 00");
+    assert_int_equal(fx.n.ram.x1200_cob_id_client_to_server_rx, 0x0605U);
+    tb_xfer(BUS, "605 23 00 12 01 05 06 00 80", "585 80 00 12 01 02 00 01 06");
+    co_put_u32(v, 0x00000E05UL); /* bit 11 */
+    assert_int_equal(co_od_write(&fx.n.node, 0x1200U, 1U, v, 4U, true), CO_ERR_VALUE);
+    co_put_u32(v, 0x20000605UL); /* bit 29 */
+    assert_int_equal(co_od_write(&fx.n.node, 0x1200U, 1U, v, 4U, true), CO_ERR_VALUE);
+    tb_xfer(BUS, "605 40 00 12 01 00 00 00 00", "585 43 00 12 01 05 06 00 00");
+    co_put_u32(v, 0xC0000605UL);
+    assert_int_equal(co_od_write(&fx.n.node, 0x1200U, 1U, v, 4U, true), CO_OK);
+    assert_int_equal(fx.n.ram.x1200_cob_id_client_to_server_rx, 0xC605U);
+    tb_xfer(BUS, "605 40 00 12 01 00 00 00 00", "585 43 00 12 01 05 06 00 C0");
+    /* TPDO1: the low byte of 0x1200:02 (8 bits: copied directly) */
+    tb_xfer(BUS, "605 23 00 18 01 85 01 00 80", "585 60 00 18 01 00 00 00 00");
+    tb_xfer(BUS, "605 2F 00 1A 00 00 00 00 00", "585 60 00 1A 00 00 00 00 00");
+    tb_xfer(BUS, "605 23 00 1A 01 08 02 00 12", "585 60 00 1A 01 00 00 00 00");
+    tb_xfer(BUS, "605 2F 00 1A 00 01 00 00 00", "585 60 00 1A 00 00 00 00 00");
+    tb_xfer(BUS, "605 23 00 18 01 85 01 00 00", "585 60 00 18 01 00 00 00 00");
+    tb_send(BUS, "000 01 05");
+    tb_expect(BUS, "185 85");
+    tb_expect_none(BUS);
+    /* then the whole 0x1200:01 (through the dictionary) and its low 16 bits */
+    tb_send(BUS, "000 80 05");
+    tb_xfer(BUS, "605 23 00 18 01 85 01 00 80", "585 60 00 18 01 00 00 00 00");
+    tb_xfer(BUS, "605 2F 00 1A 00 00 00 00 00", "585 60 00 1A 00 00 00 00 00");
+    tb_xfer(BUS, "605 23 00 1A 01 20 01 00 12", "585 60 00 1A 01 00 00 00 00");
+    tb_xfer(BUS, "605 23 00 1A 02 10 02 00 12", "585 60 00 1A 02 00 00 00 00");
+    tb_xfer(BUS, "605 2F 00 1A 00 02 00 00 00", "585 60 00 1A 00 00 00 00 00");
+    tb_xfer(BUS, "605 23 00 18 01 85 01 00 00", "585 60 00 18 01 00 00 00 00");
+    tb_send(BUS, "000 01 05");
+    tb_expect(BUS, "185 05 06 00 C0 85 05");
+    tb_expect_none(BUS);
+}
+
 static void nmt_states(void **state)
 {
     (void)state;
@@ -890,6 +936,7 @@ int main(void)
         cmocka_unit_test(bit_and_byte_mapping),
         cmocka_unit_test(full_size_values),
         cmocka_unit_test(dictionary_path),
+        cmocka_unit_test(sdo_server_cob_ids_in_16_bits),
         cmocka_unit_test(nmt_states),
         cmocka_unit_test(cob_change_and_reset),
         cmocka_unit_test(tx_path_full),

@@ -257,8 +257,11 @@ def map_entries(pdos, table: list[Sub]) -> None:
 
 # COB-IDs the core checks (co_od.h, CO_SUB_COB16): in the RAM image 16 bits,
 # bits 31 and 30 in bits 15 and 14, the CAN-ID in bits 10..0; the
-# dictionary's users see the UNSIGNED32
+# dictionary's users see the UNSIGNED32. Also the SDO server's (0x1200 sub 1
+# and 2) where no SDO client or RPDO can write them (ro: no service checks
+# them; co_od_write refuses an application's value without a 16-bit form)
 COB16_OBJECTS = {0x1005: (0,), 0x1012: (0,), 0x1014: (0,)}
+COB16_READ_ONLY = {0x1200: (1, 2)}
 
 
 class Cob16Sub(Sub):
@@ -289,9 +292,11 @@ def cob_forms(dev: Device, pdos) -> None:
     pdo_comm = {comm.index for comm, _m in pdos[0] + pdos[1]}
     for o in dev.objects:
         want = (1,) if o.index in pdo_comm else COB16_OBJECTS.get(o.index, ())
+        ro = COB16_READ_ONLY.get(o.index, ())
         for k, s in enumerate(o.subs):
-            if s.sub not in want or s.type != "UNSIGNED32" or s.rom or s.hookio or \
-                    not s.field or isinstance(s, Cob16Sub):
+            if (s.sub not in want and not (s.sub in ro and s.access == "ro")) or \
+                    s.type != "UNSIGNED32" or s.rom or s.hookio or not s.field or \
+                    isinstance(s, Cob16Sub):
                 continue
             c = Cob16Sub(**{f.name: getattr(s, f.name) for f in dataclasses.fields(s)})
             c.size = 2

@@ -639,12 +639,11 @@ co_result_t co_node_init(co_node_t *node, const co_node_config_t *cfg, uint32_t 
     }
 #endif
     (void)memset(node, 0, sizeof *node);
-    /* dev, hal, ram, hooks, cb: the first fields of both, in the same
-     * places (test_services: test_config_head) */
+    /* dev, hal, ram, cb: the first fields of both, in the same places
+     * (test_services: test_config_head) */
     (void)memcpy(node, cfg, offsetof(co_node_config_t, node_id));
-    if (node->hooks != NULL) {
-        (void)memset(node->hooks, 0, (size_t)cfg->dev->n_hooks * sizeof node->hooks[0]);
-    }
+    (void)memset(&node->ram[cfg->dev->hooks_at], 0,
+                 (size_t)cfg->dev->n_hooks * sizeof(co_od_hook_t));
     node->node_id = id;
     node->pending_id = id;
     co_node_keep_cob_base(node, id);

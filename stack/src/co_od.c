@@ -336,10 +336,11 @@ static inline co_od_hook_t *hook_of(const co_node_t *node, const co_od_entry_t *
     /* (a hooked entry's base is its slot) */
     uint32_t slot = co_od_hooked(e) ? e->base : 0xFFFFU;
 
-    if ((node->hooks == NULL) || (slot >= node->dev->n_hooks)) {
+    if (slot >= node->dev->n_hooks) {
         return NULL;
     }
-    return &node->hooks[slot];
+    /* (the table in the RAM image's storage, aligned: co_dev_t.hooks_at) */
+    return &((co_od_hook_t *)(void *)&node->ram[node->dev->hooks_at])[slot];
 }
 
 /* The entry's application hook, read or (@p write) write, on @p io (the

@@ -290,7 +290,8 @@ const co_dev_t td_dev = {
     .od = od,
     .rows = rows,
     .od_count = (uint16_t)(sizeof od / sizeof od[0]),
-    .ram_size = (uint16_t)sizeof(td_ram_t),
+    .ram_size = (uint16_t)offsetof(td_ram_t, hooks),
+    .hooks_at = (uint16_t)offsetof(td_ram_t, hooks),
     .comm_end = F(u8),
     .app_end = F(errreg),
     .defaults = defaults,
@@ -314,7 +315,6 @@ void td_start_cb(td_node_t *n, tb_bus_t *bus, uint8_t idx, uint8_t id, const co_
     cfg.hal = tb_hal(bus, idx);
     cfg.node_id = id;
     cfg.ram = &n->ram;
-    cfg.hooks = n->hooks;
     if (cb != NULL) {
         n->cb = *cb;
         cfg.cb = &n->cb;

@@ -12,6 +12,12 @@
 #include "co/co_node.h"
 #include "test_bus.h"
 
+/* Hook slots of td_dev */
+#define TD_HOOK_2100 0U
+#define TD_HOOK_DOMAIN 1U
+#define TD_HOOK_2201 2U
+#define TD_N_HOOKS 3U
+
 typedef struct td_ram {
     /* communication parameters (stored); the core's objects at their places
      * (co_node.h, CO_RAM_*) */
@@ -75,22 +81,17 @@ typedef struct td_ram {
     uint32_t restore[6];   /* 0x1011 sub1..6 (core: capability; 4..6 only with
                               CO_RESTORE_SAVED, else 0) */
     uint8_t stage[32];     /* SDO download staging (co_dev_t.stage): vstr is the largest */
+    /* the node's hook table (not an object: co_dev_t.hooks_at) */
+    co_od_hook_t hooks[TD_N_HOOKS];
 } td_ram_t;
 
 extern const co_dev_t td_dev;
-
-/* Hook slots of td_dev */
-#define TD_HOOK_2100 0U
-#define TD_HOOK_DOMAIN 1U
-#define TD_HOOK_2201 2U
-#define TD_N_HOOKS 3U
 
 /** A node of the test device on @p bus slot @p idx; its storage lives in
  *  the struct. */
 typedef struct td_node {
     co_node_t node;
     td_ram_t ram;
-    co_od_hook_t hooks[TD_N_HOOKS];
     co_node_callbacks_t cb; /**< td_start_cb's callbacks (the node keeps a pointer) */
 } td_node_t;
 

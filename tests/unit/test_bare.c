@@ -233,7 +233,6 @@ static void guarding_device_refused(void **state)
     cfg.hal = tb_hal(&bus, 1);
     cfg.node_id = 2;
     cfg.ram = &td.ram;
-    cfg.hooks = td.hooks;
     assert_int_equal(co_node_init(&td.node, &cfg, bus.now), CO_RESULT_DEV_INCOMPAT);
     tb_expect_none(BUS);
 }

@@ -101,7 +101,12 @@ static void store_command_refused_before_app_hook(void **state)
 {
     static co_od_entry_t od[64];
     static co_dev_t dev;
-    co_od_hook_t hooks[1];
+    /* the node's storage: the RAM image, then the hook table */
+    typedef struct {
+        lean_test_ram_t ram;
+        co_od_hook_t hooks[1];
+    } store_t;
+    static store_t store;
     co_node_config_t cfg;
     uint32_t asked = 0U;
     bool hooked = false;
@@ -119,16 +124,18 @@ static void store_command_refused_before_app_hook(void **state)
     dev = lean_test_dev;
     dev.od = od;
     dev.n_hooks = 1U;
+    dev.hooks_at = (uint16_t)offsetof(store_t, hooks);
     memset(&lean, 0, sizeof lean);
+    memset(&store, 0, sizeof store);
     tb_init(&bus);
     lean_test_config(&lean, &cfg);
     cfg.dev = &dev;
     cfg.hal = tb_hal(&bus, 0);
     cfg.node_id = 1U;
-    cfg.hooks = hooks;
+    cfg.ram = &store;
     assert_int_equal(co_node_init(&lean.node, &cfg, bus.now), CO_RESULT_OK);
-    hooks[0].write = count_writes; /* (the node's init clears the slots) */
-    hooks[0].ctx = &asked;
+    store.hooks[0].write = count_writes; /* (the node's init clears the slots) */
+    store.hooks[0].ctx = &asked;
     tb_attach(&bus, 0, &lean.node);
     tb_expect(BUS, "701 00");
     tb_xfer(BUS, "601 23 10 10 01 73 61 76 65", "581 80 10 10 01 20 00 00 08");
@@ -340,7 +347,6 @@ static void refuses_what_is_left_out(void **state)
     cfg.hal = tb_hal(&bus, 1);
     cfg.node_id = 2;
     cfg.ram = &td.ram;
-    cfg.hooks = td.hooks;
     assert_int_equal(co_node_init(&td.node, &cfg, bus.now), CO_RESULT_DEV_INCOMPAT);
     tb_expect_none(BUS);
 }

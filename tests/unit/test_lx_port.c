@@ -65,7 +65,6 @@ static void start_node(uint8_t id)
     cfg.hal = co_lx_port_hal(&fx.port);
     cfg.node_id = id;
     cfg.ram = &fx.n.ram;
-    cfg.hooks = fx.n.hooks;
     assert_int_equal(co_node_init(&fx.n.node, &cfg, 1000U), CO_RESULT_OK);
     co_lx_port_attach(&fx.port, &fx.n.node);
 }
@@ -495,7 +494,6 @@ static void save_writes_the_file_once(void **state)
     cfg.hal = co_lx_port_hal(&fx.port);
     cfg.node_id = 5;
     cfg.ram = &fx.n.ram;
-    cfg.hooks = fx.n.hooks;
     assert_int_equal(co_node_init(&fx.n.node, &cfg, 1000U), CO_OK);
     co_lx_port_attach(&fx.port, &fx.n.node);
     EXPECT_OUT("705 00");

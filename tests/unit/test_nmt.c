@@ -160,7 +160,6 @@ static void init_rejects_bad_node_id(void **state)
     cfg.dev = &td_dev;
     cfg.hal = tb_hal(BUS, 0);
     cfg.ram = &fx->n.ram;
-    cfg.hooks = fx->n.hooks;
     cfg.node_id = 0;
     assert_int_equal(co_node_init(&fx->n.node, &cfg, BUS->now), CO_RESULT_BAD_NODE_ID);
     cfg.node_id = 128;

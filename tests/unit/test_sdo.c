@@ -393,7 +393,6 @@ static void configured_timeout(void **state)
         cfg.hal = tb_hal(BUS, 1);
         cfg.node_id = 4U;
         cfg.ram = &n.ram;
-        cfg.hooks = n.hooks;
         cfg.sdo_timeout_ms = ms[k];
         tb_attach(BUS, 1, &n.node);
         assert_int_equal(co_node_init(&n.node, &cfg, BUS->now), CO_RESULT_OK);

@@ -124,7 +124,6 @@ static void test_config_head(void **state)
     assert_int_equal(offsetof(co_node_config_t, dev), offsetof(co_node_t, dev));
     assert_int_equal(offsetof(co_node_config_t, hal), offsetof(co_node_t, hal));
     assert_int_equal(offsetof(co_node_config_t, ram), offsetof(co_node_t, ram));
-    assert_int_equal(offsetof(co_node_config_t, hooks), offsetof(co_node_t, hooks));
     assert_int_equal(offsetof(co_node_config_t, cb), offsetof(co_node_t, cb));
     assert_int_equal(offsetof(co_node_config_t, node_id),
                      offsetof(co_node_t, cb) + sizeof(((co_node_t *)0)->cb));

@@ -613,7 +613,6 @@ static void start_without_nv(td_node_t *n)
     cfg.hal.ops = &tb_hal_ops_no_nv;
     cfg.node_id = 1U;
     cfg.ram = &n->ram;
-    cfg.hooks = n->hooks;
     tb_attach(BUS, 0, &n->node);
     assert_int_equal(co_node_init(&n->node, &cfg, fx.bus.now), CO_RESULT_OK);
 }

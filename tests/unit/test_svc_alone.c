@@ -26,6 +26,7 @@ typedef struct ram {
     uint32_t v3000;   /* 0x3000: nobody's */
     uint32_t save[1]; /* 0x1010 sub1 */
     uint8_t save_n;   /* 0x1010 sub0 */
+    co_od_hook_t hooks[1]; /* the hook table (co_dev_t.hooks_at; not an object) */
 } ram_t;
 
 /* the rows of 0x1005 (0), 0x1010 (1, 2) and 0x3000 (3) */
@@ -48,12 +49,13 @@ static const co_dev_t dev = {
     .od = od,
     .rows = rows,
     .od_count = 3,
-    .ram_size = sizeof(ram_t),
+    .ram_size = offsetof(ram_t, hooks),
     .comm_end = 0,
-    .app_end = sizeof(ram_t),
+    .app_end = offsetof(ram_t, hooks),
     .defaults = defaults,
     .rom = rom,
     .n_hooks = 1,
+    .hooks_at = offsetof(ram_t, hooks),
     .n_defaults = 1,
 };
 
@@ -137,16 +139,15 @@ static co_err_t app_write(void *ctx, co_od_io_t *io)
 
 static co_node_t node;
 static ram_t ram;
-static co_od_hook_t hooks[1];
+#define hooks (ram.hooks)
 
 static int setup(void **state)
 {
     (void)state;
     memset(&node, 0, sizeof node);
-    memset(hooks, 0, sizeof hooks);
+    memset(&ram, 0, sizeof ram);
     node.dev = &dev;
     node.ram = (uint8_t *)&ram;
-    node.hooks = hooks;
     node.hal.ops = &hal_ops;
     node.node_id = 1U;
     co_od_restore(&node, dev.ram_size);

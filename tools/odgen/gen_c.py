@@ -430,6 +430,9 @@ def generate(dev: Device, toml_name: str, warn=None, storage: bool = True) -> tu
                 what = s0.name
             h.append(f"    {f.decl()}; /* {where} {comment(what)} */" if f.subs else
                      f"    {f.decl()};")
+    if n_hooks:
+        h += ["    /* (not an object: the node's hook table, co_dev_t.hooks_at) */",
+              f"    co_od_hook_t hooks[{n_hooks}U];"]
     h += [f"}} {cn}_ram_t;", "",
           f"/** The const description of the {dev.name} device type. */",
           f"extern const co_dev_t {cn}_dev;", "",
@@ -437,22 +440,20 @@ def generate(dev: Device, toml_name: str, warn=None, storage: bool = True) -> tu
     for o in hooked:
         h.append(f"#define {up}_HOOK_{o.index:04X} {o.hook_slot}U /* {comment(o.name)} */")
     h += [f"#define {up}_N_HOOKS {n_hooks}U", "",
-          f"/** A {dev.name} node with its storage: RAM image and hook table. */",
+          f"/** A {dev.name} node with its storage: RAM image (and hook table). */",
           f"typedef struct {cn}_node {{",
           "    co_node_t node;",
           f"    {cn}_ram_t ram;",
-          *([f"    co_od_hook_t hooks[{n_hooks}U];"] if n_hooks else []),
           f"    co_pdo_t pdo[{max(n_pdo_h, 1)}U];",
           f"}} {cn}_node_t;", "",
-          "/** Zero @p cfg and point it at the device, the RAM image and the hook table",
-          " *  of @p n; the caller sets hal, node_id and callbacks, then co_node_init()",
+          "/** Zero @p cfg and point it at the device, the RAM image (with the hook",
+          " *  table) of @p n; the caller sets hal, node_id and callbacks, then co_node_init()",
           " *  (inline: one caller, no call). */",
           f"static inline void {cn}_config({cn}_node_t *n, co_node_config_t *cfg)",
           "{",
           "    (void)memset(cfg, 0, sizeof *cfg);",
           f"    cfg->dev = &{cn}_dev;",
-          "    cfg->ram = &n->ram;",
-          f"    cfg->hooks = {'n->hooks' if n_hooks else 'NULL'}; /* {n_hooks} hook slots */",
+          f"    cfg->ram = &n->ram; /* (and its {n_hooks} hook slots) */",
           "    cfg->pdo = n->pdo;",
           "}", "",
           f"#endif /* CODEV_{up}_H */", ""]
@@ -683,24 +684,29 @@ def generate(dev: Device, toml_name: str, warn=None, storage: bool = True) -> tu
         c += [f"    {off_expr(m)}, /* 0x{m.index:04X} */" for m in masks]
         c += ["};", ""]
 
+    # the end of the RAM image (the hook table follows it)
+    img_end = (f"(uint16_t)offsetof({cn}_ram_t, hooks)" if n_hooks else
+               f"(uint16_t)sizeof({cn}_ram_t)")
+
     def first(region_names):
         for r in region_names:
             sel = [f for f in ram if f.region == r and f.name != "sdo_stage"]
             if sel:
                 return f"F({sel[0].name})"
-        return f"(uint16_t)sizeof({cn}_ram_t)"
+        return img_end
 
     c += [f"const co_dev_t {cn}_dev = {{",
           "    .od = od,",
           "    .rows = rom.rows,",
           "    .od_count = (uint16_t)(sizeof od / sizeof od[0]),",
-          f"    .ram_size = (uint16_t)sizeof({cn}_ram_t),",
+          f"    .ram_size = {img_end},",
           f"    .comm_end = {first(('app', 'none'))},",
           f"    .app_end = {first(('none',))},",
           f"    .defaults = {'defaults' if runs else 'NULL'},",
           "    .rom = (const uint8_t *)&rom,",
           f"    .limits = {'limits' if dev.limits else 'NULL'},",
           f"    .n_hooks = {up}_N_HOOKS,",
+          *([f"    .hooks_at = (uint16_t)offsetof({cn}_ram_t, hooks),"] if n_hooks else []),
           *personality.settings_guarded(dev.options),
           f"    .boot_emcy_data = {'boot_emcy' if dev.boot_emcy_data is not None else 'NULL'},",
           f"    .pdo = {'pdo' if n_pdo else 'NULL'},",

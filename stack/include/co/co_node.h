@@ -94,6 +94,13 @@ typedef struct co_dev {
      *  are then written in place as they arrive). */
     uint16_t stage;
     uint16_t stage_size;
+    /** With n_hooks: where the node's hook table (n_hooks co_od_hook_t
+     *  slots) is, in bytes from the start of the RAM image's storage
+     *  (co_node_config_t.ram), past the image (ram_size) and aligned for a
+     *  pointer; the generator places it at the end of the RAM image's struct
+     *  (the node keeps no pointer to it; like the core objects' places, not
+     *  checked at run time: a hand-written co_dev_t follows it). */
+    uint16_t hooks_at;
     /** Default runs in @ref defaults: the generator lists the values that
      *  are not zero and each $NODEID-relative value (a run of its own, marked
      *  CO_OD_DEF_NODEID), in the order of their places, none across
@@ -231,8 +238,10 @@ typedef struct co_node_config {
     /* (dev .. cb: the first fields of co_node_t, copied at once) */
     const co_dev_t *dev;
     co_hal_t hal;
-    void *ram;                     /**< dev->ram_size bytes, suitably aligned */
-    co_od_hook_t *hooks;           /**< dev->n_hooks slots (may be all NULL) */
+    /** The RAM image: dev->ram_size bytes, suitably aligned, and, with
+     *  dev->n_hooks, the hook table in the same storage at dev->hooks_at
+     *  (the generated RAM image struct has it at its end) */
+    void *ram;
     /** The application's callbacks, NULL for none. The node keeps the
      *  pointer: they must stay where they are while the node runs (a const
      *  table in flash, or the caller's own copy). */
@@ -397,8 +406,7 @@ typedef uint16_t co_svc_bits_t;
 typedef struct co_node {
     const co_dev_t *dev;
     co_hal_t hal;
-    uint8_t *ram;
-    co_od_hook_t *hooks;
+    uint8_t *ram;            /**< (and the hook table: co_dev_t.hooks_at) */
     const co_node_callbacks_t *cb; /**< NULL: none */
     /* (the order of what follows: what the core uses most where a short
      * instruction reaches it, without padding; on a Cortex-M a 16-bit load
@@ -473,7 +481,7 @@ typedef struct co_node {
 /** Initialise @p node from @p cfg, restore all values to their defaults and
  *  then to the stored set (0x1010) if the HAL's NV holds a valid one, send
  *  the boot-up frame and enter Pre-operational. Clears the hook slots
- *  (cfg->hooks): bind hooks after this call. Returns CO_RESULT_OK, or
+ *  (dev->hooks_at): bind hooks after this call. Returns CO_RESULT_OK, or
  *  CO_RESULT_BAD_CONFIG / CO_RESULT_BAD_NODE_ID for a bad configuration, or
  *  CO_RESULT_DEV_INCOMPAT for a device that needs a service or option this
  *  build of the core leaves out (co_config.h); nothing is sent then. */

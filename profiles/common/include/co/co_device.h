@@ -17,7 +17,7 @@
  *
  *     size_t n = co_device_mem_size(device, true);      (true: simulated plants)
  *     co_device_init(&run, device, mem, n, NULL, &app_callbacks, now);
- *     cfg.dev = device->dev; cfg.ram = ...; cfg.hooks = ...;  (sizes from dev)
+ *     cfg.dev = device->dev; cfg.ram = ...;  (sizes from dev: with the hook table)
  *     cfg.cb = co_device_callbacks(&run);
  *     co_node_init(&node, &cfg, now);
  *     co_device_attach(&run, &node, now);

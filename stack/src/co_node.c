@@ -325,7 +325,7 @@ CO_NOINLINE void co_node_stalled(co_node_t *node, uint32_t now_us)
     node->lss.switch_at = now_us;
 #endif
     for (uint32_t i = 0U; i < n; i++) {
-        node->pdo.p[i].at = now_us - (uint32_t)CO_HORIZON_US; /* every PDO time has ended */
+        co_pdo_st(node)[i].at = now_us - (uint32_t)CO_HORIZON_US; /* every PDO time has ended */
     }
 }
 
@@ -622,7 +622,7 @@ co_result_t co_node_init(co_node_t *node, const co_node_config_t *cfg, uint32_t 
         return CO_RESULT_BAD_CONFIG;
     }
     if (((cfg->dev->n_rpdo + cfg->dev->n_tpdo) != 0U) &&
-        ((cfg->dev->pdo == NULL) || (cfg->pdo == NULL))) {
+        (cfg->dev->pdo == NULL)) {
         return CO_RESULT_BAD_CONFIG;
     }
     /* (an LSS slave: a build without LSS refuses it, CO_RESULT_DEV_INCOMPAT) */
@@ -648,7 +648,6 @@ co_result_t co_node_init(co_node_t *node, const co_node_config_t *cfg, uint32_t 
     node->pending_id = id;
     co_node_keep_cob_base(node, id);
     node->sdo.timeout_ms = (cfg->sdo_timeout_ms != 0U) ? cfg->sdo_timeout_ms : 1000U;
-    node->pdo.p = cfg->pdo;
     node->now = now_us;
     node->svc_run = CO_SVC_ALL;
     r = bind_services(node); /* LSS first: an LSS-stored node-ID replaces cfg->node_id */

@@ -153,7 +153,7 @@ static co_err_t map_state(const co_node_t *node, uint16_t i, const uint8_t *map,
 static void remap(co_node_t *node, uint16_t i)
 {
     (void)map_state(node, i, co_pdo_map(node, &node->dev->pdo[i]), co_pdo_count(node, i),
-                    &node->pdo.p[i]);
+                    &co_pdo_st(node)[i]);
 }
 
 /* A write of sub @p sub of PDO i's mapping (@p is_map) or communication
@@ -226,7 +226,7 @@ static co_err_t check_write(const co_node_t *node, uint16_t i, bool is_map, uint
  * go with @p reset), its state anew from its mapping (remap). */
 static void restart(co_node_t *node, uint16_t i, bool reset)
 {
-    co_pdo_t *p = &node->pdo.p[i];
+    co_pdo_t *p = &co_pdo_st(node)[i];
 
     if (reset) {
         p->flags = 0U;

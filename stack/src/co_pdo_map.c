@@ -112,7 +112,7 @@ void co_pdo_io(co_node_t *node, uint16_t i, uint8_t *buf, uint8_t dlc)
 {
     const uint8_t *map = co_pdo_map(node, &node->dev->pdo[i]);
     uint32_t count = co_pdo_count(node, i);
-    bool direct = (node->pdo.p[i].flags & CO_PDO_F_DIRECT) != 0U;
+    bool direct = (co_pdo_st(node)[i].flags & CO_PDO_F_DIRECT) != 0U;
     bool tx = dlc == CO_PDO_SAMPLE;
     uint32_t avail = tx ? 64U : (dlc * 8U);
     uint32_t pos = 0U;

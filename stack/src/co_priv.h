@@ -118,6 +118,13 @@ CO_INLINE uint32_t co_deadline_min(uint32_t now, uint32_t cur, uint32_t cand)
 uint32_t co_deadline_min(uint32_t now, uint32_t cur, uint32_t cand);
 #endif
 
+/* The node's PDO states, in the RAM image's storage (co_dev_t.pdo_at,
+ * aligned: the generator places them). */
+CO_INLINE co_pdo_t *co_pdo_st(const co_node_t *node)
+{
+    return (co_pdo_t *)(void *)&node->ram[node->dev->pdo_at];
+}
+
 /* Native values in the RAM image, by offset (any alignment). */
 static inline uint32_t co_ram_u32(const co_node_t *node, uint16_t off)
 {
@@ -819,14 +826,14 @@ CO_INLINE uint16_t co_pdo_rx_cob(const co_node_t *node, uint16_t i)
 CO_INLINE bool co_pdo_usable(const co_node_t *node, uint16_t i)
 {
     return ((co_pdo_cob(node, i) & CO_PDO_COB_INVALID) == 0U) &&
-           (node->pdo.p[i].len != 0U);
+           (co_pdo_st(node)[i].len != 0U);
 }
 
 /* An event-driven transmission of usable TPDO i, due at the next pass of
  * the PDO service (co_tpdo_request; an RPDO with set.pdo.tpdo_after_rpdo). */
 CO_INLINE void co_tpdo_raise(co_node_t *node, uint16_t i)
 {
-    node->pdo.p[i].flags |= CO_PDO_F_EVENT;
+    co_pdo_st(node)[i].flags |= CO_PDO_F_EVENT;
     co_svc_touch(node, CO_ROW_PDO);
 }
 
@@ -949,7 +956,7 @@ CO_INLINE void co_pdo_sample_direct(const co_node_t *node, uint16_t i, uint8_t *
     uint32_t count = co_pdo_count(node, i);
 
     /* (the entries' rows looked at for CO_OD_MAP_AT_END only where one has it) */
-    if ((node->pdo.p[i].flags & CO_PDO_F_AT_END) == 0U) {
+    if ((co_pdo_st(node)[i].flags & CO_PDO_F_AT_END) == 0U) {
         at = co_pdo_sample_entries(node, map, count, at, false);
     } else {
         at = co_pdo_sample_entries(node, map, count, at, true);

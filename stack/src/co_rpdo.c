@@ -7,7 +7,7 @@
 static bool any_rpdo(const co_node_t *node, uint16_t flag)
 {
     for (uint32_t i = 0U; i < node->dev->n_rpdo; i++) {
-        if ((node->pdo.p[i].flags & flag) != 0U) {
+        if ((co_pdo_st(node)[i].flags & flag) != 0U) {
             return true;
         }
     }
@@ -30,7 +30,7 @@ static const struct {
  * goes with the first PDO in a state and ends with the last one leaving it. */
 void co_rpdo_error(co_node_t *node, uint16_t i, uint16_t mask, uint16_t on)
 {
-    co_pdo_t *p = &node->pdo.p[i];
+    co_pdo_t *p = &co_pdo_st(node)[i];
     uint16_t chg = (uint16_t)(mask & (p->flags ^ on)); /* asked, and a change */
 
     p->flags ^= chg;
@@ -49,16 +49,19 @@ void co_rpdo_error(co_node_t *node, uint16_t i, uint16_t mask, uint16_t on)
     }
 }
 
-/* Write the mapped objects from @p data (@p dlc bytes). */
-static void apply(co_node_t *node, uint16_t i, const uint8_t *data, uint8_t dlc)
+/* Write the mapped objects of RPDO i (@p p, its state) from @p data (@p dlc
+ * bytes). */
+static void apply(co_node_t *node, uint16_t i, const co_pdo_t *p, const uint8_t *data,
+                  uint8_t dlc)
 {
 #if CO_FAST
-    if ((node->pdo.p[i].flags & CO_PDO_F_DIRECT) != 0U) {
+    if ((p->flags & CO_PDO_F_DIRECT) != 0U) {
         co_pdo_store_direct(node, i, data, dlc);
     } else {
         co_pdo_store(node, i, data, dlc);
     }
 #else
+    (void)p;
     co_pdo_store(node, i, data, dlc); /* one path for every PDO */
 #endif
     if (CO_CB(node, rpdo) != NULL) {
@@ -79,7 +82,7 @@ static void apply(co_node_t *node, uint16_t i, const uint8_t *data, uint8_t dlc)
  * when the frame is not processed. A frame that comes ends a timeout. */
 static bool length_ok(co_node_t *node, uint16_t i, uint8_t dlc)
 {
-    uint8_t len = node->pdo.p[i].len;
+    uint8_t len = co_pdo_st(node)[i].len;
     /* CiA 301: a short one is not processed; one longer than mapped is (the
      * first bytes), and reported */
     bool too_short = (dlc < len) && (CO_SET(node, pdo.short_rpdo) == CO_RPDO_SHORT_EMCY);
@@ -95,7 +98,7 @@ static bool length_ok(co_node_t *node, uint16_t i, uint8_t dlc)
  * (co_pdo_rx_cob). */
 void co_rpdo_rx(co_node_t *node, uint16_t i, const co_frame_t *f)
 {
-    co_pdo_t *p = &node->pdo.p[i];
+    co_pdo_t *p = &co_pdo_st(node)[i];
 
     if ((node->nmt != (uint8_t)CO_NMT_OPERATIONAL) || co_frame_is_rtr(f) ||
         (p->len == 0U)) {
@@ -124,7 +127,7 @@ void co_rpdo_rx(co_node_t *node, uint16_t i, const co_frame_t *f)
         }
         return;
     }
-    apply(node, i, f->data, f->dlc);
+    apply(node, i, p, f->data, f->dlc);
 }
 
 /* At a SYNC (co_sync.c, when pdo_buffered says an RPDO may hold data):
@@ -134,10 +137,10 @@ void co_rpdo_sync(co_node_t *node)
 {
     node->pdo_buffered = 0U;
     for (uint32_t i = 0U; i < node->dev->n_rpdo; i++) {
-        co_pdo_t *p = &node->pdo.p[i];
+        co_pdo_t *p = &co_pdo_st(node)[i];
         if ((p->flags & CO_PDO_F_RXBUF) != 0U) {
             p->flags &= (uint16_t)~CO_PDO_F_RXBUF;
-            apply(node, (uint16_t)i, p->data, p->count);
+            apply(node, (uint16_t)i, p, p->data, p->count);
         }
     }
 }

@@ -17,7 +17,7 @@
 CO_HOT void build(co_node_t *node, uint16_t i, uint8_t *out)
 {
 #if CO_FAST
-    if ((node->pdo.p[i].flags & CO_PDO_F_DIRECT) != 0U) {
+    if ((co_pdo_st(node)[i].flags & CO_PDO_F_DIRECT) != 0U) {
         co_pdo_sample_direct(node, i, out);
         return;
     }
@@ -30,7 +30,7 @@ CO_HOT void build(co_node_t *node, uint16_t i, uint8_t *out)
  * timer. */
 CO_HOT bool send(co_node_t *node, uint16_t i, const uint8_t *data, bool event)
 {
-    co_pdo_t *p = &node->pdo.p[i];
+    co_pdo_t *p = &co_pdo_st(node)[i];
     co_frame_t f;
 
     f.id = co_pdo_cob(node, i) & 0x7FFUL;
@@ -61,7 +61,7 @@ CO_HOT bool send(co_node_t *node, uint16_t i, const uint8_t *data, bool event)
  * into the frame; a build for size sends through send(). */
 static void send_sync(co_node_t *node, uint16_t i)
 {
-    co_pdo_t *p = &node->pdo.p[i];
+    co_pdo_t *p = &co_pdo_st(node)[i];
     bool sent;
 #if CO_FAST
     co_frame_t f;
@@ -90,7 +90,7 @@ static void send_sync(co_node_t *node, uint16_t i)
  * SYNC whose counter equals the start value when the SYNC has a counter. */
 static bool cyclic_due(co_node_t *node, uint16_t i, uint8_t type, uint8_t counter)
 {
-    co_pdo_t *p = &node->pdo.p[i];
+    co_pdo_t *p = &co_pdo_st(node)[i];
     const co_pdo_desc_t *d = &node->dev->pdo[i];
     uint8_t start = (d->start != 0U) ? *co_pdo_at(node, i, d->start) : 0U;
 
@@ -127,7 +127,7 @@ static bool changed(const uint8_t *now, const uint8_t *sent)
 /* Acyclic (0): due at the SYNC after a change of the data or a request. */
 static bool acyclic_due(co_node_t *node, uint16_t i)
 {
-    const co_pdo_t *p = &node->pdo.p[i];
+    const co_pdo_t *p = &co_pdo_st(node)[i];
     uint8_t now[8];
 
     build(node, i, now);
@@ -139,7 +139,7 @@ static bool acyclic_due(co_node_t *node, uint16_t i)
  * and at the first SYNC in Operational (nothing sent yet). */
 static bool acyclic_due(co_node_t *node, uint16_t i)
 {
-    return (node->pdo.p[i].flags & (CO_PDO_F_EVENT | CO_PDO_F_SENT)) != CO_PDO_F_SENT;
+    return (co_pdo_st(node)[i].flags & (CO_PDO_F_EVENT | CO_PDO_F_SENT)) != CO_PDO_F_SENT;
 }
 #endif
 
@@ -148,7 +148,7 @@ static bool acyclic_due(co_node_t *node, uint16_t i)
  * every other type with the data of now. */
 static bool answer_rtr(co_node_t *node, uint16_t i)
 {
-    co_pdo_t *p = &node->pdo.p[i];
+    co_pdo_t *p = &co_pdo_st(node)[i];
     uint8_t type = co_pdo_type(node, i);
     uint8_t now[8];
 
@@ -164,12 +164,12 @@ static bool answer_rtr(co_node_t *node, uint16_t i)
 void co_tpdo_rtr(co_node_t *node, uint16_t i)
 {
     if ((node->nmt != (uint8_t)CO_NMT_OPERATIONAL) ||
-        (node->pdo.p[i].len == 0U)) {
+        (co_pdo_st(node)[i].len == 0U)) {
         return;
     }
     /* answered at once; only when the TX path is full does co_tpdo_process retry */
     if (!answer_rtr(node, i)) {
-        node->pdo.p[i].flags |= CO_PDO_F_RTR;
+        co_pdo_st(node)[i].flags |= CO_PDO_F_RTR;
     }
     co_svc_touch(node, CO_ROW_PDO); /* the retry, or the timers an answer restarts */
 }
@@ -224,7 +224,7 @@ CO_INLINE uint32_t timer_next(const co_node_t *node, const co_pdo_t *p, uint32_t
  * the TX path did not take it. */
 CO_INLINE bool event_due(co_node_t *node, uint16_t i, const uint8_t *now)
 {
-    const co_pdo_t *p = &node->pdo.p[i];
+    const co_pdo_t *p = &co_pdo_st(node)[i];
 
     return ((p->flags & CO_PDO_F_INHIBIT) == 0U) && !send(node, i, now, true);
 }
@@ -234,7 +234,7 @@ CO_INLINE bool event_due(co_node_t *node, uint16_t i, const uint8_t *now)
  * when no mask applies to its transmission type. */
 static CO_NOINLINE bool masked_change(const co_node_t *node, uint16_t i, const uint8_t *now)
 {
-    const co_pdo_t *p = &node->pdo.p[i];
+    const co_pdo_t *p = &co_pdo_st(node)[i];
     uint32_t type = (co_pdo_type(node, i) == 254U) ? CO_TPDO_MASK_254 : CO_TPDO_MASK_255;
     uint16_t off;
     uint32_t mask = 0U;
@@ -266,7 +266,7 @@ CO_HOT uint32_t event_driven(co_node_t *node, uint16_t i, uint32_t next_in, bool
                              bool *held)
 {
     uint32_t next = next_in;
-    co_pdo_t *p = &node->pdo.p[i];
+    co_pdo_t *p = &co_pdo_st(node)[i];
     uint32_t ev = co_pdo_event_us(node, i);
     uint32_t inh = co_pdo_inhibit_us(node, i);
     uint8_t now[8];
@@ -307,7 +307,7 @@ CO_HOT uint32_t event_driven(co_node_t *node, uint16_t i, uint32_t next_in, bool
 CO_HOT uint32_t event_driven(co_node_t *node, uint16_t i, uint32_t next, bool detect,
                              bool *held)
 {
-    co_pdo_t *p = &node->pdo.p[i];
+    co_pdo_t *p = &co_pdo_st(node)[i];
     uint32_t ev = co_pdo_event_us(node, i);
     uint32_t inh = co_pdo_inhibit_us(node, i);
     uint32_t f;
@@ -333,7 +333,7 @@ CO_HOT uint32_t event_driven(co_node_t *node, uint16_t i, uint32_t next, bool de
  * do not follow SYNC). */
 CO_HOT void at_sync(co_node_t *node, uint16_t i, uint8_t type, uint8_t counter)
 {
-    co_pdo_t *p = &node->pdo.p[i];
+    co_pdo_t *p = &co_pdo_st(node)[i];
 
     if ((type > 240U) && (!CO_PDO_RTR || (type != 252U))) {
         return;
@@ -355,7 +355,7 @@ CO_HOT void at_sync(co_node_t *node, uint16_t i, uint8_t type, uint8_t counter)
 CO_HOT uint32_t at_process(co_node_t *node, uint16_t i, uint8_t type, uint32_t next_in, bool detect)
 {
     uint32_t next = next_in;
-    co_pdo_t *p = &node->pdo.p[i];
+    co_pdo_t *p = &co_pdo_st(node)[i];
     bool held = false; /* the TX path took not all: retried RETRY_US later */
 
 #if CO_PDO_RTR
@@ -392,7 +392,7 @@ CO_HOT uint32_t at_process(co_node_t *node, uint16_t i, uint8_t type, uint32_t n
  * state change disarms it; an event timer of 0 is none). */
 CO_HOT uint32_t rpdo_deadline(co_node_t *node, uint16_t i, uint32_t next)
 {
-    const co_pdo_t *p = &node->pdo.p[i];
+    const co_pdo_t *p = &co_pdo_st(node)[i];
     uint32_t ev = ((p->flags & CO_PDO_F_TIMER) != 0U) ? co_pdo_event_us(node, i) : 0U;
     uint32_t end = p->at + ev;
 

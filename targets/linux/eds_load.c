@@ -1578,6 +1578,8 @@ static eds_dev_t *build(ctx_t *c, const char *name, const char *text)
     d->dev.pdo = d->pdo;
     d->dev.n_rpdo = (uint16_t)nr;
     d->dev.n_tpdo = (uint16_t)nt;
+    /* the PDO states past the image, aligned (co_dev_storage_size) */
+    d->dev.pdo_at = (uint16_t)((off + 7U) & ~(size_t)7U);
     {
         const kv_t *prod = find_kv(c, find_sec(c, "DeviceInfo"), "ProductName");
         (void)snprintf(d->summary, sizeof d->summary, "%.60s: %zu objects, %zu RPDOs, %zu TPDOs",

@@ -36,7 +36,6 @@ typedef struct dnode {
     co_device_run_t run;
     co_node_t node;
     void *ram;
-    co_pdo_t *pdo;          /* the device's RPDOs then TPDOs */
     void *mem;              /* the device's instances, plants and plug-in state */
     co_lx_port_t port;
     co_lx_nv_t nv;
@@ -221,19 +220,12 @@ static int start_node(dnode_t *d, const opt_node_t *spec, const char *iface)
     set_tag(d, spec->id);
     mem_size = co_device_mem_size(d->dev, true);
     {
-        /* the RAM image, and after it the hook table (co_dev_t.hooks_at) */
-        const co_dev_t *dv = d->dev->dev;
-        size_t ram_size = (dv->n_hooks != 0U)
-                              ? ((size_t)dv->hooks_at + (dv->n_hooks * sizeof(co_od_hook_t)))
-                              : dv->ram_size;
-        d->ram = calloc(1U, (ram_size != 0U) ? ram_size : 1U);
-    }
-    {
-        size_t n_pdo = (size_t)d->dev->dev->n_rpdo + d->dev->dev->n_tpdo;
-        d->pdo = (co_pdo_t *)calloc((n_pdo != 0U) ? n_pdo : 1U, sizeof *d->pdo);
+        /* the RAM image, and after it the PDO states and the hook table */
+        uint32_t size = co_dev_storage_size(d->dev->dev);
+        d->ram = calloc(1U, (size != 0U) ? size : 1U);
     }
     d->mem = calloc(1U, (mem_size != 0U) ? mem_size : 1U);
-    if ((d->ram == NULL) || (d->mem == NULL) || (d->pdo == NULL)) {
+    if ((d->ram == NULL) || (d->mem == NULL)) {
         log_line(d->tag, CO_LX_ERROR, "out of memory");
         return -1;
     }
@@ -257,7 +249,6 @@ static int start_node(dnode_t *d, const opt_node_t *spec, const char *iface)
     cfg.hal = co_lx_port_hal(&d->port);
     cfg.node_id = spec->id;
     cfg.ram = d->ram;
-    cfg.pdo = d->pdo;
     (void)memset(&app, 0, sizeof app);
     app.ctx = d;
     app.nmt_state = cb_nmt_state;
@@ -304,7 +295,6 @@ static void stop_node(dnode_t *d)
         co_lx_nv_close(&d->nv);
     }
     free(d->ram);
-    free(d->pdo);
     free(d->mem);
     dev_eds_close(&d->eds);
 }

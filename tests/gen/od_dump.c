@@ -101,9 +101,8 @@ int main(int argc, char **argv)
         fprintf(stderr, "od_dump: bad node-id\n");
         return 2;
     }
-    /* (the image, then the hook table: co_dev_t.hooks_at) */
-    if (sizeof n.ram != ((dev->n_hooks != 0U) ? (dev->hooks_at + (dev->n_hooks * sizeof(co_od_hook_t)))
-                                              : dev->ram_size)) {
+    /* (the image, then the PDO states and the hook table) */
+    if (sizeof n.ram < co_dev_storage_size(dev)) {
         fprintf(stderr, "od_dump: node bundle does not fit the device\n");
         return 1;
     }

@@ -8,8 +8,10 @@
 #include "size_dev.h"
 
 #define PROBE(name, size) char name[size]
-PROBE(probe_core, sizeof(co_node_t) + sizeof(((size_dev_node_t *)0)->pdo));
+/* (the PDO states, co_pdo_t, are the core's: at the end of the RAM image's
+ * struct, co_dev_t.pdo_at) */
+PROBE(probe_core, sizeof(co_node_t) + sizeof(((size_dev_ram_t *)0)->pdo));
 /* the RAM image and the hook table (a node of a device without hooks has none) */
 PROBE(probe_dict, sizeof(size_dev_node_t) - offsetof(size_dev_node_t, ram) -
-                      sizeof(((size_dev_node_t *)0)->pdo));
+                      sizeof(((size_dev_ram_t *)0)->pdo));
 PROBE(probe_node, sizeof(size_dev_node_t));

@@ -71,7 +71,6 @@ typedef struct fx {
     eds_dev_t *eds;
     co_node_t node;
     void *ram;
-    co_pdo_t pdo[4];
 } fx_t;
 
 static int setup(void **state)
@@ -84,14 +83,13 @@ static int setup(void **state)
     f->eds = eds_load_text("t.eds", EDS, err, sizeof err);
     assert_string_equal(err, "");
     assert_non_null(f->eds);
-    f->ram = calloc(1U, eds_device(f->eds)->ram_size);
+    f->ram = calloc(1U, co_dev_storage_size(eds_device(f->eds)));
     tb_init(&f->bus);
     (void)memset(&cfg, 0, sizeof cfg);
     cfg.dev = eds_device(f->eds);
     cfg.hal = tb_hal(&f->bus, 0U);
     cfg.node_id = 5U;
     cfg.ram = f->ram;
-    cfg.pdo = f->pdo;
     assert_int_equal(co_node_init(&f->node, &cfg, 0U), CO_RESULT_OK);
     tb_attach(&f->bus, 0U, &f->node);
     tb_expect(&f->bus, "705 00");
@@ -319,7 +317,7 @@ static void mapping_default_of_an_absent_object(void **state)
     f->eds = eds_load_text("t.eds", text, err, sizeof err);
     assert_string_equal(err, "");
     assert_non_null(f->eds);
-    f->ram = calloc(1U, eds_device(f->eds)->ram_size);
+    f->ram = calloc(1U, co_dev_storage_size(eds_device(f->eds)));
     tb_init(&f->bus);
     b = &f->bus;
     (void)memset(&cfg, 0, sizeof cfg);
@@ -327,7 +325,6 @@ static void mapping_default_of_an_absent_object(void **state)
     cfg.hal = tb_hal(b, 0U);
     cfg.node_id = 5U;
     cfg.ram = f->ram;
-    cfg.pdo = f->pdo;
     assert_int_equal(co_node_init(&f->node, &cfg, 0U), CO_RESULT_OK);
     tb_attach(b, 0U, &f->node);
     tb_expect(b, "705 00");

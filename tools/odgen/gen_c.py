@@ -430,7 +430,15 @@ def generate(dev: Device, toml_name: str, warn=None, storage: bool = True) -> tu
                 what = s0.name
             h.append(f"    {f.decl()}; /* {where} {comment(what)} */" if f.subs else
                      f"    {f.decl()};")
+    # (not objects: the node's PDO states and hook table, co_dev_t.pdo_at,
+    # hooks_at; the image ends where they start)
+    tail = []
+    if n_pdo_h:
+        tail.append("pdo")
+        h += ["    /* (not an object: the node's PDO states, co_dev_t.pdo_at) */",
+              f"    co_pdo_t pdo[{n_pdo_h}U];"]
     if n_hooks:
+        tail.append("hooks")
         h += ["    /* (not an object: the node's hook table, co_dev_t.hooks_at) */",
               f"    co_od_hook_t hooks[{n_hooks}U];"]
     h += [f"}} {cn}_ram_t;", "",
@@ -440,21 +448,21 @@ def generate(dev: Device, toml_name: str, warn=None, storage: bool = True) -> tu
     for o in hooked:
         h.append(f"#define {up}_HOOK_{o.index:04X} {o.hook_slot}U /* {comment(o.name)} */")
     h += [f"#define {up}_N_HOOKS {n_hooks}U", "",
-          f"/** A {dev.name} node with its storage: RAM image (and hook table). */",
+          f"/** A {dev.name} node with its storage: RAM image (with the PDO states and",
+          " *  hook table). */",
           f"typedef struct {cn}_node {{",
           "    co_node_t node;",
           f"    {cn}_ram_t ram;",
-          f"    co_pdo_t pdo[{max(n_pdo_h, 1)}U];",
           f"}} {cn}_node_t;", "",
-          "/** Zero @p cfg and point it at the device, the RAM image (with the hook",
-          " *  table) of @p n; the caller sets hal, node_id and callbacks, then co_node_init()",
+          "/** Zero @p cfg and point it at the device and the RAM image (with the PDO",
+          " *  states and hook table) of @p n; the caller sets hal, node_id and callbacks,",
+          " *  then co_node_init()",
           " *  (inline: one caller, no call). */",
           f"static inline void {cn}_config({cn}_node_t *n, co_node_config_t *cfg)",
           "{",
           "    (void)memset(cfg, 0, sizeof *cfg);",
           f"    cfg->dev = &{cn}_dev;",
-          f"    cfg->ram = &n->ram; /* (and its {n_hooks} hook slots) */",
-          "    cfg->pdo = n->pdo;",
+          f"    cfg->ram = &n->ram; /* (and its {n_pdo_h} PDO states, {n_hooks} hook slots) */",
           "}", "",
           f"#endif /* CODEV_{up}_H */", ""]
 
@@ -685,7 +693,7 @@ def generate(dev: Device, toml_name: str, warn=None, storage: bool = True) -> tu
         c += ["};", ""]
 
     # the end of the RAM image (the hook table follows it)
-    img_end = (f"(uint16_t)offsetof({cn}_ram_t, hooks)" if n_hooks else
+    img_end = (f"(uint16_t)offsetof({cn}_ram_t, {tail[0]})" if tail else
                f"(uint16_t)sizeof({cn}_ram_t)")
 
     def first(region_names):
@@ -707,6 +715,7 @@ def generate(dev: Device, toml_name: str, warn=None, storage: bool = True) -> tu
           f"    .limits = {'limits' if dev.limits else 'NULL'},",
           f"    .n_hooks = {up}_N_HOOKS,",
           *([f"    .hooks_at = (uint16_t)offsetof({cn}_ram_t, hooks),"] if n_hooks else []),
+          *([f"    .pdo_at = (uint16_t)offsetof({cn}_ram_t, pdo),"] if n_pdo_h else []),
           *personality.settings_guarded(dev.options),
           f"    .boot_emcy_data = {'boot_emcy' if dev.boot_emcy_data is not None else 'NULL'},",
           f"    .pdo = {'pdo' if n_pdo else 'NULL'},",

@@ -101,6 +101,11 @@ typedef struct co_dev {
      *  (the node keeps no pointer to it; like the core objects' places, not
      *  checked at run time: a hand-written co_dev_t follows it). */
     uint16_t hooks_at;
+    /** With PDOs: where the node's PDO states (n_rpdo + n_tpdo co_pdo_t) are,
+     *  in bytes from the start of the RAM image's storage, past the image
+     *  and aligned for a co_pdo_t; the generator places them at the end of
+     *  the RAM image's struct (not checked at run time either). */
+    uint16_t pdo_at;
     /** Default runs in @ref defaults: the generator lists the values that
      *  are not zero and each $NODEID-relative value (a run of its own, marked
      *  CO_OD_DEF_NODEID), in the order of their places, none across
@@ -167,6 +172,24 @@ typedef struct co_dev {
  * write gives it), no inhibit time, no heartbeat; without 0x1016 or 0x1003
  * sub 1 the node monitors nothing and keeps no history (their length,
  * co_node_t, is 0). */
+
+/** Bytes of the storage co_node_config_t.ram points to for a node of @p dev:
+ *  the RAM image and, past it, the PDO states (pdo_at) and the hook table
+ *  (hooks_at). */
+static inline uint32_t co_dev_storage_size(const co_dev_t *dev)
+{
+    uint32_t n_pdo = (uint32_t)dev->n_rpdo + dev->n_tpdo;
+    uint32_t end = dev->ram_size;
+
+    if ((n_pdo != 0U) && ((dev->pdo_at + (n_pdo * (uint32_t)sizeof(co_pdo_t))) > end)) {
+        end = dev->pdo_at + (n_pdo * (uint32_t)sizeof(co_pdo_t));
+    }
+    if ((dev->n_hooks != 0U) &&
+        ((dev->hooks_at + (dev->n_hooks * (uint32_t)sizeof(co_od_hook_t))) > end)) {
+        end = dev->hooks_at + (dev->n_hooks * (uint32_t)sizeof(co_od_hook_t));
+    }
+    return end;
+}
 
 /** The first of the rows of @p e, an entry of @p dev. */
 static inline const co_od_sub_t *co_od_rows(const co_dev_t *dev, const co_od_entry_t *e)
@@ -238,9 +261,10 @@ typedef struct co_node_config {
     /* (dev .. cb: the first fields of co_node_t, copied at once) */
     const co_dev_t *dev;
     co_hal_t hal;
-    /** The RAM image: dev->ram_size bytes, suitably aligned, and, with
-     *  dev->n_hooks, the hook table in the same storage at dev->hooks_at
-     *  (the generated RAM image struct has it at its end) */
+    /** The RAM image: dev->ram_size bytes, suitably aligned, and in the
+     *  same storage the node's PDO states at dev->pdo_at and, with
+     *  dev->n_hooks, the hook table at dev->hooks_at (the generated RAM
+     *  image struct has them at its end: co_dev_storage_size) */
     void *ram;
     /** The application's callbacks, NULL for none. The node keeps the
      *  pointer: they must stay where they are while the node runs (a const
@@ -253,7 +277,6 @@ typedef struct co_node_config {
     /** The SDO server's timeout in ms, 0: 1 s (1..65,535 ms, the range of
      *  CANopenNode's SDOserverTimeoutTime_ms; the node keeps it in 2 bytes) */
     uint16_t sdo_timeout_ms;
-    co_pdo_t *pdo;                 /**< dev->n_rpdo + dev->n_tpdo elements */
 } co_node_config_t;
 
 /** Node-ID of an unconfigured node (CiA 305): it sends nothing and answers
@@ -377,13 +400,6 @@ typedef struct co_time {
     uint8_t *cob;            /**< 0x1012, its 16-bit form (co_od.h CO_SUB_COB16) */
 } co_time_t;
 
-/** PDO (co_pdo_config.c, co_rpdo.c, co_tpdo.c); its flags are in co_node_t
- *  next to cob_base (pdo_buffered, pdo_poll): after the pointer they would
- *  pad this part to 8 bytes (RAM -4 B in the SEG and BLK builds). */
-typedef struct co_pdo_svc {
-    co_pdo_t *p;             /**< dev->n_rpdo + dev->n_tpdo */
-} co_pdo_svc_t;
-
 struct co_svc_hook;
 
 /** co_node_t.svc_run: a bit per row of the core's service table (six rows,
@@ -406,7 +422,8 @@ typedef uint16_t co_svc_bits_t;
 typedef struct co_node {
     const co_dev_t *dev;
     co_hal_t hal;
-    uint8_t *ram;            /**< (and the hook table: co_dev_t.hooks_at) */
+    uint8_t *ram;            /**< (and the PDO states and hook table: co_dev_t.pdo_at,
+                                  hooks_at) */
     const co_node_callbacks_t *cb; /**< NULL: none */
     /* (the order of what follows: what the core uses most where a short
      * instruction reaches it, without padding; on a Cortex-M a 16-bit load
@@ -440,7 +457,6 @@ typedef struct co_node {
      *  ran (one that has moved later since only costs an early call). */
     uint32_t due;
     /* one part per service */
-    co_pdo_svc_t pdo;
     co_sdo_srv_t sdo;
     co_sync_t sync;
     co_errctl_t errctl;

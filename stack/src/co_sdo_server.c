@@ -527,9 +527,25 @@ static co_err_t segment(co_node_t *node, const uint8_t *d, bool up)
 #if CO_SDO_BLOCK
 /* ------------------------------------------------------------ block download */
 
+/* Where the last segment of a block download is held until the end request
+ * brings its length: in t->buf, after the bytes a value of fixed size has
+ * gathered there (at most 8: 0 or 7 of them before a last segment), from
+ * its start for a streamed value (which gathers nothing). Returns its place;
+ * @p room: the bytes kept of the segment's 7 (1 after 7 gathered: a value of
+ * fixed size has at most 8 bytes, so a longer last segment is refused by
+ * its length anyway). */
+CO_NOINLINE static uint8_t *held_at(co_sdo_srv_t *t, uint32_t *room)
+{
+    uint32_t at = co_od_is_streamed(&t->desc) ? 0U : t->offset;
+    uint32_t left = (uint32_t)sizeof t->buf - at; /* (write_chunk keeps at <= 8) */
+
+    *room = (left < SEG) ? left : SEG;
+    return &t->buf[at];
+}
+
 /* A segment of a sub-block (the server asks for SDO_BLKSIZE, 127, the
  * largest sequence number: only 0 is out of range). The last segment is
- * held until the end request brings its length. At the end of the
+ * held until the end request brings its length (held_at). At the end of the
  * sub-block the last good sequence number is acknowledged (a lost or
  * repeated segment is dropped: the client repeats from there) and the next
  * sub-block counts from 0. */
@@ -546,8 +562,10 @@ static co_err_t block_download_segment(co_node_t *node, const uint8_t *d)
     if (seq != (uint8_t)(t->seqno + 1U)) {
         /* lost or repeated: dropped */
     } else if (last) {
+        uint32_t room;
+        uint8_t *held = held_at(t, &room);
         t->seqno = seq;
-        co_copy(t->blk.held, &d[1], SEG); /* its length comes with the end */
+        co_copy(held, &d[1], room); /* its length comes with the end */
         start(node, S_BLK_DL_END);
     } else {
         co_err_t err;
@@ -573,14 +591,18 @@ static co_err_t block_download_end(co_node_t *node, const uint8_t *d)
 {
     co_sdo_srv_t *t = &node->sdo;
     uint32_t len = SEG - (((uint32_t)d[0] >> CO_SDO_BLK_N_SHIFT) & 7U);
+    uint32_t room;
+    const uint8_t *held = held_at(t, &room);
     co_err_t err = CO_OK;
 
-    if (((t->flags & F_CRC) != 0U) &&
-        (co_crc16(t->crc, t->blk.held, len) != co_get_u16(&d[1]))) {
+    /* (more bytes than were kept: too long for its value of fixed size,
+     * which write_chunk refuses before it copies anything) */
+    if (((t->flags & F_CRC) != 0U) && (len <= room) &&
+        (co_crc16(t->crc, held, len) != co_get_u16(&d[1]))) {
         err = CO_ERR_CRC;
     }
     if (err == CO_OK) {
-        err = write_chunk(node, t->blk.held, len, true);
+        err = write_chunk(node, held, len, true);
     }
     if (err == CO_OK) {
         download_done(node, (uint8_t)(CO_SDO_B0(CO_SDO_SCS_BLOCK_DOWNLOAD) | CO_SDO_BLK_END), 0U,
@@ -638,7 +660,7 @@ static co_err_t block_upload_send(co_node_t *node, bool send)
         if ((t->flags & F_CRC) != 0U) {
             /* the CRC as the segments go out (an acknowledge of all of them
              * takes it over, co_crc16 need not read them again) */
-            t->blk.crc_sent = co_crc16(t->blk.crc_sent, &f.data[1], got);
+            t->crc_sent = co_crc16(t->crc_sent, &f.data[1], got);
         }
         t->seqno++;
         /* the client's answer is due one timeout after the last segment */
@@ -661,7 +683,7 @@ static co_err_t next_subblock(co_node_t *node, bool send)
     co_sdo_srv_t *t = &node->sdo;
 
     t->seqno = 0U;
-    t->blk.crc_sent = t->crc;
+    t->crc_sent = t->crc;
     t->flags &= (uint8_t)~F_LAST;
     start(node, S_BLK_UL);
     return block_upload_send(node, send);
@@ -696,7 +718,7 @@ static co_err_t block_upload_ack(co_node_t *node, const uint8_t *d)
             return err;
         }
     }
-    t->crc = t->blk.crc_sent; /* (without CRC both stay 0) */
+    t->crc = t->crc_sent; /* (without CRC both stay 0) */
     /* (F_STAGED stays: a read at offset 0, the staged chunk, comes only
      * while nothing is acknowledged) */
     t->offset += acked;

@@ -436,6 +436,34 @@ static void block_download_u64_two_segments(void **state)
     assert_true(RAMV.u64 == 0x0807060504030201ULL);
 }
 
+static void block_download_u64_last_segment_too_long(void **state)
+{
+    /* the last segment is held in the server's 8-byte value buffer after the
+     * 7 bytes gathered: an end request claiming 2 bytes of it (9 in all) is
+     * refused for its length (before any CRC, which would cover a byte the
+     * value has no room for), and the value stays */
+    tb_xfer(BUS, "601 C6 06 20 00 08 00 00 00", "581 A4 06 20 00 7F 00 00 00");
+    tb_send(BUS, "601 01 01 02 03 04 05 06 07");
+    tb_expect_none(BUS);
+    tb_xfer(BUS, "601 82 08 09 00 00 00 00 00", "581 A2 02 7F 00 00 00 00 00");
+    tb_xfer(BUS, "601 D5 00 00 00 00 00 00 00", "581 80 06 20 00 12 00 07 06");
+    assert_true(RAMV.u64 == 0U);
+    /* without an indicated size: too long for the type */
+    tb_xfer(BUS, "601 C4 06 20 00 00 00 00 00", "581 A4 06 20 00 7F 00 00 00");
+    tb_send(BUS, "601 01 01 02 03 04 05 06 07");
+    tb_expect_none(BUS);
+    tb_xfer(BUS, "601 82 08 09 00 00 00 00 00", "581 A2 02 7F 00 00 00 00 00");
+    tb_xfer(BUS, "601 D5 00 00 00 00 00 00 00", "581 80 06 20 00 10 00 07 06");
+    assert_true(RAMV.u64 == 0U);
+    /* the 1-byte end of the same transfer with a wrong CRC: refused for the CRC */
+    tb_xfer(BUS, "601 C6 06 20 00 08 00 00 00", "581 A4 06 20 00 7F 00 00 00");
+    tb_send(BUS, "601 01 01 02 03 04 05 06 07");
+    tb_expect_none(BUS);
+    tb_xfer(BUS, "601 82 08 00 00 00 00 00 00", "581 A2 02 7F 00 00 00 00 00");
+    tb_xfer(BUS, "601 D9 AD 76 00 00 00 00 00", "581 80 06 20 00 04 00 04 05");
+    assert_true(RAMV.u64 == 0U);
+}
+
 static void block_download_string(void **state)
 {
     /* 32 bytes (the whole capacity), CRC, size indicated: 5 segments, 4 bytes in the last */
@@ -1130,6 +1158,7 @@ int main(void)
         cmocka_unit_test_setup(block_download_crc_check_value, setup),
         cmocka_unit_test_setup(block_download_u32, setup),
         cmocka_unit_test_setup(block_download_u64_two_segments, setup),
+        cmocka_unit_test_setup(block_download_u64_last_segment_too_long, setup),
         cmocka_unit_test_setup(block_download_string, setup),
         cmocka_unit_test_setup(block_download_size_mismatch, setup),
         cmocka_unit_test_setup(block_upload_u32, setup),

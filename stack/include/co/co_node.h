@@ -324,18 +324,17 @@ typedef struct co_sdo_srv {
 #endif
     const co_od_entry_t *entry;
     co_od_sub_t desc;    /**< the sub-entry's descriptor (of entry) */
+#if CO_SDO_BLOCK
+    uint16_t crc_sent;   /**< block upload: CRC up to the last segment sent (in
+                              the 2 bytes after desc that were padding) */
+#endif
     uint32_t size;       /**< total size, 0 if unknown */
     uint32_t offset;     /**< bytes done (acknowledged) */
     uint32_t deadline;
-#if CO_SDO_BLOCK
-    /** (one transfer is an upload or a download: 2 bytes of its 7 shared) */
-    union {
-        uint16_t crc_sent; /**< block upload: CRC up to the last segment sent */
-        uint8_t held[7];   /**< block download: the last segment until its size is known */
-    } blk;
-#endif
     /** A value of fixed size gathered before its commit; an upload's first
-     *  chunk, staged (at most 7 bytes, its length in buf[7]). */
+     *  chunk, staged (at most 7 bytes, its length in buf[7]); a block
+     *  download's last segment, held until the end request brings its
+     *  length (co_sdo_server.c, held_at). */
     uint8_t buf[8];
 } co_sdo_srv_t;
 

@@ -64,8 +64,9 @@ static uint32_t inhibit_us(const co_node_t *node)
  * others wait for the service's timer, or, one the TX path refused, for its
  * next run (every co_node_process while a frame waits, co_node_tx_ready):
  * an EMCY leaves the queue when it is sent (or dropped: none may go). The
- * queue is a ring: q_head is the oldest, nothing moves.
- * Within the inhibit time of the last EMCY: 'next' is at most one inhibit
+ * oldest is q[0]; the others move up when it leaves (at most
+ * CO_EMCY_QUEUE_LEN - 1 copies of 8 bytes, for no index of the oldest).
+ * Within the inhibit time of the last EMCY: co_node_t.emcy_next is at most one inhibit
  * time (< 6.6 s) ahead of now while it runs; any other distance is a time
  * in the past, however long ago. (co_time_reached alone would take a last
  * EMCY more than 2^31 us ago for one in the future and hold the next one
@@ -78,14 +79,14 @@ static uint32_t drain(co_node_t *node, uint32_t next)
     uint32_t inhibit = inhibit_us(node);
 
     while (m->n_q > 0U) {
-        uint32_t left = m->next - node->now;
+        uint32_t left = node->emcy_next - node->now;
         co_frame_t f;
         if ((left != 0U) && (left <= inhibit)) {
             break; /* inhibited */
         }
         f.id = emcy_id(node);
         f.dlc = 8U;
-        (void)memcpy(f.data, m->q[m->q_head].data, 8U);
+        (void)memcpy(f.data, m->q[0].data, 8U);
         if (f.id == 0U) {
             node->tx_hold &= (uint8_t)~CO_TXH_EMCY; /* dropped: it waits no more */
         } else if (!co_tx_try(node, CO_TXH_EMCY, &f)) {
@@ -93,11 +94,13 @@ static uint32_t drain(co_node_t *node, uint32_t next)
         } else {
             /* sent */
         }
-        m->q_head = (uint8_t)((m->q_head + 1U) % CO_EMCY_QUEUE_LEN);
         m->n_q--;
-        m->next = node->now + inhibit;
+        for (uint32_t k = 0U; k < m->n_q; k++) {
+            (void)memcpy(m->q[k].data, m->q[k + 1U].data, 8U);
+        }
+        node->emcy_next = node->now + inhibit;
     }
-    return (m->n_q > 0U) ? co_deadline_min(node->now, next, m->next) : next;
+    return (m->n_q > 0U) ? co_deadline_min(node->now, next, node->emcy_next) : next;
 }
 
 /* An EMCY (@p code, 0x1001 now, the manufacturer bytes or zeros) joins the
@@ -111,7 +114,7 @@ static void send_code(co_node_t *node, uint16_t code, const uint8_t *mfr)
         return; /* no EMCY in Stopped; not valid; nothing while unconfigured */
     }
     if (m->n_q < CO_EMCY_QUEUE_LEN) {
-        uint8_t *d = m->q[(m->q_head + m->n_q) % CO_EMCY_QUEUE_LEN].data;
+        uint8_t *d = m->q[m->n_q].data;
         (void)memset(d, 0, 8U);
         if (mfr != NULL) {
             co_copy(&d[3], mfr, 5U);
@@ -123,14 +126,18 @@ static void send_code(co_node_t *node, uint16_t code, const uint8_t *mfr)
     (void)drain(node, 0U);
 }
 
-/* (without 0x1003 sub 1 the depth is 0: its count stays 0, unused) */
+/* The history grows by one while 0x1003 has an entry n + 1 at its place
+ * after the n recorded (its depth, looked up when an error comes: no byte
+ * of RAM for it; without 0x1003 sub 1 the depth is 0: its count stays 0,
+ * unused). */
 static void history_push(co_node_t *node, uint16_t code, const uint8_t *mfr)
 {
     uint8_t *end = co_ram_end(node);
     uint8_t n = end[CO_RAM_END_1003];
     uint32_t carry;
 
-    if (n < node->emcy.hist_depth) {
+    if ((n < 254U) && (co_od_ram_of(node, 0x1003U, (uint8_t)(n + 1U), CO_UNSIGNED32) ==
+                       &end[CO_RAM_END_1003_1 + (4U * n)])) {
         n++;
     }
     /* bits 0..15 error code, 16..31 additional information (mfr bytes 0..1;
@@ -244,7 +251,7 @@ static void emcy_booted(co_node_t *node)
         /* through the queue (the queue starts empty: CO_SVC_START), error
          * register 0 */
         co_emcy_t *m = &node->emcy;
-        uint8_t *d = m->q[(m->q_head + m->n_q) % CO_EMCY_QUEUE_LEN].data;
+        uint8_t *d = m->q[m->n_q].data;
         (void)memset(d, 0, 8U);
         if (node->dev->boot_emcy_data != NULL) {
             co_copy(&d[3], node->dev->boot_emcy_data, 5U);
@@ -282,8 +289,7 @@ static void emcy_event(co_node_t *node, uint8_t kind)
 #endif
     } else if (kind == CO_SVC_START) {
         node->emcy.n_q = 0U;
-        node->emcy.q_head = 0U;
-        node->emcy.next = node->now;
+        node->emcy_next = node->now;
         (void)update_errreg(node);
     } else if (kind == CO_SVC_BOOTED) {
         emcy_booted(node);

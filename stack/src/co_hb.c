@@ -263,7 +263,7 @@ static uint32_t errctl_process(co_node_t *node, uint32_t next)
         uint32_t period = ms_to_us(hb_prod(node));
         uint32_t due = node->errctl.hb_last + period;
         if (co_time_reached(now, due)) {
-            if (node->hb_muted == 0U) {
+            if ((node->bits & CO_NODE_HB_MUTED) == 0U) {
                 /* its state when it goes (one that waits still: the next
                  * one replaces it, the cycle keeps its times) */
                 co_tx_hold(node, CO_TXH_HB, NULL);
@@ -310,9 +310,10 @@ static uint32_t errctl_process(co_node_t *node, uint32_t next)
 
 void co_node_hb_mute(co_node_t *node, bool muted, uint32_t now_us)
 {
-    bool was = node->hb_muted != 0U;
+    bool was = (node->bits & CO_NODE_HB_MUTED) != 0U;
 
-    node->hb_muted = muted ? 1U : 0U;
+    node->bits = (uint8_t)((node->bits & (uint8_t)~CO_NODE_HB_MUTED) |
+                           (muted ? CO_NODE_HB_MUTED : 0U));
     if (muted) {
         node->tx_hold &= (uint8_t)~CO_TXH_HB; /* one that waits too */
     }

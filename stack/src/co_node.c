@@ -318,7 +318,7 @@ CO_NOINLINE void co_node_stalled(co_node_t *node, uint32_t now_us)
     node->sync.deadline = now_us;
 #endif
     node->sync.last = now_us - (uint32_t)CO_HORIZON_US; /* the SYNC window is long closed */
-    node->emcy.next = now_us;
+    node->emcy_next = now_us;
     node->sdo.deadline = now_us;
     co_svc_touch_all(node);
 #if CO_LSS

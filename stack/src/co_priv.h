@@ -247,6 +247,10 @@ CO_INLINE void co_node_clock(co_node_t *node, uint32_t now_us)
 void co_node_clock(co_node_t *node, uint32_t now_us);
 #endif
 
+/* co_node_t.bits */
+#define CO_NODE_HB_MUTED     0x01U /* heartbeats held back (co_node_hb_mute) */
+#define CO_NODE_PDO_BUFFERED 0x02U /* PDO: some RPDO may hold data for the next SYNC */
+
 /* ---- transmit (co_node.c) */
 /* No frame waits in a queue of frames: a producer whose frame the HAL
  * refuses keeps what it needs to make it again and it goes when the TX path
@@ -446,7 +450,7 @@ typedef struct co_bind {
 /* Its rows: a constant the node's loop compares with (the table's
  * definition has this size; an initialiser too long does not compile, a
  * row left out would be all zeros: test_services checks for one). */
-#define CO_N_BINDS ((uint8_t)(7U - (unsigned)(CO_ERROR_BEHAVIOUR)))
+#define CO_N_BINDS ((uint8_t)(6U - (unsigned)(CO_ERROR_BEHAVIOUR)))
 extern const co_bind_t co_binds[CO_N_BINDS];
 
 /* What the node tells a service (co_service_t.event), in table order to

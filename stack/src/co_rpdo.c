@@ -123,19 +123,19 @@ void co_rpdo_rx(co_node_t *node, uint16_t i, const co_frame_t *f)
             (void)memcpy(p->data, f->data, 8U);
             p->count = f->dlc; /* the buffered frame's length */
             p->flags |= CO_PDO_F_RXBUF;
-            node->pdo_buffered = 1U;
+            node->bits |= CO_NODE_PDO_BUFFERED;
         }
         return;
     }
     apply(node, i, p, f->data, f->dlc);
 }
 
-/* At a SYNC (co_sync.c, when pdo_buffered says an RPDO may hold data):
+/* At a SYNC (co_sync.c, when CO_NODE_PDO_BUFFERED says an RPDO may hold data):
  * the buffered synchronous RPDOs take effect. Only in Operational does an
  * RPDO buffer its data, and every NMT state change drops them (restart). */
 void co_rpdo_sync(co_node_t *node)
 {
-    node->pdo_buffered = 0U;
+    node->bits &= (uint8_t)~CO_NODE_PDO_BUFFERED;
     for (uint32_t i = 0U; i < node->dev->n_rpdo; i++) {
         co_pdo_t *p = &co_pdo_st(node)[i];
         if ((p->flags & CO_PDO_F_RXBUF) != 0U) {

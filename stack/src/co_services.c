@@ -76,8 +76,6 @@ const co_bind_t co_binds[CO_N_BINDS] = {
     BIND(0x100CU, 0U, CO_BIND_NONE, errctl),
     BIND(0x100DU, 0U, CO_BIND_NONE, errctl),
 #endif
-    /* EMCY: the depth of 0x1003 (entries read only for 1..hist_depth) */
-    BIND(0x1003U, CO_UNSIGNED32, CO_BIND_LEN, emcy.hist_depth),
     /* SYNC: 0x1006 (a period only with the producer) */
 #if CO_SYNC_PRODUCER
     BIND(0x1006U, CO_UNSIGNED32, CO_BIND_PTR, sync.period),

@@ -56,7 +56,7 @@ static void on_sync(co_node_t *node, uint8_t counter)
     node->sync.last = node->now;
     /* CiA 301: synchronous RPDOs received before this SYNC take effect, the
      * application runs its cycle, then synchronous TPDOs are sampled. */
-    if (node->pdo_buffered != 0U) {
+    if ((node->bits & CO_NODE_PDO_BUFFERED) != 0U) {
         co_rpdo_sync(node);
     }
     if (CO_CB(node, sync) != NULL) {

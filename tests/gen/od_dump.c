@@ -84,6 +84,20 @@ static void hex(const uint8_t *p, uint32_t n)
     putchar('"');
 }
 
+/* The depth of 0x1003 (the EMCY service looks it up when an error comes):
+ * its entries 1.. as far as they go. */
+static unsigned hist_depth(const co_dev_t *dev)
+{
+    const co_od_entry_t *e = co_od_find(dev->od, dev->od_count, 0x1003U);
+    co_od_sub_t buf;
+    unsigned n = 0U;
+
+    while ((e != NULL) && (n < 254U) && (co_od_find_sub(dev, e, (uint8_t)(n + 1U), &buf) != NULL)) {
+        n++;
+    }
+    return n;
+}
+
 int main(int argc, char **argv)
 {
     static uint8_t buf[70000];
@@ -151,7 +165,7 @@ int main(int argc, char **argv)
            "\"emcy_cob\": %d, \"hb_prod\": %d, \"guard_time\": %d, \"life_factor\": %d, "
            "\"emcy_inhibit\": %d, \"frames\": %u, \"first_id\": %lu, \"nmt\": %u},\n",
            at_place(node, 0x1001U, (uint32_t)dev->app_end + CO_RAM_END_1001),
-           (unsigned)node->emcy.hist_depth, (unsigned)node->n_hb_cons,
+           hist_depth(dev), (unsigned)node->n_hb_cons,
            at_place(node, 0x1014U, CO_RAM_1014), at_place(node, 0x1017U, CO_RAM_1017), guard_time,
            life_factor, at_place(node, 0x1015U, CO_RAM_1015), frames_sent,
            (unsigned long)first_id, (unsigned)co_node_nmt_state(node));

@@ -156,8 +156,8 @@ static void run_rows_describe_each_sub_index(void **state)
     assert_int_equal(co_od_write(NODE, 0x6099, 1, b, 4U, true), CO_OK);
     assert_int_equal(fx.n.ram.homing_speed[0], 7U);
     assert_int_equal(fx.n.ram.homing_speed[1], 60000U);
-    /* the services bound the runs' lengths (co_od_array_len) */
-    assert_int_equal(fx.n.node.emcy.hist_depth, 8);
+    /* the services bound the runs' lengths (co_od_array_len; 0x1003's depth,
+     * looked up when an error comes: test_emcy history_depth_eight) */
     assert_int_equal(fx.n.node.n_hb_cons, 4);
 }
 

@@ -340,7 +340,7 @@ typedef struct co_sdo_srv {
 
 /** Error control (co_hb.c): heartbeat producer and consumers, node and life
  *  guarding (the consumers' count and the producer's mute flag are bytes of
- *  co_node_t: n_hb_cons, hb_muted; 0x1016, 0x1017 at their places in the RAM
+ *  co_node_t: n_hb_cons, bits; 0x1016, 0x1017 at their places in the RAM
  *  image, CO_RAM_1016). */
 typedef struct co_errctl {
     uint32_t hb_last;        /**< time of the last heartbeat (or boot-up) */
@@ -367,13 +367,13 @@ typedef struct co_emcy_pending {
 } co_emcy_pending_t;
 
 /** EMCY producer (co_emcy.c): 0x1001, 0x1003, 0x1014, 0x1015 (at their
- *  places in the RAM image, CO_RAM_1014). */
+ *  places in the RAM image, CO_RAM_1014). Without a word of its own (the
+ *  inhibit time's end is co_node_t.emcy_next) it packs to 2 bytes, and the
+ *  history's depth is looked up when an error is recorded: RAM -4 B in the
+ *  SEG and BLK builds. */
 typedef struct co_emcy {
-    uint32_t next;           /**< earliest time the next EMCY may go (inhibit) */
-    uint8_t hist_depth;
     uint8_t n_active;
-    uint8_t n_q;
-    uint8_t q_head;          /**< the oldest waiting EMCY in q (a ring) */
+    uint8_t n_q;             /**< waiting EMCYs, the oldest in q[0] */
 #if CO_STORAGE
     uint8_t store_report;    /**< EMCY 0x5530 raised for a damaged parameter set */
 #endif
@@ -441,11 +441,11 @@ typedef struct co_node {
     uint8_t tx_hold;
     /* (error control's bytes, here where they fill the bytes before the
      * words: co_errctl_t 64 -> 60 bytes in the SEG and BLK builds; with a
-     * two-byte svc_run hb_muted comes after rx_at, so that these bytes
+     * two-byte svc_run 'bits' comes after rx_at, so that these bytes
      * stay 8 in any build) */
     uint8_t n_hb_cons;       /**< heartbeat consumer entries (0x1016 sub 1..) */
 #if CO_SVC_BITS_BYTE
-    uint8_t hb_muted;        /**< 1: heartbeats held back (co_node_hb_mute) */
+    uint8_t bits;            /**< CO_NODE_HB_MUTED, CO_NODE_PDO_BUFFERED (co_priv.h) */
 #endif
     /** co_node_process: bit k: service row k has something new since it
      *  last ran (a frame, a write of its objects); CO_SVC_ALL: every row,
@@ -455,6 +455,8 @@ typedef struct co_node {
     /** co_node_process: the earliest deadline of the services when they last
      *  ran (one that has moved later since only costs an early call). */
     uint32_t due;
+    uint32_t emcy_next;      /**< EMCY (co_emcy.c): earliest time the next EMCY may
+                                  go (inhibit time; here: co_emcy_t) */
     /* one part per service */
     co_sdo_srv_t sdo;
     co_sync_t sync;
@@ -463,13 +465,12 @@ typedef struct co_node {
     uint8_t rx_at[16];       /**< per function code (COB-ID >> 7): its only slot,
                                   none, or several (co_node.c) */
 #if !CO_SVC_BITS_BYTE
-    uint8_t hb_muted;        /**< 1: heartbeats held back (co_node_hb_mute) */
+    uint8_t bits;            /**< CO_NODE_HB_MUTED, CO_NODE_PDO_BUFFERED (co_priv.h) */
 #endif
 #if CO_LSS
     uint8_t cob_base;        /**< node-ID the $NODEID defaults of the PDO and EMCY
                                   COB-IDs use (CO_LSS_COBS_KEEP; else node_id) */
 #endif
-    uint8_t pdo_buffered;    /**< PDO: some RPDO may hold data for the next SYNC */
 #if CO_TPDO_CHANGE
     uint8_t pdo_poll;        /**< PDO: 1: event-driven TPDOs compare their data at
                                   every co_node_process (change detection) */

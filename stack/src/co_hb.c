@@ -175,14 +175,21 @@ static void hbc_advance(co_node_t *node)
 {
     co_errctl_t *c = &node->errctl;
     uint32_t d = node->now - c->hbc_base;
-    uint32_t units = (d <= (0xFFFFFFFFUL - CO_STEP_BACK_MAX)) ? (d >> HBC_SHIFT) : 0U;
+    uint32_t units = 0U;
     uint32_t any = 0U;
 
+    if (d <= (0xFFFFFFFFUL - CO_STEP_BACK_MAX)) {
+        units = d >> HBC_SHIFT; /* (else a time stamp before the base) */
+    }
     c->hbc_base += units << HBC_SHIFT;
     for (uint32_t k = node->n_hb_cons; k > 0U; k--) {
         uint32_t left = c->hbc_left[k - 1U];
         if (left != HBC_LOST) {
-            left = (left > units) ? (left - units) : 0U;
+            if (left > units) {
+                left -= units;
+            } else {
+                left = 0U;
+            }
             c->hbc_left[k - 1U] = (uint16_t)left;
             any |= left;
         }
@@ -201,12 +208,14 @@ static void hb_rx(co_node_t *node, uint32_t slot, const co_frame_t *f)
     bool waiting = c->hbc_nmt[slot] == (uint8_t)HBC_WAITING;
     bool lost = c->hbc_left[slot] == HBC_LOST;
     bool changed = c->hbc_nmt[slot] != st;
+    uint32_t since;
     int32_t end;
 
     /* the deadline: the consumer time after now, now less than a unit
      * after the base (or before it: a time stamp before the last run) */
     hbc_advance(node);
-    end = (int32_t)(node->now - c->hbc_base) +
+    since = node->now - c->hbc_base;
+    end = (int32_t)since +
           (int32_t)ms_to_us(hb_cons(node, slot) & 0xFFFFU);
     c->hbc_left[slot] =
         (uint16_t)((end > 0) ? (((uint32_t)end + (HBC_UNIT - 1U)) >> HBC_SHIFT) : 0U);

@@ -224,6 +224,20 @@ static void heartbeat_muted_and_resumed(void **state)
  * later, never before (co_hb.c: its deadline in units of 1024 us). */
 #define HBC_LATE 1023U
 
+/* Silence from now: nothing until @p us, then (by the consumer's rounding
+ * up, at most HBC_LATE later) EMCY 0x8130 and event @p k of the recorder,
+ * producer @p id timed out in Operational. */
+static void expect_lost_after(void **state, uint32_t us, int k, uint8_t id)
+{
+    tb_advance(BUS, us - 1U);
+    tb_expect_none(BUS);
+    tb_advance(BUS, 1U + HBC_LATE);
+    tb_expect(BUS, "081 30 81 11 00 00 00 00 00");
+    tb_expect_none(BUS);
+    assert_int_equal(REC.n, k + 1);
+    expect_event(&REC, k, CO_HB_TIMEOUT, id, CO_NMT_OPERATIONAL);
+}
+
 static void heartbeat_consumer_timeout_and_recovery(void **state)
 {
     /* sub1: producer 5, 200 ms */
@@ -246,13 +260,7 @@ static void heartbeat_consumer_timeout_and_recovery(void **state)
     tb_expect_none(BUS);
     assert_int_equal(REC.n, 1);
     /* silence: timeout exactly 200 ms after the last heartbeat */
-    tb_advance(BUS, 199999U);
-    tb_expect_none(BUS);
-    tb_advance(BUS, 1U + HBC_LATE);
-    tb_expect(BUS, "081 30 81 11 00 00 00 00 00");
-    tb_expect_none(BUS);
-    assert_int_equal(REC.n, 2);
-    expect_event(&REC, 1, CO_HB_TIMEOUT, 5, CO_NMT_OPERATIONAL);
+    expect_lost_after(state, 200000U, 1, 5U);
     tb_xfer(BUS, "601 40 01 10 00 00 00 00 00", "581 4F 01 10 00 11 00 00 00");
     tb_xfer(BUS, "601 40 03 10 01 00 00 00 00", "581 43 03 10 01 30 81 00 00");
     /* no repetition while it stays lost */
@@ -288,12 +296,7 @@ static void heartbeat_consumer_state_changes(void **state)
     tb_send(BUS, "709 R1");
     tb_send(BUS, "709");
     tb_send(BUS, "708 04");
-    tb_advance(BUS, 499999U);
-    tb_expect_none(BUS);
-    tb_advance(BUS, 1U + HBC_LATE);
-    tb_expect(BUS, "081 30 81 11 00 00 00 00 00");
-    expect_event(&REC, 3, CO_HB_TIMEOUT, 9, CO_NMT_OPERATIONAL);
-    tb_expect_none(BUS);
+    expect_lost_after(state, 500000U, 3, 9U);
 }
 
 static void heartbeat_consumer_two_producers_one_error(void **state)
@@ -374,13 +377,7 @@ static void heartbeat_consumer_write_restarts_that_entry_only(void **state)
     tb_advance(BUS, 50000U);
     /* the master changes entry 2: entry 1 keeps its deadline */
     tb_xfer(BUS, "601 23 16 10 02 2C 01 06 00", "581 60 16 10 02 00 00 00 00");
-    tb_advance(BUS, 49999U);
-    tb_expect_none(BUS);
-    tb_advance(BUS, 1U + HBC_LATE);
-    tb_expect(BUS, "081 30 81 11 00 00 00 00 00");
-    tb_expect_none(BUS);
-    assert_int_equal(REC.n, 3);
-    expect_event(&REC, 2, CO_HB_TIMEOUT, 5, CO_NMT_OPERATIONAL);
+    expect_lost_after(state, 50000U, 2, 5U);
     /* a write to entry 2 while 5 is lost does not end 5's error */
     tb_xfer(BUS, "601 23 16 10 02 90 01 06 00", "581 60 16 10 02 00 00 00 00");
     tb_advance(BUS, 1000000U);
@@ -437,13 +434,7 @@ static void heartbeat_consumer_unused_entry_same_producer(void **state)
     tb_send(BUS, "705 05");
     assert_int_equal(REC.n, 1);
     expect_event(&REC, 0, CO_HB_STARTED, 5, CO_NMT_OPERATIONAL);
-    tb_advance(BUS, 99999U);
-    tb_expect_none(BUS);
-    tb_advance(BUS, 1U + HBC_LATE);
-    tb_expect(BUS, "081 30 81 11 00 00 00 00 00");
-    tb_expect_none(BUS);
-    assert_int_equal(REC.n, 2);
-    expect_event(&REC, 1, CO_HB_TIMEOUT, 5, CO_NMT_OPERATIONAL);
+    expect_lost_after(state, 100000U, 1, 5U);
     tb_advance(BUS, 1000000U);
     assert_int_equal(REC.n, 2);
     tb_send(BUS, "705 7F");
@@ -551,12 +542,7 @@ static void heartbeat_consumer_first_after_71_min(void **state)
     tb_expect_none(BUS);
     tb_send(BUS, "705 05");
     expect_event(&REC, 0, CO_HB_STARTED, 5, CO_NMT_OPERATIONAL);
-    tb_advance(BUS, 199999U);
-    tb_expect_none(BUS);
-    assert_int_equal(REC.n, 1);
-    tb_advance(BUS, 1U + HBC_LATE);
-    tb_expect(BUS, "081 30 81 11 00 00 00 00 00");
-    expect_event(&REC, 1, CO_HB_TIMEOUT, 5, CO_NMT_OPERATIONAL);
+    expect_lost_after(state, 200000U, 1, 5U);
 }
 
 static void reset_communication_ends_monitoring(void **state)

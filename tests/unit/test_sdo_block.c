@@ -436,32 +436,34 @@ static void block_download_u64_two_segments(void **state)
     assert_true(RAMV.u64 == 0x0807060504030201ULL);
 }
 
+/* A block download of the u64 0x2006 (initiate @p init) of two segments:
+ * 7 bytes, then @p last_seg; the end request @p end gets @p answer and
+ * the value stays 0. */
+static void u64_block_refused(void **state, const char *init, const char *last_seg,
+                              const char *end, const char *answer)
+{
+    tb_xfer(BUS, init, "581 A4 06 20 00 7F 00 00 00");
+    tb_send(BUS, "601 01 01 02 03 04 05 06 07");
+    tb_expect_none(BUS);
+    tb_xfer(BUS, last_seg, "581 A2 02 7F 00 00 00 00 00");
+    tb_xfer(BUS, end, answer);
+    assert_true(RAMV.u64 == 0U);
+}
+
 static void block_download_u64_last_segment_too_long(void **state)
 {
     /* the last segment is held in the server's 8-byte value buffer after the
      * 7 bytes gathered: an end request claiming 2 bytes of it (9 in all) is
      * refused for its length (before any CRC, which would cover a byte the
      * value has no room for), and the value stays */
-    tb_xfer(BUS, "601 C6 06 20 00 08 00 00 00", "581 A4 06 20 00 7F 00 00 00");
-    tb_send(BUS, "601 01 01 02 03 04 05 06 07");
-    tb_expect_none(BUS);
-    tb_xfer(BUS, "601 82 08 09 00 00 00 00 00", "581 A2 02 7F 00 00 00 00 00");
-    tb_xfer(BUS, "601 D5 00 00 00 00 00 00 00", "581 80 06 20 00 12 00 07 06");
-    assert_true(RAMV.u64 == 0U);
+    u64_block_refused(state, "601 C6 06 20 00 08 00 00 00", "601 82 08 09 00 00 00 00 00",
+                      "601 D5 00 00 00 00 00 00 00", "581 80 06 20 00 12 00 07 06");
     /* without an indicated size: too long for the type */
-    tb_xfer(BUS, "601 C4 06 20 00 00 00 00 00", "581 A4 06 20 00 7F 00 00 00");
-    tb_send(BUS, "601 01 01 02 03 04 05 06 07");
-    tb_expect_none(BUS);
-    tb_xfer(BUS, "601 82 08 09 00 00 00 00 00", "581 A2 02 7F 00 00 00 00 00");
-    tb_xfer(BUS, "601 D5 00 00 00 00 00 00 00", "581 80 06 20 00 10 00 07 06");
-    assert_true(RAMV.u64 == 0U);
+    u64_block_refused(state, "601 C4 06 20 00 00 00 00 00", "601 82 08 09 00 00 00 00 00",
+                      "601 D5 00 00 00 00 00 00 00", "581 80 06 20 00 10 00 07 06");
     /* the 1-byte end of the same transfer with a wrong CRC: refused for the CRC */
-    tb_xfer(BUS, "601 C6 06 20 00 08 00 00 00", "581 A4 06 20 00 7F 00 00 00");
-    tb_send(BUS, "601 01 01 02 03 04 05 06 07");
-    tb_expect_none(BUS);
-    tb_xfer(BUS, "601 82 08 00 00 00 00 00 00", "581 A2 02 7F 00 00 00 00 00");
-    tb_xfer(BUS, "601 D9 AD 76 00 00 00 00 00", "581 80 06 20 00 04 00 04 05");
-    assert_true(RAMV.u64 == 0U);
+    u64_block_refused(state, "601 C6 06 20 00 08 00 00 00", "601 82 08 00 00 00 00 00 00",
+                      "601 D9 AD 76 00 00 00 00 00", "581 80 06 20 00 04 00 04 05");
 }
 
 static void block_download_string(void **state)

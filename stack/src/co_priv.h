@@ -595,6 +595,11 @@ uint8_t *co_od_ram_of(co_node_t *node, uint16_t index, uint8_t sub, uint8_t type
 /* Number of consecutive sub-entries 1..n (at most @p max) of an array whose
  * values of @p type are stored back to back, 0 if there are none. */
 uint8_t co_od_array_len(co_node_t *node, uint16_t index, uint8_t type, uint8_t max);
+/* Every sub-entry of @p dev, entry by entry and row by row (a run's
+ * sub-indices one by one), to @p visit with its entry (the descriptor
+ * valid for the call only). */
+typedef void (*co_od_visit_t)(void *ctx, const co_od_entry_t *e, const co_od_sub_t *s);
+void co_od_each_sub(const co_dev_t *dev, co_od_visit_t visit, void *ctx);
 
 /* A COB-ID write (CiA 301 7.5.2) of @p v (UNSIGNED32) over @p cur (its
  * 16-bit form, co_cob_at): 29-bit identifiers

@@ -130,6 +130,29 @@ uint32_t co_store_lss_unit(const co_node_t *node)
 }
 
 #if CO_STORAGE
+typedef struct {
+    const co_dev_t *dev;
+    uint16_t crc;
+} sig_walk_t;
+
+/* (co_od_each_sub) a stored value: where it is and what it is, into the
+ * layout signature */
+static void sig_add(void *ctx, const co_od_entry_t *e, const co_od_sub_t *s)
+{
+    sig_walk_t *w = (sig_walk_t *)ctx;
+    uint8_t b[8];
+
+    if (((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) == 0U) && (co_od_off(e, s) < w->dev->app_end)) {
+        co_put_u16(&b[0], e->index);
+        b[2] = s->sub;
+        /* (a COB-ID's 16-bit form: a value of another size) */
+        b[3] = s->type;
+        co_put_u16(&b[4], co_od_off(e, s));
+        co_put_u16(&b[6], s->size);
+        w->crc = co_crc16(w->crc, b, 8U);
+    }
+}
+
 /* Identifies the RAM layout: sizes, the CPU's byte order (the image holds
  * native integers) and, for every stored value, where it is and what it is
  * (and the mappable objects, which the stored PDO mapping entries name).
@@ -139,32 +162,16 @@ static uint16_t layout_sig(const co_dev_t *dev)
     static const uint16_t order = 0x0102U;
     uint8_t b[8];
     uint16_t crc;
+    sig_walk_t w;
 
     co_put_u16(&b[0], dev->ram_size);
     co_put_u16(&b[2], dev->comm_end);
     co_put_u16(&b[4], dev->app_end);
     (void)memcpy(&b[6], (const uint8_t *)&order, 2U);
-    crc = co_crc16(0xFFFFU, b, 8U);
-    for (uint16_t i = 0U; i < dev->od_count; i++) {
-        const co_od_entry_t *e = &dev->od[i];
-        const co_od_sub_t *r = co_od_rows(dev, e);
-        for (uint32_t k = 0U; k < e->nsubs; k++) {
-            for (uint32_t j = 0U; j < co_od_run_len(&r[k]); j++) {
-                co_od_sub_t sd;
-                const co_od_sub_t *s = co_od_row_sub(&r[k], j, &sd);
-                if (((s->flags & (CO_SUB_ROM | CO_SUB_HOOKIO)) == 0U) &&
-                    (co_od_off(e, s) < dev->app_end)) {
-                    co_put_u16(&b[0], e->index);
-                    b[2] = s->sub;
-                    /* (a COB-ID's 16-bit form: a value of another size) */
-                    b[3] = s->type;
-                    co_put_u16(&b[4], co_od_off(e, s));
-                    co_put_u16(&b[6], s->size);
-                    crc = co_crc16(crc, b, 8U);
-                }
-            }
-        }
-    }
+    w.dev = dev;
+    w.crc = co_crc16(0xFFFFU, b, 8U);
+    co_od_each_sub(dev, sig_add, &w); /* every stored value */
+    crc = w.crc;
     /* the mapping entries' 16-bit forms name rows of the mappable-object table */
     for (uint32_t k = 0U; k < dev->n_maps; k++) {
         co_put_u16(&b[0], dev->maps[k].index);
